@@ -1,0 +1,310 @@
+#pragma once
+/// The in-memory Body model: what the loader produces and every later stage reads.
+///
+/// All values are SI (metres, kilograms, seconds) and radians; degrees exist only in the file
+/// and are converted by the loader. Elements refer to each other by index, never by pointer.
+/// Every element keeps the source location of the text that defined it.
+
+#include <bodyfmt/diagnostic.h>
+#include <bodyfmt/mesh.h>
+
+#include <Eigen/Geometry>
+
+#include <limits>
+#include <map>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace bodyfmt {
+
+using LinkIndex = int;  ///< index into Model::links; -1 = none
+using MeshIndex = int;  ///< index into Model::meshes; -1 = not loaded
+
+constexpr double kUnlimited = std::numeric_limits<double>::max();
+
+// ---------------------------------------------------------------------------------------
+// Geometry (body-format-spec §9). Cylinder, Cone and Capsule run along the local +Y axis.
+
+struct Box {
+  Eigen::Vector3d size{1, 1, 1};  ///< full edge lengths
+};
+struct Sphere {
+  double radius = 1;
+};
+struct Cylinder {
+  double radius = 1;
+  double height = 1;
+  bool top = true;
+  bool bottom = true;
+};
+struct Cone {
+  double radius = 1;
+  double height = 1;
+  bool bottom = true;
+};
+struct Capsule {
+  double radius = 1;
+  double height = 1;  ///< cylindrical part only; total length = height + 2 radius
+};
+/// VRML97 Extrusion: cross-section in the local XZ plane swept along the spine.
+struct Extrusion {
+  std::vector<Eigen::Vector2d> cross_section;
+  std::vector<Eigen::Vector3d> spine;
+  std::vector<Eigen::AngleAxisd> orientation;  ///< 1 entry or one per spine point
+  std::vector<Eigen::Vector2d> scale;          ///< 1 entry or one per spine point
+  double crease_angle = 0;
+  bool begin_cap = true;
+  bool end_cap = true;
+};
+/// VRML97 ElevationGrid: vertex (i, j) at (i x_spacing, height[j x_dim + i], j z_spacing).
+struct ElevationGrid {
+  int x_dimension = 0;
+  int z_dimension = 0;
+  double x_spacing = 1;
+  double z_spacing = 1;
+  std::vector<double> height;
+  bool ccw = true;
+  double crease_angle = 0;
+};
+/// Polygons as VRML97 coordIndex: each polygon terminated by -1.
+struct IndexedFaceSet {
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<int> faces;
+  std::vector<Eigen::Vector2d> tex_coords;
+  std::vector<int> tex_coord_indices;
+  double crease_angle = 0;
+};
+/// Flat list of triangles (3 indices each), the form Choreonoid's writer emits.
+struct TriangleMeshGeometry {
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<int> faces;
+  std::vector<Eigen::Vector2d> tex_coords;
+  std::vector<int> tex_coord_indices;
+  double crease_angle = 0;
+};
+/// An external mesh file (geometry `type: Resource`, or a Resource element's mesh part).
+struct MeshResource {
+  std::string uri;            ///< as written
+  std::string resolved_path;  ///< empty when it could not be resolved
+  std::string node;           ///< `node`/`fragment`: named part of the file; empty = whole file
+  double length_scale = 1.0;  ///< metadata length_unit: 0.001 for millimeter, 0.0254 for inch
+  bool y_up = false;          ///< metadata upper_axis: Y
+  std::optional<double> crease_angle;
+  MeshIndex mesh = -1;  ///< Model::meshes entry once imported
+};
+
+using Geometry = std::variant<Box, Sphere, Cylinder, Cone, Capsule, Extrusion, ElevationGrid,
+                              IndexedFaceSet, TriangleMeshGeometry, MeshResource>;
+
+std::string_view geometry_type_name(const Geometry& geometry);
+
+struct Texture {
+  std::string uri;
+  std::string resolved_path;
+  bool repeat_s = true;
+  bool repeat_t = true;
+};
+
+struct Appearance {
+  std::optional<Material> material;
+  std::optional<Texture> texture;
+};
+
+/// A shape placed in its link's frame.
+struct Shape {
+  std::string name;
+  Geometry geometry;
+  Appearance appearance;
+  Eigen::Affine3d X_LS = Eigen::Affine3d::Identity();  ///< may contain scale
+  int division_number = 20;  ///< tessellation (values < 4 mean the default, 20)
+  bool visual = true;        ///< part of the visual model
+  bool collision = true;     ///< part of the collision model
+  SourceLocation source;
+};
+
+// ---------------------------------------------------------------------------------------
+// Mass
+
+/// A rigid-body contribution in the link frame: mass, centre of mass, inertia about the
+/// centre of mass in link axes. Combined per link by compute_mass_properties().
+struct MassContribution {
+  double mass = 0;
+  Eigen::Vector3d center_of_mass = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
+  bool from_link_keys = false;  ///< link-level mass/center_of_mass/inertia keys
+  SourceLocation source;
+};
+
+struct MassProperties {
+  double mass = 1.0;
+  Eigen::Vector3d center_of_mass = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Identity();
+};
+
+// ---------------------------------------------------------------------------------------
+// Links and joints
+
+enum class JointType { kFree, kFixed, kRevolute, kPrismatic, kPseudoContinuousTrack };
+
+std::string_view joint_type_name(JointType type);
+
+/// Where the fields that rules and writers point at were written.
+struct LinkSources {
+  SourceLocation name, parent, translation, rotation, joint_type, joint_axis, joint_id,
+      joint_range, joint_velocity, mass, center_of_mass, inertia;
+};
+
+struct Link {
+  std::string name;
+  std::string joint_name;
+  LinkIndex parent = -1;
+  std::vector<LinkIndex> children;
+
+  /// Offset of this link (= its joint frame) in the parent link frame; for the root, its
+  /// initial pose in the world.
+  Eigen::Isometry3d X_PL = Eigen::Isometry3d::Identity();
+
+  JointType joint_type = JointType::kFixed;
+  Eigen::Vector3d joint_axis{0, 0, 1};  ///< link frame; not normalised (Choreonoid does not)
+  int joint_id = -1;
+  double joint_range_lower = -kUnlimited;
+  double joint_range_upper = kUnlimited;
+  double velocity_lower = -kUnlimited;
+  double velocity_upper = kUnlimited;
+  double effort_lower = -kUnlimited;
+  double effort_upper = kUnlimited;
+  double initial_displacement = 0;
+  double joint_axis_inertia = 0;  ///< equivalent rotor inertia
+  std::string actuation_mode;
+  std::string contact_material;
+
+  std::vector<MassContribution> mass_contributions;
+  std::vector<Shape> shapes;
+
+  SourceLocation source;
+  LinkSources sources;
+};
+
+// ---------------------------------------------------------------------------------------
+// Devices (body-format-spec §10)
+
+struct CameraParams {
+  std::string format;  ///< COLOR, DEPTH, COLOR_DEPTH, POINT_CLOUD, COLOR_POINT_CLOUD
+  std::string lens_type = "NORMAL";
+  int width = 640;
+  int height = 480;
+  double field_of_view = 0.785398;
+  double near_clip_distance = 0.04;
+  double far_clip_distance = 200;
+  double frame_rate = 30;
+  std::string optical_frame = "gl";
+  // RangeCamera only
+  double min_distance = 0.1;
+  double max_distance = 10;
+  double detection_rate = 1.0;
+  double error_deviation = 0;
+};
+struct RangeSensorParams {
+  double yaw_range = 2.0943951023931953;  // 120 deg
+  double yaw_step = 1.0;                  // Choreonoid's constructor default is 1 radian
+  double pitch_range = 0;
+  double pitch_step = 1.0;
+  double min_distance = 0.1;
+  double max_distance = 10;
+  double scan_rate = 10;
+  double detection_rate = 1.0;
+  double error_deviation = 0;
+};
+struct LightParams {
+  Eigen::Vector3d color{1, 1, 1};
+  double intensity = 1;
+  Eigen::Vector3d attenuation{1, 0, 0};
+  // SpotLight only
+  Eigen::Vector3d direction{0, 0, -1};
+  double beam_width = 1.5707963267948966;
+  double cut_off_angle = 0.7853981633974483;
+  double cut_off_exponent = 1;
+};
+struct ForceSensorParams {
+  Eigen::Vector3d max_force = Eigen::Vector3d::Constant(kUnlimited);
+  Eigen::Vector3d max_torque = Eigen::Vector3d::Constant(kUnlimited);
+};
+struct InertialSensorParams {  ///< RateGyroSensor, AccelerationSensor, IMU
+  Eigen::Vector3d max_angular_velocity = Eigen::Vector3d::Constant(kUnlimited);
+  Eigen::Vector3d max_acceleration = Eigen::Vector3d::Constant(kUnlimited);
+};
+/// Devices whose parameters no stage interprets yet (Holder, Attachment, Conveyor, DigitalIO,
+/// MarkerDevice, ZmpDevice) and plugin devices: kept as their scalar keys.
+struct OpaqueParams {};
+
+using DeviceParams = std::variant<OpaqueParams, CameraParams, RangeSensorParams, LightParams,
+                                  ForceSensorParams, InertialSensorParams>;
+
+struct Device {
+  std::string node_type;  ///< as written, e.g. "Camera", "IMU", "AGXVehicleContinuousTrackDevice"
+  std::string type;       ///< Choreonoid's device class, e.g. "RangeCamera", "Imu", "HolderDevice"
+  std::string name;
+  int id = -1;
+  bool on = true;
+  bool plugin = false;  ///< a plugin node type Choreonoid loads only with its plugin
+  LinkIndex link = -1;
+  Eigen::Isometry3d X_LD = Eigen::Isometry3d::Identity();
+  DeviceParams params;
+  /// Every scalar key of the node as written (for opaque devices and exporters' comments).
+  std::map<std::string, std::string> keys;
+  SourceLocation source;
+};
+
+// ---------------------------------------------------------------------------------------
+// Extra joints (closed loops, body-format-spec §12)
+
+struct ExtraJoint {
+  std::string type;  ///< fixed, hinge, ball, piston
+  LinkIndex link1 = -1;
+  LinkIndex link2 = -1;
+  Eigen::Vector3d axis{1, 0, 0};
+  Eigen::Isometry3d X_1J = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d X_2J = Eigen::Isometry3d::Identity();
+  SourceLocation source;
+};
+
+// ---------------------------------------------------------------------------------------
+// Imported meshes, shared between shapes that reference the same (file, node, metadata).
+
+struct MeshPart {
+  TriangleMesh mesh;  ///< in the resource frame, metres, Z-up after metadata is applied
+  std::optional<Material> material;
+  std::optional<Texture> texture;
+};
+
+struct MeshAsset {
+  std::string path;
+  std::string node;
+  std::vector<MeshPart> parts;
+};
+
+// ---------------------------------------------------------------------------------------
+
+struct Model {
+  std::string name;
+  std::string source_file;
+  double format_version = 0;
+  bool angles_in_degrees = true;
+  /// Links in Choreonoid's order: depth-first pre-order from the root; links[0] is the root.
+  std::vector<Link> links;
+  /// Sorted by link order, then file order.
+  std::vector<Device> devices;
+  std::vector<ExtraJoint> extra_joints;
+  std::vector<MeshAsset> meshes;
+  std::vector<std::string> body_handlers;
+  SourceLocation source;
+
+  const Link& root() const { return links.front(); }
+  LinkIndex find_link(std::string_view name) const;
+  /// Choreonoid's numJoints: ids 0..max plus every non-fixed link without an id.
+  int num_joints() const;
+};
+
+}  // namespace bodyfmt

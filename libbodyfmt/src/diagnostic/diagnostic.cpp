@@ -1,0 +1,60 @@
+#include <bodyfmt/diagnostic.h>
+
+#include <algorithm>
+#include <tuple>
+
+namespace bodyfmt {
+
+std::string_view severity_name(Severity severity) {
+  switch (severity) {
+    case Severity::kNote: return "note";
+    case Severity::kWarning: return "warning";
+    case Severity::kError: return "error";
+    case Severity::kFatal: return "fatal error";
+  }
+  return "error";
+}
+
+void CollectingSink::report(Diagnostic diagnostic) { diagnostics_.push_back(std::move(diagnostic)); }
+
+int CollectingSink::count(Severity severity) const {
+  return static_cast<int>(std::count_if(diagnostics_.begin(), diagnostics_.end(),
+                                        [&](const Diagnostic& d) { return d.severity == severity; }));
+}
+
+bool CollectingSink::has(std::string_view rule_id) const {
+  return std::any_of(diagnostics_.begin(), diagnostics_.end(),
+                     [&](const Diagnostic& d) { return d.rule_id == rule_id; });
+}
+
+void LocatingSink::report(Diagnostic diagnostic) {
+  if (!diagnostic.location.known()) diagnostic.location = fallback_;
+  inner_.report(std::move(diagnostic));
+}
+
+static std::string format_location(const SourceLocation& location) {
+  std::string text = location.file.empty() ? std::string("<input>") : location.file;
+  if (location.line > 0) {
+    text += ':' + std::to_string(location.line);
+    if (location.column > 0) text += ':' + std::to_string(location.column);
+  }
+  return text;
+}
+
+std::string format_diagnostic(const Diagnostic& d) {
+  std::string text = format_location(d.location) + ": " + std::string(severity_name(d.severity)) +
+                     ": " + d.message;
+  if (!d.rule_id.empty()) text += " [" + d.rule_id + "]";
+  if (d.via) text += "\n" + format_location(*d.via) + ": note: reached through this alias";
+  if (!d.fix_hint.empty()) text += "\n" + format_location(d.location) + ": note: " + d.fix_hint;
+  return text;
+}
+
+void sort_diagnostics(std::vector<Diagnostic>& diagnostics) {
+  std::stable_sort(diagnostics.begin(), diagnostics.end(), [](const Diagnostic& a, const Diagnostic& b) {
+    return std::tie(a.location.file, a.location.line, a.location.column, a.rule_id) <
+           std::tie(b.location.file, b.location.line, b.location.column, b.rule_id);
+  });
+}
+
+}  // namespace bodyfmt

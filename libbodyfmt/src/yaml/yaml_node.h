@@ -1,0 +1,96 @@
+#pragma once
+// The project's own YAML tree: every node keeps its position, every scalar stays a string
+// (body-format-spec §1.1), aliases share one node, merge keys are already applied.
+
+#include <bodyfmt/diagnostic.h>
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace bodyfmt::yaml {
+
+enum class NodeKind { kScalar, kSequence, kMapping };
+
+struct Node;
+
+/// An edge to a node. When the node was reached through `*alias`, `alias_site` is where the
+/// alias was written; `node->location` is always the anchor's (definition) site.
+struct NodeRef {
+  const Node* node = nullptr;
+  std::optional<SourceLocation> alias_site;
+
+  const Node* operator->() const { return node; }
+  const Node& operator*() const { return *node; }
+  explicit operator bool() const { return node != nullptr; }
+  /// Where the value appears from the reader's point of view: the alias use site if any.
+  const SourceLocation& use_site() const;
+};
+
+struct MapEntry {
+  std::string key;
+  SourceLocation key_location;
+  NodeRef value;
+  bool merged = false;  ///< came from a `<<` merge source rather than written locally
+};
+
+struct Node {
+  NodeKind kind = NodeKind::kScalar;
+  SourceLocation location;  ///< 1-based position of the node's first character (or its anchor)
+  std::string anchor;       ///< empty when not anchored
+  std::string tag;          ///< as written ("!!str"), ignored by the loader
+
+  // kScalar
+  std::string scalar;
+  bool plain = true;  ///< false for quoted or block scalars
+  // kSequence
+  std::vector<NodeRef> items;
+  // kMapping: file order; merge keys applied (local keys win, first merge source wins);
+  // duplicate keys collapsed (the last one wins, as in Choreonoid). The `<<` key is removed.
+  std::vector<MapEntry> entries;
+
+  bool is_scalar() const { return kind == NodeKind::kScalar; }
+  bool is_sequence() const { return kind == NodeKind::kSequence; }
+  bool is_mapping() const { return kind == NodeKind::kMapping; }
+  /// A plain, empty scalar or `~`/`null` (an absent value such as `key:`).
+  bool is_null() const;
+  /// Mapping lookup; nullptr entry when absent or when this is not a mapping.
+  const MapEntry* find(std::string_view key) const;
+};
+
+struct ParseOptions {
+  /// Maximum number of nodes in the document as a consumer sees it, counting every alias
+  /// expansion in full ("billion laughs" guard).
+  std::size_t max_expanded_nodes = 10'000'000;
+  /// Maximum nesting depth of sequences and mappings, counted through aliases.
+  int max_depth = 200;
+  /// Anchors defined elsewhere that this document may refer to (a YAML resource sees the
+  /// main body file's anchors, body-format-spec §9.3). Not owned.
+  const std::map<std::string, const Node*>* imported_anchors = nullptr;
+};
+
+/// A parsed document. Owns every node; NodeRefs point into it.
+class Document {
+ public:
+  NodeRef root;
+  std::string file;
+  std::map<std::string, const Node*> anchors;  ///< defined in this document
+  std::size_t expanded_node_count = 0;
+
+  Node* make_node();
+
+ private:
+  std::vector<std::unique_ptr<Node>> nodes_;
+};
+
+/// Parses the first YAML document of `text`. Reports `yaml-*` diagnostics located in
+/// `file_name`. Returns nullptr when nothing usable could be built: a syntax error, an
+/// undefined alias, a redefined anchor, or a budget exceeded. Warnings (duplicate keys)
+/// leave the document usable.
+std::unique_ptr<Document> parse_yaml(std::string_view text, const std::string& file_name,
+                                     const ParseOptions& options, DiagnosticSink& sink);
+
+}  // namespace bodyfmt::yaml
