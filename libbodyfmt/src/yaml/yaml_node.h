@@ -52,6 +52,11 @@ struct Node {
   // duplicate keys collapsed (the last one wins, as in Choreonoid). The `<<` key is removed.
   std::vector<MapEntry> entries;
 
+  // Filled by parse_yaml when the node is finished, so that a document reaching this node through
+  // any number of aliases is measured in O(1) per alias (billion-laughs guard, toolchain.md §3).
+  std::size_t expanded_size = 0;  ///< 1 + sum over children, aliases in full; 0 = not finished
+  int expanded_depth = 0;         ///< 0 for a scalar, 1 + deepest child for a collection
+
   bool is_scalar() const { return kind == NodeKind::kScalar; }
   bool is_sequence() const { return kind == NodeKind::kSequence; }
   bool is_mapping() const { return kind == NodeKind::kMapping; }
@@ -89,7 +94,8 @@ class Document {
 /// Parses the first YAML document of `text`. Reports `yaml-*` diagnostics located in
 /// `file_name`. Returns nullptr when nothing usable could be built: a syntax error, an
 /// undefined alias, a redefined anchor, or a budget exceeded. Warnings (duplicate keys)
-/// leave the document usable.
+/// leave the document usable. A text without any document (empty, only comments) gives a
+/// Document whose root is a plain empty scalar (`is_null()`) at 1:1, so callers need no null check.
 std::unique_ptr<Document> parse_yaml(std::string_view text, const std::string& file_name,
                                      const ParseOptions& options, DiagnosticSink& sink);
 
