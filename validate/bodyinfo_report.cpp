@@ -1,0 +1,162 @@
+#include "bodyinfo_report.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace bodyfmt::info {
+namespace {
+
+std::string number(double v) {
+  if (std::isinf(v) || std::abs(v) >= kUnlimited) return v > 0 ? ".inf" : "-.inf";
+  if (std::isnan(v)) return ".nan";
+  if (v == 0) return "0";  // no "-0"
+  return fmt::format("{}", v);
+}
+
+template <typename Vector>
+std::string list(const Vector& v) {
+  std::string out = "[";
+  for (Eigen::Index i = 0; i < v.size(); ++i) out += (i ? ", " : "") + number(v[i]);
+  return out + "]";
+}
+
+std::string matrix(const Eigen::Matrix3d& m) {
+  std::string out = "[";
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) out += (r || c ? ", " : "") + number(m(r, c));
+  return out + "]";
+}
+
+std::string quoted(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    if (c == '\n') {
+      out += "\\n";
+      continue;
+    }
+    out += c;
+  }
+  return out + "\"";
+}
+
+std::string bbox(const BoundingBox& b) {
+  return "[" + number(b.min.x()) + ", " + number(b.min.y()) + ", " + number(b.min.z()) + ", " +
+         number(b.max.x()) + ", " + number(b.max.y()) + ", " + number(b.max.z()) + "]";
+}
+
+std::string pair(double lo, double hi) { return "[" + number(lo) + ", " + number(hi) + "]"; }
+
+double degrees(double radians) { return radians * 180.0 / M_PI; }
+
+std::string range_text(const Link& link) {
+  if (link.joint_type != JointType::kRevolute && link.joint_type != JointType::kPrismatic) return "";
+  if (link.joint_range_lower <= -kUnlimited && link.joint_range_upper >= kUnlimited) return "unlimited";
+  auto end = [&](double v) {
+    if (std::abs(v) >= kUnlimited) return std::string(v > 0 ? "+inf" : "-inf");
+    return link.joint_type == JointType::kRevolute ? fmt::format("{:.4g} deg", degrees(v))
+                                                   : fmt::format("{:.4g} m", v);
+  };
+  return "[" + end(link.joint_range_lower) + ", " + end(link.joint_range_upper) + "]";
+}
+
+void summary_link(std::string& out, const Model& model, const Derived& derived, LinkIndex i, int depth) {
+  const Link& link = model.links[static_cast<std::size_t>(i)];
+  const MassProperties& m = derived.mass[static_cast<std::size_t>(i)];
+  std::string joint(joint_type_name(link.joint_type));
+  if (link.joint_id >= 0) joint += fmt::format(" #{}", link.joint_id);
+  if (link.joint_type == JointType::kRevolute || link.joint_type == JointType::kPrismatic ||
+      link.joint_type == JointType::kPseudoContinuousTrack)
+    joint += " axis " + list(link.joint_axis);
+  std::string range = range_text(link);
+  if (!range.empty()) joint += " range " + range;
+  out += fmt::format("{:{}}{}  ({})  {:.6g} kg\n", "", depth * 2, link.name, joint, m.mass);
+  for (LinkIndex c : link.children) summary_link(out, model, derived, c, depth + 1);
+}
+
+}  // namespace
+
+std::string format_summary(const Model& model, const Derived& derived) {
+  std::string out;
+  out += fmt::format("{}: {} links, {} joints, {} devices, {:.6g} kg, format {} ({})\n", model.name,
+                     model.links.size(), model.num_joints(), model.devices.size(), derived.total_mass,
+                     model.format_version, model.angles_in_degrees ? "degrees" : "radians");
+  out += "links:\n";
+  if (!model.links.empty()) summary_link(out, model, derived, 0, 1);
+  if (!model.devices.empty()) {
+    out += "devices:\n";
+    for (const Device& d : model.devices)
+      out += fmt::format("  {} {}{} on {}{}\n", d.type, d.name.empty() ? "(unnamed)" : d.name,
+                         d.id >= 0 ? fmt::format(" #{}", d.id) : "", model.links[static_cast<std::size_t>(d.link)].name,
+                         d.plugin ? " (plugin, opaque)" : "");
+  }
+  if (!model.extra_joints.empty()) {
+    out += "extra joints:\n";
+    for (const ExtraJoint& j : model.extra_joints)
+      out += fmt::format("  {} {} - {}\n", j.type, model.links[static_cast<std::size_t>(j.link1)].name,
+                         model.links[static_cast<std::size_t>(j.link2)].name);
+  }
+  return out;
+}
+
+std::string format_reference_yaml(const Model& model, const Derived& derived,
+                                  const std::vector<Diagnostic>& diagnostics) {
+  std::string out = "loaded: true\n";
+  out += "model_name: " + quoted(model.name) + "\n";
+  out += "total_mass: " + number(derived.total_mass) + "\n";
+  out += fmt::format("num_links: {}\n", model.links.size());
+  out += fmt::format("num_joints: {}\n", model.num_joints());
+  const Link& root = model.root();
+  out += "root_translation: " + list(root.X_PL.translation()) + "\n";
+  out += "root_rotation: " + matrix(root.X_PL.linear()) + "\n";
+  out += "links:\n";
+  for (std::size_t i = 0; i < model.links.size(); ++i) {
+    const Link& l = model.links[i];
+    const MassProperties& m = derived.mass[i];
+    out += "- name: " + quoted(l.name) + "\n";
+    out += "  parent: " + (l.parent < 0 ? std::string("null") : quoted(model.links[static_cast<std::size_t>(l.parent)].name)) + "\n";
+    out += "  joint_type: " + std::string(joint_type_name(l.joint_type)) + "\n";
+    out += fmt::format("  joint_id: {}\n", l.joint_id);
+    out += "  joint_axis: " + list(l.joint_axis) + "\n";
+    out += "  joint_range: " + pair(l.joint_range_lower, l.joint_range_upper) + "\n";
+    out += "  joint_velocity_range: " + pair(l.velocity_lower, l.velocity_upper) + "\n";
+    out += "  mass: " + number(m.mass) + "\n";
+    out += "  center_of_mass: " + list(m.center_of_mass) + "\n";
+    out += "  inertia: " + matrix(m.inertia) + "\n";
+    if (l.parent >= 0) {
+      out += "  translation: " + list(l.X_PL.translation()) + "\n";
+      out += "  rotation: " + matrix(l.X_PL.linear()) + "\n";
+    }
+    out += "  world_translation_at_zero: " + list(derived.X_RL[i].translation()) + "\n";
+    if (!derived.bounds[i].visual.empty()) out += "  visual_bbox: " + bbox(derived.bounds[i].visual) + "\n";
+    if (!derived.bounds[i].collision.empty()) out += "  collision_bbox: " + bbox(derived.bounds[i].collision) + "\n";
+  }
+  out += "devices:\n";
+  for (const Device& d : model.devices) {
+    out += "- name: " + quoted(d.name) + "\n";
+    out += "  type: " + d.type + "\n";
+    out += "  link: " + quoted(model.links[static_cast<std::size_t>(d.link)].name) + "\n";
+    out += "  translation: " + list(d.X_LD.translation()) + "\n";
+    out += "  rotation: " + matrix(d.X_LD.linear()) + "\n";
+    if (const auto* c = std::get_if<CameraParams>(&d.params)) {
+      out += "  field_of_view: " + number(c->field_of_view) + "\n";
+      out += fmt::format("  resolution: [{}, {}]\n", c->width, c->height);
+      out += "  near_clip_distance: " + number(c->near_clip_distance) + "\n";
+      out += "  far_clip_distance: " + number(c->far_clip_distance) + "\n";
+    } else if (const auto* l = std::get_if<LightParams>(&d.params); l && d.type == "SpotLight") {
+      out += "  direction: " + list(l->direction) + "\n";
+      out += "  beam_width: " + number(l->beam_width) + "\n";
+      out += "  cut_off_angle: " + number(l->cut_off_angle) + "\n";
+      out += "  cut_off_exponent: " + number(l->cut_off_exponent) + "\n";
+    }
+  }
+  out += fmt::format("extra_joints: {}\n", model.extra_joints.size());
+  std::string messages;
+  for (const Diagnostic& d : diagnostics)
+    if (d.severity >= Severity::kWarning) messages += format_diagnostic(d) + "\n";
+  out += "messages: " + quoted(messages) + "\n";
+  return out;
+}
+
+}  // namespace bodyfmt::info

@@ -1,0 +1,45 @@
+#pragma once
+/// Data derived from a Model once and shared by validators, writers and the dynamics checker.
+
+#include <bodyfmt/diagnostic.h>
+#include <bodyfmt/model.h>
+
+#include <vector>
+
+namespace bodyfmt {
+
+/// Combines a link's rigid-body contributions (body-format-spec §6.4): total mass, centre
+/// of mass in the link frame, inertia about the centre of mass in link axes. A link with no
+/// contribution gets Choreonoid's defaults (1 kg, origin, identity inertia).
+MassProperties compute_mass_properties(const Link& link);
+
+/// Link frames at the given joint positions (one per link, indexed like Model::links; joints
+/// without an entry are at 0). X_RL: link frame relative to the root link frame.
+std::vector<Eigen::Isometry3d> compute_root_relative_frames(const Model& model,
+                                                            const std::vector<double>& q = {});
+/// X_WL: link frames in the world, the root placed at its initial pose from the file.
+std::vector<Eigen::Isometry3d> compute_world_frames(const Model& model, const std::vector<double>& q = {});
+
+/// Triangle mesh of one shape in its link's frame (tessellated primitives, imported meshes).
+TriangleMesh compute_shape_mesh(const Model& model, const Shape& shape, DiagnosticSink& sink);
+
+struct LinkBounds {
+  BoundingBox visual;     ///< link frame; empty when the link has no visual geometry
+  BoundingBox collision;  ///< link frame
+};
+
+/// Bounding boxes of each link's visual and collision geometry in the link frame.
+std::vector<LinkBounds> compute_link_bounds(const Model& model, DiagnosticSink& sink);
+
+/// Everything above, computed once.
+struct Derived {
+  std::vector<MassProperties> mass;
+  std::vector<Eigen::Isometry3d> X_RL;  ///< root-relative link frames at zero joint positions
+  std::vector<Eigen::Isometry3d> X_WL;  ///< world link frames at zero joint positions
+  std::vector<LinkBounds> bounds;
+  double total_mass = 0;
+};
+
+Derived compute_derived(const Model& model, DiagnosticSink& sink);
+
+}  // namespace bodyfmt

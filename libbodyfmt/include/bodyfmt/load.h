@@ -1,0 +1,36 @@
+#pragma once
+/// Loading a Choreonoid Body file into a Model.
+
+#include <bodyfmt/diagnostic.h>
+#include <bodyfmt/model.h>
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace bodyfmt {
+
+struct LoadOptions {
+  /// "Billion laughs" guard: the document's node count with every alias expanded.
+  std::size_t max_expanded_yaml_nodes = 10'000'000;
+  /// Nesting limit for YAML sequences and mappings, counted through aliases.
+  int max_yaml_depth = 200;
+  /// Import external mesh files (Resource nodes) into Model::meshes.
+  bool load_meshes = true;
+  /// Extra roots for `package://NAME/...` URIs, searched before ROS_PACKAGE_PATH.
+  std::vector<std::string> package_paths;
+};
+
+/// Loads a .body file. Reports every problem it can find to `sink` and returns the model
+/// even when some of them are errors, so that one run lists them all. Returns nullopt only
+/// when nothing usable exists: the file cannot be read, its YAML is malformed or exceeds the
+/// limits, or it has no links.
+std::optional<Model> load_body(const std::string& path, const LoadOptions& options,
+                               DiagnosticSink& sink);
+
+/// Same, from text; `file_name` is used in locations and to resolve relative URIs.
+std::optional<Model> load_body_string(const std::string& text, const std::string& file_name,
+                                      const LoadOptions& options, DiagnosticSink& sink);
+
+}  // namespace bodyfmt

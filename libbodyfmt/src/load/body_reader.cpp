@@ -1,0 +1,357 @@
+#include "load/body_reader.h"
+
+#include "load/link_reader.h"
+#include "load/mapping_reader.h"
+#include "load/resource_reader.h"
+#include "load/scalar.h"
+#include "load/values.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <map>
+
+namespace bodyfmt::detail {
+namespace {
+
+// body-format-spec §2.3: keys other Choreonoid subsystems read from the body info.
+const std::vector<std::string_view> kKnownInfoKeys = {
+    "standard_pose", "standardPose", "link_group", "linkGroup", "foot_links", "footLinks",
+    "symmetric_joints", "symmetricJoints", "symmetric_ik_links", "symmetricIkLinks",
+    "default_ik_setup", "defaultIKsetup", "pose_conversion_info", "collision_detection_rules",
+    "collisionDetection", "available_ik_interpolation_links", "default_ik_interpolation_links",
+    "body_markers", "preset_poses", "MultiCopterTargetBody", "lipSyncShapes",
+    "linearInterpolationJoints", "apply_camera_effect"};
+
+const std::vector<std::string_view> kHeaderKeys = {
+    "format", "format_version", "angle_unit", "name", "root_link", "links", "extra_joints",
+    "body_handlers", "model_file"};
+
+}  // namespace
+
+BodyReader::BodyReader(const LoadOptions& options, DiagnosticSink& sink)
+    : options_(options), ctx_(sink) {}
+
+BodyReader::~BodyReader() = default;
+
+std::optional<Model> BodyReader::read(const std::string& text, const std::string& file_name) {
+  yaml::ParseOptions parse_options;
+  parse_options.max_expanded_nodes = options_.max_expanded_yaml_nodes;
+  parse_options.max_depth = options_.max_yaml_depth;
+  auto document = yaml::parse_yaml(text, file_name, parse_options, ctx_.sink);
+  if (!document) return std::nullopt;
+  const yaml::NodeRef root = document->root;
+  if (!root || !root->is_mapping()) {
+    SourceLocation at{file_name, 1, 1};
+    ctx_.report(Severity::kFatal, "load-top-level", root ? root.use_site() : at,
+                "the top level of a body file must be a mapping");
+    return std::nullopt;
+  }
+  Model model;
+  model.source_file = file_name;
+  model.source = root->location;
+  model.name = std::filesystem::path(file_name).stem().string();
+  resources_ = make_resource_handler(options_, ctx_, model, document.get());
+  documents_.push_back(std::move(document));
+  if (!read_header(root, model)) return std::nullopt;
+
+  MappingReader r(ctx_, root, "body");
+  for (std::string_view key : kHeaderKeys) r.ignore(key);
+  for (std::string_view key : kKnownInfoKeys) r.ignore(key);
+  for (const char* key : {"formatVersion", "angleUnit", "rootLink", "extraJoints", "modelFile"}) r.ignore(key);
+
+  std::vector<LinkEntry> entries;
+  const yaml::MapEntry* links = root->find("links");
+  if (!links) {
+    ctx_.report(Severity::kFatal, "load-no-links", root.use_site(), "there is no \"links\" key defining the links of the body");
+    return std::nullopt;
+  }
+  read_links(links->value, model, entries);
+  if (model.links.empty()) {
+    ctx_.report(Severity::kFatal, "load-no-links", links->value.use_site(), "no link is defined");
+    return std::nullopt;
+  }
+  const yaml::MapEntry* root_link = root->find("root_link");
+  if (!root_link) root_link = root->find("rootLink");
+  if (!build_tree(model, entries, root_link ? root_link->value : yaml::NodeRef{})) return std::nullopt;
+  const yaml::MapEntry* extra = root->find("extra_joints");
+  if (!extra) extra = root->find("extraJoints");
+  if (extra) read_extra_joints(extra->value, model);
+  r.report_unknown(kHeaderKeys);
+  return model;
+}
+
+bool BodyReader::read_header(const yaml::NodeRef& root, Model& model) {
+  MappingReader r(ctx_, root, "body");
+  yaml::NodeRef format = r.take({"format"});
+  if (!format) {
+    if (r.take({"model_file", "modelFile"}))
+      ctx_.report(Severity::kFatal, "load-wrapper", root.use_site(),
+                  "wrapper body files (model_file without format) are not supported");
+    else
+      ctx_.report(Severity::kFatal, "load-format", root.use_site(),
+                  "neither format nor model_file is specified", "add format: ChoreonoidBody");
+    return false;
+  }
+  if (format->scalar != "ChoreonoidBody") {
+    ctx_.report(Severity::kFatal, "load-format", format.use_site(),
+                "the format \"" + format->scalar + "\" cannot be loaded as a Choreonoid body model");
+    return false;
+  }
+  yaml::NodeRef version = r.take({"format_version", "formatVersion"});
+  if (!version) {
+    ctx_.report(Severity::kFatal, "load-format-version", root.use_site(),
+                "the version of the Choreonoid body file format is not specified",
+                "add format_version: 2.0");
+    return false;
+  }
+  auto v = required_double(ctx_, version);
+  if (!v) return false;
+  if (*v >= 2.1) {
+    ctx_.report(Severity::kFatal, "load-format-version", version.use_site(),
+                "version " + version->scalar + " of the Choreonoid body format is not supported");
+    return false;
+  }
+  model.format_version = *v;
+  if (auto unit = r.take({"angle_unit", "angleUnit"})) {
+    if (unit->scalar == "radian") {
+      if (*v >= 2.0) {
+        // body-format-spec §2.1: radian mode is rejected in format 2.0.
+        ctx_.report(Severity::kFatal, "units-radian-in-2.0", unit.use_site(),
+                    "radian mode is not supported in format version 2.0",
+                    "write angles in degrees, or use format_version: 1.0");
+        return false;
+      }
+      ctx_.degrees = false;
+    } else if (unit->scalar != "degree") {
+      ctx_.report(Severity::kFatal, "load-angle-unit", unit.use_site(),
+                  "the angle_unit value must be either \"radian\" or \"degree\"");
+      return false;
+    }
+  }
+  model.angles_in_degrees = ctx_.degrees;
+  if (auto name = r.take({"name"})) model.name = name->scalar;
+  if (auto handlers = r.take({"body_handlers"})) {
+    if (handlers->is_scalar()) model.body_handlers.push_back(handlers->scalar);
+    else if (handlers->is_sequence())
+      for (const auto& h : handlers->items)
+        if (h->is_scalar()) model.body_handlers.push_back(h->scalar);
+  }
+  return true;
+}
+
+void BodyReader::read_links(const yaml::NodeRef& links, Model& model, std::vector<LinkEntry>& entries) {
+  auto read_one = [&](const yaml::NodeRef& node, const std::string& type) {
+    if (!node->is_mapping()) {
+      ctx_.error("load-type", node, "a link must be a mapping");
+      return;
+    }
+    if (type == "Skip") return;
+    if (type.empty() || type == "Link") {
+      entries.push_back(read_link(ctx_, node, model, resources_.get()));
+      return;
+    }
+    if (type == "SubBody" || type == "ContinuousTrack") {
+      resources_->read_link_node(node, type, entries);
+      return;
+    }
+    ctx_.error("load-link-type", node, "a " + type + " node cannot be specified in links",
+               "use Link, SubBody, ContinuousTrack or Skip");
+  };
+  if (links->is_sequence()) {
+    if (links->items.empty()) ctx_.error("load-no-links", links, "no link is contained in the \"links\" listing");
+    for (const yaml::NodeRef& item : links->items) {
+      const yaml::MapEntry* type = item->is_mapping() ? item->find("type") : nullptr;
+      read_one(item, type ? type->value->scalar : std::string());
+    }
+  } else if (links->is_mapping()) {
+    std::vector<const yaml::MapEntry*> sorted;
+    for (const auto& e : links->entries) sorted.push_back(&e);
+    std::sort(sorted.begin(), sorted.end(), [](auto* a, auto* b) { return a->key < b->key; });
+    for (const yaml::MapEntry* e : sorted) read_one(e->value, e->key);
+  } else {
+    ctx_.error("load-no-links", links, "invalid value specified in the \"links\" key");
+  }
+}
+
+bool BodyReader::build_tree(Model& model, const std::vector<LinkEntry>& entries, const yaml::NodeRef& root_link) {
+  const int n = static_cast<int>(model.links.size());
+  std::map<std::string, LinkIndex> by_name;
+  std::map<std::string, LinkIndex> by_joint_name;
+  for (LinkIndex i = 0; i < n; ++i) {
+    Link& link = model.links[static_cast<std::size_t>(i)];
+    if (link.name.empty()) continue;
+    auto [it, inserted] = by_name.emplace(link.name, i);
+    if (!inserted) {
+      ctx_.report(Severity::kError, "structure-duplicate-link", link.sources.name,
+                  "duplicated link name \"" + link.name + "\" (first defined at line " +
+                      std::to_string(model.links[static_cast<std::size_t>(it->second)].sources.name.line) + ")");
+    }
+    if (!link.joint_name.empty() && !by_joint_name.emplace(link.joint_name, i).second)
+      ctx_.report(Severity::kError, "structure-duplicate-joint-name", link.source,
+                  "duplicated joint name \"" + link.joint_name + "\"");
+  }
+  LinkIndex root = 0;
+  if (root_link) {
+    auto it = by_name.find(root_link->scalar);
+    if (it == by_name.end()) {
+      ctx_.report(Severity::kFatal, "structure-root-link", root_link.use_site(),
+                  "link \"" + root_link->scalar + "\" specified in root_link is not defined");
+      return false;
+    }
+    root = it->second;
+  }
+  std::vector<LinkIndex> parent(static_cast<std::size_t>(n), -1);
+  for (LinkIndex i = 0; i < n; ++i) {
+    const Link& link = model.links[static_cast<std::size_t>(i)];
+    const LinkEntry& entry = entries[static_cast<std::size_t>(i)];
+    if (i == root) {
+      if (!entry.parent_name.empty())
+        ctx_.report(Severity::kError, "structure-root-parent", link.sources.parent,
+                    "the root link \"" + link.name + "\" must not have a parent");
+      continue;
+    }
+    if (entry.parent_name.empty()) {
+      ctx_.report(Severity::kError, "structure-no-parent", link.source,
+                  "the parent of link \"" + link.name + "\" is not specified", "add parent: PARENT_LINK");
+      continue;
+    }
+    auto it = by_name.find(entry.parent_name);
+    if (it == by_name.end()) {
+      std::vector<std::string_view> names;
+      for (const auto& [name, index] : by_name) names.push_back(name);
+      std::string_view guess = suggest(entry.parent_name, names);
+      ctx_.report(Severity::kError, "structure-unknown-parent", entry.parent_ref.use_site(),
+                  "parent link \"" + entry.parent_name + "\" of \"" + link.name + "\" is not defined",
+                  guess.empty() ? std::string() : "did you mean \"" + std::string(guess) + "\"?");
+      continue;
+    }
+    // A parent chain that comes back to this link is a cycle (§5.2).
+    LinkIndex p = it->second;
+    bool cycle = false;
+    for (LinkIndex q = p; q >= 0; q = parent[static_cast<std::size_t>(q)]) {
+      if (q == i) {
+        cycle = true;
+        break;
+      }
+    }
+    if (cycle) {
+      ctx_.report(Severity::kError, "structure-cycle", entry.parent_ref.use_site(),
+                  "adding \"" + link.name + "\" to link \"" + entry.parent_name + "\" would make a cycle");
+      continue;
+    }
+    parent[static_cast<std::size_t>(i)] = p;
+  }
+  // Depth-first pre-order from the root, children in definition order (§5.2).
+  std::vector<std::vector<LinkIndex>> children(static_cast<std::size_t>(n));
+  for (LinkIndex i = 0; i < n; ++i)
+    if (parent[static_cast<std::size_t>(i)] >= 0) children[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])].push_back(i);
+  std::vector<LinkIndex> order;
+  std::vector<LinkIndex> stack{root};
+  while (!stack.empty()) {
+    LinkIndex i = stack.back();
+    stack.pop_back();
+    order.push_back(i);
+    const auto& c = children[static_cast<std::size_t>(i)];
+    for (auto it = c.rbegin(); it != c.rend(); ++it) stack.push_back(*it);
+  }
+  std::vector<LinkIndex> new_index(static_cast<std::size_t>(n), -1);
+  for (std::size_t k = 0; k < order.size(); ++k) new_index[static_cast<std::size_t>(order[k])] = static_cast<LinkIndex>(k);
+  for (LinkIndex i = 0; i < n; ++i) {
+    if (new_index[static_cast<std::size_t>(i)] < 0 && parent[static_cast<std::size_t>(i)] >= 0) {
+      const Link& link = model.links[static_cast<std::size_t>(i)];
+      ctx_.report(Severity::kError, "structure-unreachable", link.source,
+                  "link \"" + link.name + "\" is not connected to the root link \"" +
+                      model.links[static_cast<std::size_t>(root)].name + "\"");
+    }
+  }
+  std::vector<Link> ordered;
+  ordered.reserve(order.size());
+  for (LinkIndex old : order) {
+    Link link = std::move(model.links[static_cast<std::size_t>(old)]);
+    LinkIndex p = parent[static_cast<std::size_t>(old)];
+    link.parent = p >= 0 ? new_index[static_cast<std::size_t>(p)] : -1;
+    link.children.clear();
+    for (LinkIndex c : children[static_cast<std::size_t>(old)]) link.children.push_back(new_index[static_cast<std::size_t>(c)]);
+    ordered.push_back(std::move(link));
+  }
+  model.links = std::move(ordered);
+  // Devices follow their links; devices of dropped links are dropped with them.
+  std::vector<Device> devices;
+  for (Device& d : model.devices) {
+    LinkIndex k = new_index[static_cast<std::size_t>(d.link)];
+    if (k < 0) continue;
+    d.link = k;
+    devices.push_back(std::move(d));
+  }
+  std::stable_sort(devices.begin(), devices.end(), [](const Device& a, const Device& b) { return a.link < b.link; });
+  model.devices = std::move(devices);
+  return true;
+}
+
+void BodyReader::read_extra_joints(const yaml::NodeRef& extra_joints, Model& model) {
+  if (!extra_joints->is_sequence()) {
+    ctx_.warning("load-ignored-value", extra_joints, "extra_joints must be a sequence; Choreonoid ignores it");
+    return;
+  }
+  for (const yaml::NodeRef& node : extra_joints->items) {
+    if (!node->is_mapping()) {
+      ctx_.error("load-type", node, "an extra joint must be a mapping");
+      continue;
+    }
+    MappingReader r(ctx_, node, "extra joint");
+    ExtraJoint joint;
+    joint.source = node.use_site();
+    bool ok = true;
+    for (int k = 1; k <= 2; ++k) {
+      std::string snake = "link" + std::to_string(k) + "_name";
+      std::string camel = "link" + std::to_string(k) + "Name";
+      yaml::NodeRef name = r.take({snake, camel});
+      if (!name) {
+        ctx_.error("extra-joint-link", node, snake + " is not specified");
+        ok = false;
+        continue;
+      }
+      LinkIndex index = model.find_link(name->scalar);
+      if (index < 0) {
+        ctx_.error("extra-joint-link", name, "the link \"" + name->scalar + "\" specified in " + snake + " is not found");
+        ok = false;
+      }
+      (k == 1 ? joint.link1 : joint.link2) = index;
+    }
+    yaml::NodeRef type = r.take({"joint_type", "jointType"});
+    if (!type) {
+      ctx_.error("extra-joint-type", node, "the joint type must be specified with the \"joint_type\" key");
+      ok = false;
+    } else if (type->scalar != "fixed" && type->scalar != "hinge" && type->scalar != "ball" && type->scalar != "piston") {
+      ctx_.error("extra-joint-type", type, "joint type \"" + type->scalar + "\" is not available",
+                 "use fixed, hinge, ball or piston");
+      ok = false;
+    } else {
+      joint.type = type->scalar;
+    }
+    if (auto axis = r.take({"axis", "jointAxis"})) {
+      if (auto a = read_vec3(ctx_, axis)) {
+        if (a->norm() > 0) joint.axis = a->normalized();
+        else ctx_.error("extra-joint-axis", axis, "the extra joint axis is the zero vector");
+      }
+    }
+    if (auto t = r.take({"translation_in_link1", "link1LocalPos"}))
+      if (auto v = read_vec3(ctx_, t)) joint.X_1J.translation() = *v;
+    if (auto t = r.take({"translation_in_link2", "link2LocalPos"}))
+      if (auto v = read_vec3(ctx_, t)) joint.X_2J.translation() = *v;
+    if (auto rot = r.take({"rotation_in_link1"}))
+      if (auto R = read_rotation(ctx_, rot)) joint.X_1J.linear() = *R;
+    if (auto rot = r.take({"rotation_in_link2"}))
+      if (auto R = read_rotation(ctx_, rot)) joint.X_2J.linear() = *R;
+    for (const char* ignored : {"link1_local_pos", "link2_local_pos"}) {
+      if (auto v = r.take({ignored}))
+        ctx_.warning("load-ignored-key", v, std::string("Choreonoid does not read \"") + ignored + "\"",
+                     std::string("use translation_in_link") + ignored[4]);
+    }
+    r.report_unknown({"link1_name", "link2_name", "joint_type", "axis", "translation_in_link1",
+                      "translation_in_link2", "rotation_in_link1", "rotation_in_link2"});
+    if (ok) model.extra_joints.push_back(joint);
+  }
+}
+
+}  // namespace bodyfmt::detail

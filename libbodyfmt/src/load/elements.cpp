@@ -1,0 +1,310 @@
+#include "load/elements.h"
+
+#include "load/devices.h"
+#include "load/geometry.h"
+#include "load/mapping_reader.h"
+#include "load/scalar.h"
+#include "load/values.h"
+
+#include <algorithm>
+
+namespace bodyfmt::detail {
+namespace {
+
+const std::vector<std::string_view> kElementTypes = {
+    "Skip",   "Group",    "Transform",         "RigidBody",          "Visual",
+    "Collision", "Resource", "Shape",          "LineSet",            "DirectionalLight",
+    "PerspectiveCamera", "OrthographicCamera", "Fog", "Text", "Node",
+    "ForceSensor", "RateGyroSensor", "AccelerationSensor", "IMU", "Camera", "CameraDevice",
+    "RangeSensor", "PointLight", "SpotLight", "DigitalIO", "Holder", "Attachment",
+    "Conveyor", "ZmpDevice", "MarkerDevice"};
+
+const std::vector<std::string_view> kTransformKeys = {"type", "name", "translation", "rotation",
+                                                      "scale", "elements"};
+
+std::vector<std::string_view> with(std::vector<std::string_view> a,
+                                   std::initializer_list<std::string_view> b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+bool is_scene_only_type(std::string_view t) {
+  return t == "LineSet" || t == "DirectionalLight" || t == "PerspectiveCamera" ||
+         t == "OrthographicCamera" || t == "Fog" || t == "Text" || t == "Node";
+}
+
+}  // namespace
+
+ElementReader::ElementReader(LoadContext& ctx, Model& model, LinkIndex link, ResourceHandler* resources)
+    : ctx_(ctx), model_(model), link_(link), resources_(resources) {}
+
+void ElementReader::read_elements(const yaml::NodeRef& elements, const ElementFrame& frame) {
+  if (!elements) return;
+  if (elements->is_sequence()) {
+    for (const yaml::NodeRef& item : elements->items) {
+      if (!item->is_mapping()) {
+        ctx_.error("load-type", item, "an element must be a mapping");
+        continue;
+      }
+      const yaml::MapEntry* type = item->find("type");
+      if (!type) {
+        ctx_.error("load-missing-key", item, "key \"type\" is not found in this element");
+        continue;
+      }
+      read_node(item, type->value->scalar, frame);
+    }
+    return;
+  }
+  if (elements->is_mapping()) {
+    if (const yaml::MapEntry* type = elements->find("type")) {
+      read_node(elements, type->value->scalar, frame);
+      return;
+    }
+    // body-format-spec §7.1 form 3: keys are node types, visited in byte-wise order.
+    std::vector<const yaml::MapEntry*> entries;
+    for (const yaml::MapEntry& e : elements->entries) entries.push_back(&e);
+    std::sort(entries.begin(), entries.end(),
+              [](const yaml::MapEntry* a, const yaml::MapEntry* b) { return a->key < b->key; });
+    for (const yaml::MapEntry* e : entries) {
+      if (!e->value->is_mapping()) {
+        ctx_.error("load-type", e->value, "the \"" + e->key + "\" element must be a mapping");
+        continue;
+      }
+      if (const yaml::MapEntry* inner = e->value->find("type"); inner && inner->value->scalar != e->key) {
+        ctx_.error("load-type-mismatch", inner->value,
+                   "the node type \"" + inner->value->scalar + "\" is different from the type \"" +
+                       e->key + "\" specified in the parent node");
+        continue;
+      }
+      yaml::NodeRef value = e->value;
+      read_node(value, e->key, frame);
+    }
+    return;
+  }
+  ctx_.error("load-type", elements, "a value of the \"elements\" key must be a sequence or a mapping");
+}
+
+std::optional<ElementFrame> ElementReader::enter(const yaml::NodeRef& node, MappingReader& r,
+                                                 const ElementFrame& frame, bool allow_scale) {
+  ElementFrame inner = frame;
+  Eigen::Affine3d X = Eigen::Affine3d::Identity();
+  if (auto t = r.take({"translation"})) {
+    if (auto v = read_translation(ctx_, t)) X.translation() = *v;
+  }
+  if (auto rot = r.take({"rotation"})) {
+    if (auto R = read_rotation(ctx_, rot)) X.linear() = *R;
+  }
+  if (allow_scale) {
+    if (auto s = r.take({"scale"})) {
+      if (!s->is_sequence()) {
+        // body-format-spec §4.4: a scalar scale is silently ignored by Choreonoid.
+        ctx_.warning("load-ignored-value", s, "scale must be a 3-element sequence; Choreonoid ignores a scalar",
+                     "write [sx, sy, sz]");
+      } else if (auto v = read_vec3(ctx_, s)) {
+        X.linear() = X.linear() * v->asDiagonal();
+      }
+    }
+  }
+  (void)node;
+  inner.X_LF = frame.X_LF * X;
+  return inner;
+}
+
+void ElementReader::read_node(const yaml::NodeRef& node, const std::string& type, const ElementFrame& frame) {
+  if (!node->is_mapping()) {
+    ctx_.error("load-type", node, "a " + type + " node must be a mapping");
+    return;
+  }
+  if (type == "Skip") return;
+  if (type == "Group" || type == "Transform" || type == "Node") {
+    MappingReader r(ctx_, node, type + " node");
+    r.take({"type"});
+    r.take({"name"});
+    ElementFrame inner = frame;
+    if (type == "Transform") {
+      inner = *enter(node, r, frame);
+      // body-format-spec §6.4 rule 5: mass keys on a Transform are ignored by Choreonoid.
+      for (KeyNames names : {KeyNames{"mass"}, KeyNames{"center_of_mass", "centerOfMass", "centerofMass"},
+                             KeyNames{"inertia"}}) {
+        if (auto ignored = r.take(names)) {
+          ctx_.warning("load-mass-ignored", ignored,
+                       "mass properties on a Transform node are ignored by Choreonoid",
+                       "move them into a RigidBody node");
+        }
+      }
+    } else if (type == "Group" && r.has({"translation", "rotation", "scale"})) {
+      for (const char* k : {"translation", "rotation", "scale"}) {
+        if (auto ignored = r.take({k}))
+          ctx_.warning("load-ignored-key", ignored, std::string("a Group has no ") + k + "; it is ignored",
+                       "use a Transform node");
+      }
+    }
+    read_elements(r.take({"elements"}), inner);
+    r.report_unknown(kTransformKeys);
+    return;
+  }
+  if (type == "RigidBody") return read_rigid_body(node, frame);
+  if (type == "Visual") return read_part(node, ModelPart::kVisual, frame);
+  if (type == "Collision") return read_part(node, ModelPart::kCollision, frame);
+  if (type == "Shape") return read_shape(node, frame);
+  if (type == "Resource") {
+    if (resources_) {
+      resources_->read_resource(*this, node, frame);
+    } else {
+      ctx_.error("resource-unsupported", node, "Resource nodes are not supported by this loader");
+    }
+    return;
+  }
+  if (is_core_device_type(type) || is_plugin_node_type(type)) return read_device(node, type, frame);
+  if (is_scene_only_type(type)) {
+    ctx_.note("load-scene-node", node, "a " + type + " node has no meaning in a body model; it is ignored");
+    return;
+  }
+  // body-format-spec §7.2 rule 3.
+  MappingReader r(ctx_, node, type);
+  yaml::NodeRef optional = r.take({"is_optional", "isOptional"});
+  bool is_optional = optional && parse_bool_exact(optional->scalar).value_or(false);
+  std::string_view guess = suggest(type, kElementTypes);
+  const yaml::MapEntry* type_entry = node->find("type");
+  yaml::NodeRef at = type_entry ? type_entry->value : node;
+  ctx_.report(is_optional ? Severity::kWarning : Severity::kError, "load-unknown-node-type", at,
+              "the node type \"" + type + "\" is not defined" +
+                  (is_optional ? std::string("; this optional node is skipped") : std::string()),
+              guess.empty() ? std::string() : "did you mean " + std::string(guess) + "?");
+}
+
+void ElementReader::read_part(const yaml::NodeRef& node, ModelPart part, const ElementFrame& frame) {
+  const char* name = part == ModelPart::kVisual ? "Visual" : "Collision";
+  MappingReader r(ctx_, node, std::string(name) + " node");
+  r.take({"type"});
+  r.take({"name"});
+  if (frame.part != ModelPart::kBoth && frame.part != part) {
+    ctx_.error("load-visual-collision-conflict", node,
+               std::string("this ") + name + " node is inside a " +
+                   (part == ModelPart::kVisual ? "Collision" : "Visual") +
+                   " node defined at a higher level");
+    return;
+  }
+  ElementFrame inner = *enter(node, r, frame);
+  inner.part = part;
+  inner.part_source = node.use_site();
+  // Inline shortcuts come before `elements` (body-format-spec §8.4).
+  if (auto resource = r.take({"resource"})) {
+    if (resources_ && resource->is_mapping()) resources_->read_resource(*this, resource, inner);
+    else if (!resource->is_mapping()) ctx_.error("load-type", resource, "resource must be a mapping");
+  }
+  if (auto shape = r.take({"shape"})) read_shape(shape, inner);
+  read_elements(r.take({"elements"}), inner);
+  r.report_unknown(with(kTransformKeys, {"resource", "shape"}));
+}
+
+void ElementReader::read_rigid_body(const yaml::NodeRef& node, const ElementFrame& frame) {
+  MappingReader r(ctx_, node, "RigidBody node");
+  r.take({"type"});
+  r.take({"name"});
+  ElementFrame inner = *enter(node, r, frame);
+  MassContribution c;
+  c.source = node.use_site();
+  Eigen::Vector3d com = Eigen::Vector3d::Zero();
+  if (auto v = r.take({"center_of_mass", "centerOfMass"})) {
+    if (auto x = read_vec3(ctx_, v)) com = *x;
+  }
+  if (auto v = r.take({"mass"})) {
+    if (auto m = optional_double(ctx_, v)) c.mass = *m;
+  }
+  Eigen::Matrix3d I = Eigen::Matrix3d::Zero();
+  if (auto v = r.take({"inertia"})) {
+    if (v->is_sequence()) {
+      if (auto x = read_inertia(ctx_, v)) I = *x;
+    } else {
+      ctx_.warning("load-ignored-value", v, "a RigidBody inertia that is not a sequence is read as zero");
+    }
+  }
+  // body-format-spec §6.4 rule 1: the accumulated transform, scale included.
+  const Eigen::Matrix3d L = inner.X_LF.linear();
+  c.center_of_mass = inner.X_LF * com;
+  c.inertia = L * I * L.transpose();
+  link().mass_contributions.push_back(c);
+  ++rigid_bodies_;
+  read_elements(r.take({"elements"}), inner);
+  r.report_unknown(with(kTransformKeys, {"center_of_mass", "mass", "inertia"}));
+}
+
+void ElementReader::read_shape(const yaml::NodeRef& node, const ElementFrame& frame) {
+  if (!node->is_mapping()) {
+    ctx_.error("load-type", node, "a Shape node must be a mapping");
+    return;
+  }
+  MappingReader r(ctx_, node, "Shape node");
+  r.take({"type"});
+  Shape shape;
+  if (auto name = r.take({"name"})) shape.name = name->scalar;
+  ElementFrame inner = *enter(node, r, frame);
+  shape.source = node.use_site();
+  if (auto geometry = r.take({"geometry"})) {
+    auto g = read_geometry(ctx_, geometry, shape.division_number);
+    if (!g) return;
+    shape.geometry = std::move(*g);
+  } else {
+    return;  // an empty Shape is legal and produces nothing
+  }
+  if (auto appearance = r.take({"appearance"})) shape.appearance = read_appearance(ctx_, appearance);
+  if (auto material = r.take({"material"})) {
+    ctx_.warning("load-ignored-key", material,
+                 "\"material\" directly on a Shape is ignored by Choreonoid", "move it under appearance");
+  }
+  r.take({"is_meta_scene"});
+  r.report_unknown(with(kTransformKeys, {"geometry", "appearance", "is_meta_scene"}));
+  add_shape(std::move(shape), inner);
+}
+
+void ElementReader::add_shape(Shape shape, const ElementFrame& frame) {
+  shape.X_LS = frame.X_LF;
+  shape.visual = frame.part != ModelPart::kCollision;
+  shape.collision = frame.part != ModelPart::kVisual;
+  link().shapes.push_back(std::move(shape));
+}
+
+void ElementReader::read_device(const yaml::NodeRef& node, const std::string& type, const ElementFrame& frame) {
+  MappingReader r(ctx_, node, type + " device");
+  r.take({"type"});
+  Device d;
+  d.node_type = type;
+  d.link = link_;
+  d.source = node.use_site();
+  for (const yaml::MapEntry& e : node->entries)
+    if (e.value->is_scalar()) d.keys[e.key] = e.value->scalar;
+  if (auto name = r.take({"name"})) d.name = name->scalar;
+  if (auto id = r.take({"id"})) {
+    if (auto v = optional_int(ctx_, id)) d.id = static_cast<int>(*v);
+  }
+  if (auto on = r.take({"on"})) {
+    if (auto v = optional_bool(ctx_, on)) d.on = *v;
+  }
+  r.take({"is_optional", "isOptional"});
+  ElementFrame inner = *enter(node, r, frame);
+  // A device frame is rigid; scale on an enclosing node only affects its child shapes.
+  Eigen::Matrix3d R = inner.X_LF.rotation();
+  d.X_LD.linear() = R;
+  d.X_LD.translation() = inner.X_LF.translation();
+  yaml::NodeRef elements = r.take({"elements"});
+  if (is_plugin_node_type(type)) {
+    d.plugin = true;
+    d.type = type;
+    for (const yaml::MapEntry& e : node->entries) r.ignore(e.key);
+    if (ctx_.reported_once.insert("plugin:" + type).second) {
+      ctx_.warning("load-plugin-node", node,
+                   "\"" + type + "\" is a plugin node type: Choreonoid loads it only with its plugin; "
+                   "it is kept as an opaque device");
+    }
+    model_.devices.push_back(std::move(d));
+    read_elements(elements, inner);
+    return;
+  }
+  bool keep = read_device_params(r, type, d);
+  r.report_unknown({"type", "name", "id", "on", "translation", "rotation", "elements"});
+  if (keep) model_.devices.push_back(std::move(d));
+  read_elements(elements, inner);
+}
+
+}  // namespace bodyfmt::detail

@@ -1,0 +1,64 @@
+#pragma once
+// The `elements` tree of a link (body-format-spec §7, §8): shapes, rigid bodies, devices,
+// transforms, Visual/Collision parts, resources.
+
+#include <bodyfmt/model.h>
+
+#include "load/load_context.h"
+
+#include <set>
+#include <string>
+#include <vector>
+
+namespace bodyfmt::detail {
+
+enum class ModelPart { kBoth, kVisual, kCollision };
+
+struct ElementFrame {
+  Eigen::Affine3d X_LF = Eigen::Affine3d::Identity();  ///< accumulated transform, may scale
+  ModelPart part = ModelPart::kBoth;
+  SourceLocation part_source;  ///< the Visual/Collision node that set `part`
+};
+
+/// Hook for Resource element nodes (meshes and YAML fragments), provided by the resource
+/// loader. Returns false when the resource could not be used (already reported).
+class ElementReader;
+struct ResourceHandler {
+  virtual ~ResourceHandler() = default;
+  virtual void read_resource(ElementReader& reader, const yaml::NodeRef& node,
+                             const ElementFrame& frame) = 0;
+};
+
+class ElementReader {
+ public:
+  ElementReader(LoadContext& ctx, Model& model, LinkIndex link, ResourceHandler* resources);
+
+  /// Reads an `elements` value in any of its three forms.
+  void read_elements(const yaml::NodeRef& elements, const ElementFrame& frame);
+  /// Reads one node whose type is known.
+  void read_node(const yaml::NodeRef& node, const std::string& type, const ElementFrame& frame);
+  /// Reads a mapping as a Shape node (the `shape:` shortcut and type-keyed forms).
+  void read_shape(const yaml::NodeRef& node, const ElementFrame& frame);
+  void add_shape(Shape shape, const ElementFrame& frame);
+
+  LoadContext& context() { return ctx_; }
+  Model& model() { return model_; }
+  LinkIndex link_index() const { return link_; }
+  bool has_rigid_body() const { return rigid_bodies_ > 0; }
+
+ private:
+  Link& link() { return model_.links[static_cast<std::size_t>(link_)]; }
+  std::optional<ElementFrame> enter(const yaml::NodeRef& node, class MappingReader& r,
+                                    const ElementFrame& frame, bool allow_scale = true);
+  void read_rigid_body(const yaml::NodeRef& node, const ElementFrame& frame);
+  void read_device(const yaml::NodeRef& node, const std::string& type, const ElementFrame& frame);
+  void read_part(const yaml::NodeRef& node, ModelPart part, const ElementFrame& frame);
+
+  LoadContext& ctx_;
+  Model& model_;
+  LinkIndex link_;
+  ResourceHandler* resources_;
+  int rigid_bodies_ = 0;
+};
+
+}  // namespace bodyfmt::detail

@@ -1,0 +1,187 @@
+#include "load/link_reader.h"
+
+#include "load/mapping_reader.h"
+#include "load/scalar.h"
+#include "load/values.h"
+
+namespace bodyfmt::detail {
+namespace {
+
+const std::vector<std::string_view> kLinkKeys = {
+    "type",        "name",           "parent",           "joint_name",        "translation",
+    "rotation",    "joint_type",     "joint_axis",       "joint_id",          "actuation_mode",
+    "joint_angle", "joint_displacement", "joint_range",  "max_joint_velocity", "joint_velocity_range",
+    "max_joint_effort", "joint_axis_inertia", "rotor_inertia", "gear_ratio", "center_of_mass",
+    "mass",        "inertia",        "material",         "elements",          "import"};
+
+std::optional<JointType> parse_joint_type(const std::string& s) {
+  if (s == "fixed") return JointType::kFixed;
+  if (s == "free") return JointType::kFree;
+  if (s == "revolute") return JointType::kRevolute;
+  if (s == "prismatic" || s == "slide") return JointType::kPrismatic;
+  if (s == "pseudo_continuous_track" || s == "pseudoContinuousTrack") return JointType::kPseudoContinuousTrack;
+  return std::nullopt;
+}
+
+void read_joint(LoadContext& ctx, MappingReader& r, Link& link) {
+  if (auto t = r.take({"joint_type", "jointType"})) {
+    link.sources.joint_type = t.use_site();
+    if (auto type = parse_joint_type(t->scalar)) {
+      link.joint_type = *type;
+      if (t->scalar == "slide" || t->scalar == "pseudoContinuousTrack")
+        ctx.warning("load-legacy-key", t, "legacy joint type \"" + t->scalar + "\"",
+                    std::string("write ") + std::string(joint_type_name(*type)));
+    } else {
+      std::string hint;
+      if (t->scalar == "continuous" || t->scalar == "hinge")
+        hint = "use revolute (with joint_range: unlimited for a continuous joint)";
+      ctx.error("load-joint-type", t, "illegal joint type \"" + t->scalar + "\"", hint);
+    }
+  }
+  if (auto mode = r.take({"actuation_mode", "actuationMode"})) {
+    static const std::vector<std::string_view> kModes = {
+        "joint_effort", "jointEffort", "jointTorque", "jointForce", "joint_displacement",
+        "jointDisplacement", "jointAngle", "joint_velocity", "jointVelocity", "link_position",
+        "linkPosition", "jointSurfaceVelocity"};
+    link.actuation_mode = mode->scalar;
+    if (mode->scalar == "jointSurfaceVelocity") {
+      // body-format-spec §6.3: the deprecated mode turns the joint into a pseudo track.
+      link.joint_type = JointType::kPseudoContinuousTrack;
+      ctx.warning("load-legacy-key", mode, "actuation mode \"jointSurfaceVelocity\" is deprecated",
+                  "write joint_type: pseudo_continuous_track");
+    } else if (std::find(kModes.begin(), kModes.end(), mode->scalar) == kModes.end()) {
+      ctx.error("load-actuation-mode", mode, "illegal actuation mode \"" + mode->scalar + "\"");
+    }
+  }
+  const bool revolute = link.joint_type == JointType::kRevolute;
+  if (auto axis = r.take({"joint_axis", "jointAxis"})) {
+    link.sources.joint_axis = axis.use_site();
+    if (auto a = read_joint_axis(ctx, axis)) link.joint_axis = *a;
+  }
+  if (auto id = r.take({"joint_id", "jointId"})) {
+    link.sources.joint_id = id.use_site();
+    if (auto v = required_int(ctx, id)) link.joint_id = *v < 0 ? -1 : static_cast<int>(*v);
+  }
+  // joint_displacement wins over joint_angle; joint_angle is always an angle (§3).
+  yaml::NodeRef angle = r.take({"joint_angle", "jointAngle"});
+  yaml::NodeRef displacement = r.take({"joint_displacement", "jointDisplacement"});
+  if (displacement) {
+    if (auto v = required_double(ctx, displacement)) link.initial_displacement = revolute ? ctx.angle(*v) : *v;
+  } else if (angle) {
+    if (auto v = required_double(ctx, angle)) {
+      link.initial_displacement = ctx.angle(*v);
+      if (link.joint_type == JointType::kPrismatic && ctx.degrees)
+        ctx.warning("load-angle-on-prismatic", angle,
+                    "joint_angle on a prismatic joint is converted from degrees by Choreonoid",
+                    "use joint_displacement for a prismatic joint");
+    }
+  }
+  if (auto range = r.take({"joint_range", "jointRange"})) {
+    link.sources.joint_range = range.use_site();
+    if (auto v = read_range(ctx, range, revolute)) std::tie(link.joint_range_lower, link.joint_range_upper) = *v;
+  }
+  yaml::NodeRef max_velocity = r.take({"max_joint_velocity", "maxJointVelocity"});
+  yaml::NodeRef velocity_range = r.take({"joint_velocity_range", "jointVelocityRange"});
+  if (max_velocity) {
+    link.sources.joint_velocity = max_velocity.use_site();
+    if (auto v = read_symmetric_limit(ctx, max_velocity, revolute))
+      std::tie(link.velocity_lower, link.velocity_upper) = *v;
+    if (velocity_range)
+      ctx.warning("load-ignored-key", velocity_range,
+                  "joint_velocity_range is ignored by Choreonoid when max_joint_velocity is given");
+  } else if (velocity_range) {
+    link.sources.joint_velocity = velocity_range.use_site();
+    if (auto v = read_velocity_range(ctx, velocity_range, revolute))
+      std::tie(link.velocity_lower, link.velocity_upper) = *v;
+  }
+  if (auto effort = r.take({"max_joint_effort"})) {
+    if (auto v = read_symmetric_limit(ctx, effort, false)) std::tie(link.effort_lower, link.effort_upper) = *v;
+  }
+  yaml::NodeRef axis_inertia = r.take({"joint_axis_inertia"});
+  yaml::NodeRef rotor_inertia = r.take({"rotor_inertia", "rotorInertia"});
+  yaml::NodeRef gear_ratio = r.take({"gear_ratio", "gearRatio"});
+  if (axis_inertia) {
+    link.joint_axis_inertia = required_double(ctx, axis_inertia).value_or(0);
+  } else if (rotor_inertia || gear_ratio) {
+    double rotor = rotor_inertia ? required_double(ctx, rotor_inertia).value_or(0) : 0;
+    double gear = gear_ratio ? required_double(ctx, gear_ratio).value_or(1) : 1;
+    link.joint_axis_inertia = gear * gear * rotor;
+  }
+}
+
+// body-format-spec §6.4 rule 2: link-level keys form one more contribution, whose missing
+// keys default to the Link defaults only when there is no RigidBody contribution.
+void read_link_mass(LoadContext& ctx, MappingReader& r, Link& link, bool has_rigid_bodies) {
+  yaml::NodeRef com = r.take({"center_of_mass", "centerOfMass"});
+  yaml::NodeRef mass = r.take({"mass"});
+  yaml::NodeRef inertia = r.take({"inertia"});
+  if (!com && !mass && !inertia) return;
+  MassContribution c;
+  c.from_link_keys = true;
+  c.mass = has_rigid_bodies ? 0.0 : 1.0;
+  c.inertia = has_rigid_bodies ? Eigen::Matrix3d(Eigen::Matrix3d::Zero()) : Eigen::Matrix3d(Eigen::Matrix3d::Identity());
+  if (com) {
+    link.sources.center_of_mass = com.use_site();
+    if (auto v = read_vec3(ctx, com)) c.center_of_mass = *v;
+  }
+  if (mass) {
+    link.sources.mass = mass.use_site();
+    if (auto v = required_double(ctx, mass)) c.mass = *v;
+  }
+  if (inertia) {
+    link.sources.inertia = inertia.use_site();
+    if (inertia->is_sequence()) {
+      if (auto v = read_inertia(ctx, inertia)) c.inertia = *v;
+    } else {
+      ctx.warning("load-ignored-value", inertia,
+                  "a link-level inertia that is not a sequence is ignored by Choreonoid");
+    }
+  }
+  c.source = (mass ? mass : (inertia ? inertia : com)).use_site();
+  link.mass_contributions.push_back(c);
+}
+
+}  // namespace
+
+LinkEntry read_link(LoadContext& ctx, const yaml::NodeRef& node, Model& model, ResourceHandler* resources) {
+  LinkEntry entry;
+  MappingReader r(ctx, node, "link");
+  r.take({"type"});
+  model.links.emplace_back();
+  const LinkIndex index = static_cast<LinkIndex>(model.links.size()) - 1;
+  auto link = [&]() -> Link& { return model.links[static_cast<std::size_t>(index)]; };
+  link().source = node.use_site();
+  if (auto name = r.take({"name"})) {
+    link().sources.name = name.use_site();
+    link().name = required_string(ctx, name).value_or("");
+  } else {
+    ctx.error("load-link-name", node, "this link has no name", "add name: LINK_NAME");
+  }
+  if (auto parent = r.take({"parent"})) {
+    link().sources.parent = parent.use_site();
+    entry.parent_name = required_string(ctx, parent).value_or("");
+    entry.parent_ref = parent;
+  }
+  if (auto joint_name = r.take({"joint_name"})) link().joint_name = joint_name->scalar;
+  if (auto t = r.take({"translation"})) {
+    link().sources.translation = t.use_site();
+    if (auto v = read_translation(ctx, t)) link().X_PL.translation() = *v;
+  }
+  if (auto rot = r.take({"rotation"})) {
+    link().sources.rotation = rot.use_site();
+    if (auto R = read_rotation(ctx, rot)) link().X_PL.linear() = *R;
+  }
+  read_joint(ctx, r, link());
+  if (auto material = r.take({"material"})) link().contact_material = material->scalar;
+  if (auto import = r.take({"import"})) {
+    // body-format-spec §6.5: import only adds info keys; model keys in it have no effect.
+    ctx.note("load-import", import, "import only adds info keys; model keys inside it are ignored by Choreonoid");
+  }
+  ElementReader elements(ctx, model, index, resources);
+  elements.read_elements(r.take({"elements"}), ElementFrame{});
+  read_link_mass(ctx, r, link(), elements.has_rigid_body());
+  r.report_unknown(kLinkKeys);
+  return entry;
+}
+
+}  // namespace bodyfmt::detail

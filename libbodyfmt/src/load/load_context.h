@@ -1,0 +1,45 @@
+#pragma once
+// State shared by the readers of one body file: where diagnostics go, the angle unit, and
+// helpers that turn YAML nodes into located diagnostics.
+
+#include <bodyfmt/diagnostic.h>
+
+#include "yaml/yaml_node.h"
+
+#include <set>
+#include <string>
+#include <string_view>
+
+namespace bodyfmt::detail {
+
+struct LoadContext {
+  DiagnosticSink& sink;
+  bool degrees = true;  ///< the file's angle unit (body-format-spec §3)
+  int errors = 0;
+  /// Keys of diagnostics that are reported once per load (e.g. one per plugin node type).
+  std::set<std::string> reported_once;
+
+  explicit LoadContext(DiagnosticSink& s) : sink(s) {}
+
+  void report(Severity severity, std::string_view rule, const yaml::NodeRef& at,
+              std::string message, std::string hint = {});
+  void report(Severity severity, std::string_view rule, const SourceLocation& at,
+              std::string message, std::string hint = {});
+  void error(std::string_view rule, const yaml::NodeRef& at, std::string message,
+             std::string hint = {}) {
+    report(Severity::kError, rule, at, std::move(message), std::move(hint));
+  }
+  void warning(std::string_view rule, const yaml::NodeRef& at, std::string message,
+               std::string hint = {}) {
+    report(Severity::kWarning, rule, at, std::move(message), std::move(hint));
+  }
+  void note(std::string_view rule, const yaml::NodeRef& at, std::string message,
+            std::string hint = {}) {
+    report(Severity::kNote, rule, at, std::move(message), std::move(hint));
+  }
+
+  /// Converts an angle written in the file's unit to radians.
+  double angle(double value) const;
+};
+
+}  // namespace bodyfmt::detail

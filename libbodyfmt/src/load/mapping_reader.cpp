@@ -1,0 +1,90 @@
+#include "load/mapping_reader.h"
+
+#include <algorithm>
+#include <cctype>
+
+namespace bodyfmt::detail {
+
+MappingReader::MappingReader(LoadContext& ctx, const yaml::NodeRef& mapping, std::string what)
+    : ctx_(ctx), mapping_(mapping), what_(std::move(what)) {}
+
+yaml::NodeRef MappingReader::take(KeyNames names) {
+  if (!mapping_ || !mapping_->is_mapping()) return {};
+  bool modern = true;
+  for (std::string_view name : names) {
+    if (const yaml::MapEntry* entry = mapping_->find(name)) {
+      consumed_.emplace(name);
+      if (!modern) {
+        ctx_.warning("load-legacy-key", entry->value,
+                     "legacy key \"" + std::string(name) + "\"; the modern spelling is \"" +
+                         std::string(*names.begin()) + "\"",
+                     "rename it to " + std::string(*names.begin()));
+      }
+      return entry->value;
+    }
+    modern = false;
+  }
+  return {};
+}
+
+bool MappingReader::has(KeyNames names) const {
+  if (!mapping_ || !mapping_->is_mapping()) return false;
+  return std::any_of(names.begin(), names.end(),
+                     [&](std::string_view n) { return mapping_->find(n) != nullptr; });
+}
+
+void MappingReader::ignore(std::string_view name) { consumed_.emplace(name); }
+
+void MappingReader::report_unknown(const std::vector<std::string_view>& known) {
+  if (!mapping_ || !mapping_->is_mapping()) return;
+  for (const yaml::MapEntry& entry : mapping_->entries) {
+    if (consumed_.count(entry.key) || entry.merged) continue;
+    std::string_view guess = suggest(entry.key, known);
+    if (!guess.empty()) {
+      ctx_.report(Severity::kWarning, "load-unknown-key", entry.key_location,
+                  "unknown key \"" + entry.key + "\" in " + what_ + "; did you mean \"" +
+                      std::string(guess) + "\"?",
+                  "Choreonoid ignores it; rename it to " + std::string(guess));
+    } else {
+      ctx_.report(Severity::kNote, "load-info-key", entry.key_location,
+                  "key \"" + entry.key + "\" is not part of the " + what_ +
+                      " format; it is kept as info");
+    }
+  }
+}
+
+int edit_distance(std::string_view a, std::string_view b) {
+  std::vector<int> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = static_cast<int>(j);
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    int diagonal = row[0];
+    row[0] = static_cast<int>(i);
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      int above = row[j];
+      int cost = std::tolower(static_cast<unsigned char>(a[i - 1])) ==
+                         std::tolower(static_cast<unsigned char>(b[j - 1]))
+                     ? 0
+                     : 1;
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + cost});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string_view suggest(std::string_view word, const std::vector<std::string_view>& candidates) {
+  std::string_view best;
+  int best_distance = 1 << 30;
+  for (std::string_view candidate : candidates) {
+    int d = edit_distance(word, candidate);
+    if (d < best_distance) {
+      best_distance = d;
+      best = candidate;
+    }
+  }
+  // A typo changes a few characters of a long-enough word; short words are too ambiguous.
+  int allowed = word.size() >= 8 ? 2 : (word.size() >= 4 ? 1 : 0);
+  return best_distance <= allowed ? best : std::string_view{};
+}
+
+}  // namespace bodyfmt::detail

@@ -1,0 +1,51 @@
+#pragma once
+// Reads the keys of one mapping node: looks up a key under its modern and legacy spellings,
+// remembers what was consumed, and reports what was left over (body-format-spec §1, §14).
+
+#include "load/load_context.h"
+
+#include <initializer_list>
+#include <set>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace bodyfmt::detail {
+
+/// Spellings of one key: the modern snake_case name first, then legacy spellings.
+using KeyNames = std::initializer_list<std::string_view>;
+
+class MappingReader {
+ public:
+  MappingReader(LoadContext& ctx, const yaml::NodeRef& mapping, std::string what);
+
+  /// The first present spelling, marked as consumed. A legacy spelling gets a
+  /// `load-legacy-key` warning naming the modern key.
+  yaml::NodeRef take(KeyNames names);
+  bool has(KeyNames names) const;
+  /// Marks a key as known without reading it (anchor hosts, keys read elsewhere).
+  void ignore(std::string_view name);
+
+  /// Reports every key that was neither taken nor ignored. A key close to one of `known`
+  /// (edit distance) is a probable typo: `load-unknown-key` warning with a did-you-mean hint.
+  /// Other keys are kept as info by Choreonoid: `load-info-key` note.
+  void report_unknown(const std::vector<std::string_view>& known);
+
+  const yaml::NodeRef& node() const { return mapping_; }
+  const std::string& what() const { return what_; }
+  LoadContext& context() { return ctx_; }
+
+ private:
+  LoadContext& ctx_;
+  yaml::NodeRef mapping_;
+  std::string what_;
+  std::set<std::string, std::less<>> consumed_;
+};
+
+/// Levenshtein distance, for did-you-mean hints.
+int edit_distance(std::string_view a, std::string_view b);
+
+/// The closest of `candidates` to `word` if it is a plausible typo, else empty.
+std::string_view suggest(std::string_view word, const std::vector<std::string_view>& candidates);
+
+}  // namespace bodyfmt::detail

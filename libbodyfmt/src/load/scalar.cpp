@@ -1,0 +1,128 @@
+#include "load/scalar.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+
+namespace bodyfmt::detail {
+namespace {
+
+bool is_scalar(LoadContext& ctx, const yaml::NodeRef& ref, const char* what) {
+  if (ref && ref->is_scalar()) return true;
+  ctx.error("load-type", ref, std::string("expected ") + what + ", found a " +
+                                  (ref && ref->is_mapping() ? "mapping" : "sequence"));
+  return false;
+}
+
+bool only_trailing_space(const char* p) {
+  while (*p == ' ' || *p == '\t' || *p == '\r' || *p == '\n') ++p;
+  return *p == '\0';
+}
+
+}  // namespace
+
+std::optional<double> parse_double_exact(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  const char* begin = text.c_str();
+  char* end = nullptr;
+  double value = std::strtod(begin, &end);
+  if (end == begin || !only_trailing_space(end)) return std::nullopt;
+  return value;
+}
+
+std::optional<bool> parse_bool_exact(const std::string& t) {
+  // body-format-spec §1.3: exactly these spellings.
+  static const char* const kTrue[] = {"y", "Y", "yes", "Yes", "YES", "true", "True", "TRUE", "on", "On", "ON"};
+  static const char* const kFalse[] = {"n", "N", "no", "No", "NO", "false", "False", "FALSE", "off", "Off", "OFF"};
+  for (const char* s : kTrue)
+    if (t == s) return true;
+  for (const char* s : kFalse)
+    if (t == s) return false;
+  return std::nullopt;
+}
+
+std::optional<double> required_double(LoadContext& ctx, const yaml::NodeRef& ref) {
+  if (!is_scalar(ctx, ref, "a number")) return std::nullopt;
+  const std::string& text = ref->scalar;
+  const char* begin = text.c_str();
+  char* end = nullptr;
+  double value = std::strtod(begin, &end);
+  if (end == begin) {
+    ctx.error("load-number", ref, "the value \"" + text + "\" must be a floating point number");
+    return std::nullopt;
+  }
+  if (!only_trailing_space(end)) {
+    // body-format-spec §1.2: Choreonoid reads "0.t" as 0 (strtod prefix); we load the same
+    // value and warn, since the text is almost certainly a typo.
+    const std::string prefix(begin, static_cast<std::size_t>(end - begin));
+    ctx.warning("load-lenient-number", ref,
+                "\"" + text + "\" is not a number; Choreonoid reads its prefix " + prefix +
+                    " and ignores \"" + std::string(end) + "\"",
+                "write the number in full, e.g. " + prefix);
+  }
+  if (std::isnan(value)) ctx.warning("load-lenient-number", ref, "the value \"" + text + "\" is not a number (NaN)");
+  return value;
+}
+
+std::optional<long> required_int(LoadContext& ctx, const yaml::NodeRef& ref) {
+  if (!is_scalar(ctx, ref, "an integer")) return std::nullopt;
+  const std::string& text = ref->scalar;
+  const char* begin = text.c_str();
+  char* end = nullptr;
+  errno = 0;
+  long value = std::strtol(begin, &end, 10);
+  if (end == begin) {
+    ctx.error("load-number", ref, "the value \"" + text + "\" must be an integer value");
+    return std::nullopt;
+  }
+  if (!only_trailing_space(end)) {
+    ctx.warning("load-lenient-number", ref,
+                "\"" + text + "\" is not an integer; Choreonoid reads it as " + std::to_string(value),
+                "write " + std::to_string(value));
+  }
+  return value;
+}
+
+std::optional<bool> required_bool(LoadContext& ctx, const yaml::NodeRef& ref) {
+  if (!is_scalar(ctx, ref, "a boolean")) return std::nullopt;
+  auto value = parse_bool_exact(ref->scalar);
+  if (!value) ctx.error("load-bool", ref, "the value \"" + ref->scalar + "\" must be a boolean value");
+  return value;
+}
+
+std::optional<std::string> required_string(LoadContext& ctx, const yaml::NodeRef& ref) {
+  if (!is_scalar(ctx, ref, "a string")) return std::nullopt;
+  return ref->scalar;
+}
+
+std::optional<double> optional_double(LoadContext& ctx, const yaml::NodeRef& ref) {
+  if (ref && ref->is_scalar()) {
+    if (auto value = parse_double_exact(ref->scalar)) return value;
+  }
+  ctx.warning("load-ignored-value", ref,
+              "this value is not a number; Choreonoid ignores it and uses the default");
+  return std::nullopt;
+}
+
+std::optional<long> optional_int(LoadContext& ctx, const yaml::NodeRef& ref) {
+  if (ref && ref->is_scalar()) {
+    const std::string& text = ref->scalar;
+    char* end = nullptr;
+    long value = std::strtol(text.c_str(), &end, 10);
+    if (end != text.c_str() && only_trailing_space(end)) return value;
+  }
+  ctx.warning("load-ignored-value", ref,
+              "this value is not an integer; Choreonoid ignores it and uses the default");
+  return std::nullopt;
+}
+
+std::optional<bool> optional_bool(LoadContext& ctx, const yaml::NodeRef& ref) {
+  if (ref && ref->is_scalar()) {
+    if (auto value = parse_bool_exact(ref->scalar)) return value;
+  }
+  ctx.warning("load-ignored-value", ref,
+              "this value is not a boolean; Choreonoid ignores it and uses the default");
+  return std::nullopt;
+}
+
+}  // namespace bodyfmt::detail

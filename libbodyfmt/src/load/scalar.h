@@ -1,0 +1,28 @@
+#pragma once
+// Scalar conversions with Choreonoid's two strictness levels (body-format-spec §1.2):
+// "required" values are read leniently like strtod (we accept and warn), "optional" values
+// must parse whole or Choreonoid silently falls back to the default (we do too, and warn).
+
+#include "load/load_context.h"
+
+#include <optional>
+#include <string>
+
+namespace bodyfmt::detail {
+
+std::optional<double> required_double(LoadContext& ctx, const yaml::NodeRef& ref);
+std::optional<long> required_int(LoadContext& ctx, const yaml::NodeRef& ref);
+std::optional<bool> required_bool(LoadContext& ctx, const yaml::NodeRef& ref);
+std::optional<std::string> required_string(LoadContext& ctx, const yaml::NodeRef& ref);
+
+/// Whole-scalar reads. On failure they warn that Choreonoid ignores the value and return
+/// nullopt, so the caller keeps its default.
+std::optional<double> optional_double(LoadContext& ctx, const yaml::NodeRef& ref);
+std::optional<long> optional_int(LoadContext& ctx, const yaml::NodeRef& ref);
+std::optional<bool> optional_bool(LoadContext& ctx, const yaml::NodeRef& ref);
+
+/// Parses a whole scalar as a double, nothing else (no diagnostics).
+std::optional<double> parse_double_exact(const std::string& text);
+std::optional<bool> parse_bool_exact(const std::string& text);
+
+}  // namespace bodyfmt::detail

@@ -1,0 +1,233 @@
+#include "load/values.h"
+
+#include <bodyfmt/model.h>
+
+#include "load/scalar.h"
+
+#include <algorithm>
+#include <cctype>
+
+namespace bodyfmt::detail {
+namespace {
+
+bool expect_sequence(LoadContext& ctx, const yaml::NodeRef& ref, const char* what) {
+  if (ref && ref->is_sequence()) return true;
+  ctx.error("load-type", ref, std::string(what) + " must be a sequence");
+  return false;
+}
+
+bool is_sequence_of_sequences(const yaml::NodeRef& ref) {
+  return ref && ref->is_sequence() && !ref->items.empty() && ref->items.front()->is_sequence();
+}
+
+}  // namespace
+
+std::optional<Eigen::VectorXd> read_vector(LoadContext& ctx, const yaml::NodeRef& ref, int size) {
+  if (!expect_sequence(ctx, ref, "this value")) return std::nullopt;
+  if (static_cast<int>(ref->items.size()) != size) {
+    ctx.error("load-vector-size", ref,
+              "a " + std::to_string(size) + "-element vector is expected, found " +
+                  std::to_string(ref->items.size()) + " elements");
+    return std::nullopt;
+  }
+  Eigen::VectorXd v(size);
+  for (int i = 0; i < size; ++i) {
+    auto x = required_double(ctx, ref->items[static_cast<std::size_t>(i)]);
+    if (!x) return std::nullopt;
+    v[i] = *x;
+  }
+  return v;
+}
+
+std::optional<Eigen::Vector3d> read_vec3(LoadContext& ctx, const yaml::NodeRef& ref) {
+  auto v = read_vector(ctx, ref, 3);
+  if (!v) return std::nullopt;
+  return Eigen::Vector3d(*v);
+}
+
+std::optional<Eigen::Vector3d> read_optional_vec3(LoadContext& ctx, const yaml::NodeRef& ref) {
+  if (ref && !ref->is_sequence()) {
+    // body-format-spec §1.2: `size: 1` is silently treated as absent by Choreonoid.
+    ctx.warning("load-ignored-value", ref,
+                "this value must be a 3-element sequence; Choreonoid ignores it and uses the default",
+                "write [x, y, z]");
+    return std::nullopt;
+  }
+  return read_vec3(ctx, ref);
+}
+
+std::optional<std::vector<double>> read_numbers(LoadContext& ctx, const yaml::NodeRef& ref) {
+  if (!expect_sequence(ctx, ref, "this value")) return std::nullopt;
+  std::vector<double> values;
+  values.reserve(ref->items.size());
+  for (const yaml::NodeRef& item : ref->items) {
+    auto x = required_double(ctx, item);
+    if (!x) return std::nullopt;
+    values.push_back(*x);
+  }
+  return values;
+}
+
+std::optional<Eigen::Vector3d> read_translation(LoadContext& ctx, const yaml::NodeRef& ref) {
+  if (!expect_sequence(ctx, ref, "translation")) return std::nullopt;
+  if (ref->items.empty()) {
+    // body-format-spec §4.2: Choreonoid leaves the value undefined; reject it.
+    ctx.error("load-vector-size", ref, "translation is an empty sequence", "write [x, y, z]");
+    return std::nullopt;
+  }
+  if (!is_sequence_of_sequences(ref)) return read_vec3(ctx, ref);
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (const yaml::NodeRef& item : ref->items) {
+    auto v = read_vec3(ctx, item);
+    if (!v) return std::nullopt;
+    sum += *v;
+  }
+  return sum;
+}
+
+std::optional<Eigen::Matrix3d> read_rotation(LoadContext& ctx, const yaml::NodeRef& ref) {
+  if (!expect_sequence(ctx, ref, "rotation")) return std::nullopt;
+  if (ref->items.empty()) {
+    ctx.error("load-vector-size", ref, "rotation is an empty sequence", "write [x, y, z, angle]");
+    return std::nullopt;
+  }
+  auto one = [&](const yaml::NodeRef& r) -> std::optional<Eigen::Matrix3d> {
+    auto v = read_vector(ctx, r, 4);
+    if (!v) return std::nullopt;
+    Eigen::Vector3d axis = v->head<3>();
+    if (axis.norm() < 1e-6) {
+      ctx.error("load-rotation-axis", r, "rotation axis is the zero vector");
+      return std::nullopt;
+    }
+    return Eigen::AngleAxisd(ctx.angle((*v)[3]), axis.normalized()).toRotationMatrix();
+  };
+  if (!is_sequence_of_sequences(ref)) return one(ref);
+  // body-format-spec §4.3: R = R1 * R2 * ... * Rn in list order.
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+  for (const yaml::NodeRef& item : ref->items) {
+    auto r = one(item);
+    if (!r) return std::nullopt;
+    R = R * *r;
+  }
+  return R;
+}
+
+std::optional<Eigen::Matrix3d> read_inertia(LoadContext& ctx, const yaml::NodeRef& ref) {
+  if (!expect_sequence(ctx, ref, "inertia")) return std::nullopt;
+  std::size_t n = ref->items.size();
+  if (n != 6 && n != 9) {
+    ctx.error("load-inertia-size", ref,
+              "the number of elements of an inertia value must be six or nine, found " +
+                  std::to_string(n));
+    return std::nullopt;
+  }
+  auto values = read_numbers(ctx, ref);
+  if (!values) return std::nullopt;
+  const std::vector<double>& v = *values;
+  Eigen::Matrix3d I;
+  if (n == 6) {
+    I << v[0], v[1], v[2], v[1], v[3], v[4], v[2], v[4], v[5];
+  } else {
+    I << v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8];
+  }
+  return I;
+}
+
+std::optional<Eigen::Vector3d> read_joint_axis(LoadContext& ctx, const yaml::NodeRef& ref) {
+  if (ref && ref->is_scalar()) {
+    std::string s = ref->scalar;
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::toupper(c); });
+    double sign = 1;
+    if (!s.empty() && s[0] == '-') {
+      sign = -1;
+      s.erase(0, 1);
+    }
+    if (s == "X") return Eigen::Vector3d(sign, 0, 0);
+    if (s == "Y") return Eigen::Vector3d(0, sign, 0);
+    if (s == "Z") return Eigen::Vector3d(0, 0, sign);
+    ctx.error("load-axis", ref, "illegal axis value \"" + ref->scalar + "\"",
+              "use X, Y, Z, -X, -Y, -Z or [x, y, z]");
+    return std::nullopt;
+  }
+  return read_vec3(ctx, ref);
+}
+
+namespace {
+
+// One element of a limit: a number (converted to radians when asked) or `unlimited`.
+std::optional<double> limit_value(LoadContext& ctx, const yaml::NodeRef& ref, bool convert_angle,
+                                  double unlimited_value) {
+  if (!ref || !ref->is_scalar()) {
+    ctx.error("load-range", ref, "invalid type value is used as a joint range value");
+    return std::nullopt;
+  }
+  if (ref->scalar == "unlimited") return unlimited_value;
+  if (!parse_double_exact(ref->scalar)) {
+    // Choreonoid rejects any other symbol here (§3 "Unknown symbol is used as a jointRange value").
+    const char* b = ref->scalar.c_str();
+    char* e = nullptr;
+    std::strtod(b, &e);
+    if (e == b) {
+      ctx.error("load-range", ref, "unknown symbol \"" + ref->scalar + "\" is used as a range value",
+                "use a number or unlimited");
+      return std::nullopt;
+    }
+  }
+  auto value = required_double(ctx, ref);
+  if (!value) return std::nullopt;
+  return convert_angle ? ctx.angle(*value) : *value;
+}
+
+}  // namespace
+
+std::optional<std::pair<double, double>> read_range(LoadContext& ctx, const yaml::NodeRef& ref,
+                                                    bool convert_angle) {
+  if (!ref) return std::nullopt;
+  if (ref->is_scalar()) {
+    auto v = limit_value(ctx, ref, convert_angle, kUnlimited);
+    if (!v) return std::nullopt;
+    return std::make_pair(-*v, *v);
+  }
+  if (ref->is_mapping()) {
+    ctx.error("load-range", ref, "invalid joint range value (a mapping)");
+    return std::nullopt;
+  }
+  if (ref->items.size() != 2) {
+    ctx.error("load-range", ref, "a joint range must have two elements, found " +
+                                     std::to_string(ref->items.size()));
+    return std::nullopt;
+  }
+  auto lower = limit_value(ctx, ref->items[0], convert_angle, -kUnlimited);
+  auto upper = limit_value(ctx, ref->items[1], convert_angle, kUnlimited);
+  if (!lower || !upper) return std::nullopt;
+  return std::make_pair(*lower, *upper);
+}
+
+std::optional<std::pair<double, double>> read_symmetric_limit(LoadContext& ctx,
+                                                              const yaml::NodeRef& ref,
+                                                              bool convert_angle) {
+  if (!ref) return std::nullopt;
+  if (!ref->is_scalar()) {
+    ctx.error("load-range", ref, "this limit must be a scalar");
+    return std::nullopt;
+  }
+  auto v = limit_value(ctx, ref, convert_angle, kUnlimited);
+  if (!v) return std::nullopt;
+  return std::make_pair(-*v, *v);
+}
+
+std::optional<std::pair<double, double>> read_velocity_range(LoadContext& ctx,
+                                                             const yaml::NodeRef& ref,
+                                                             bool convert_angle) {
+  if (!ref) return std::nullopt;
+  if (!ref->is_sequence() || ref->items.size() != 2) {
+    ctx.error("load-range", ref, "the joint velocity range must have two elements");
+    return std::nullopt;
+  }
+  auto lower = limit_value(ctx, ref->items[0], convert_angle, -kUnlimited);
+  auto upper = limit_value(ctx, ref->items[1], convert_angle, kUnlimited);
+  if (!lower || !upper) return std::nullopt;
+  return std::make_pair(*lower, *upper);
+}
+
+}  // namespace bodyfmt::detail
