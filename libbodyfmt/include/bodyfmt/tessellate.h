@@ -1,0 +1,63 @@
+#pragma once
+/// The project's one tessellator: Geometry (body-format-spec §9) -> TriangleMesh.
+///
+/// Meshes follow Choreonoid's MeshGenerator conventions (vertex placement, division rules) so
+/// that exported meshes match what Choreonoid renders, with one deliberate difference: every
+/// triangle is counter-clockwise seen from outside (signed_volume() > 0 for closed solids),
+/// also where Choreonoid would produce an inside-out Extrusion.
+///
+/// Invalid parameters are reported to the sink (rules `geometry-invalid-size`,
+/// `geometry-degenerate`, `geometry-index-out-of-range`) and give an empty or partial mesh.
+/// Nothing here throws, prints or aborts.
+
+#include <bodyfmt/diagnostic.h>
+#include <bodyfmt/mesh.h>
+#include <bodyfmt/model.h>
+
+#include <Eigen/Core>
+
+#include <array>
+#include <vector>
+
+namespace bodyfmt {
+
+/// Choreonoid's default circle division (body-format-spec §9).
+constexpr int kDefaultDivisionNumber = 20;
+/// Upper bound applied by the tessellator so that a huge `division_number` cannot exhaust
+/// memory (a sphere has about n^2 / 2 vertices). Larger values are clamped with a warning.
+constexpr int kMaxDivisionNumber = 1024;
+
+/// `division_number` as Choreonoid uses it: values < 4 mean the default 20.
+/// (Not clamped to kMaxDivisionNumber; tessellate() does that and reports it.)
+int effective_division_number(int division_number);
+
+/// Triangulates `geometry` in the shape's local frame (before Shape::X_LS).
+///
+/// * Box: centred, full edge lengths. Sphere: centred, n longitudes x n/2 latitude bands.
+/// * Cylinder, Cone, Capsule: axis +Y, centred; circle vertex i at angle 2 pi i / n measured
+///   from +X towards +Z, i.e. (r cos a, y, r sin a). Cone base at y = -h/2, apex at +h/2.
+///   Capsule `height` is the cylindrical part; the caps are hemispheres.
+/// * Extrusion: VRML97 (spine-aligned cross-section planes), as Choreonoid's MeshGenerator.
+/// * ElevationGrid: vertex (i, j) at (i x_spacing, height[j x_dimension + i], j z_spacing).
+/// * IndexedFaceSet: polygons terminated by -1 (a trailing polygon without -1 is dropped, as
+///   Choreonoid does), triangulated by ear clipping. TriangleMeshGeometry: flat triangles.
+/// * MeshResource: empty (meshes are imported elsewhere).
+///
+/// Normals and texture coordinates are left empty.
+TriangleMesh tessellate(const Geometry& geometry, int division_number, DiagnosticSink& sink,
+                        const SourceLocation& where);
+
+/// tessellate(shape.geometry, shape.division_number, sink, shape.source).
+TriangleMesh tessellate(const Shape& shape, DiagnosticSink& sink);
+
+/// Triangulates one polygon given as indices into `vertices` (all indices must be valid) by
+/// ear clipping on its projection onto the plane of its Newell normal. Consecutive duplicate
+/// points are ignored. The triangles keep the polygon's winding and are appended to
+/// `triangles`. Returns false, appending nothing, for a degenerate polygon: fewer than three
+/// distinct points or no area. A self-intersecting polygon still yields triangles covering it
+/// approximately. Useful for mesh importers (OBJ, VRML faces) too.
+bool triangulate_polygon(const std::vector<Eigen::Vector3d>& vertices,
+                         const std::vector<int>& polygon,
+                         std::vector<std::array<int, 3>>& triangles);
+
+}  // namespace bodyfmt

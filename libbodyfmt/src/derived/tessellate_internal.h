@@ -1,0 +1,42 @@
+#pragma once
+// Shared by the tessellate*.cpp files only.
+
+#include <bodyfmt/tessellate.h>
+
+#include <string>
+
+namespace bodyfmt::tessellate_detail {
+
+/// Reports geometry problems at the shape's location. Caps the number of diagnostics per
+/// geometry so that a face list with a million bad indices stays readable.
+class Reporter {
+ public:
+  Reporter(DiagnosticSink& sink, const SourceLocation& where) : sink_(sink), where_(where) {}
+  ~Reporter();
+  Reporter(const Reporter&) = delete;
+  Reporter& operator=(const Reporter&) = delete;
+
+  void error(const char* rule_id, std::string message);
+  void warning(const char* rule_id, std::string message);
+
+ private:
+  void report(Severity severity, const char* rule_id, std::string message);
+
+  static constexpr int kMaxReports = 10;
+  DiagnosticSink& sink_;
+  const SourceLocation& where_;
+  int reported_ = 0;
+  int suppressed_ = 0;
+  std::string suppressed_rule_;  ///< rule of the first suppressed diagnostic
+};
+
+constexpr const char* kRuleInvalidSize = "geometry-invalid-size";
+constexpr const char* kRuleDegenerate = "geometry-degenerate";
+constexpr const char* kRuleIndexOutOfRange = "geometry-index-out-of-range";
+
+TriangleMesh tessellate_extrusion(const Extrusion& extrusion, Reporter& reporter);
+
+/// Reverses every triangle (inside-out -> outside-out).
+void flip_triangles(TriangleMesh& mesh);
+
+}  // namespace bodyfmt::tessellate_detail
