@@ -1,0 +1,160 @@
+// MeshCache and import_mesh(): file checks, format dispatch by extension, one parse per file,
+// and one asset per (file, node, metadata) (body-format-spec §9.2, §9.4).
+#include <bodyfmt/mesh_import.h>
+
+#include "mesh/assimp_reader.h"
+#include "mesh/scene_tree.h"
+#include "mesh/vrml_reader.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace bodyfmt {
+
+namespace {
+
+enum class Format { kVrml, kAssimp, kUnsupported };
+
+Format format_of(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (ext == ".wrl") return Format::kVrml;
+  if (ext == ".stl" || ext == ".obj" || ext == ".dae" || ext == ".gltf" || ext == ".glb") return Format::kAssimp;
+  return Format::kUnsupported;
+}
+
+void report(DiagnosticSink& sink, const char* rule, const SourceLocation& where, std::string message,
+            std::string hint = {}) {
+  Diagnostic d;
+  d.severity = Severity::kError;
+  d.rule_id = rule;
+  d.message = std::move(message);
+  d.location = where;
+  d.fix_hint = std::move(hint);
+  sink.report(std::move(d));
+}
+
+}  // namespace
+
+struct MeshCache::Impl {
+  struct FileEntry {
+    mesh::SceneTree tree;  // nullptr: failed (already reported)
+  };
+  using AssetKey = std::tuple<std::string, std::string, double, bool, std::vector<std::string>>;
+
+  std::map<std::string, FileEntry> files;
+  std::map<AssetKey, std::shared_ptr<const MeshAsset>> assets;
+  std::set<AssetKey> failed_assets;
+  std::vector<std::string> inline_stack;  // VRML files being parsed, for Inline cycles
+  int parsed = 0;
+
+  /// Parses `path` once; later calls return the cached tree (or nullptr after a failure).
+  mesh::SceneTree load_file(const std::string& path, DiagnosticSink& sink, const SourceLocation& where) {
+    if (auto it = files.find(path); it != files.end()) return it->second.tree;
+    if (std::find(inline_stack.begin(), inline_stack.end(), path) != inline_stack.end()) {
+      report(sink, "mesh-inline-cycle", where, "VRML Inline \"" + path + "\" includes itself");
+      return nullptr;
+    }
+    mesh::SceneTree tree = parse_file(path, sink, where);
+    files[path].tree = tree;
+    return tree;
+  }
+
+  mesh::SceneTree parse_file(const std::string& path, DiagnosticSink& sink, const SourceLocation& where) {
+    std::error_code ec;
+    const Format format = format_of(path);
+    if (format == Format::kUnsupported) {
+      report(sink, "mesh-format-unsupported", where,
+             "the file format of \"" + path + "\" is not supported (use .wrl, .stl, .obj, .dae, .gltf or .glb)");
+      return nullptr;
+    }
+    if (!std::filesystem::exists(path, ec)) {
+      report(sink, "mesh-file-missing", where, "mesh file not found: \"" + path + "\"");
+      return nullptr;
+    }
+    if (!std::filesystem::is_regular_file(path, ec)) {
+      report(sink, "mesh-file-unreadable", where, "mesh path is not a regular file: \"" + path + "\"");
+      return nullptr;
+    }
+    ++parsed;
+    if (format == Format::kAssimp) return mesh::read_with_assimp(path, sink, where);
+
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream text;
+    if (!in || !(text << in.rdbuf())) {
+      // An empty file makes `text << rdbuf` fail too; that is still readable (and empty).
+      if (!in || std::filesystem::file_size(path, ec) != 0) {
+        report(sink, "mesh-file-unreadable", where, "cannot read mesh file \"" + path + "\"");
+        return nullptr;
+      }
+    }
+    inline_stack.push_back(path);
+    const mesh::InlineLoader loader = [this, &sink](const std::string& inlined, const SourceLocation& at) {
+      return load_file(inlined, sink, at);
+    };
+    const std::string content = text.str();
+    mesh::SceneTree tree = mesh::read_vrml(content, path, sink, loader);
+    inline_stack.pop_back();
+    return tree;
+  }
+};
+
+MeshCache::MeshCache() : impl_(std::make_unique<Impl>()) {}
+MeshCache::~MeshCache() = default;
+
+int MeshCache::files_parsed() const { return impl_->parsed; }
+
+std::shared_ptr<const MeshAsset> MeshCache::get(const std::string& path, const MeshImportOptions& options,
+                                                DiagnosticSink& sink, const SourceLocation& where) {
+  const std::string normal = std::filesystem::path(path).lexically_normal().string();
+  std::vector<std::string> detached = options.detached_nodes;
+  std::sort(detached.begin(), detached.end());
+  detached.erase(std::unique(detached.begin(), detached.end()), detached.end());
+  const Impl::AssetKey key{normal, options.node, options.length_scale, options.y_up, detached};
+  if (auto it = impl_->assets.find(key); it != impl_->assets.end()) return it->second;
+  if (impl_->failed_assets.count(key)) return nullptr;
+
+  const bool known_file = impl_->files.count(normal) != 0;
+  mesh::SceneTree tree = impl_->load_file(normal, sink, where);
+  if (!tree) {
+    impl_->failed_assets.insert(key);
+    return nullptr;
+  }
+  auto asset = std::make_shared<MeshAsset>();
+  asset->path = normal;
+  asset->node = options.node;
+  if (!mesh::extract_parts(*tree, options.node, options.length_scale, options.y_up, asset->parts,
+                           detached)) {
+    report(sink, "mesh-node-not-found", where,
+           "node \"" + options.node + "\" is not found in \"" + normal + "\"",
+           "the name must be a VRML DEF name or a node name of the mesh file (first match in depth-first order)");
+    impl_->failed_assets.insert(key);
+    return nullptr;
+  }
+  if (asset->parts.empty() && !known_file) {
+    Diagnostic d;
+    d.severity = Severity::kWarning;
+    d.rule_id = "mesh-empty";
+    d.message = "mesh file \"" + normal + "\"" +
+                (options.node.empty() ? std::string() : " node \"" + options.node + "\"") +
+                " contains no triangles";
+    d.location = where;
+    sink.report(std::move(d));
+  }
+  impl_->assets[key] = asset;
+  return asset;
+}
+
+std::optional<MeshAsset> import_mesh(const std::string& path, const MeshImportOptions& options,
+                                     DiagnosticSink& sink, const SourceLocation& where) {
+  MeshCache cache;
+  auto asset = cache.get(path, options, sink, where);
+  if (!asset) return std::nullopt;
+  return *asset;
+}
+
+}  // namespace bodyfmt

@@ -1,0 +1,104 @@
+#include "mesh/scene_tree.h"
+
+#include <set>
+
+namespace bodyfmt::mesh {
+
+namespace {
+
+const SceneNode* find_node_rec(const SceneNode& node, const std::string& name,
+                               const Eigen::Affine3d& parent, Eigen::Affine3d* ancestors) {
+  if (node.name == name) {
+    if (ancestors) *ancestors = parent;
+    return &node;
+  }
+  const Eigen::Affine3d here = parent * node.transform;
+  for (const auto& child : node.children) {
+    if (const SceneNode* found = find_node_rec(*child, name, here, ancestors)) return found;
+  }
+  return nullptr;
+}
+
+void transform_part(MeshPart& part, const Eigen::Affine3d& transform) {
+  for (auto& v : part.mesh.vertices) v = transform * v;
+  if (!part.mesh.normals.empty()) {
+    // Normals transform by the inverse transpose so that non-uniform scale keeps them normal.
+    const Eigen::Matrix3d normal_matrix = transform.linear().inverse().transpose();
+    for (auto& n : part.mesh.normals) {
+      n = normal_matrix * n;
+      const double norm = n.norm();
+      if (norm > 0) n /= norm;
+    }
+  }
+  // A mirroring transform turns counter-clockwise triangles clockwise; flip them back so that
+  // "counter-clockwise seen from outside" (mesh.h) still holds.
+  if (transform.linear().determinant() < 0) {
+    for (auto& t : part.mesh.triangles) std::swap(t[1], t[2]);
+  }
+}
+
+}  // namespace
+
+
+const SceneNode* find_node(const SceneNode& root, const std::string& name,
+                           Eigen::Affine3d* ancestors_transform) {
+  return find_node_rec(root, name, Eigen::Affine3d::Identity(), ancestors_transform);
+}
+
+/// The node's parts and subtree under `here`, which replaces the node's own transform.
+static void flatten_contents(const SceneNode& node, const Eigen::Affine3d& here,
+                             std::vector<MeshPart>& out, const std::set<const SceneNode*>& skip) {
+  for (const MeshPart& part : node.parts) {
+    if (part.mesh.triangles.empty()) continue;
+    MeshPart copy = part;
+    transform_part(copy, here);
+    out.push_back(std::move(copy));
+  }
+  for (const auto& child : node.children) {
+    if (!skip.count(child.get())) flatten_contents(*child, here * child->transform, out, skip);
+  }
+}
+
+void flatten(const SceneNode& node, const Eigen::Affine3d& parent, std::vector<MeshPart>& out) {
+  flatten_contents(node, parent * node.transform, out, {});
+}
+
+Eigen::Matrix3d y_up_rotation() {
+  Eigen::Matrix3d r;
+  // Columns are the images of mesh X, Y, Z: X -> +Y, Y -> +Z, Z -> +X (body-format-spec §9.4).
+  r << 0, 0, 1,
+       1, 0, 0,
+       0, 1, 0;
+  return r;
+}
+
+bool extract_parts(const SceneNode& root, const std::string& node_name, double length_scale,
+                   bool y_up, std::vector<MeshPart>& out,
+                   const std::vector<std::string>& detached_nodes) {
+  Eigen::Affine3d start = Eigen::Affine3d::Identity();
+  const SceneNode* node = &root;
+  if (!node_name.empty()) {
+    Eigen::Affine3d ancestors = Eigen::Affine3d::Identity();
+    node = find_node(root, node_name, &ancestors);
+    if (!node) return false;
+    // §9.4 re-centring: the linear part of a product is the product of the linear parts, so
+    // dropping every translation down to and including the node is keeping only the linear
+    // part of the accumulated transform. The node's descendants keep their own transforms.
+    start.linear() = (ancestors * node->transform).linear();
+    start.translation().setZero();
+  } else {
+    start = root.transform;
+  }
+  Eigen::Affine3d metadata = Eigen::Affine3d::Identity();
+  metadata.linear() = (y_up ? y_up_rotation() : Eigen::Matrix3d::Identity()) * length_scale;
+
+  std::set<const SceneNode*> skip;
+  for (const std::string& name : detached_nodes) {
+    const SceneNode* detached = find_node(root, name, nullptr);
+    if (detached && detached != node) skip.insert(detached);
+  }
+  flatten_contents(*node, metadata * start, out, skip);
+  return true;
+}
+
+}  // namespace bodyfmt::mesh
