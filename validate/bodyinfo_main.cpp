@@ -16,10 +16,12 @@ int main(int argc, char** argv) {
   std::string format = "text";
   std::size_t max_nodes = bodyfmt::LoadOptions{}.max_expanded_yaml_nodes;
   bool quiet = false;
+  bool no_meshes = false;
   app.add_option("file", path, "the .body file")->required();
   app.add_option("--format", format, "output format")->check(CLI::IsMember({"text", "yaml"}));
   app.add_option("--max-yaml-nodes", max_nodes, "limit on YAML nodes after alias expansion");
   app.add_flag("-q,--quiet", quiet, "print no notes");
+  app.add_flag("--no-meshes", no_meshes, "do not import external mesh files");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -29,6 +31,7 @@ int main(int argc, char** argv) {
 
   bodyfmt::LoadOptions options;
   options.max_expanded_yaml_nodes = max_nodes;
+  options.load_meshes = !no_meshes;
   bodyfmt::CollectingSink sink;
   auto model = bodyfmt::load_body(path, options, sink);
   bodyfmt::Derived derived;

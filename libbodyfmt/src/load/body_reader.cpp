@@ -28,12 +28,12 @@ const std::vector<std::string_view> kHeaderKeys = {
 
 }  // namespace
 
-BodyReader::BodyReader(const LoadOptions& options, DiagnosticSink& sink)
-    : options_(options), ctx_(sink) {}
+BodyReader::BodyReader(const LoadOptions& options, DiagnosticSink& sink, LoadSession& session)
+    : options_(options), ctx_(sink), session_(session) {}
 
 BodyReader::~BodyReader() = default;
 
-std::optional<Model> BodyReader::read(const std::string& text, const std::string& file_name) {
+std::optional<Model> BodyReader::read(const std::string& text, const std::string& file_name, bool top_level) {
   yaml::ParseOptions parse_options;
   parse_options.max_expanded_nodes = options_.max_expanded_yaml_nodes;
   parse_options.max_depth = options_.max_yaml_depth;
@@ -46,11 +46,16 @@ std::optional<Model> BodyReader::read(const std::string& text, const std::string
                 "the top level of a body file must be a mapping");
     return std::nullopt;
   }
+  struct ChainEntry {  // recursion detection for SubBody includes (§11.2)
+    std::vector<std::string>& chain;
+    ChainEntry(std::vector<std::string>& c, std::string path) : chain(c) { chain.push_back(std::move(path)); }
+    ~ChainEntry() { chain.pop_back(); }
+  } chain_entry(session_.chain, std::filesystem::weakly_canonical(file_name).string());
   Model model;
   model.source_file = file_name;
   model.source = root->location;
   model.name = std::filesystem::path(file_name).stem().string();
-  resources_ = make_resource_handler(options_, ctx_, model, document.get());
+  resources_ = make_resource_handler(options_, ctx_, model, document.get(), session_);
   documents_.push_back(std::move(document));
   if (!read_header(root, model)) return std::nullopt;
 
@@ -77,7 +82,36 @@ std::optional<Model> BodyReader::read(const std::string& text, const std::string
   if (!extra) extra = root->find("extraJoints");
   if (extra) read_extra_joints(extra->value, model);
   r.report_unknown(kHeaderKeys);
+  if (top_level && options_.load_meshes) import_meshes(model);
   return model;
+}
+
+void BodyReader::import_meshes(Model& model) {
+  // One asset per (file, node, metadata) in the model; the session's cache parses each file once.
+  std::map<std::tuple<std::string, std::string, double, bool>, MeshIndex> indices;
+  for (Link& link : model.links) {
+    for (Shape& shape : link.shapes) {
+      auto* mesh = std::get_if<MeshResource>(&shape.geometry);
+      if (!mesh || mesh->mesh >= 0 || mesh->resolved_path.empty()) continue;
+      auto key = std::make_tuple(mesh->resolved_path, mesh->node, mesh->length_scale, mesh->y_up);
+      if (auto it = indices.find(key); it != indices.end()) {
+        mesh->mesh = it->second;
+        continue;
+      }
+      MeshImportOptions import_options;
+      import_options.node = mesh->node;
+      import_options.length_scale = mesh->length_scale;
+      import_options.y_up = mesh->y_up;
+      auto asset = session_.meshes.get(mesh->resolved_path, import_options, ctx_.sink, shape.source);
+      MeshIndex index = -1;
+      if (asset) {
+        index = static_cast<MeshIndex>(model.meshes.size());
+        model.meshes.push_back(*asset);
+      }
+      indices.emplace(key, index);
+      mesh->mesh = index;
+    }
+  }
 }
 
 bool BodyReader::read_header(const yaml::NodeRef& root, Model& model) {

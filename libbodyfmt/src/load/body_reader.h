@@ -2,10 +2,12 @@
 // Reads a whole body file: header, links, tree, extra joints (body-format-spec §2, §5, §12).
 
 #include <bodyfmt/load.h>
+#include <bodyfmt/mesh_import.h>
 
 #include "load/elements.h"
 #include "load/load_context.h"
 
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -13,20 +15,32 @@
 
 namespace bodyfmt::detail {
 
+/// State shared by the main file and every file it includes, for one load.
+struct LoadSession {
+  MeshCache meshes;
+  /// Sub-body models by canonical path; nullptr when the file could not be loaded.
+  std::map<std::string, std::shared_ptr<const Model>> subbodies;
+  /// Canonical paths of the body files being read, outermost first (recursion detection).
+  std::vector<std::string> chain;
+};
+
 class BodyReader {
  public:
-  BodyReader(const LoadOptions& options, DiagnosticSink& sink);
+  BodyReader(const LoadOptions& options, DiagnosticSink& sink, LoadSession& session);
   ~BodyReader();
-  std::optional<Model> read(const std::string& text, const std::string& file_name);
+  /// `top_level`: the file the user asked for (imports meshes once everything is read).
+  std::optional<Model> read(const std::string& text, const std::string& file_name, bool top_level = true);
 
  private:
   bool read_header(const yaml::NodeRef& root, Model& model);
   void read_links(const yaml::NodeRef& links, Model& model, std::vector<struct LinkEntry>& entries);
   bool build_tree(Model& model, const std::vector<struct LinkEntry>& entries, const yaml::NodeRef& root_link);
   void read_extra_joints(const yaml::NodeRef& extra_joints, Model& model);
+  void import_meshes(Model& model);
 
   const LoadOptions& options_;
   LoadContext ctx_;
+  LoadSession& session_;
   std::unique_ptr<class ResourceReader> resources_;
   std::vector<std::unique_ptr<yaml::Document>> documents_;
 };

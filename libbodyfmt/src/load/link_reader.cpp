@@ -143,10 +143,12 @@ void read_link_mass(LoadContext& ctx, MappingReader& r, Link& link, bool has_rig
 
 }  // namespace
 
-LinkEntry read_link(LoadContext& ctx, const yaml::NodeRef& node, Model& model, ResourceHandler* resources) {
+LinkEntry read_link(LoadContext& ctx, const yaml::NodeRef& node, Model& model, ResourceHandler* resources,
+                    const std::vector<std::string_view>& extra_keys) {
   LinkEntry entry;
   MappingReader r(ctx, node, "link");
   r.take({"type"});
+  for (std::string_view key : extra_keys) r.ignore(key);
   model.links.emplace_back();
   const LinkIndex index = static_cast<LinkIndex>(model.links.size()) - 1;
   auto link = [&]() -> Link& { return model.links[static_cast<std::size_t>(index)]; };
@@ -182,6 +184,39 @@ LinkEntry read_link(LoadContext& ctx, const yaml::NodeRef& node, Model& model, R
   read_link_mass(ctx, r, link(), elements.has_rigid_body());
   r.report_unknown(kLinkKeys);
   return entry;
+}
+
+void apply_subbody_overrides(LoadContext& ctx, MappingReader& r, Model& model, LinkIndex root,
+                             ResourceHandler* resources) {
+  Link& link = model.links[static_cast<std::size_t>(root)];
+  if (auto t = r.take({"translation"})) {
+    link.sources.translation = t.use_site();
+    if (auto v = read_translation(ctx, t)) link.X_PL.translation() = *v;
+  }
+  if (auto rot = r.take({"rotation"})) {
+    link.sources.rotation = rot.use_site();
+    if (auto R = read_rotation(ctx, rot)) link.X_PL.linear() = *R;
+  }
+  // body-format-spec §11.2: the override re-applies the range, velocity and rotor inertia
+  // defaults even when the SubBody node does not mention them.
+  link.joint_range_lower = link.velocity_lower = -kUnlimited;
+  link.joint_range_upper = link.velocity_upper = kUnlimited;
+  link.joint_axis_inertia = 0;
+  read_joint(ctx, r, link);
+  if (auto material = r.take({"material"})) link.contact_material = material->scalar;
+  for (KeyNames names : {KeyNames{"mass"}, KeyNames{"center_of_mass", "centerOfMass"}, KeyNames{"inertia"}}) {
+    if (auto ignored = r.take(names))
+      ctx.warning("load-mass-ignored", ignored, "mass properties on a SubBody node are ignored by Choreonoid");
+  }
+  const std::size_t contributions = link.mass_contributions.size();
+  ElementReader elements(ctx, model, root, resources);
+  elements.read_elements(r.take({"elements"}), ElementFrame{});
+  Link& after = model.links[static_cast<std::size_t>(root)];
+  if (after.mass_contributions.size() != contributions) {
+    ctx.report(Severity::kWarning, "load-mass-ignored", after.mass_contributions[contributions].source,
+               "RigidBody nodes of a SubBody node are ignored by Choreonoid");
+    after.mass_contributions.resize(contributions);
+  }
 }
 
 }  // namespace bodyfmt::detail

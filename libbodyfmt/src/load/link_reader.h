@@ -5,6 +5,7 @@
 #include <bodyfmt/model.h>
 
 #include "load/elements.h"
+#include "load/mapping_reader.h"
 
 namespace bodyfmt::detail {
 
@@ -15,6 +16,14 @@ struct LinkEntry {
 
 /// Reads one link mapping, appending the link to `model.links` (in file order) and its
 /// devices to `model.devices`. Returns the parent's name as written.
-LinkEntry read_link(LoadContext& ctx, const yaml::NodeRef& node, Model& model, ResourceHandler* resources);
+/// `extra_keys` are keys of composite nodes (ContinuousTrack) read by the caller.
+LinkEntry read_link(LoadContext& ctx, const yaml::NodeRef& node, Model& model, ResourceHandler* resources,
+                    const std::vector<std::string_view>& extra_keys = {});
+
+/// Applies the link-level keys of a SubBody node to the included root link (body-format-spec
+/// §11.2): offset, joint keys (range, velocity and rotor inertia reset when absent),
+/// material and extra shapes. Mass keys and RigidBody elements are ignored, with a warning.
+void apply_subbody_overrides(LoadContext& ctx, MappingReader& r, Model& model, LinkIndex root,
+                             ResourceHandler* resources);
 
 }  // namespace bodyfmt::detail

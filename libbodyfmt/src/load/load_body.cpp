@@ -26,7 +26,8 @@ std::optional<Model> load_body(const std::string& path, const LoadOptions& optio
 std::optional<Model> load_body_string(const std::string& text, const std::string& file_name,
                                       const LoadOptions& options, DiagnosticSink& sink) {
   try {
-    detail::BodyReader reader(options, sink);
+    detail::LoadSession session;
+    detail::BodyReader reader(options, sink, session);
     return reader.read(text, file_name);
   } catch (const std::exception& e) {
     // A broken invariant must not take the caller down; report it as fatal.

@@ -1,6 +1,8 @@
 #include "load/resource_reader.h"
 
+#include "load/body_reader.h"
 #include "load/geometry.h"
+#include "load/link_reader.h"
 #include "load/mapping_reader.h"
 #include "load/scalar.h"
 #include "load/values.h"
@@ -23,8 +25,9 @@ std::string lower_extension(const std::string& path) {
 
 class Resources final : public ResourceReader {
  public:
-  Resources(const LoadOptions& options, LoadContext& ctx, Model& model, const yaml::Document* main)
-      : options_(options), ctx_(ctx), model_(model), main_(main) {}
+  Resources(const LoadOptions& options, LoadContext& ctx, Model& model, const yaml::Document* main,
+            LoadSession& session)
+      : options_(options), ctx_(ctx), model_(model), main_(main), session_(session) {}
 
   void read_resource(ElementReader& reader, const yaml::NodeRef& node, const ElementFrame& frame) override {
     MappingReader r(ctx_, node, "Resource node");
@@ -66,16 +69,13 @@ class Resources final : public ResourceReader {
     mesh.resolved_path = path;
     if (fragment) mesh.node = fragment->scalar;
     if (metadata) read_mesh_metadata(ctx_, metadata, mesh);
-    if (!std::filesystem::exists(path)) {
-      ctx_.error("resource-missing", uri, "the resource \"" + uri->scalar + "\" is not found at \"" + path + "\"");
-      return;
-    }
     shape.geometry = mesh;
     reader.add_shape(std::move(shape), inner);
   }
 
-  void read_link_node(const yaml::NodeRef& node, const std::string& type, std::vector<LinkEntry>&) override {
-    ctx_.error("load-unsupported", node, "\"" + type + "\" link nodes are not supported yet");
+  void read_link_node(const yaml::NodeRef& node, const std::string& type, std::vector<LinkEntry>& entries) override {
+    if (type == "SubBody") read_subbody(node, entries);
+    else read_continuous_track(node, entries);
   }
 
  private:
@@ -123,18 +123,154 @@ class Resources final : public ResourceReader {
     reader.read_elements(ref, frame);
   }
 
+  std::shared_ptr<const Model> load_subbody(const yaml::NodeRef& uri, const std::string& path) {
+    const std::string canonical = std::filesystem::weakly_canonical(path).string();
+    if (std::find(session_.chain.begin(), session_.chain.end(), canonical) != session_.chain.end()) {
+      std::string chain;
+      for (const std::string& file : session_.chain) chain += std::filesystem::path(file).filename().string() + " -> ";
+      chain += std::filesystem::path(canonical).filename().string();
+      ctx_.error("subbody-recursion", uri, "recursive sub-body include: " + chain);
+      return nullptr;
+    }
+    if (auto it = session_.subbodies.find(canonical); it != session_.subbodies.end()) return it->second;
+    std::shared_ptr<const Model> result;
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+      ctx_.error("subbody-missing", uri, "sub-body \"" + uri->scalar + "\" cannot be read at \"" + path + "\"");
+    } else {
+      std::ostringstream text;
+      text << in.rdbuf();
+      BodyReader reader(options_, ctx_.sink, session_);
+      if (auto model = reader.read(text.str(), path, false)) result = std::make_shared<const Model>(std::move(*model));
+      else ctx_.error("subbody-load", uri, "the sub-body \"" + uri->scalar + "\" cannot be loaded");
+    }
+    session_.subbodies[canonical] = result;
+    return result;
+  }
+
+  void read_subbody(const yaml::NodeRef& node, std::vector<LinkEntry>& entries) {
+    MappingReader r(ctx_, node, "SubBody node");
+    r.take({"type"});
+    yaml::NodeRef uri = r.take({"uri"});
+    if (!uri) {
+      ctx_.error("load-missing-key", node, "uri must be specified for a SubBody");
+      return;
+    }
+    std::string path = resolve_uri(ctx_, uri, uri->scalar, uri->location.file);
+    if (path.empty()) return;
+    std::shared_ptr<const Model> sub = load_subbody(uri, path);
+    if (!sub || sub->links.empty()) return;
+    auto text = [&](KeyNames names) {
+      yaml::NodeRef v = r.take(names);
+      return v && v->is_scalar() ? std::optional<std::string>(v->scalar) : std::nullopt;
+    };
+    const std::string prefix = text({"prefix"}).value_or("");
+    const std::string suffix = text({"suffix"}).value_or("");
+    const std::string device_prefix = text({"device_prefix", "devicePrefix"}).value_or(prefix);
+    int id_offset = 0;
+    if (auto v = r.take({"joint_id_offset", "jointIdOffset"})) id_offset = static_cast<int>(required_int(ctx_, v).value_or(0));
+    yaml::NodeRef parent = r.take({"parent"});
+    r.take({"name"});
+
+    const LinkIndex base = static_cast<LinkIndex>(model_.links.size());
+    const MeshIndex mesh_base = static_cast<MeshIndex>(model_.meshes.size());
+    for (std::size_t i = 0; i < sub->links.size(); ++i) {
+      Link link = sub->links[i];
+      link.name = prefix + link.name + suffix;
+      if (!link.joint_name.empty()) link.joint_name = prefix + link.joint_name + suffix;
+      if (link.joint_id >= 0) link.joint_id += id_offset;
+      for (Shape& shape : link.shapes)
+        if (auto* mesh = std::get_if<MeshResource>(&shape.geometry); mesh && mesh->mesh >= 0) mesh->mesh += mesh_base;
+      LinkEntry entry;
+      if (link.parent >= 0) {
+        entry.parent_name = prefix + sub->links[static_cast<std::size_t>(link.parent)].name + suffix;
+      } else if (parent) {
+        entry.parent_name = parent->scalar;
+        entry.parent_ref = parent;
+      }
+      link.parent = -1;
+      link.children.clear();
+      model_.links.push_back(std::move(link));
+      entries.push_back(entry);
+    }
+    for (const MeshAsset& asset : sub->meshes) model_.meshes.push_back(asset);
+    for (Device device : sub->devices) {
+      device.name = device_prefix + device.name;
+      device.link += base;
+      model_.devices.push_back(std::move(device));
+    }
+    for (ExtraJoint joint : sub->extra_joints) {
+      joint.link1 += base;
+      joint.link2 += base;
+      model_.extra_joints.push_back(joint);
+    }
+    apply_subbody_overrides(ctx_, r, model_, base, this);
+    r.report_unknown({"type", "uri", "prefix", "suffix", "device_prefix", "joint_id_offset", "parent", "name",
+                      "translation", "rotation", "joint_type", "joint_axis", "joint_id", "joint_range",
+                      "max_joint_velocity", "material", "elements"});
+  }
+
+  void read_continuous_track(const yaml::NodeRef& node, std::vector<LinkEntry>& entries) {
+    // body-format-spec §11.1: a template link expanded into a chain NAME0..NAME(n-1).
+    const yaml::MapEntry* num = node->find("numJoints");
+    const yaml::MapEntry* offset = node->find("joint_offset");
+    if (!offset) offset = node->find("jointOffset");
+    const yaml::MapEntry* angles = node->find("initialJointAngles");
+    if (!node->find("parent")) ctx_.error("load-missing-key", node, "parent must be specified for a ContinuousTrack");
+    if (!num) {
+      ctx_.error("load-missing-key", node, "numJoints must be specified for a ContinuousTrack");
+      return;
+    }
+    const long n = required_int(ctx_, num->value).value_or(0);
+    if (n < 3) {
+      ctx_.error("load-continuous-track", num->value, "numJoints must be more than 2");
+      return;
+    }
+    if (!offset) {
+      ctx_.error("load-missing-key", node, "jointOffset must be specified for a ContinuousTrack");
+      return;
+    }
+    auto joint_offset = read_vec3(ctx_, offset->value);
+    if (!joint_offset) return;
+    std::vector<double> initial;
+    if (angles) initial = read_numbers(ctx_, angles->value).value_or(std::vector<double>{});
+
+    LinkEntry first = read_link(ctx_, node, model_, this, {"numJoints", "joint_offset", "jointOffset", "initialJointAngles"});
+    const LinkIndex t = static_cast<LinkIndex>(model_.links.size()) - 1;
+    const Link templ = model_.links[static_cast<std::size_t>(t)];
+    const std::string base = templ.name;
+    model_.links[static_cast<std::size_t>(t)].name = base + "0";
+    model_.links[static_cast<std::size_t>(t)].joint_type = JointType::kFree;
+    entries.push_back(first);
+    for (long i = 1; i < n; ++i) {
+      Link link = templ;
+      link.name = base + std::to_string(i);
+      link.joint_type = JointType::kRevolute;
+      link.joint_id = -1;
+      link.X_PL = Eigen::Isometry3d::Identity();
+      link.X_PL.translation() = *joint_offset;
+      link.initial_displacement =
+          static_cast<std::size_t>(i - 1) < initial.size() ? ctx_.angle(initial[static_cast<std::size_t>(i - 1)]) : 0.0;
+      model_.links.push_back(std::move(link));
+      LinkEntry entry;
+      entry.parent_name = base + std::to_string(i - 1);
+      entries.push_back(entry);
+    }
+  }
+
   const LoadOptions& options_;
   LoadContext& ctx_;
   Model& model_;
   const yaml::Document* main_;
+  LoadSession& session_;
   std::map<std::string, std::unique_ptr<yaml::Document>> yaml_files_;
 };
 
 }  // namespace
 
 std::unique_ptr<ResourceReader> make_resource_handler(const LoadOptions& options, LoadContext& ctx, Model& model,
-                                                      const yaml::Document* main_document) {
-  return std::make_unique<Resources>(options, ctx, model, main_document);
+                                                      const yaml::Document* main_document, LoadSession& session) {
+  return std::make_unique<Resources>(options, ctx, model, main_document, session);
 }
 
 }  // namespace bodyfmt::detail

@@ -21,7 +21,9 @@ class ResourceReader : public ResourceHandler {
                               std::vector<LinkEntry>& entries) = 0;
 };
 
+struct LoadSession;
 std::unique_ptr<ResourceReader> make_resource_handler(const LoadOptions& options, LoadContext& ctx,
-                                                      Model& model, const yaml::Document* main_document);
+                                                      Model& model, const yaml::Document* main_document,
+                                                      LoadSession& session);
 
 }  // namespace bodyfmt::detail
