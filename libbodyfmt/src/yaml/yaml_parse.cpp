@@ -27,6 +27,7 @@ struct ParseAborted {};
 // `zNAME` of the same extent, and re-parses; the handler then swaps that scalar for the alias.
 constexpr char kImportedAliasMarker = 'z';
 
+// Keyed by the byte offset of the rewritten `*` in the text.
 struct ImportedAliasSite {
   std::string name;
   const Node* node = nullptr;
@@ -213,8 +214,10 @@ class TreeBuilder final : public YAML::EventHandler {
   };
 
   std::size_t offset(const YAML::Mark& mark) const {
-    // yaml-cpp skips a UTF-8 byte order mark without counting it in Mark::pos.
-    return mark.pos < 0 ? text_.size() : static_cast<std::size_t>(mark.pos) + bom_size_;
+    // yaml-cpp skips a UTF-8 byte order mark without counting it in Mark::pos. Positions in
+    // UTF-16/32 input count transcoded bytes, hence the clamp (the text scans then find nothing).
+    if (mark.pos < 0) return text_.size();
+    return std::min(static_cast<std::size_t>(mark.pos) + bom_size_, text_.size());
   }
 
   bool in_key_position() const {
