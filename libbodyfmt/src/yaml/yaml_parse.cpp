@@ -1,5 +1,6 @@
 // Text -> yaml::Node tree through yaml-cpp's event API (style.md §2.1). The DOM API (YAML::Load)
-// is not used: it loses alias use sites, types nothing we need, and gives no hook for budgets.
+// is not used: a node reached through an alias carries only the anchor's mark, never the use
+// site (toolchain.md §3), and it offers no hook for the expansion and depth budgets.
 
 #include "yaml/yaml_node.h"
 
@@ -525,7 +526,7 @@ std::unique_ptr<Document> parse_yaml(std::string_view text, const std::string& f
     const std::size_t bom_size = work.rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0;
     std::unordered_map<std::size_t, ImportedAliasSite> imported_sites;
     // Each retry resolves one more imported-alias site, so this ends after at most as many
-    // passes as there are such sites (usually zero).
+    // passes as there are such sites (usually zero; quadratic only for a file full of them).
     while (parse_once(work, bom_size, file_name, options, imported_sites, document, diagnostics) ==
            Outcome::kRetry) {
     }
