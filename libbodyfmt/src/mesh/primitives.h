@@ -1,7 +1,8 @@
 #pragma once
 /// Local fallback triangulation of the VRML primitives (Box, Sphere, Cylinder, Cone), laid out
-/// as Choreonoid's MeshGenerator does (axis +Y, centred, body-format-spec §9). The shared
-/// tessellator (bodyfmt/tessellate.h) did not exist yet when the VRML reader was written.
+/// as Choreonoid's MeshGenerator does (axis +Y, centred, body-format-spec §9). Written before
+/// the shared tessellator (bodyfmt/tessellate.h) existed; switching VRML primitives to it is a
+/// follow-up (it would also give VRML the same division-number handling as YAML shapes).
 
 #include <bodyfmt/mesh.h>
 
