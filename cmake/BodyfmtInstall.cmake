@@ -1,0 +1,54 @@
+# Installation: the shared library, its public headers, the command-line tools, and a
+# CMake package so that other projects can do
+#   find_package(bodyfmt REQUIRED)
+#   target_link_libraries(app PRIVATE bodyfmt::bodyfmt)
+# yaml-cpp, assimp and fmt are PRIVATE dependencies of the shared library, so the package
+# only needs Eigen (the public headers use it).
+include(CMakePackageConfigHelpers)
+
+set(BODYFMT_INSTALL_CMAKEDIR "${CMAKE_INSTALL_LIBDIR}/cmake/bodyfmt" CACHE STRING
+    "Where bodyfmtConfig.cmake is installed, relative to the prefix")
+
+install(TARGETS bodyfmt EXPORT bodyfmtTargets
+  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+  RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/libbodyfmt/include/bodyfmt
+  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
+  FILES_MATCHING PATTERN "*.h")
+
+# Tools: every executable defined in these folders (so new tools are installed without
+# touching this file). Installed tools find libbodyfmt through a relative RPATH.
+set(BODYFMT_TOOL_DIRS validate converters)
+get_property(_bodyfmt_subdirs DIRECTORY ${PROJECT_SOURCE_DIR} PROPERTY SUBDIRECTORIES)
+foreach(_dir IN LISTS BODYFMT_TOOL_DIRS)
+  if(NOT "${PROJECT_SOURCE_DIR}/${_dir}" IN_LIST _bodyfmt_subdirs)
+    continue()
+  endif()
+  get_property(_targets DIRECTORY ${PROJECT_SOURCE_DIR}/${_dir} PROPERTY BUILDSYSTEM_TARGETS)
+  foreach(_target IN LISTS _targets)
+    get_target_property(_type ${_target} TYPE)
+    if(_type STREQUAL "EXECUTABLE")
+      set_target_properties(${_target} PROPERTIES
+        INSTALL_RPATH "$ORIGIN/../${CMAKE_INSTALL_LIBDIR}")
+      install(TARGETS ${_target} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+    endif()
+  endforeach()
+endforeach()
+
+install(EXPORT bodyfmtTargets
+  NAMESPACE bodyfmt::
+  FILE bodyfmtTargets.cmake
+  DESTINATION ${BODYFMT_INSTALL_CMAKEDIR})
+configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/bodyfmtConfig.cmake.in
+  ${PROJECT_BINARY_DIR}/bodyfmtConfig.cmake
+  INSTALL_DESTINATION ${BODYFMT_INSTALL_CMAKEDIR})
+# 0.x: a minor version bump may break the API.
+write_basic_package_version_file(${PROJECT_BINARY_DIR}/bodyfmtConfigVersion.cmake
+  VERSION ${PROJECT_VERSION}
+  COMPATIBILITY SameMinorVersion)
+install(FILES
+  ${PROJECT_BINARY_DIR}/bodyfmtConfig.cmake
+  ${PROJECT_BINARY_DIR}/bodyfmtConfigVersion.cmake
+  DESTINATION ${BODYFMT_INSTALL_CMAKEDIR})
+install(FILES ${PROJECT_SOURCE_DIR}/LICENSE DESTINATION ${CMAKE_INSTALL_DATADIR}/doc/bodyfmt)

@@ -1,0 +1,46 @@
+# ctest package.find_package: install the current build into a scratch prefix, then
+# configure, build and run tests/package against that prefix, as an outside user would.
+#
+#   cmake -DBUILD_DIR=<build> -DSOURCE_DIR=<source> -DGENERATOR=<gen>
+#         [-DCXX_COMPILER=<c++>] [-DLAUNCHER=<ccache>] -P run_package_test.cmake
+foreach(var BUILD_DIR SOURCE_DIR GENERATOR)
+  if(NOT DEFINED ${var})
+    message(FATAL_ERROR "run_package_test.cmake: -D${var}=... is required")
+  endif()
+endforeach()
+
+set(work "${BUILD_DIR}/package-test")
+set(prefix "${work}/prefix")
+set(consumer_build "${work}/consumer")
+file(REMOVE_RECURSE "${prefix}")   # keep ${consumer_build}: reconfiguring is faster
+
+function(run step)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "package test: ${step} failed (exit ${rc}): ${ARGN}")
+  endif()
+endfunction()
+
+run("install" "${CMAKE_COMMAND}" --install "${BUILD_DIR}" --prefix "${prefix}")
+
+set(configure_args -S "${SOURCE_DIR}/tests/package" -B "${consumer_build}" -G "${GENERATOR}"
+    -DCMAKE_BUILD_TYPE=Release "-DCMAKE_PREFIX_PATH=${prefix}"
+    # Only the scratch prefix (and the system, for Eigen) may provide bodyfmt.
+    -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF)
+if(CXX_COMPILER)
+  list(APPEND configure_args "-DCMAKE_CXX_COMPILER=${CXX_COMPILER}")
+endif()
+if(LAUNCHER)
+  list(APPEND configure_args "-DCMAKE_CXX_COMPILER_LAUNCHER=${LAUNCHER}")
+endif()
+run("configure" "${CMAKE_COMMAND}" ${configure_args})
+run("build" "${CMAKE_COMMAND}" --build "${consumer_build}")
+
+# The consumer must have found the copy in the scratch prefix, not some other install.
+file(STRINGS "${consumer_build}/CMakeCache.txt" found_dir REGEX "^bodyfmt_DIR:")
+string(FIND "${found_dir}" "${prefix}/" at)
+if(at EQUAL -1)
+  message(FATAL_ERROR "package test: bodyfmt was found outside the scratch prefix: ${found_dir}")
+endif()
+
+run("run" "${consumer_build}/package_consumer" "${SOURCE_DIR}/examples/simpletank.body")
