@@ -43,12 +43,21 @@ int effective_division_number(int division_number);
 ///   Choreonoid does), triangulated by ear clipping. TriangleMeshGeometry: flat triangles.
 /// * MeshResource: empty (meshes are imported elsewhere).
 ///
-/// Normals and texture coordinates are left empty.
+/// Normals and texture coordinates are left empty (see with_vertex_normals()).
 TriangleMesh tessellate(const Geometry& geometry, int division_number, DiagnosticSink& sink,
                         const SourceLocation& where);
 
 /// tessellate(shape.geometry, shape.division_number, sink, shape.source).
 TriangleMesh tessellate(const Shape& shape, DiagnosticSink& sink);
+
+/// A copy of `mesh` with per-vertex normals by the VRML97 creaseAngle rule: at each corner,
+/// the normal averages (area-weighted) the normals of the faces around the vertex that differ
+/// from the corner's own face by at most `crease_angle` radians; 0 gives flat shading, >= pi
+/// smooths everything. Vertices are split where corners get different normals, so the result
+/// may have more vertices than `mesh`; vertices no triangle uses are dropped, and so are
+/// triangles with out-of-range indices. Triangles otherwise keep their order and winding.
+/// Existing normals are replaced; texture coordinates follow their vertex.
+TriangleMesh with_vertex_normals(const TriangleMesh& mesh, double crease_angle);
 
 /// Triangulates one polygon given as indices into `vertices` (all indices must be valid) by
 /// ear clipping on its projection onto the plane of its Newell normal. Consecutive duplicate

@@ -669,3 +669,47 @@ TEST_CASE("tessellate: triangulate_polygon handles duplicates, flat and self-int
   CHECK(tris.size() >= 1);
   CHECK(tris.size() <= 3);
 }
+
+// --------------------------------------------------------------------------------------------
+// Normals
+
+TEST_CASE("tessellate: with_vertex_normals splits vertices at creases") {
+  CollectingSink sink;
+  const TriangleMesh box = run(Box{Vector3d(1, 2, 3)}, 20, sink);
+  const TriangleMesh flat = with_vertex_normals(box, 0);
+  // Each corner touches three faces with different normals: 8 x 3 vertices.
+  CHECK(flat.vertices.size() == 24);
+  REQUIRE(flat.normals.size() == 24);
+  CHECK(flat.triangles.size() == 12);
+  CHECK(signed_volume(flat) == doctest::Approx(6.0));
+  for (const auto& t : flat.triangles) {
+    const Vector3d n = triangle_normal2(flat, t).normalized();
+    for (int i : t) CHECK((flat.normals[static_cast<std::size_t>(i)] - n).norm() < 1e-12);
+    // Axis-aligned and pointing away from the centre.
+    CHECK(n.cwiseAbs().maxCoeff() == doctest::Approx(1.0));
+    CHECK(n.dot(flat.vertices[static_cast<std::size_t>(t[0])]) > 0);
+  }
+
+  // Sphere, everything smoothed: no split, normals close to radial.
+  const TriangleMesh sphere = run(Sphere{2}, 20, sink);
+  const TriangleMesh smooth = with_vertex_normals(sphere, kPi);
+  CHECK(smooth.vertices.size() == sphere.vertices.size());
+  for (std::size_t i = 0; i < smooth.vertices.size(); ++i) {
+    CHECK(smooth.normals[i].dot(smooth.vertices[i].normalized()) > 0.99);
+  }
+
+  // Cylinder with Choreonoid's crease angle pi/2: the 90 degree cap edges stay sharp, the
+  // 18 degree side edges are smoothed. Side ring vertices split in two (side + cap), the cap
+  // centres stay single: 2 n x 2 + 2.
+  const TriangleMesh cylinder = run(Cylinder{1, 1, true, true}, 20, sink);
+  const TriangleMesh creased = with_vertex_normals(cylinder, kPi / 2);
+  CHECK(creased.vertices.size() == 2 * 20 * 2 + 2);
+  for (std::size_t i = 0; i < creased.vertices.size(); ++i) {
+    const Vector3d& n = creased.normals[i];
+    const bool cap = std::abs(std::abs(n.y()) - 1) < 1e-12;
+    const bool side = std::abs(n.y()) < 1e-12;
+    const bool cap_or_side = cap || side;
+    CHECK(cap_or_side);
+  }
+  CHECK(sink.diagnostics().empty());
+}
