@@ -12,6 +12,9 @@ yaml::NodeRef MappingReader::take(KeyNames names) {
   if (!mapping_ || !mapping_->is_mapping()) return {};
   bool modern = true;
   for (std::string_view name : names) {
+    if (name != *names.begin()) legacy_.emplace(std::string(name), std::string(*names.begin()));
+  }
+  for (std::string_view name : names) {
     if (const yaml::MapEntry* entry = mapping_->find(name)) {
       consumed_.emplace(name);
       if (!modern) {
@@ -37,9 +40,14 @@ void MappingReader::ignore(std::string_view name) { consumed_.emplace(name); }
 
 void MappingReader::report_unknown(const std::vector<std::string_view>& known) {
   if (!mapping_ || !mapping_->is_mapping()) return;
+  // Legacy spellings are candidates too (a typo of `jointRange` is closer to it than to
+  // `joint_range`); the hint then names the modern spelling.
+  std::vector<std::string_view> candidates = known;
+  for (const auto& [legacy, modern] : legacy_) candidates.push_back(legacy);
   for (const yaml::MapEntry& entry : mapping_->entries) {
     if (consumed_.count(entry.key) || entry.merged) continue;
-    std::string_view guess = suggest(entry.key, known);
+    std::string_view guess = suggest(entry.key, candidates);
+    if (auto it = legacy_.find(guess); it != legacy_.end()) guess = it->second;
     if (!guess.empty()) {
       ctx_.report(Severity::kWarning, "load-unknown-key", entry.key_location,
                   "unknown key \"" + entry.key + "\" in " + what_ + "; did you mean \"" +
@@ -54,22 +62,24 @@ void MappingReader::report_unknown(const std::vector<std::string_view>& known) {
 }
 
 int edit_distance(std::string_view a, std::string_view b) {
-  std::vector<int> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = static_cast<int>(j);
+  // Optimal string alignment: insertions, deletions, substitutions and transpositions of two
+  // adjacent characters each cost 1, case-insensitively (`jointRnage` is 1 from `jointRange`).
+  auto lower = [](char c) { return std::tolower(static_cast<unsigned char>(c)); };
+  const std::size_t n = b.size();
+  std::vector<int> before(n + 1), previous(n + 1), current(n + 1);
+  for (std::size_t j = 0; j <= n; ++j) previous[j] = static_cast<int>(j);
   for (std::size_t i = 1; i <= a.size(); ++i) {
-    int diagonal = row[0];
-    row[0] = static_cast<int>(i);
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      int above = row[j];
-      int cost = std::tolower(static_cast<unsigned char>(a[i - 1])) ==
-                         std::tolower(static_cast<unsigned char>(b[j - 1]))
-                     ? 0
-                     : 1;
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + cost});
-      diagonal = above;
+    current[0] = static_cast<int>(i);
+    for (std::size_t j = 1; j <= n; ++j) {
+      int cost = lower(a[i - 1]) == lower(b[j - 1]) ? 0 : 1;
+      current[j] = std::min({previous[j] + 1, current[j - 1] + 1, previous[j - 1] + cost});
+      if (i > 1 && j > 1 && lower(a[i - 1]) == lower(b[j - 2]) && lower(a[i - 2]) == lower(b[j - 1]))
+        current[j] = std::min(current[j], before[j - 2] + 1);
     }
+    std::swap(before, previous);
+    std::swap(previous, current);
   }
-  return row[b.size()];
+  return previous[n];
 }
 
 std::string_view suggest(std::string_view word, const std::vector<std::string_view>& candidates) {

@@ -5,6 +5,7 @@
 #include "load/load_context.h"
 
 #include <initializer_list>
+#include <map>
 #include <set>
 #include <string>
 #include <string_view>
@@ -40,9 +41,11 @@ class MappingReader {
   yaml::NodeRef mapping_;
   std::string what_;
   std::set<std::string, std::less<>> consumed_;
+  std::map<std::string, std::string, std::less<>> legacy_;  ///< legacy spelling -> modern, from take()
 };
 
-/// Levenshtein distance, for did-you-mean hints.
+/// Case-insensitive edit distance counting adjacent transpositions as one edit, for
+/// did-you-mean hints.
 int edit_distance(std::string_view a, std::string_view b);
 
 /// The closest of `candidates` to `word` if it is a plausible typo, else empty.
