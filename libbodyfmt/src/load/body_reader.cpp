@@ -75,12 +75,9 @@ std::optional<Model> BodyReader::read(const std::string& text, const std::string
     ctx_.report(Severity::kFatal, "load-no-links", links->value.use_site(), "no link is defined");
     return std::nullopt;
   }
-  const yaml::MapEntry* root_link = root->find("root_link");
-  if (!root_link) root_link = root->find("rootLink");
-  if (!build_tree(model, entries, root_link ? root_link->value : yaml::NodeRef{})) return std::nullopt;
-  const yaml::MapEntry* extra = root->find("extra_joints");
-  if (!extra) extra = root->find("extraJoints");
-  if (extra) read_extra_joints(extra->value, model);
+  // take() warns about the camelCase spellings, like the other header keys (§14).
+  if (!build_tree(model, entries, r.take({"root_link", "rootLink"}))) return std::nullopt;
+  if (yaml::NodeRef extra = r.take({"extra_joints", "extraJoints"})) read_extra_joints(extra, model);
   r.report_unknown(kHeaderKeys);
   if (top_level && options_.load_meshes) import_meshes(model);
   return model;

@@ -214,7 +214,9 @@ Geometry read_indexed_face_set(LoadContext& ctx, MappingReader& r) {
   auto m = read_mesh_keys<IndexedFaceSet>(ctx, r);
   if (!m.faces.empty() && m.faces.back() != -1) {
     // body-format-spec §9: Choreonoid silently drops a last polygon not closed by -1.
-    ctx.warning("geometry-unterminated-polygon", r.node(),
+    const yaml::MapEntry* faces = r.node()->find("faces");
+    if (!faces) faces = r.node()->find("coordIndex");
+    ctx.warning("geometry-unterminated-polygon", faces ? faces->value : r.node(),
                 "the last polygon of this IndexedFaceSet is not terminated by -1; Choreonoid drops it",
                 "append -1 to faces");
   }
