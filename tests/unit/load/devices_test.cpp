@@ -1,0 +1,235 @@
+// Loader unit tests for load/devices.cpp (body-format-spec §10, §16). load_v2 writes lines
+// 1-2; "links:" is line 3, "  - name: A" line 4, "    elements:" line 5.
+
+#include "support/load_helpers.h"
+
+#include <cmath>
+
+using namespace bodyfmt;
+using bodyfmt::test::load;
+using bodyfmt::test::load_v2;
+using bodyfmt::test::Pos;
+using bodyfmt::test::pos;
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDeg = kPi / 180;
+
+bool near(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double eps = 1e-12) {
+  return a.rows() == b.rows() && a.cols() == b.cols() && (a - b).cwiseAbs().maxCoeff() <= eps;
+}
+}  // namespace
+
+TEST_CASE("load: a Camera without format is dropped with device-camera-dropped") {
+  auto r = load_v2(R"(
+links:
+  - name: A
+    elements:
+      - type: Camera
+        name: cam
+        width: 320
+      - type: Camera
+        name: cam2
+        format: RGB
+)");
+  auto d = r.take("device-camera-dropped");
+  CHECK(d.severity == Severity::kWarning);
+  CHECK(pos(d) == Pos{6, 9});  // the node: there is no format key to point at
+  auto d2 = r.take("device-camera-dropped");
+  CHECK(pos(d2) == Pos{11, 17});  // the bad format value
+  CHECK(r.m().devices.empty());
+  r.expect_clean();
+}
+
+TEST_CASE("load: Camera formats select Camera or RangeCamera; field_of_view in degrees") {
+  auto r = load_v2(R"(
+links:
+  - name: A
+    elements:
+      - type: Camera
+        name: color
+        format: COLOR
+        lens_type: DUAL_FISHEYE
+        field_of_view: 180
+        width: 720
+        height: 480
+        on: false
+      - type: Camera
+        name: depth
+        id: 1
+        format: COLOR_DEPTH
+        fieldOfView: 65
+        width: 320
+        height: 240
+        frame_rate: 15
+        detection_rate: 0.9
+        error_deviation: 0.005
+)");
+  const auto& devices = r.m().devices;
+  REQUIRE(devices.size() == 2);
+  CHECK(devices[0].type == "Camera");
+  CHECK(devices[0].node_type == "Camera");
+  CHECK_FALSE(devices[0].on);
+  const auto& c = std::get<CameraParams>(devices[0].params);
+  CHECK(c.format == "COLOR");
+  CHECK(c.lens_type == "DUAL_FISHEYE");
+  CHECK(c.field_of_view == doctest::Approx(kPi).epsilon(1e-15));
+  CHECK(c.width == 720);
+  CHECK(c.height == 480);
+  CHECK(c.near_clip_distance == 0.04);  // defaults
+  CHECK(c.far_clip_distance == 200);
+  CHECK(c.frame_rate == 30);
+  CHECK(devices[1].type == "RangeCamera");
+  CHECK(devices[1].id == 1);
+  CHECK(devices[1].on);
+  const auto& rc = std::get<CameraParams>(devices[1].params);
+  CHECK(rc.field_of_view == doctest::Approx(65 * kDeg).epsilon(1e-15));
+  CHECK(rc.width == 320);
+  CHECK(rc.height == 240);
+  CHECK(rc.frame_rate == 15);
+  CHECK(rc.detection_rate == 0.9);
+  CHECK(rc.error_deviation == 0.005);
+  CHECK(rc.min_distance == 0.1);
+  CHECK(rc.max_distance == 10);
+  CHECK(pos(r.take("load-legacy-key")) == Pos{18, 22});  // fieldOfView
+  r.expect_clean();
+}
+
+TEST_CASE("load: SpotLight angles in degrees, vectors as written") {
+  auto r = load_v2(R"(
+links:
+  - name: A
+    elements:
+      - type: SpotLight
+        name: Light
+        translation: [0.08, 0, 0.1]
+        direction: [1, 0, 0]
+        beam_width: 36
+        cut_off_angle: 40
+        cut_off_exponent: 6
+        attenuation: [1, 0, 0.01]
+      - type: PointLight
+        intensity: 0.5
+        color: [1, 0.5, 0]
+)");
+  const auto& devices = r.m().devices;
+  REQUIRE(devices.size() == 2);
+  CHECK(devices[0].type == "SpotLight");
+  CHECK(devices[0].name == "Light");
+  CHECK(devices[0].X_LD.translation() == Eigen::Vector3d(0.08, 0, 0.1));
+  const auto& l = std::get<LightParams>(devices[0].params);
+  CHECK(l.direction == Eigen::Vector3d(1, 0, 0));
+  CHECK(l.beam_width == doctest::Approx(0.6283185307179586).epsilon(1e-15));  // 36 deg
+  CHECK(l.cut_off_angle == doctest::Approx(40 * kDeg).epsilon(1e-15));
+  CHECK(l.cut_off_exponent == 6);
+  CHECK(l.attenuation == Eigen::Vector3d(1, 0, 0.01));
+  CHECK(devices[1].type == "PointLight");
+  const auto& p = std::get<LightParams>(devices[1].params);
+  CHECK(p.intensity == 0.5);
+  CHECK(p.color == Eigen::Vector3d(1, 0.5, 0));
+  CHECK(p.attenuation == Eigen::Vector3d(1, 0, 0));
+  r.expect_clean();
+}
+
+TEST_CASE("load: IMU is device type Imu; the manual's Imu node type is an error") {
+  auto r = load_v2(R"(
+links:
+  - name: A
+    elements:
+      - type: IMU
+        name: imu
+        max_angular_velocity: [1, 2, 3]
+      - type: Imu
+        name: imu2
+      - type: RateGyroSensor
+        maxAngularVelocity: [4, 5, 6]
+)");
+  const auto& devices = r.m().devices;
+  REQUIRE(devices.size() == 2);
+  CHECK(devices[0].type == "Imu");
+  CHECK(devices[0].node_type == "IMU");
+  // max_angular_velocity is read raw (rad/s), never angle-converted.
+  CHECK(std::get<InertialSensorParams>(devices[0].params).max_angular_velocity == Eigen::Vector3d(1, 2, 3));
+  CHECK(std::get<InertialSensorParams>(devices[0].params).max_acceleration.x() == kUnlimited);
+  CHECK(devices[1].type == "RateGyroSensor");
+  CHECK(std::get<InertialSensorParams>(devices[1].params).max_angular_velocity == Eigen::Vector3d(4, 5, 6));
+  auto d = r.take("load-unknown-node-type");
+  CHECK(d.severity == Severity::kError);
+  CHECK(pos(d) == Pos{9, 15});
+  CHECK(d.fix_hint.find("IMU") != std::string::npos);
+  CHECK(pos(r.take("load-legacy-key")) == Pos{12, 29});  // maxAngularVelocity
+  r.expect_clean();
+}
+
+TEST_CASE("load: ForceSensor limits and opaque devices") {
+  auto r = load_v2(R"(
+links:
+  - name: A
+    elements:
+      - type: ForceSensor
+        max_force: [10, 20, 30]
+      - type: Holder
+        category: gripper
+)");
+  const auto& devices = r.m().devices;
+  REQUIRE(devices.size() == 2);
+  const auto& f = std::get<ForceSensorParams>(devices[0].params);
+  CHECK(f.max_force == Eigen::Vector3d(10, 20, 30));
+  CHECK(f.max_torque.x() == kUnlimited);
+  CHECK(devices[1].type == "HolderDevice");
+  CHECK_FALSE(devices[1].plugin);
+  CHECK(devices[1].keys.at("category") == "gripper");
+  r.expect_clean();
+}
+
+TEST_CASE("load: devices are ordered by link order") {
+  auto r = load_v2(R"(
+links:
+  - name: A
+  - name: C
+    parent: B
+    elements: {type: ForceSensor, name: on_c}
+  - name: B
+    parent: A
+    elements: {type: ForceSensor, name: on_b}
+)");
+  // Link order A, B, C (depth-first), so B's device comes first.
+  const auto& devices = r.m().devices;
+  REQUIRE(devices.size() == 2);
+  CHECK(devices[0].name == "on_b");
+  CHECK(devices[0].link == 1);
+  CHECK(devices[1].name == "on_c");
+  CHECK(devices[1].link == 2);
+  r.expect_clean();
+}
+
+TEST_CASE("load: SimpleTank devices match the reference numbers") {
+  CollectingSink sink;
+  auto model = load_body(std::string(BODYFMT_SHARED_DIR) + "/corpus/choreonoid/Tank/SimpleTank.body",
+                         LoadOptions{}, sink);
+  REQUIRE(model.has_value());
+  CHECK(sink.error_count() == 0);
+  REQUIRE(model->devices.size() == 2);
+  const Device& light = model->devices[0];
+  CHECK(light.type == "SpotLight");
+  CHECK(light.link == model->find_link("TURRET_P"));
+  const auto& l = std::get<LightParams>(light.params);
+  // SimpleTank.ref.yaml: beam_width 0.628318548203, cut_off_angle 0.698131680489, printed
+  // from Choreonoid's float members (36 deg = 0.62831853071796 in double): relative 1e-7.
+  CHECK(l.beam_width == doctest::Approx(0.628318548203).epsilon(1e-7));
+  CHECK(l.cut_off_angle == doctest::Approx(0.698131680489).epsilon(1e-7));
+  CHECK(l.beam_width == doctest::Approx(36 * kDeg).epsilon(1e-15));
+  const Device& camera = model->devices[1];
+  CHECK(camera.name == "Camera");
+  CHECK(camera.type == "RangeCamera");
+  CHECK(near(camera.X_LD.translation(), Eigen::Vector3d(0.1, 0, 0.05)));
+  // SimpleTank.ref.yaml rotation, row-major, = Rx(90) * Ry(-90).
+  Eigen::Matrix3d ref;
+  ref << 6.12323399574e-17, 0, -1, -1, 6.12323399574e-17, -6.12323399574e-17, 6.12323399574e-17, 1,
+      3.74939945665e-33;
+  CHECK(near(camera.X_LD.linear(), ref, 1e-11));
+  const auto& c = std::get<CameraParams>(camera.params);
+  CHECK(c.field_of_view == doctest::Approx(1.1344640138).epsilon(1e-9));
+  CHECK(c.width == 320);
+  CHECK(c.height == 240);
+}

@@ -1,0 +1,84 @@
+// Loader unit tests for load/mapping_reader.cpp: legacy spellings and unknown keys
+// (body-format-spec §1 key lookup rules, §14, §15).
+
+#include "support/load_helpers.h"
+
+using bodyfmt::test::load_v2;
+using bodyfmt::test::Pos;
+using bodyfmt::test::pos;
+
+TEST_CASE("load: camelCase legacy key loads with load-legacy-key naming the modern key") {
+  auto r = load_v2(R"(
+links:
+  - name: A
+  - name: B
+    parent: A
+    jointType: revolute
+    jointRange: [-90, 90]
+)");
+  auto type = r.take("load-legacy-key");
+  CHECK(type.severity == bodyfmt::Severity::kWarning);
+  CHECK(pos(type) == Pos{7, 16});
+  CHECK(type.fix_hint.find("joint_type") != std::string::npos);
+  auto range = r.take("load-legacy-key");
+  CHECK(pos(range) == Pos{8, 17});
+  CHECK(range.fix_hint.find("joint_range") != std::string::npos);
+  CHECK(r.link("B").joint_type == bodyfmt::JointType::kRevolute);
+  CHECK(r.link("B").joint_range_upper == doctest::Approx(3.14159265358979323846 / 2).epsilon(1e-15));
+  r.expect_clean();
+}
+
+TEST_CASE("load: snake_case wins over camelCase when both are present") {
+  auto r = load_v2(R"(
+links:
+  - name: A
+    joint_type: free
+    jointType: fixed
+)");
+  CHECK(r.link("A").joint_type == bodyfmt::JointType::kFree);
+  // The camel spelling stays behind as an unread key.
+  CHECK((r.has("load-unknown-key") || r.has("load-info-key")));
+}
+
+TEST_CASE("load: a misspelt link key is load-unknown-key with did-you-mean") {
+  auto r = load_v2(R"(
+links:
+  - name: A
+  - name: B
+    parent: A
+    joint_type: revolute
+    jointRnage: [-90, 90]
+)");
+  auto d = r.take("load-unknown-key");
+  CHECK(d.severity == bodyfmt::Severity::kWarning);
+  CHECK(pos(d) == Pos{8, 5});  // the key, not the value
+  CHECK(d.fix_hint.find("joint_range") != std::string::npos);
+  // Ignored: the range stays unlimited.
+  CHECK(r.link("B").joint_range_upper == bodyfmt::kUnlimited);
+  r.expect_clean();
+}
+
+TEST_CASE("load: a snake_case typo of a link key is load-unknown-key") {
+  auto r = load_v2(R"(
+links:
+  - name: A
+    center_of_mas: [0, 0, 1]
+)");
+  auto d = r.take("load-unknown-key");
+  CHECK(pos(d) == Pos{5, 5});
+  CHECK(d.fix_hint.find("center_of_mass") != std::string::npos);
+  CHECK(r.link("A").mass_contributions.empty());
+  r.expect_clean();
+}
+
+TEST_CASE("load: an unrelated extra key is kept as info with a note only") {
+  auto r = load_v2(R"(
+links:
+  - name: A
+    jointMotorCompliance: 1e-5
+)");
+  auto d = r.take("load-info-key");
+  CHECK(d.severity == bodyfmt::Severity::kNote);
+  CHECK(pos(d) == Pos{5, 5});
+  r.expect_clean();
+}

@@ -1,0 +1,99 @@
+// Loader unit tests for load/scalar.cpp: "required" (lenient strtod) and "optional" (whole
+// scalar or default) conversions, body-format-spec §1.2.
+
+#include "support/load_helpers.h"
+
+using bodyfmt::test::load_v2;
+using bodyfmt::test::Pos;
+using bodyfmt::test::pos;
+
+TEST_CASE("load: 0.t in a required number reads 0 with load-lenient-number") {
+  auto r = load_v2(R"(
+links:
+  - name: A
+    translation: [0.t, 1, 2]
+)");
+  auto d = r.take("load-lenient-number");
+  CHECK(d.severity == bodyfmt::Severity::kWarning);
+  CHECK(pos(d) == Pos{5, 19});
+  CHECK(r.link("A").X_PL.translation() == Eigen::Vector3d(0, 1, 2));
+  r.expect_clean();
+}
+
+TEST_CASE("load: 1.5kg as link mass reads 1.5 with load-lenient-number") {
+  auto r = load_v2(R"(
+links:
+  - name: A
+    mass: 1.5kg
+)");
+  CHECK(pos(r.take("load-lenient-number")) == Pos{5, 11});
+  const auto& c = r.link("A").mass_contributions;
+  REQUIRE(c.size() == 1);
+  CHECK(c[0].mass == 1.5);
+  r.expect_clean();
+}
+
+TEST_CASE("load: a required number with no numeric prefix is load-number") {
+  auto r = load_v2(R"(
+links:
+  - name: A
+    translation: [x, 1, 2]
+)");
+  auto d = r.take("load-number");
+  CHECK(d.severity == bodyfmt::Severity::kError);
+  CHECK(pos(d) == Pos{5, 19});
+  CHECK(r.link("A").X_PL.translation() == Eigen::Vector3d::Zero());
+  r.expect_clean();
+}
+
+TEST_CASE("load: an optional number that does not parse keeps the default (radius: abc)") {
+  auto r = load_v2(R"(
+links:
+  - name: A
+    elements:
+      - type: Shape
+        geometry: {type: Sphere, radius: abc}
+)");
+  auto d = r.take("load-ignored-value");
+  CHECK(d.severity == bodyfmt::Severity::kWarning);
+  // "        geometry: {type: Sphere, radius: " is 41 characters.
+  CHECK(pos(d) == Pos{7, 42});
+  const auto& shapes = r.link("A").shapes;
+  REQUIRE(shapes.size() == 1);
+  CHECK(std::get<bodyfmt::Sphere>(shapes[0].geometry).radius == 1.0);
+  r.expect_clean();
+}
+
+TEST_CASE("load: an optional number is the whole scalar: 0.5m is ignored, not 0.5") {
+  auto r = load_v2(R"(
+links:
+  - name: A
+    elements:
+      - type: Shape
+        geometry: {type: Sphere, radius: 0.5m}
+)");
+  CHECK(pos(r.take("load-ignored-value")) == Pos{7, 42});
+  CHECK(std::get<bodyfmt::Sphere>(r.link("A").shapes.at(0).geometry).radius == 1.0);
+  r.expect_clean();
+}
+
+TEST_CASE("load: optional booleans accept exactly the YAML 1.1 spellings") {
+  auto r = load_v2(R"(
+links:
+  - name: A
+    elements:
+      - type: Shape
+        geometry: {type: Cylinder, top: off, bottom: No}
+      - type: Shape
+        geometry: {type: Cylinder, top: nope}
+)");
+  const auto& shapes = r.link("A").shapes;
+  REQUIRE(shapes.size() == 2);
+  const auto& c0 = std::get<bodyfmt::Cylinder>(shapes[0].geometry);
+  CHECK_FALSE(c0.top);
+  CHECK_FALSE(c0.bottom);
+  // "        geometry: {type: Cylinder, top: " is 40 characters.
+  CHECK(pos(r.take("load-ignored-value")) == Pos{9, 41});
+  CHECK(std::get<bodyfmt::Cylinder>(shapes[1].geometry).top);
+  r.expect_clean();
+}
