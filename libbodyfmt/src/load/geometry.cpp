@@ -383,6 +383,10 @@ Appearance read_appearance(LoadContext& ctx, const yaml::NodeRef& appearance) {
       if (auto v = mr.take({"specular", "specularColor"})) set_if(material.specular_color, read_optional_vec3(ctx, v));
       if (auto v = mr.take({"specular_exponent"})) {
         set_if(material.specular_exponent, optional_double(ctx, v));
+        if (auto shininess = mr.take({"shininess"}))
+          ctx.warning("load-ignored-key", shininess,
+                      "\"shininess\" is ignored by Choreonoid when specular_exponent is given",
+                      "remove shininess");
       } else if (auto shininess = mr.take({"shininess"})) {
         // body-format-spec §8.7: legacy VRML shininess maps to an exponent.
         if (auto s = optional_double(ctx, shininess)) {

@@ -323,6 +323,24 @@ links:
   r.expect_clean();  // the shininess notes are informational
 }
 
+TEST_CASE("load: shininess next to specular_exponent is ignored with load-ignored-key") {
+  auto r = load_v2(R"(
+links:
+  - name: A
+    elements:
+      - type: Shape
+        geometry: {type: Box}
+        appearance:
+          material: {specular_exponent: 10, shininess: 0.5}
+)");
+  CHECK(r.link("A").shapes.at(0).appearance.material->specular_exponent == 10);
+  // "          material: {specular_exponent: 10, shininess: " is 55 characters.
+  auto d = r.take("load-ignored-key");
+  CHECK(d.severity == Severity::kWarning);
+  CHECK(pos(d) == Pos{9, 56});
+  r.expect_clean();
+}
+
 TEST_CASE("load: texture uri and repeat flags") {
   auto r = load_v2(R"(
 links:
