@@ -1,20 +1,36 @@
 #pragma once
-/// Local fallback triangulation of the VRML primitives (Box, Sphere, Cylinder, Cone), laid out
-/// as Choreonoid's MeshGenerator does (axis +Y, centred, body-format-spec §9). Written before
-/// the shared tessellator (bodyfmt/tessellate.h) existed; switching VRML primitives to it is a
-/// follow-up (it would also give VRML the same division-number handling as YAML shapes).
+/// VRML97 primitives (Box, Sphere, Cylinder, Cone) through the project's one tessellator
+/// (bodyfmt/tessellate.h): the VRML fields become a bodyfmt::Geometry, so VRML and YAML shapes
+/// share vertex layout (axis +Y, centred, as Choreonoid's MeshGenerator), the division number
+/// and the size checks.
 
+#include <bodyfmt/diagnostic.h>
 #include <bodyfmt/mesh.h>
+
+#include <Eigen/Core>
+
+#include <string_view>
 
 namespace bodyfmt::mesh {
 
-constexpr int kDefaultDivisionNumber = 20;  // Choreonoid's MeshGenerator default
+/// The fields of one VRML primitive node, with the VRML97 defaults (which differ from the
+/// body format's: Box size 2 2 2, Sphere radius 1, Cylinder radius 1 height 2, Cone
+/// bottomRadius 1 height 2). `radius` holds Cone's bottomRadius.
+struct VrmlPrimitive {
+  std::string_view type;  ///< "Box", "Sphere", "Cylinder" or "Cone"
+  Eigen::Vector3d size = Eigen::Vector3d::Constant(2);
+  double radius = 1;
+  double height = 2;
+  bool bottom = true;
+  bool side = true;
+  bool top = true;
+};
 
-TriangleMesh make_box(const Eigen::Vector3d& size);
-TriangleMesh make_sphere(double radius, int division = kDefaultDivisionNumber);
-TriangleMesh make_cylinder(double radius, double height, bool bottom, bool side, bool top,
-                           int division = kDefaultDivisionNumber);
-TriangleMesh make_cone(double radius, double height, bool bottom, bool side,
-                       int division = kDefaultDivisionNumber);
+/// Tessellates `primitive` with Choreonoid's default division number. Invalid sizes are
+/// reported by the tessellator (`geometry-invalid-size`) at `where` and give an empty mesh.
+/// `side FALSE` (Cylinder, Cone) drops the side triangles and keeps every vertex, as
+/// Choreonoid's MeshGenerator does, so the bounding box is unchanged.
+TriangleMesh tessellate_vrml_primitive(const VrmlPrimitive& primitive, DiagnosticSink& sink,
+                                       const SourceLocation& where);
 
 }  // namespace bodyfmt::mesh

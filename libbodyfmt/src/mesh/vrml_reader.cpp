@@ -608,27 +608,24 @@ class Parser {
 
   NodePtr parse_primitive(const Token& type) {
     const std::string_view t = type.text;
-    Eigen::Vector3d size = Eigen::Vector3d::Constant(2);  // VRML97 defaults
-    double radius = 1, height = 2;
-    bool bottom = true, side = true, top = true;
+    VrmlPrimitive primitive;  // VRML97 defaults
+    primitive.type = t;
     read_fields([&](const Token& f) {
       const std::string_view n = f.text;
-      if (t == "Box" && n == "size") size = read_vec3();
-      else if (n == "radius" || n == "bottomRadius") radius = read_number();
-      else if (n == "height") height = read_number();
-      else if (n == "bottom") bottom = read_bool();
-      else if (n == "side") side = read_bool();
-      else if (n == "top") top = read_bool();
+      if (t == "Box" && n == "size") primitive.size = read_vec3();
+      else if (n == "radius" || n == "bottomRadius") primitive.radius = read_number();
+      else if (n == "height") primitive.height = read_number();
+      else if (n == "bottom") primitive.bottom = read_bool();
+      else if (n == "side") primitive.side = read_bool();
+      else if (n == "top") primitive.top = read_bool();
       else return false;
       return true;
     });
     if (failed_) return nullptr;
     auto node = std::make_shared<VrmlNode>();
     node->kind = NodeKind::kGeometry;
-    if (t == "Box") node->geometry = std::make_shared<TriangleMesh>(make_box(size));
-    else if (t == "Sphere") node->geometry = std::make_shared<TriangleMesh>(make_sphere(radius));
-    else if (t == "Cylinder") node->geometry = std::make_shared<TriangleMesh>(make_cylinder(radius, height, bottom, side, top));
-    else node->geometry = std::make_shared<TriangleMesh>(make_cone(radius, height, bottom, side));
+    node->geometry = std::make_shared<TriangleMesh>(
+        tessellate_vrml_primitive(primitive, sink_, {path_, type.line, type.column}));
     return node;
   }
 

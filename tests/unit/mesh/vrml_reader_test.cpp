@@ -6,6 +6,8 @@
 #include "mesh/vrml_reader.h"
 #include "mesh_test_support.h"
 
+#include <bodyfmt/tessellate.h>
+
 #include <fstream>
 #include <sstream>
 
@@ -211,4 +213,46 @@ TEST_CASE("vrml: Inline is resolved relative to the including file; cycles are r
   auto looped = import_mesh(dir + "inline_cycle.wrl", {}, cycle, {});
   REQUIRE(looped);  // the sphere is still there
   CHECK(cycle.has("mesh-inline-cycle"));
+}
+
+TEST_CASE("vrml: primitives use the shared tessellator with VRML97 defaults") {
+  auto parts = parts_of(R"(Shape { geometry Box { } } Shape { geometry Sphere { } }
+                           Shape { geometry Cylinder { } } Shape { geometry Cone { } })");
+  REQUIRE(parts.size() == 4);
+  CollectingSink sink;
+  // VRML97 defaults: Box 2 2 2, Sphere radius 1, Cylinder radius 1 height 2, Cone
+  // bottomRadius 1 height 2; the same meshes as bodyfmt::tessellate() of those geometries.
+  const Geometry expected[] = {Box{Eigen::Vector3d(2, 2, 2)}, Sphere{1}, Cylinder{1, 2, true, true},
+                               Cone{1, 2, true}};
+  for (int i = 0; i < 4; ++i) {
+    CAPTURE(i);
+    const TriangleMesh mesh = tessellate(expected[i], kDefaultDivisionNumber, sink, {});
+    CHECK(parts[i].mesh.vertices == mesh.vertices);
+    CHECK(parts[i].mesh.triangles == mesh.triangles);
+  }
+  CHECK(sink.diagnostics().empty());
+}
+
+TEST_CASE("vrml: primitive flags and invalid sizes") {
+  // side FALSE drops the side but keeps every vertex (the box is unchanged); top/bottom FALSE
+  // drop the caps.
+  auto parts = parts_of(R"(Shape { geometry Cylinder { side FALSE } }
+                           Shape { geometry Cylinder { top FALSE bottom FALSE } }
+                           Shape { geometry Cone { side FALSE } })");
+  REQUIRE(parts.size() == 3);
+  const int n = kDefaultDivisionNumber;
+  CHECK(parts[0].mesh.triangles.size() == static_cast<std::size_t>(2 * n));
+  CHECK(box_of_parts({parts[0]}).max.isApprox(Eigen::Vector3d(1, 1, 1)));
+  CHECK(parts[1].mesh.triangles.size() == static_cast<std::size_t>(2 * n));
+  CHECK(parts[2].mesh.triangles.size() == static_cast<std::size_t>(n));
+  CHECK(box_of_parts({parts[2]}).max.y() == doctest::Approx(1));  // apex kept
+
+  // A negative size is the tessellator's error, located at the primitive in the mesh file.
+  CollectingSink sink;
+  auto bad = parts_of("Shape {\n  geometry Sphere { radius -1 } }", "", &sink);
+  CHECK(bad.empty());
+  REQUIRE(sink.diagnostics().size() == 1);
+  CHECK(sink.diagnostics()[0].rule_id == "geometry-invalid-size");
+  CHECK(sink.diagnostics()[0].location.file == "test.wrl");
+  CHECK(sink.diagnostics()[0].location.line == 2);
 }
