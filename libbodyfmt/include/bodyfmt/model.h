@@ -283,6 +283,11 @@ struct MeshAsset {
   std::string path;
   std::string node;
   std::vector<MeshPart> parts;
+  /// The box Choreonoid's scene graph reports for this asset in the resource frame: group
+  /// boxes are unions of their children, transform boxes are the axis-aligned box of the
+  /// transformed child box (8 corners), so nested rotations inflate it (used to compare with
+  /// Choreonoid's reference boxes; the tight box is bounding_box of the parts).
+  BoundingBox scene_bounds;
 };
 
 // ---------------------------------------------------------------------------------------

@@ -128,7 +128,7 @@ std::shared_ptr<const MeshAsset> MeshCache::get(const std::string& path, const M
   asset->path = normal;
   asset->node = options.node;
   if (!mesh::extract_parts(*tree, options.node, options.length_scale, options.y_up, asset->parts,
-                           detached)) {
+                           detached, &asset->scene_bounds)) {
     report(sink, "mesh-node-not-found", where,
            "node \"" + options.node + "\" is not found in \"" + normal + "\"",
            "the name must be a VRML DEF name or a node name of the mesh file (first match in depth-first order)");

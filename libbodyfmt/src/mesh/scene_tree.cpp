@@ -59,6 +59,30 @@ static void flatten_contents(const SceneNode& node, const Eigen::Affine3d& here,
   }
 }
 
+/// The box of the node's parts and subtree in the node's own frame (its transform excluded).
+static BoundingBox contents_box(const SceneNode& node, const std::set<const SceneNode*>& skip) {
+  BoundingBox box;
+  for (const MeshPart& part : node.parts) {
+    if (!part.mesh.triangles.empty()) box.add(bounding_box(part.mesh));
+  }
+  for (const auto& child : node.children) {
+    if (!skip.count(child.get())) box.add(transform_box(contents_box(*child, skip), child->transform));
+  }
+  return box;
+}
+
+BoundingBox transform_box(const BoundingBox& box, const Eigen::Affine3d& transform) {
+  if (box.empty()) return box;
+  BoundingBox out;
+  for (int i = 0; i < 8; ++i) {
+    const Eigen::Vector3d corner((i & 1) ? box.max.x() : box.min.x(),
+                                 (i & 2) ? box.max.y() : box.min.y(),
+                                 (i & 4) ? box.max.z() : box.min.z());
+    out.add(transform * corner);
+  }
+  return out;
+}
+
 void flatten(const SceneNode& node, const Eigen::Affine3d& parent, std::vector<MeshPart>& out) {
   flatten_contents(node, parent * node.transform, out, {});
 }
@@ -74,7 +98,7 @@ Eigen::Matrix3d y_up_rotation() {
 
 bool extract_parts(const SceneNode& root, const std::string& node_name, double length_scale,
                    bool y_up, std::vector<MeshPart>& out,
-                   const std::vector<std::string>& detached_nodes) {
+                   const std::vector<std::string>& detached_nodes, BoundingBox* scene_bounds) {
   Eigen::Affine3d start = Eigen::Affine3d::Identity();
   const SceneNode* node = &root;
   if (!node_name.empty()) {
@@ -98,6 +122,11 @@ bool extract_parts(const SceneNode& root, const std::string& node_name, double l
     if (detached && detached != node) skip.insert(detached);
   }
   flatten_contents(*node, metadata * start, out, skip);
+  if (scene_bounds) {
+    // Whole file: the root's own transform; a selected node: one transform holding the
+    // accumulated linear part (StdSceneReader::adjustNodeCoordinate). Either way `start`.
+    *scene_bounds = transform_box(transform_box(contents_box(*node, skip), start), metadata);
+  }
   return true;
 }
 

@@ -37,9 +37,21 @@ void flatten(const SceneNode& node, const Eigen::Affine3d& parent, std::vector<M
 /// linear part of the accumulated transform down to and including the node is kept), then the
 /// metadata (length scale, Y-up rotation). The subtrees of `detached_nodes` (resolved by
 /// name, other than the selected node) are left out. Returns false when the node is not found.
+///
+/// With `scene_bounds`, also computes the box Choreonoid's scene graph reports for the same
+/// structure (MeshAsset::scene_bounds): mesh leaves give the tight box of their vertices,
+/// groups the union of their children, and every transform the axis-aligned box of its
+/// child box's 8 transformed corners. The re-centred node is one transform (the accumulated
+/// linear part) above the node's contents, as Choreonoid's StdSceneReader leaves it; the
+/// metadata is one more transform on top.
 bool extract_parts(const SceneNode& root, const std::string& node_name, double length_scale,
                    bool y_up, std::vector<MeshPart>& out,
-                   const std::vector<std::string>& detached_nodes = {});
+                   const std::vector<std::string>& detached_nodes = {},
+                   BoundingBox* scene_bounds = nullptr);
+
+/// The axis-aligned box of the 8 transformed corners of `box` (Choreonoid's
+/// BoundingBox::transform); empty stays empty.
+BoundingBox transform_box(const BoundingBox& box, const Eigen::Affine3d& transform);
 
 /// The rotation used for `upper_axis: Y`: mesh +Y -> +Z, +X -> +Y, +Z -> +X.
 Eigen::Matrix3d y_up_rotation();
