@@ -47,7 +47,11 @@ int main(int argc, char** argv) {
     if (format == "yaml") std::cout << "loaded: false\n";
     return 2;
   }
-  if (format == "yaml") std::cout << bodyfmt::info::format_reference_yaml(*model, derived, diagnostics);
+  if (format == "yaml") {
+    bodyfmt::CollectingSink ignored;  // the same meshes again: already reported above
+    const auto boxes = bodyfmt::compute_choreonoid_bounds(*model, ignored);
+    std::cout << bodyfmt::info::format_reference_yaml(*model, derived, boxes, diagnostics);
+  }
   else std::cout << bodyfmt::info::format_summary(*model, derived);
   return sink.error_count() > 0 ? 1 : 0;
 }

@@ -101,6 +101,7 @@ std::string format_summary(const Model& model, const Derived& derived) {
 }
 
 std::string format_reference_yaml(const Model& model, const Derived& derived,
+                                  const std::vector<LinkBounds>& boxes,
                                   const std::vector<Diagnostic>& diagnostics) {
   std::string out = "loaded: true\n";
   out += "model_name: " + quoted(model.name) + "\n";
@@ -129,8 +130,8 @@ std::string format_reference_yaml(const Model& model, const Derived& derived,
       out += "  rotation: " + matrix(l.X_PL.linear()) + "\n";
     }
     out += "  world_translation_at_zero: " + list(derived.X_RL[i].translation()) + "\n";
-    if (!derived.bounds[i].visual.empty()) out += "  visual_bbox: " + bbox(derived.bounds[i].visual) + "\n";
-    if (!derived.bounds[i].collision.empty()) out += "  collision_bbox: " + bbox(derived.bounds[i].collision) + "\n";
+    if (!boxes[i].visual.empty()) out += "  visual_bbox: " + bbox(boxes[i].visual) + "\n";
+    if (!boxes[i].collision.empty()) out += "  collision_bbox: " + bbox(boxes[i].collision) + "\n";
   }
   out += "devices:\n";
   for (const Device& d : model.devices) {

@@ -20,7 +20,10 @@ std::vector<Eigen::Isometry3d> compute_root_relative_frames(const Model& model,
 /// X_WL: link frames in the world, the root placed at its initial pose from the file.
 std::vector<Eigen::Isometry3d> compute_world_frames(const Model& model, const std::vector<double>& q = {});
 
-/// Triangle mesh of one shape in its link's frame (tessellated primitives, imported meshes).
+/// Triangle mesh of one shape in its own frame (before Shape::X_LS): tessellated primitives
+/// or the imported mesh parts.
+TriangleMesh compute_shape_local_mesh(const Model& model, const Shape& shape, DiagnosticSink& sink);
+/// The same, placed in its link's frame.
 TriangleMesh compute_shape_mesh(const Model& model, const Shape& shape, DiagnosticSink& sink);
 
 struct LinkBounds {
@@ -28,15 +31,24 @@ struct LinkBounds {
   BoundingBox collision;  ///< link frame
 };
 
-/// Bounding boxes of each link's visual and collision geometry in the link frame.
+/// Tight bounding boxes of each link's visual and collision geometry in the link frame.
 std::vector<LinkBounds> compute_link_bounds(const Model& model, DiagnosticSink& sink);
+
+/// The boxes Choreonoid's scene graph reports: a group's box is the union of its children's,
+/// a transform's box is the axis-aligned box of its transformed child box, so nested
+/// rotations inflate it. Only for comparison with Choreonoid (bodyinfo --format yaml);
+/// everything else uses the tight boxes.
+std::vector<LinkBounds> compute_choreonoid_bounds(const Model& model, DiagnosticSink& sink);
+
+/// The axis-aligned box of `box` transformed (its 8 corners).
+BoundingBox transform_box(const Eigen::Affine3d& transform, const BoundingBox& box);
 
 /// Everything above, computed once.
 struct Derived {
   std::vector<MassProperties> mass;
   std::vector<Eigen::Isometry3d> X_RL;  ///< root-relative link frames at zero joint positions
   std::vector<Eigen::Isometry3d> X_WL;  ///< world link frames at zero joint positions
-  std::vector<LinkBounds> bounds;
+  std::vector<LinkBounds> bounds;  ///< tight
   double total_mass = 0;
 };
 

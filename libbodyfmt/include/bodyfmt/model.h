@@ -112,12 +112,21 @@ struct Appearance {
   std::optional<Texture> texture;
 };
 
+/// A transform node of a link's element tree (Transform, RigidBody, Visual, Collision,
+/// device, Resource, or a Shape's own transform). Kept so that consumers can rebuild the
+/// hierarchy: Choreonoid's bounding boxes and a glTF node tree depend on it.
+struct SceneFrame {
+  int parent = -1;  ///< index into Link::frames; -1 = the link frame
+  Eigen::Affine3d X_PF = Eigen::Affine3d::Identity();  ///< in the parent frame; may scale
+};
+
 /// A shape placed in its link's frame.
 struct Shape {
   std::string name;
   Geometry geometry;
   Appearance appearance;
   Eigen::Affine3d X_LS = Eigen::Affine3d::Identity();  ///< may contain scale
+  int frame = -1;  ///< innermost Link::frames entry enclosing the shape; X_LS is its pose
   int division_number = 20;  ///< tessellation (values < 4 mean the default, 20)
   bool visual = true;        ///< part of the visual model
   bool collision = true;     ///< part of the collision model
@@ -182,6 +191,7 @@ struct Link {
 
   std::vector<MassContribution> mass_contributions;
   std::vector<Shape> shapes;
+  std::vector<SceneFrame> frames;  ///< parents come before their children
 
   SourceLocation source;
   LinkSources sources;

@@ -3,7 +3,7 @@
 
 namespace bodyfmt {
 
-TriangleMesh compute_shape_mesh(const Model& model, const Shape& shape, DiagnosticSink& sink) {
+TriangleMesh compute_shape_local_mesh(const Model& model, const Shape& shape, DiagnosticSink& sink) {
   TriangleMesh local;
   if (const auto* resource = std::get_if<MeshResource>(&shape.geometry)) {
     if (resource->mesh >= 0 && resource->mesh < static_cast<MeshIndex>(model.meshes.size())) {
@@ -13,9 +13,49 @@ TriangleMesh compute_shape_mesh(const Model& model, const Shape& shape, Diagnost
   } else {
     local = tessellate(shape.geometry, shape.division_number, sink, shape.source);
   }
+  return local;
+}
+
+TriangleMesh compute_shape_mesh(const Model& model, const Shape& shape, DiagnosticSink& sink) {
   TriangleMesh placed;
-  append_mesh(placed, local, shape.X_LS);
+  append_mesh(placed, compute_shape_local_mesh(model, shape, sink), shape.X_LS);
   return placed;
+}
+
+BoundingBox transform_box(const Eigen::Affine3d& transform, const BoundingBox& box) {
+  BoundingBox result;
+  if (box.empty()) return result;
+  for (int corner = 0; corner < 8; ++corner) {
+    Eigen::Vector3d p((corner & 1) ? box.max.x() : box.min.x(), (corner & 2) ? box.max.y() : box.min.y(),
+                      (corner & 4) ? box.max.z() : box.min.z());
+    result.add(transform * p);
+  }
+  return result;
+}
+
+std::vector<LinkBounds> compute_choreonoid_bounds(const Model& model, DiagnosticSink& sink) {
+  std::vector<LinkBounds> bounds(model.links.size());
+  for (std::size_t i = 0; i < model.links.size(); ++i) {
+    const Link& link = model.links[i];
+    for (bool visual : {true, false}) {
+      // Boxes in each frame's own coordinates; children are recorded after their parents,
+      // so a reverse sweep folds every frame into its parent before the parent is folded.
+      std::vector<BoundingBox> in_frame(link.frames.size());
+      BoundingBox in_link;
+      for (const Shape& shape : link.shapes) {
+        if (visual ? !shape.visual : !shape.collision) continue;
+        const BoundingBox box = bounding_box(compute_shape_local_mesh(model, shape, sink));
+        (shape.frame >= 0 ? in_frame[static_cast<std::size_t>(shape.frame)] : in_link).add(box);
+      }
+      for (std::size_t f = link.frames.size(); f-- > 0;) {
+        const BoundingBox box = transform_box(link.frames[f].X_PF, in_frame[f]);
+        const int parent = link.frames[f].parent;
+        (parent >= 0 ? in_frame[static_cast<std::size_t>(parent)] : in_link).add(box);
+      }
+      (visual ? bounds[i].visual : bounds[i].collision) = in_link;
+    }
+  }
+  return bounds;
 }
 
 std::vector<LinkBounds> compute_link_bounds(const Model& model, DiagnosticSink& sink) {

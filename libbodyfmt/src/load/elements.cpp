@@ -106,7 +106,15 @@ std::optional<ElementFrame> ElementReader::enter(const yaml::NodeRef& node, Mapp
     }
   }
   (void)node;
-  inner.X_LF = frame.X_LF * X;
+  (void)inner;
+  return push_frame(frame, X);
+}
+
+ElementFrame ElementReader::push_frame(const ElementFrame& frame, const Eigen::Affine3d& X_PF) {
+  ElementFrame inner = frame;
+  inner.X_LF = frame.X_LF * X_PF;
+  link().frames.push_back(SceneFrame{frame.frame, X_PF});
+  inner.frame = static_cast<int>(link().frames.size()) - 1;
   return inner;
 }
 
@@ -260,6 +268,7 @@ void ElementReader::read_shape(const yaml::NodeRef& node, const ElementFrame& fr
 
 void ElementReader::add_shape(Shape shape, const ElementFrame& frame) {
   shape.X_LS = frame.X_LF;
+  shape.frame = frame.frame;
   shape.visual = frame.part != ModelPart::kCollision;
   shape.collision = frame.part != ModelPart::kVisual;
   link().shapes.push_back(std::move(shape));

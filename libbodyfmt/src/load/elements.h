@@ -16,6 +16,7 @@ enum class ModelPart { kBoth, kVisual, kCollision };
 
 struct ElementFrame {
   Eigen::Affine3d X_LF = Eigen::Affine3d::Identity();  ///< accumulated transform, may scale
+  int frame = -1;  ///< Link::frames index of the innermost transform node
   ModelPart part = ModelPart::kBoth;
   SourceLocation part_source;  ///< the Visual/Collision node that set `part`
 };
@@ -40,6 +41,8 @@ class ElementReader {
   /// Reads a mapping as a Shape node (the `shape:` shortcut and type-keyed forms).
   void read_shape(const yaml::NodeRef& node, const ElementFrame& frame);
   void add_shape(Shape shape, const ElementFrame& frame);
+  /// Enters a transform node: records it in Link::frames and returns the inner frame.
+  ElementFrame push_frame(const ElementFrame& frame, const Eigen::Affine3d& X_PF);
 
   LoadContext& context() { return ctx_; }
   Model& model() { return model_; }

@@ -46,7 +46,7 @@ class Resources final : public ResourceReader {
     if (auto s = r.take({"scale"}))
       if (s->is_sequence())
         if (auto v = read_vec3(ctx_, s)) X.linear() = X.linear() * v->asDiagonal();
-    inner.X_LF = frame.X_LF * X;
+    inner = reader.push_frame(frame, X);
     r.take({"crease_angle", "creaseAngle"});
     r.report_unknown({"type", "name", "uri", "node", "fragment", "metadata", "translation", "rotation", "scale",
                       "crease_angle"});
