@@ -86,6 +86,16 @@ std::optional<Model> BodyReader::read(const std::string& text, const std::string
 void BodyReader::import_meshes(Model& model) {
   // One asset per (file, node, metadata) in the model; the session's cache parses each file once.
   std::map<std::tuple<std::string, std::string, double, bool>, MeshIndex> indices;
+  // Choreonoid detaches every node a body selects from a file out of that file's shared
+  // scene, so a selected node never shows up inside another selection (Tank's TURRET_Y
+  // does not contain TURRET_P).
+  std::map<std::string, std::vector<std::string>> selected_nodes;
+  for (const Link& link : model.links)
+    for (const Shape& shape : link.shapes)
+      if (const auto* mesh = std::get_if<MeshResource>(&shape.geometry); mesh && !mesh->node.empty()) {
+        auto& names = selected_nodes[mesh->resolved_path];
+        if (std::find(names.begin(), names.end(), mesh->node) == names.end()) names.push_back(mesh->node);
+      }
   for (Link& link : model.links) {
     for (Shape& shape : link.shapes) {
       auto* mesh = std::get_if<MeshResource>(&shape.geometry);
@@ -99,6 +109,8 @@ void BodyReader::import_meshes(Model& model) {
       import_options.node = mesh->node;
       import_options.length_scale = mesh->length_scale;
       import_options.y_up = mesh->y_up;
+      if (auto it = selected_nodes.find(mesh->resolved_path); it != selected_nodes.end())
+        import_options.detached_nodes = it->second;
       auto asset = session_.meshes.get(mesh->resolved_path, import_options, ctx_.sink, shape.source);
       MeshIndex index = -1;
       if (asset) {
