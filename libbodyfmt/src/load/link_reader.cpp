@@ -182,6 +182,11 @@ LinkEntry read_link(LoadContext& ctx, const yaml::NodeRef& node, Model& model, R
   ElementReader elements(ctx, model, index, resources);
   elements.read_elements(r.take({"elements"}), ElementFrame{});
   read_link_mass(ctx, r, link(), elements.has_rigid_body());
+  if (link().mass_contributions.empty()) {
+    // body-format-spec §6.4 rule 4: Choreonoid simulates these defaults; other engines differ.
+    ctx.note("load-default-mass", node, "link \"" + link().name + "\" has no mass data; Choreonoid uses 1 kg with identity inertia",
+             "add mass, center_of_mass and inertia");
+  }
   r.report_unknown(kLinkKeys);
   return entry;
 }

@@ -1,0 +1,27 @@
+#pragma once
+/// The rule table: every diagnostic id the project can report, with its default severity and
+/// documentation. One row per id feeds `--list-rules`, docs/rules.md, SARIF rule metadata and
+/// `--enable` / `--disable`. An id is never reused.
+
+#include <bodyfmt/diagnostic.h>
+
+#include <string_view>
+#include <vector>
+
+namespace bodyfmt {
+
+struct RuleInfo {
+  std::string_view id;          ///< kebab-case with a family prefix, e.g. "inertia-triangle"
+  Severity default_severity;    ///< what the reporting stage uses unless a policy changes it
+  std::string_view summary;     ///< one line: what is wrong
+  std::string_view rationale;   ///< one line: why it matters (which tool fails, what is lost)
+  std::string_view tolerance;   ///< documented tolerance, empty when the rule has none
+};
+
+/// Every rule, sorted by id.
+const std::vector<RuleInfo>& all_rules();
+
+/// The row of `id`, or nullptr.
+const RuleInfo* find_rule(std::string_view id);
+
+}  // namespace bodyfmt
