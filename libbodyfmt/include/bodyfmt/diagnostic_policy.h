@@ -1,0 +1,116 @@
+#pragma once
+/// DiagnosticPolicy: how strict a run is, applied in one place (style.md §2.3).
+///
+/// Stages report with the rule table's default severities and know nothing about the run.
+/// A DiagnosticPolicy wraps the sink they report to and applies, in this order: per-rule
+/// enable/disable, inline suppressions (`# bodycheck: disable=RULE`), `strict` (`export-loss`
+/// becomes an error) and `werror` (warnings become errors). It counts what it forwards by
+/// severity and by rule. It never throws. Fatal diagnostics are never dropped or changed.
+///
+/// The `.bodycheck.yaml` configuration file is read here too (find_config, read_config).
+
+#include <bodyfmt/diagnostic.h>
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace bodyfmt {
+
+/// Per-rule switches. A rule pattern is a rule id or a family prefix ending in `*`
+/// (`units-*`). A rule is off when a disable pattern matches it and no enable pattern does:
+/// `enable` wins, so a command-line `--enable` can switch back on what a config turned off.
+struct PolicyOptions {
+  std::vector<std::string> disable;
+  std::vector<std::string> enable;
+  bool werror = false;  ///< warnings become errors
+  bool strict = false;  ///< `export-loss` findings become errors (converters)
+  bool inline_suppressions = true;
+};
+
+/// True when `pattern` (an id or `prefix*`) matches `rule_id`.
+bool rule_pattern_matches(std::string_view pattern, std::string_view rule_id);
+
+/// Checks a rule pattern against the rule table. Returns an empty string when it names a
+/// rule (or, for `prefix*`, at least one rule); otherwise the message for the user, with a
+/// did-you-mean suggestion when a rule id is close.
+std::string check_rule_pattern(std::string_view pattern);
+
+/// The `# bodycheck: disable=RULE[,RULE2]` comments of one file, by the line they cover.
+/// A comment after YAML content covers its own line; a line holding only the comment covers
+/// the next line that is not itself such a comment line (so several can be stacked).
+class Suppressions {
+ public:
+  Suppressions() = default;
+  static Suppressions from_text(std::string_view text);
+  /// True when `rule_id` is suppressed on 1-based `line`.
+  bool suppresses(int line, std::string_view rule_id) const;
+  bool empty() const { return by_line_.empty(); }
+
+ private:
+  std::map<int, std::vector<std::string>> by_line_;
+};
+
+/// A sink wrapping a sink; see the file comment. Suppression comments are read from the
+/// file a diagnostic points at, once per file, the first time a diagnostic needs them (or
+/// given with set_suppressions, e.g. for text that is not on disk).
+class DiagnosticPolicy : public DiagnosticSink {
+ public:
+  explicit DiagnosticPolicy(DiagnosticSink& inner, PolicyOptions options = {});
+
+  void report(Diagnostic diagnostic) override;
+
+  /// Uses `suppressions` for `file` instead of reading it.
+  void set_suppressions(const std::string& file, Suppressions suppressions);
+
+  bool enabled(std::string_view rule_id) const;
+  const PolicyOptions& options() const { return options_; }
+
+  /// Counts of what was forwarded, after severity changes.
+  int count(Severity severity) const { return counts_[static_cast<int>(severity)]; }
+  int error_count() const { return count(Severity::kError) + count(Severity::kFatal); }
+  /// Forwarded diagnostics per rule id.
+  const std::map<std::string, int>& counts_by_rule() const { return by_rule_; }
+  int disabled_count() const { return disabled_; }
+  int suppressed_count() const { return suppressed_; }
+
+ private:
+  const Suppressions& suppressions_for(const std::string& file);
+
+  DiagnosticSink& inner_;
+  PolicyOptions options_;
+  std::map<std::string, Suppressions> suppressions_;
+  std::map<std::string, bool> enabled_cache_;
+  int counts_[4] = {0, 0, 0, 0};
+  std::map<std::string, int> by_rule_;
+  int disabled_ = 0;
+  int suppressed_ = 0;
+};
+
+/// The contents of a `.bodycheck.yaml`. Absent keys stay empty.
+struct CheckConfig {
+  std::string path;  ///< the file it was read from
+  std::vector<std::string> disable;
+  std::vector<std::string> enable;
+  std::optional<Severity> fail_on;  ///< kWarning or kError
+  std::optional<bool> werror;
+};
+
+/// The nearest `.bodycheck.yaml`, walking up from the directory of `file` (made absolute
+/// first). Empty when there is none up to the file system root.
+std::string find_config(const std::string& file);
+
+/// Reads a config file. Reports `config-invalid` errors at the offending line and column
+/// (unknown keys, wrong types, unknown rule ids, YAML syntax) and `io-read` when the file
+/// cannot be read; returns nullopt when anything was wrong.
+std::optional<CheckConfig> read_config(const std::string& path, DiagnosticSink& sink);
+
+/// Same, from text (`path` is used in locations).
+std::optional<CheckConfig> read_config_string(const std::string& text, const std::string& path,
+                                              DiagnosticSink& sink);
+
+}  // namespace bodyfmt

@@ -1,0 +1,87 @@
+#pragma once
+/// Writers for a list of diagnostics: GCC/Clang text with source lines and carets, JSON
+/// (docs/bodycheck-json.md) and SARIF 2.1.0. All three take the same Report, whose
+/// diagnostics are sorted by file, line, column and rule (sort_diagnostics), so the output
+/// is deterministic. The writers never throw on odd input and never print.
+
+#include <bodyfmt/diagnostic.h>
+
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace bodyfmt {
+
+/// What a run checked and found.
+struct Report {
+  std::vector<std::string> files;       ///< every file checked, in output order
+  std::vector<Diagnostic> diagnostics;  ///< in output order (see sort_diagnostics)
+  int suppressed = 0;                   ///< dropped by inline suppressions
+  int disabled = 0;                     ///< dropped because their rule is disabled
+
+  int count(Severity severity) const;
+  /// Diagnostics per rule id.
+  std::map<std::string, int> counts_by_rule() const;
+};
+
+/// The lines of source files, each file read once, for carets and suppressions.
+class SourceLines {
+ public:
+  /// Line `line` (1-based) of `file` without its line break, or nullptr when the file cannot
+  /// be read or is shorter.
+  const std::string* line(const std::string& file, int line);
+
+ private:
+  std::map<std::string, std::optional<std::vector<std::string>>> files_;
+};
+
+/// Splits text into lines (LF or CRLF), without the breaks.
+std::vector<std::string> split_lines(std::string_view text);
+
+struct TextOptions {
+  bool source_lines = true;  ///< print the source line and a caret under the column
+  bool notes = true;         ///< print note-severity diagnostics
+};
+
+/// One diagnostic in GCC/Clang style:
+///
+///     file:line:col: severity: message [rule-id]
+///       <the source line>
+///           ^
+///     file:line:col: note: reached through this alias      (when `via` is set)
+///     file:line:col: note: <fix hint>                      (when there is one)
+///
+/// The caret line copies the tabs of the source line so that it lines up; the column counts
+/// bytes and the caret advances one per UTF-8 character. Ends with a newline.
+std::string format_text_diagnostic(const Diagnostic& diagnostic, SourceLines& sources,
+                                   const TextOptions& options = {});
+
+/// Every diagnostic of the report, in order.
+std::string format_text_report(const Report& report, SourceLines& sources,
+                               const TextOptions& options = {});
+
+/// `bodycheck: N files checked: E errors, W warnings, K notes` (+ suppressed/disabled counts).
+std::string format_summary_line(const Report& report);
+
+struct ToolInfo {
+  std::string name = "bodycheck";
+  std::string version;          ///< required by SARIF consumers; the project version
+  std::string information_uri;  ///< absolute URI of the tool's documentation
+};
+
+/// JSON text for `s` between quotes: `"` `\` and control characters escaped, UTF-8 kept.
+std::string json_quote(std::string_view s);
+
+/// The JSON document of docs/bodycheck-json.md (schema version 1), with a final newline.
+std::string format_json_report(const Report& report, const ToolInfo& tool);
+
+/// A SARIF 2.1.0 log with one run. Locations are relative to `base_dir` (the working
+/// directory when empty) when the file lies under it, with forward slashes and
+/// `uriBaseId` "%SRCROOT%" (declared in originalUriBaseIds); other files get absolute
+/// `file://` URIs. Rules come from the rule table. With a final newline.
+std::string format_sarif_report(const Report& report, const ToolInfo& tool,
+                                const std::string& base_dir = {});
+
+}  // namespace bodyfmt

@@ -1,0 +1,228 @@
+#include <bodyfmt/diagnostic_policy.h>
+#include <bodyfmt/rules.h>
+
+#include "load/mapping_reader.h"  // detail::edit_distance
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace bodyfmt {
+
+bool rule_pattern_matches(std::string_view pattern, std::string_view rule_id) {
+  if (!pattern.empty() && pattern.back() == '*') {
+    pattern.remove_suffix(1);
+    return rule_id.substr(0, pattern.size()) == pattern;
+  }
+  return pattern == rule_id;
+}
+
+std::string check_rule_pattern(std::string_view pattern) {
+  const auto& rules = all_rules();
+  if (std::any_of(rules.begin(), rules.end(),
+                  [&](const RuleInfo& r) { return rule_pattern_matches(pattern, r.id); }))
+    return {};
+  std::string message = "unknown rule id '" + std::string(pattern) + "'";
+  std::string_view best;
+  int best_distance = 1 << 30;
+  for (const RuleInfo& r : rules) {
+    int d = detail::edit_distance(pattern, r.id);
+    if (d < best_distance) best_distance = d, best = r.id;
+  }
+  const int allowed = std::max<int>(2, static_cast<int>(pattern.size()) / 3);
+  if (!best.empty() && best_distance <= allowed) message += "; did you mean '" + std::string(best) + "'?";
+  else message += " (bodycheck --list-rules lists them)";
+  return message;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Suppressions
+
+namespace {
+
+/// Position of a YAML comment `#` in `line` (at the start or after a blank, outside quotes),
+/// or npos.
+std::size_t comment_start(std::string_view line) {
+  bool in_single = false, in_double = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (in_double) {
+      if (c == '\\') ++i;
+      else if (c == '"') in_double = false;
+    } else if (in_single) {
+      if (c == '\'') in_single = false;
+    } else if (c == '"' && (i == 0 || line[i - 1] == ' ' || line[i - 1] == '\t' || line[i - 1] == '[' ||
+                            line[i - 1] == '{' || line[i - 1] == ',' || line[i - 1] == ':')) {
+      in_double = true;
+    } else if (c == '\'' && (i == 0 || line[i - 1] == ' ' || line[i - 1] == '\t' || line[i - 1] == '[' ||
+                             line[i - 1] == '{' || line[i - 1] == ',' || line[i - 1] == ':')) {
+      in_single = true;
+    } else if (c == '#' && (i == 0 || line[i - 1] == ' ' || line[i - 1] == '\t')) {
+      return i;
+    }
+  }
+  return std::string_view::npos;
+}
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
+  return s;
+}
+
+/// The rule ids of a `bodycheck: disable=A,B` comment body (after `#`), or empty.
+std::vector<std::string> parse_directive(std::string_view comment) {
+  comment = trim(comment);
+  constexpr std::string_view kTag = "bodycheck:";
+  if (comment.substr(0, kTag.size()) != kTag) return {};
+  comment = trim(comment.substr(kTag.size()));
+  constexpr std::string_view kDisable = "disable";
+  if (comment.substr(0, kDisable.size()) != kDisable) return {};
+  comment = trim(comment.substr(kDisable.size()));
+  if (comment.empty() || comment.front() != '=') return {};
+  comment = comment.substr(1);
+  std::vector<std::string> ids;
+  std::size_t start = 0;
+  while (start <= comment.size()) {
+    std::size_t comma = comment.find(',', start);
+    if (comma == std::string_view::npos) comma = comment.size();
+    std::string_view id = trim(comment.substr(start, comma - start));
+    // Anything after the id list (a blank and free text) is an explanation, not an id.
+    std::size_t blank = id.find_first_of(" \t");
+    if (blank != std::string_view::npos) {
+      ids.emplace_back(id.substr(0, blank));
+      break;
+    }
+    if (!id.empty()) ids.emplace_back(id);
+    start = comma + 1;
+  }
+  return ids;
+}
+
+}  // namespace
+
+Suppressions Suppressions::from_text(std::string_view text) {
+  Suppressions result;
+  std::vector<std::string> pending;  // from comment-only lines, for the next content line
+  int line_number = 0;
+  std::size_t pos = 0;
+  while (pos < text.size()) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view line = text.substr(pos, end - pos);
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    pos = end + 1;
+    ++line_number;
+
+    const std::size_t hash = comment_start(line);
+    std::vector<std::string> ids;
+    if (hash != std::string_view::npos) ids = parse_directive(line.substr(hash + 1));
+    const bool comment_only = hash != std::string_view::npos && trim(line.substr(0, hash)).empty();
+    if (comment_only && !ids.empty()) {
+      pending.insert(pending.end(), ids.begin(), ids.end());
+      continue;
+    }
+    if (!pending.empty() || !ids.empty()) {
+      auto& covered = result.by_line_[line_number];
+      covered.insert(covered.end(), pending.begin(), pending.end());
+      covered.insert(covered.end(), ids.begin(), ids.end());
+      pending.clear();
+    }
+  }
+  return result;
+}
+
+bool Suppressions::suppresses(int line, std::string_view rule_id) const {
+  auto it = by_line_.find(line);
+  if (it == by_line_.end()) return false;
+  return std::any_of(it->second.begin(), it->second.end(),
+                     [&](const std::string& p) { return rule_pattern_matches(p, rule_id); });
+}
+
+// ---------------------------------------------------------------------------------------------
+// DiagnosticPolicy
+
+DiagnosticPolicy::DiagnosticPolicy(DiagnosticSink& inner, PolicyOptions options)
+    : inner_(inner), options_(std::move(options)) {}
+
+bool DiagnosticPolicy::enabled(std::string_view rule_id) const {
+  auto matches = [&](const std::vector<std::string>& patterns) {
+    return std::any_of(patterns.begin(), patterns.end(),
+                       [&](const std::string& p) { return rule_pattern_matches(p, rule_id); });
+  };
+  return !matches(options_.disable) || matches(options_.enable);
+}
+
+void DiagnosticPolicy::set_suppressions(const std::string& file, Suppressions suppressions) {
+  suppressions_[file] = std::move(suppressions);
+}
+
+const Suppressions& DiagnosticPolicy::suppressions_for(const std::string& file) {
+  auto it = suppressions_.find(file);
+  if (it != suppressions_.end()) return it->second;
+  Suppressions s;
+  try {
+    std::ifstream in(file, std::ios::binary);
+    if (in) {
+      std::ostringstream text;
+      text << in.rdbuf();
+      s = Suppressions::from_text(text.str());
+    }
+  } catch (...) {
+    // Unreadable: no suppressions. The loader reports the file itself.
+  }
+  return suppressions_.emplace(file, std::move(s)).first->second;
+}
+
+void DiagnosticPolicy::report(Diagnostic d) {
+  try {
+    if (d.severity != Severity::kFatal) {
+      auto cached = enabled_cache_.find(d.rule_id);
+      if (cached == enabled_cache_.end()) cached = enabled_cache_.emplace(d.rule_id, enabled(d.rule_id)).first;
+      if (!cached->second) {
+        ++disabled_;
+        return;
+      }
+      if (options_.inline_suppressions && !d.rule_id.empty()) {
+        bool suppressed = false;
+        if (d.location.known() && !d.location.file.empty())
+          suppressed = suppressions_for(d.location.file).suppresses(d.location.line, d.rule_id);
+        if (!suppressed && d.via && d.via->known() && !d.via->file.empty())
+          suppressed = suppressions_for(d.via->file).suppresses(d.via->line, d.rule_id);
+        if (suppressed) {
+          ++suppressed_;
+          return;
+        }
+      }
+      if (options_.strict && d.severity < Severity::kError && rule_pattern_matches("export-loss*", d.rule_id))
+        d.severity = Severity::kError;
+      if (options_.werror && d.severity == Severity::kWarning) d.severity = Severity::kError;
+    }
+    ++counts_[static_cast<int>(d.severity)];
+    ++by_rule_[d.rule_id];
+  } catch (...) {
+    // Out of memory in the bookkeeping: still forward the diagnostic.
+  }
+  inner_.report(std::move(d));
+}
+
+// ---------------------------------------------------------------------------------------------
+// .bodycheck.yaml
+
+std::string find_config(const std::string& file) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::path dir = fs::absolute(fs::path(file), ec).parent_path();
+  if (ec) return {};
+  for (;;) {
+    fs::path candidate = dir / ".bodycheck.yaml";
+    if (fs::is_regular_file(candidate, ec)) return candidate.lexically_normal().string();
+    fs::path parent = dir.parent_path();
+    if (parent == dir || parent.empty()) return {};
+    dir = parent;
+  }
+}
+
+}  // namespace bodyfmt
