@@ -14,6 +14,7 @@ std::vector<RuleInfo> make_table() {
   std::vector<RuleInfo> rules = {
       // I/O and internal
       {"io-read", F, "a file cannot be opened or read", "nothing can be checked without the text", ""},
+      {"config-invalid", E, "a .bodycheck.yaml is malformed (syntax, unknown key, bad value or rule id)", "bodycheck cannot know how strict to be, so it checks nothing under it", ""},
       {"internal-error", F, "an unexpected internal failure", "a bug in bodyfmt; please report it with the file", ""},
       // YAML layer (body-format-spec §1)
       {"yaml-syntax", F, "the text is not valid YAML", "Choreonoid's libyaml reader refuses the file", ""},
