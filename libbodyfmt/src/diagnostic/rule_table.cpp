@@ -102,6 +102,40 @@ std::vector<RuleInfo> make_table() {
       {"mesh-inline-cycle", E, "VRML Inline files include each other", "loading would never end", ""},
       {"mesh-invalid-geometry", E, "a mesh file has invalid geometry", "part of it is dropped", ""},
       {"mesh-empty", W, "a mesh file or node has no triangles", "nothing is drawn or collides", ""},
+      // Validator rules (validate/rules/, bodycheck). Inertia: shared/spec/anchors.md §2.
+      {"inertia-asymmetric", E, "a 9-element inertia is not symmetric", "Choreonoid uses the 9 numbers as given; engines assume a symmetric tensor and silently use a part of it", "|I - I^T|max > CheckOptions::inertia_symmetry_tolerance (1e-6) x |I|max, per RigidBody or link-level inertia"},
+      {"inertia-not-positive-definite", E, "the combined inertia of a link has a negative principal moment", "MuJoCo, Drake and gz-math refuse it; the dynamics are unphysical", "smallest eigenvalue < -16*DBL_EPSILON*max(1, trace/2) (Drake's); exactly < 0 for a diagonal tensor"},
+      {"inertia-triangle", E, "the principal moments violate the triangle inequality (A + B < C)", "no rigid body has such moments; MuJoCo (no tolerance), Drake (16*eps*max(1, tr/2)) and gz-math (10*eps*tr/2) refuse the model", "A + B - C < 0 exactly for a diagonal tensor (MuJoCo); < -4*DBL_EPSILON*trace otherwise (eigen-solver rounding); the message says which engines refuse"},
+      {"inertia-nonpositive-mass", E, "a negative mass, or zero mass on a moving link", "MuJoCo clamps negative mass to 0 and refuses massless moving bodies; Drake and gz-math refuse negative mass", "moving = revolute, prismatic or free joint; zero mass passes when a fixed descendant carries mass (MuJoCo's rule)"},
+      {"inertia-tiny", E, "a moving link's mass or smallest principal moment is below 1e-15", "MuJoCo refuses moving bodies below mjMINVAL", "mass or principal moment < 1e-15 (mjMINVAL), unless a fixed descendant has both above it"},
+      {"inertia-com-outside", W, "the centre of mass lies outside the link's geometry bounds", "usually a wrong center_of_mass or a frame mix-up", "outside the tight visual+collision box enlarged by 1% of its diagonal + 1 mm"},
+      {"inertia-implausible", W, "the inertia is far from that of the link's geometry bounding box filled with its mass", "usually a unit error (g, mm) or an inertia about the wrong point", "trace ratio outside [1/f, f], f = CheckOptions::inertia_plausibility_factor (10)"},
+      // Joints (body-format-spec §5.3, §6, §15)
+      {"joint-id-duplicate", E, "two joints share a joint_id", "Choreonoid keeps one joint per id; controllers drive the wrong joint", ""},
+      {"joint-id-gap", W, "joint ids skip numbers below the largest id", "Choreonoid warns and reserves an empty joint slot for each missing id", ""},
+      {"joint-id-on-fixed", W, "a fixed joint has a joint_id", "the id occupies a controller slot that cannot move", ""},
+      {"joint-axis-zero", E, "a revolute, prismatic or track joint axis is the zero vector", "the joint has no direction; MuJoCo refuses it (axis too small)", "|axis| < 1e-9"},
+      {"joint-axis-not-unit", W, "a joint axis is not a unit vector", "Choreonoid does not normalise it, so joint velocities and displacements are scaled", "||axis| - 1| > 1e-6"},
+      {"joint-range-reversed", E, "a joint range has lower > upper", "Choreonoid accepts it silently; MuJoCo's URDF import makes the joint unlimited", ""},
+      {"joint-range-zero-width", W, "a joint range has lower == upper", "the joint cannot move; a fixed joint says so", ""},
+      {"joint-velocity-negative", E, "a negative max_joint_velocity or a velocity range that excludes 0", "the joint cannot stand still within its velocity limits", ""},
+      // Units (body-format-spec §3)
+      {"units-range-looks-radian", W, "a revolute range in a degree file looks like radians", "format 2.0 angles are degrees: [-1.57, 1.57] is +-1.57 degrees", "finite limits all within 2pi+0.002 (as written), one non-zero, and either one within 0.002 of k*pi/12 (k = 1..24) or all within pi+0.002 and none a whole number"},
+      {"units-prismatic-millimetres", W, "a prismatic range beyond 10 m", "prismatic ranges are metres; millimetres make the limit 1000x too wide", "|limit| > 10 m"},
+      {"units-mesh-millimetres", W, "a mesh in metres that is far too large for its link", "meshes exported in millimetres are 1000x too large", "largest extent > 100x the link's other geometry, or > 10 m on a moving link; only meshes without metadata length_unit"},
+      // Structure, geometry, resources, devices
+      {"structure-duplicate-device", W, "two named devices share a name", "Choreonoid and controllers look devices up by name and find only the first", "unnamed devices are not compared; reported whatever the device types"},
+      {"geometry-zero-size", W, "a Box with a zero edge, or a shape scaled to zero", "Choreonoid allows it, but it has no volume: MuJoCo refuses zero sizes, collision engines degenerate", ""},
+      {"resource-absolute-path", W, "a resource URI is an absolute path", "the model only works on the machine it was written on", ""},
+      {"resource-case-mismatch", E, "a resource path matches a file on disk only with different letter case", "it loads on case-insensitive file systems (Windows, macOS) but not on Linux", ""},
+      {"device-fov", E, "a camera field of view outside (0, 180) degrees", "a perspective projection needs 0 < fov < 180 degrees", ""},
+      {"device-resolution", E, "a non-positive camera resolution or range-sensor step", "the sensor produces no data", ""},
+      {"device-clip", E, "near clip <= 0 or >= far clip (or min distance >= max distance)", "the depth range is empty or the projection is singular", ""},
+      {"device-light", W, "light parameters out of range", "negative intensity or attenuation, colours outside [0, 1] or a spot cut-off outside (0, 180] degrees render wrongly", ""},
+      // Exporters (converters/, each target's SUPPORT.md)
+      {"export-loss", W, "the target format cannot express a construct of the model", "the exported file silently differs from what Choreonoid simulates unless this is reported", ""},
+      {"export-name", W, "a name the target format's tools cannot use, or one renamed to stay unique", "ROS tools (tf, MoveIt) rely on URDF names of letters, digits and '_'", ""},
+      {"export-write", F, "an output file cannot be written or encoded", "nothing is written, so no output is left half-written", ""},
   };
   std::sort(rules.begin(), rules.end(), [](const RuleInfo& a, const RuleInfo& b) { return a.id < b.id; });
   return rules;

@@ -1,0 +1,51 @@
+#pragma once
+/// Atomic, all-or-nothing output of one export (main file, meshes, copied resources).
+///
+/// Files are staged in memory with add() and written by commit(): each goes to a temporary
+/// file in its destination folder, and only when every temporary file has been written are
+/// they all renamed over their destinations. A failure while writing removes the temporary
+/// files, so an existing output stays as it was and no partial file is left. After fail()
+/// (a fatal diagnostic during the export) commit() writes nothing.
+#include <bodyfmt/diagnostic.h>
+
+#include <filesystem>
+#include <map>
+#include <string>
+
+namespace bodyfmt::converters {
+
+class OutputSet {
+ public:
+  /// `main_path` is the main output file; other files are placed relative to its folder.
+  explicit OutputSet(std::filesystem::path main_path);
+
+  const std::filesystem::path& main_path() const { return main_path_; }
+  /// The folder of the main file (where relative URIs start).
+  std::filesystem::path directory() const;
+
+  /// Stages `contents` for `relative` (relative to directory(), '/'-separated, no "..").
+  /// Staging the same path twice with the same contents is fine; different contents replace
+  /// the earlier ones (the writer decides names, so this is a writer bug and asserts).
+  void add(const std::string& relative, std::string contents);
+  /// Stages the main file.
+  void set_main(std::string contents);
+  bool has(const std::string& relative) const { return files_.count(relative) != 0; }
+  /// Staged files, sorted by relative path (the main file under its file name).
+  const std::map<std::string, std::string>& files() const { return files_; }
+
+  /// Marks the export failed: commit() will write nothing.
+  void fail() { failed_ = true; }
+  bool failed() const { return failed_; }
+
+  /// Writes every staged file atomically (see above). Reports `export-write` (fatal) with the
+  /// path and the system's reason on failure and returns false; returns false without a
+  /// report after fail().
+  bool commit(DiagnosticSink& sink);
+
+ private:
+  std::filesystem::path main_path_;
+  std::map<std::string, std::string> files_;
+  bool failed_ = false;
+};
+
+}  // namespace bodyfmt::converters

@@ -1,0 +1,43 @@
+#pragma once
+/// body2urdf's writer: Model -> URDF (see SUPPORT.md for what maps, what is approximated and
+/// what is lost; every lost construct is reported as `export-loss` at its source line and
+/// noted in an XML comment in the output).
+#include <bodyfmt/converters/mesh_writer.h>
+#include <bodyfmt/converters/output_set.h>
+#include <bodyfmt/derived.h>
+#include <bodyfmt/diagnostic.h>
+#include <bodyfmt/model.h>
+
+#include <string>
+
+namespace bodyfmt::urdf {
+
+/// Written for limits Choreonoid leaves unlimited where URDF requires a number (`effort` and
+/// `velocity` of every <limit>, `lower`/`upper` of a prismatic joint or of one side of a
+/// revolute range). Large enough to never bind, small enough for float-based tools.
+constexpr double kUnlimitedStandIn = 1e30;
+
+struct UrdfOptions {
+  converters::MeshFormat mesh_format = converters::MeshFormat::kStl;
+  /// Copy external mesh files next to the URDF instead of referencing them where they are.
+  bool copy_meshes = false;
+  /// "package://NAME/" prefix for mesh URIs (implies copying); empty = URIs relative to the
+  /// URDF file.
+  std::string package_uri;
+  /// Folder for written meshes, relative to the URDF file.
+  std::string mesh_folder = "meshes";
+  /// Adds a `world` link joined to the root by a floating joint (a fixed joint for a fixed
+  /// root) placed at the root's initial pose.
+  bool floating_base = false;
+  /// Writes each device as a child link on a fixed joint instead of reporting it.
+  bool devices_as_frames = false;
+};
+
+/// Builds the URDF document and its mesh files and stages them in `output`. Losses go to
+/// `sink` as `export-loss`; a problem that makes the output unusable (a name XML cannot hold,
+/// a mesh that cannot be encoded, a `world` link clash) is reported as fatal and calls
+/// output.fail(). Returns false in that case.
+bool write_urdf(const Model& model, const Derived& derived, const UrdfOptions& options,
+                converters::OutputSet& output, DiagnosticSink& sink);
+
+}  // namespace bodyfmt::urdf
