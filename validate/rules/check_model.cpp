@@ -1,7 +1,81 @@
-#include <bodyfmt/validate.h>
+#include "rule_context.h"
+
+#include <bodyfmt/rules.h>
+
+#include <fmt/format.h>
+
+#include <cassert>
+#include <cmath>
 
 namespace bodyfmt::validate {
+namespace detail {
 
-void check_model(const Model&, const Derived&, const CheckOptions&, DiagnosticSink&) {}
+void RuleContext::report(std::string_view rule_id, const SourceLocation& location, std::string message,
+                         std::string fix_hint) const {
+  const RuleInfo* rule = find_rule(rule_id);
+  assert(rule && "every validator rule id has a row in rule_table.cpp");
+  Diagnostic d;
+  d.severity = rule ? rule->default_severity : Severity::kError;
+  d.rule_id = std::string(rule_id);
+  d.message = std::move(message);
+  d.location = location.known() || !location.file.empty() ? location : model.source;
+  if (d.location.file.empty()) d.location.file = model.source_file;
+  d.fix_hint = std::move(fix_hint);
+  sink.report(std::move(d));
+}
+
+SourceLocation first_known(std::initializer_list<const SourceLocation*> locations) {
+  const SourceLocation* last = nullptr;
+  for (const SourceLocation* l : locations) {
+    if (l->known()) return *l;
+    last = l;
+  }
+  return last ? *last : SourceLocation{};
+}
+
+std::string num(double value) {
+  if (value == 0) return "0";  // also -0
+  return fmt::format("{:.6g}", value);
+}
+
+std::string vec(const Eigen::Vector3d& v) { return fmt::format("[{}, {}, {}]", num(v.x()), num(v.y()), num(v.z())); }
+
+std::string limit(double value) {
+  if (std::abs(value) >= kUnlimited) return value < 0 ? "-unlimited" : "unlimited";
+  return num(value);
+}
+
+bool is_moving(const Link& link) {
+  return link.joint_type == JointType::kRevolute || link.joint_type == JointType::kPrismatic ||
+         link.joint_type == JointType::kFree;
+}
+
+bool is_one_dof(const Link& link) {
+  return link.joint_type == JointType::kRevolute || link.joint_type == JointType::kPrismatic;
+}
+
+BoundingBox geometry_bounds(const Derived& derived, LinkIndex link) {
+  BoundingBox box;
+  if (link >= 0 && static_cast<std::size_t>(link) < derived.bounds.size()) {
+    box.add(derived.bounds[link].visual);
+    box.add(derived.bounds[link].collision);
+  }
+  return box;
+}
+
+}  // namespace detail
+
+void check_model(const Model& model, const Derived& derived, const CheckOptions& options,
+                 DiagnosticSink& sink) {
+  if (model.links.empty()) return;
+  const detail::RuleContext ctx{model, derived, options, sink};
+  detail::check_structure(ctx);
+  detail::check_joints(ctx);
+  detail::check_units(ctx);
+  detail::check_inertia(ctx);
+  detail::check_geometry(ctx);
+  detail::check_resources(ctx);
+  detail::check_devices(ctx);
+}
 
 }  // namespace bodyfmt::validate

@@ -7,6 +7,8 @@
 #include <bodyfmt/diagnostic.h>
 #include <bodyfmt/model.h>
 
+#include <string>
+
 namespace bodyfmt::validate {
 
 struct CheckOptions {
@@ -21,5 +23,9 @@ struct CheckOptions {
 /// `geometry-*`, `resource-*` and `device-*` findings with their default severities.
 void check_model(const Model& model, const Derived& derived, const CheckOptions& options,
                  DiagnosticSink& sink);
+
+/// Every rule of the rule table (loader and validator) as the Markdown of docs/rules.md:
+/// id, default severity, summary, rationale and tolerance, grouped by family.
+std::string rules_markdown();
 
 }  // namespace bodyfmt::validate

@@ -1,0 +1,243 @@
+// Inertia rules (issue 4, "Inertia"): what MuJoCo, Drake and gz-math refuse, with their
+// tolerances (shared/spec/anchors.md §2), plus two plausibility warnings.
+
+#include "rule_context.h"
+
+#include <Eigen/Eigenvalues>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <vector>
+
+namespace bodyfmt::validate::detail {
+namespace {
+
+// MuJoCo's mjMINVAL (include/mujoco/mjtype.h, double build).
+constexpr double kMjMinVal = 1e-15;
+
+struct Principal {
+  Eigen::Vector3d moments;  // ascending
+  Eigen::Matrix3d axes;     // columns
+  bool exact = false;       // read off a diagonal tensor, no eigen-solver rounding
+};
+
+Principal principal(const Eigen::Matrix3d& inertia) {
+  const Eigen::Matrix3d sym = 0.5 * (inertia + inertia.transpose());
+  Principal p;
+  if (sym(0, 1) == 0 && sym(0, 2) == 0 && sym(1, 2) == 0) {
+    // A diagonal tensor: MuJoCo checks these numbers exactly, so do not add solver rounding.
+    std::vector<int> order = {0, 1, 2};
+    std::sort(order.begin(), order.end(), [&](int a, int b) { return sym(a, a) < sym(b, b); });
+    p.axes.setZero();
+    for (int i = 0; i < 3; ++i) {
+      p.moments[i] = sym(order[i], order[i]);
+      p.axes(order[i], i) = 1;
+    }
+    p.exact = true;
+    return p;
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(sym);
+  p.moments = solver.eigenvalues();
+  p.axes = solver.eigenvectors();
+  return p;
+}
+
+// The nearest tensor (Euclidean distance between principal moments, same principal axes)
+// that is positive semi-definite and satisfies the triangle inequality with a small margin,
+// printed as the 6-element form [Ixx, Ixy, Ixz, Iyy, Iyz, Izz] in link axes.
+std::string nearest_valid(const Principal& p) {
+  Eigen::Vector3d m = p.moments.cwiseMax(0.0);  // clamp negative moments
+  std::sort(m.data(), m.data() + 3);
+  const double excess = m[2] - m[0] - m[1];
+  if (excess > 0) {
+    // Orthogonal projection onto the plane m0 + m1 - m2 = s (s > 0 keeps rounding safe).
+    const double s = 1e-7 * m.sum();
+    const double t = (excess + s) / 3;
+    m += Eigen::Vector3d(t, t, -t);
+  }
+  // Map back onto the original axes order (moments were sorted ascending already).
+  Eigen::Vector3d moments = m;
+  if (moments.isZero(0)) return {};
+  const Eigen::Matrix3d I = p.axes * moments.asDiagonal() * p.axes.transpose();
+  return fmt::format("nearest valid inertia (link axes, about the centre of mass): [{}, {}, {}, {}, {}, {}]",
+                     num(I(0, 0)), num(I(0, 1)), num(I(0, 2)), num(I(1, 1)), num(I(1, 2)), num(I(2, 2)));
+}
+
+// The most specific place a link's mass data is written.
+SourceLocation inertia_location(const Link& link) {
+  const SourceLocation* contribution = nullptr;
+  for (const MassContribution& c : link.mass_contributions)
+    if (!c.from_link_keys && c.source.known()) {
+      contribution = &c.source;
+      break;
+    }
+  SourceLocation none;
+  return first_known({&link.sources.inertia, contribution ? contribution : &none, &link.sources.mass, &link.source});
+}
+
+SourceLocation mass_location(const Link& link) {
+  const SourceLocation* contribution = nullptr;
+  for (const MassContribution& c : link.mass_contributions)
+    if (!c.from_link_keys && c.source.known()) {
+      contribution = &c.source;
+      break;
+    }
+  SourceLocation none;
+  return first_known({&link.sources.mass, contribution ? contribution : &none, &link.sources.inertia, &link.source});
+}
+
+bool welded_to_world(const Model& model, LinkIndex index) {
+  for (LinkIndex i = index; i >= 0; i = model.links[i].parent)
+    if (is_moving(model.links[i])) return false;
+  return true;
+}
+
+void check_symmetry(const RuleContext& ctx, const Link& link) {
+  for (const MassContribution& c : link.mass_contributions) {
+    const Eigen::Matrix3d& I = c.inertia;
+    const double scale = I.cwiseAbs().maxCoeff();
+    if (scale == 0) continue;
+    const Eigen::Matrix3d skew = I - I.transpose();
+    Eigen::Index row = 0, col = 0;
+    const double worst = skew.cwiseAbs().maxCoeff(&row, &col);
+    if (worst <= ctx.options.inertia_symmetry_tolerance * scale) continue;
+    if (row > col) std::swap(row, col);
+    const char* axis = "xyz";
+    const SourceLocation at = c.from_link_keys ? first_known({&link.sources.inertia, &c.source, &link.source})
+                                               : first_known({&c.source, &link.source});
+    ctx.report("inertia-asymmetric", at,
+               fmt::format("inertia of link \"{}\" is not symmetric: I{}{} = {} but I{}{} = {} (relative "
+                           "difference {} > {})",
+                           link.name, axis[row], axis[col], num(I(row, col)), axis[col], axis[row],
+                           num(I(col, row)), num(worst / scale), num(ctx.options.inertia_symmetry_tolerance)),
+               "write the 6-element form [Ixx, Ixy, Ixz, Iyy, Iyz, Izz]; Choreonoid uses the 9 numbers as given");
+  }
+}
+
+// Moments and mass that MuJoCo accepts for a moving body (mjCBody::Compile).
+bool mujoco_valid(double mass, const Principal& p) { return mass >= kMjMinVal && p.moments[0] >= kMjMinVal; }
+
+void check_link(const RuleContext& ctx, LinkIndex index) {
+  const Link& link = ctx.model.links[index];
+  check_symmetry(ctx, link);
+  if (link.mass_contributions.empty()) return;  // Choreonoid's defaults (load-default-mass)
+  const MassProperties& mp = ctx.derived.mass[index];
+  const Principal p = principal(mp.inertia);
+  const double trace = p.moments.sum();
+  const SourceLocation at = inertia_location(link);
+  const std::string moments = fmt::format("({}, {}, {})", num(p.moments[0]), num(p.moments[1]), num(p.moments[2]));
+
+  // Negative mass is wrong anywhere; zero mass only where the link moves on its own.
+  if (mp.mass < 0) {
+    ctx.report("inertia-nonpositive-mass", mass_location(link),
+               fmt::format("link \"{}\" has negative mass {} kg", link.name, num(mp.mass)),
+               "mass must be positive; MuJoCo silently clamps it to 0, Drake and gz-math refuse it");
+  }
+
+  // Drake's tolerance for a negative moment, ε = 16·DBL_EPSILON·max(1, tr/2).
+  const double drake_eps = 16 * DBL_EPSILON * std::max(1.0, std::abs(trace) / 2);
+  const double gz_eps = 10 * DBL_EPSILON * std::abs(trace) / 2;
+  bool semidefinite = true;
+  if (p.moments[0] < -(p.exact ? 0.0 : drake_eps)) {
+    semidefinite = false;
+    ctx.report("inertia-not-positive-definite", at,
+               fmt::format("inertia of link \"{}\" has a negative principal moment: principal moments {}",
+                           link.name, moments),
+               nearest_valid(p));
+  }
+  if (semidefinite) {
+    // MuJoCo: no tolerance on a diagonal tensor; otherwise allow the eigen-solver's rounding.
+    const double margin = p.moments[0] + p.moments[1] - p.moments[2];
+    const double rounding = p.exact ? 0.0 : 4 * DBL_EPSILON * std::abs(trace);
+    if (margin < -rounding) {
+      std::vector<std::string> refuse = {"MuJoCo (A + B >= C, no tolerance)"};
+      if (margin < -drake_eps) refuse.push_back(fmt::format("Drake (tolerance 16ε·max(1, tr/2) = {})", num(drake_eps)));
+      if (margin < -gz_eps) refuse.push_back(fmt::format("gz-math (tolerance 10ε·tr/2 = {})", num(gz_eps)));
+      ctx.report("inertia-triangle", at,
+                 fmt::format("principal moments {} of link \"{}\" violate the triangle inequality: {} + {} - {} = "
+                             "{}; refused by {}",
+                             moments, link.name, num(p.moments[0]), num(p.moments[1]), num(p.moments[2]),
+                             num(margin), fmt::join(refuse, ", ")),
+                 nearest_valid(p));
+    }
+  }
+
+  // The two plausibility warnings only for links that can move: the mass data of a link welded
+  // to the world (a fixed root and its fixed descendants, e.g. floors) is never simulated.
+  const BoundingBox box = geometry_bounds(ctx.derived, index);
+  if (mp.mass > 0 && !box.empty() && !welded_to_world(ctx.model, index)) {
+    // CoM outside the geometry box, enlarged by 1% of its diagonal (and 1 mm) for rounding.
+    const double slack = 0.01 * (box.max - box.min).norm() + 1e-3;
+    const Eigen::Vector3d& c = mp.center_of_mass;
+    if ((c.array() < box.min.array() - slack).any() || (c.array() > box.max.array() + slack).any()) {
+      ctx.report("inertia-com-outside",
+                 first_known({&link.sources.center_of_mass, &at}),
+                 fmt::format("centre of mass {} of link \"{}\" lies outside its geometry bounds {} .. {}", vec(c),
+                             link.name, vec(box.min), vec(box.max)));
+    }
+    // Compare traces with a solid box of the same mass filling the geometry bounds:
+    // tr = m/6 (dx² + dy² + dz²). Mass at the corners gives 3x that, so a real body is
+    // rarely more than a few times away.
+    const Eigen::Vector3d d = box.max - box.min;
+    const double box_trace = mp.mass / 6 * d.squaredNorm();
+    const double factor = ctx.options.inertia_plausibility_factor;
+    if (box_trace > 0 && trace > 0 && semidefinite) {
+      const double ratio = trace / box_trace;
+      if (ratio > factor || ratio < 1 / factor) {
+        ctx.report("inertia-implausible", at,
+                   fmt::format("inertia of link \"{}\" is {} times that of a solid box of its mass ({} kg) filling "
+                               "its geometry bounds {} (trace {} vs {} kg·m²; factor {})",
+                               link.name, num(ratio), num(mp.mass), vec(d), num(trace), num(box_trace), num(factor)));
+      }
+    }
+  }
+}
+
+// MuJoCo refuses a moving body whose mass or a principal moment is below mjMINVAL unless a
+// static (welded) descendant has valid ones; massless moving links need that descendant too.
+bool welded_descendant_valid(const Model& model, const Derived& derived, LinkIndex index) {
+  for (LinkIndex child : model.links[index].children) {
+    const Link& c = model.links[child];
+    if (is_moving(c)) continue;
+    if (mujoco_valid(derived.mass[child].mass, principal(derived.mass[child].inertia))) return true;
+    if (welded_descendant_valid(model, derived, child)) return true;
+  }
+  return false;
+}
+
+void check_moving(const RuleContext& ctx, LinkIndex index) {
+  const Link& link = ctx.model.links[index];
+  if (!is_moving(link)) return;
+  const MassProperties& mp = ctx.derived.mass[index];
+  if (mp.mass < 0) return;  // reported above
+  const Principal p = principal(mp.inertia);
+  if (mujoco_valid(mp.mass, p) || welded_descendant_valid(ctx.model, ctx.derived, index)) return;
+  const std::string joint = index == 0 ? "the free root" : fmt::format("a {} joint", joint_type_name(link.joint_type));
+  if (mp.mass == 0) {
+    ctx.report("inertia-nonpositive-mass", mass_location(link),
+               fmt::format("link \"{}\" moves ({}) but has zero mass, and no fixed child carries mass", link.name,
+                           joint),
+               "give the link its mass and inertia; MuJoCo, Drake and Choreonoid's AIST simulator need it");
+    return;
+  }
+  if (p.moments[0] < 0) return;  // inertia-not-positive-definite
+  ctx.report("inertia-tiny", inertia_location(link),
+             fmt::format("link \"{}\" moves ({}) but its mass {} kg or smallest principal moment {} kg·m² is below "
+                         "MuJoCo's mjMINVAL {}",
+                         link.name, joint, num(mp.mass), num(p.moments[0]), num(kMjMinVal)),
+             "MuJoCo refuses moving bodies with a mass or principal moment below 1e-15");
+}
+
+}  // namespace
+
+void check_inertia(const RuleContext& ctx) {
+  if (ctx.derived.mass.size() != ctx.model.links.size()) return;
+  for (LinkIndex i = 0; i < static_cast<LinkIndex>(ctx.model.links.size()); ++i) {
+    check_link(ctx, i);
+    check_moving(ctx, i);
+  }
+}
+
+}  // namespace bodyfmt::validate::detail

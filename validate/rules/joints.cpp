@@ -1,0 +1,123 @@
+// Joint rules (issue 4, "Joints"): ids as Choreonoid's StdBodyLoader numbers them, axes it
+// does not normalise, ranges and velocity limits it accepts silently (body-format-spec §15).
+
+#include "rule_context.h"
+
+#include <fmt/format.h>
+
+#include <map>
+#include <vector>
+
+namespace bodyfmt::validate::detail {
+namespace {
+
+void check_ids(const RuleContext& ctx) {
+  std::map<int, LinkIndex> first;
+  for (LinkIndex i = 0; i < static_cast<LinkIndex>(ctx.model.links.size()); ++i) {
+    const Link& link = ctx.model.links[i];
+    if (link.joint_id < 0) continue;
+    const SourceLocation at = first_known({&link.sources.joint_id, &link.source});
+    if (link.joint_type == JointType::kFixed) {
+      ctx.report("joint-id-on-fixed", at,
+                 fmt::format("link \"{}\" has joint_id {} but its joint is fixed", link.name, link.joint_id),
+                 "remove joint_id, or give the link a joint_type; Choreonoid still counts the id in numJoints");
+    }
+    auto [it, inserted] = first.emplace(link.joint_id, i);
+    if (!inserted) {
+      const Link& other = ctx.model.links[it->second];
+      ctx.report("joint-id-duplicate", at,
+                 fmt::format("joint_id {} of link \"{}\" is already used by link \"{}\" (line {})", link.joint_id,
+                             link.name, other.name, other.sources.joint_id.line),
+                 "give every joint its own id; Choreonoid keeps only one joint per id");
+    }
+  }
+  if (first.empty()) return;
+  // Choreonoid warns "Joint ID n is not specified" for every unused id below the largest.
+  std::vector<int> missing;
+  LinkIndex after_gap = -1;
+  int expected = 0;
+  for (const auto& [id, index] : first) {
+    if (id > expected && after_gap < 0) after_gap = index;
+    for (; expected < id; ++expected) missing.push_back(expected);
+    expected = id + 1;
+  }
+  if (missing.empty()) return;
+  const Link& link = ctx.model.links[after_gap];
+  const std::size_t shown = std::min<std::size_t>(missing.size(), 20);
+  std::string list = fmt::format("{}", fmt::join(missing.begin(), missing.begin() + static_cast<std::ptrdiff_t>(shown), ", "));
+  if (shown < missing.size()) list += fmt::format(", ... ({} in all)", missing.size());
+  ctx.report("joint-id-gap", first_known({&link.sources.joint_id, &link.source}),
+             fmt::format("joint ids are not contiguous: {} {} missing below the largest id {}", list,
+                         missing.size() == 1 ? "is" : "are", first.rbegin()->first),
+             "number the joints 0..n-1; Choreonoid reserves a joint slot for every missing id");
+}
+
+void check_axis(const RuleContext& ctx, const Link& link) {
+  if (!is_one_dof(link) && link.joint_type != JointType::kPseudoContinuousTrack) return;
+  const SourceLocation at = first_known({&link.sources.joint_axis, &link.source});
+  const double norm = link.joint_axis.norm();
+  if (norm < 1e-9) {
+    ctx.report("joint-axis-zero", at,
+               fmt::format("joint axis of link \"{}\" is the zero vector {}", link.name, vec(link.joint_axis)),
+               "give the axis a direction, e.g. joint_axis: Z");
+    return;
+  }
+  if (std::abs(norm - 1) > 1e-6) {
+    ctx.report("joint-axis-not-unit", at,
+               fmt::format("joint axis {} of link \"{}\" has length {}; Choreonoid does not normalise it, so "
+                           "velocities and displacements are scaled by it",
+                           vec(link.joint_axis), link.name, num(norm)),
+               fmt::format("joint_axis: {}", vec(link.joint_axis / norm)));
+  }
+}
+
+void check_range(const RuleContext& ctx, const Link& link) {
+  if (!is_one_dof(link)) return;
+  const SourceLocation at = first_known({&link.sources.joint_range, &link.source});
+  const double lo = link.joint_range_lower, hi = link.joint_range_upper;
+  const bool revolute = link.joint_type == JointType::kRevolute;
+  const double shown = revolute && ctx.model.angles_in_degrees ? 180 / kPi : 1.0;
+  const char* unit = revolute ? (ctx.model.angles_in_degrees ? " deg" : " rad") : " m";
+  auto written = [&](double v) { return std::abs(v) >= kUnlimited ? limit(v) : num(v * shown) + unit; };
+  if (lo > hi) {
+    ctx.report("joint-range-reversed", at,
+               fmt::format("joint range of link \"{}\" is reversed: lower {} > upper {}", link.name, written(lo),
+                           written(hi)),
+               fmt::format("write joint_range: [{}, {}]", limit(hi * (std::abs(hi) < kUnlimited ? shown : 1)),
+                           limit(lo * (std::abs(lo) < kUnlimited ? shown : 1))));
+  } else if (lo == hi) {
+    ctx.report("joint-range-zero-width", at,
+               fmt::format("joint range of link \"{}\" has zero width ({} .. {}): the joint cannot move", link.name,
+                           written(lo), written(hi)),
+               "use joint_type: fixed for a joint that must not move");
+  }
+}
+
+void check_velocity(const RuleContext& ctx, const Link& link) {
+  if (!is_one_dof(link) && link.joint_type != JointType::kPseudoContinuousTrack) return;
+  const double lo = link.velocity_lower, hi = link.velocity_upper;
+  if (lo <= 0 && 0 <= hi) return;
+  const SourceLocation at = first_known({&link.sources.joint_velocity, &link.source});
+  const bool revolute = link.joint_type == JointType::kRevolute;
+  const double shown = revolute && ctx.model.angles_in_degrees ? 180 / kPi : 1.0;
+  const char* unit = revolute ? (ctx.model.angles_in_degrees ? " deg/s" : " rad/s") : " m/s";
+  auto written = [&](double v) { return std::abs(v) >= kUnlimited ? limit(v) : num(v * shown) + unit; };
+  std::string what = lo > hi ? "a negative velocity limit" : "a velocity range that excludes zero";
+  ctx.report("joint-velocity-negative", at,
+             fmt::format("link \"{}\" has {} ({} .. {}): the joint cannot stand still within it", link.name, what,
+                         written(lo), written(hi)),
+             "max_joint_velocity is a positive magnitude; joint_velocity_range must contain 0");
+}
+
+}  // namespace
+
+void check_joints(const RuleContext& ctx) {
+  check_ids(ctx);
+  for (const Link& link : ctx.model.links) {
+    check_axis(ctx, link);
+    check_range(ctx, link);
+    check_velocity(ctx, link);
+  }
+}
+
+}  // namespace bodyfmt::validate::detail

@@ -1,0 +1,10 @@
+// rules_doc: prints docs/rules.md (the rule table as Markdown). No options.
+#include <bodyfmt/validate.h>
+
+#include <cstdio>
+
+int main() {
+  const std::string text = bodyfmt::validate::rules_markdown();
+  std::fwrite(text.data(), 1, text.size(), stdout);
+  return 0;
+}
