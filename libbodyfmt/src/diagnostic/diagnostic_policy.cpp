@@ -218,7 +218,13 @@ std::string find_config(const std::string& file) {
   if (ec) return {};
   for (;;) {
     fs::path candidate = dir / ".bodycheck.yaml";
-    if (fs::is_regular_file(candidate, ec)) return candidate.lexically_normal().string();
+    if (fs::is_regular_file(candidate, ec)) {
+      // Relative to the working directory when below it, as the user would write it.
+      fs::path normal = candidate.lexically_normal();
+      fs::path relative = normal.lexically_relative(fs::current_path(ec));
+      if (!ec && !relative.empty() && relative.begin()->string() != "..") return relative.string();
+      return normal.string();
+    }
     fs::path parent = dir.parent_path();
     if (parent == dir || parent.empty()) return {};
     dir = parent;

@@ -1,0 +1,133 @@
+// The bodycheck command line on the small files of tests/data/bodycheck: exit codes, the
+// located text, formats, options and configs. Run from inside that folder, so that paths in
+// the output are relative and stable.
+#include <doctest/doctest.h>
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <string>
+
+namespace {
+
+struct Run {
+  int status = -1;
+  std::string output;  // stdout, then stderr when `merge`
+};
+
+Run bodycheck(const std::string& args, bool merge = true) {
+  const std::string command = std::string("cd '") + BODYFMT_TEST_DATA_DIR + "/bodycheck' && '" +
+                              BODYFMT_BODYCHECK + "' " + args + (merge ? " 2>&1" : " 2>/dev/null");
+  Run run;
+  FILE* pipe = popen(command.c_str(), "r");
+  REQUIRE(pipe != nullptr);
+  char buffer[4096];
+  std::size_t n;
+  while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) run.output.append(buffer, n);
+  const int status = pclose(pipe);
+  run.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
+}
+
+bool contains(const std::string& text, const std::string& what) { return text.find(what) != std::string::npos; }
+
+}  // namespace
+
+TEST_CASE("bodycheck: a clean file exits 0 with a summary") {
+  Run r = bodycheck("clean.body");
+  CHECK(r.status == 0);
+  CHECK(r.output == "bodycheck: 1 file checked: 0 errors, 0 warnings, 0 notes\n");
+  CHECK(bodycheck("--quiet clean.body").output.empty());
+}
+
+TEST_CASE("bodycheck: an error exits 1 with the located message, source line and caret") {
+  Run r = bodycheck("defective.body");
+  CHECK(r.status == 1);
+  CHECK(contains(r.output,
+                 "defective.body:16:17: error: illegal joint type \"hinge\" [load-joint-type]\n"
+                 "    joint_type: hinge\n"
+                 "                ^\n"
+                 "defective.body:16:17: note: use revolute"));
+}
+
+TEST_CASE("bodycheck: --fail-on, --werror and --disable decide the exit code") {
+  CHECK(bodycheck("warning.body").status == 0);  // warnings do not fail by default
+  CHECK(bodycheck("--fail-on warning warning.body").status == 1);
+  Run werror = bodycheck("--werror warning.body");
+  CHECK(werror.status == 1);
+  CHECK(contains(werror.output, "warning.body:11:5: error: duplicate key \"mass\""));
+  Run disabled = bodycheck("--disable yaml-duplicate-key --fail-on warning warning.body");
+  CHECK(disabled.status == 0);
+  CHECK(contains(disabled.output, "1 disabled"));
+  CHECK(bodycheck("--disable load-joint-type defective.body").status == 0);
+}
+
+TEST_CASE("bodycheck: usage errors exit 2, unknown rule ids with did-you-mean") {
+  Run r = bodycheck("--disable yaml-duplicat-key warning.body");
+  CHECK(r.status == 2);
+  CHECK(contains(r.output, "did you mean 'yaml-duplicate-key'?"));
+  CHECK(bodycheck("--enable no-such-rule warning.body").status == 2);
+  CHECK(bodycheck("--format xml warning.body").status == 2);
+  CHECK(bodycheck("").status == 2);
+  CHECK(bodycheck("no-such-file.body").status == 2);
+  CHECK(bodycheck("--help").status == 0);
+}
+
+TEST_CASE("bodycheck: a file that cannot be loaded exits 2") {
+  Run r = bodycheck("unloadable.body clean.body");
+  CHECK(r.status == 2);
+  CHECK(contains(r.output, "unloadable.body:5:1: fatal error: "));
+  CHECK(contains(r.output, "[yaml-syntax]"));
+}
+
+TEST_CASE("bodycheck: inline suppressions") {
+  Run r = bodycheck("--fail-on warning suppressed.body");
+  CHECK(r.status == 0);
+  CHECK(r.output == "bodycheck: 1 file checked: 0 errors, 0 warnings, 0 notes, 2 suppressed\n");
+}
+
+TEST_CASE("bodycheck: configs are found per file and the nearest wins") {
+  // configured/.bodycheck.yaml disables yaml-duplicate-key; configured/strict/ has its own
+  // config (fail_on: warning) without that, so only the inner file reports and fails.
+  Run r = bodycheck("configured");
+  CHECK(r.status == 1);
+  CHECK(contains(r.output, "configured/strict/warning.body:11:5: warning: duplicate key"));
+  CHECK(!contains(r.output, "configured/warning.body:"));
+  CHECK(contains(r.output, "2 files checked"));
+  CHECK(bodycheck("--fail-on error configured").status == 0);  // the command line wins
+  CHECK(bodycheck("--no-config configured/warning.body --fail-on warning").status == 1);
+  Run bad = bodycheck("bad_config/clean.body");
+  CHECK(bad.status == 2);
+  CHECK(contains(bad.output, "bad_config/.bodycheck.yaml:2:11: error: unknown rule id 'yaml-duplicat-key'; did "
+                             "you mean 'yaml-duplicate-key'? [config-invalid]"));
+}
+
+TEST_CASE("bodycheck: directories, order and formats") {
+  // Output is sorted by file whatever the argument order and thread timing.
+  Run a = bodycheck("-j 4 warning.body defective.body", false);
+  Run b = bodycheck("-j 1 defective.body warning.body", false);
+  CHECK(a.output == b.output);
+  CHECK(a.output.find("defective.body:") < a.output.find("warning.body:"));
+
+  Run json = bodycheck("--format json defective.body warning.body", false);
+  CHECK(json.status == 1);
+  CHECK(contains(json.output, "\"version\": 1,"));
+  CHECK(contains(json.output, "\"file\": \"defective.body\", \"line\": 16, \"column\": 17, \"severity\": \"error\", "
+                              "\"rule\": \"load-joint-type\""));
+  CHECK(contains(json.output, "\"summary\": {\"files\": 2,"));
+
+  Run sarif = bodycheck("--format sarif defective.body", false);
+  CHECK(sarif.status == 1);
+  CHECK(contains(sarif.output, "\"version\": \"2.1.0\""));
+  CHECK(contains(sarif.output, "\"ruleId\": \"load-joint-type\""));
+  CHECK(contains(sarif.output, "\"uri\": \"defective.body\", \"uriBaseId\": \"%SRCROOT%\""));
+
+  Run stats = bodycheck("--stats defective.body warning.body");
+  CHECK(contains(stats.output, "     1  load-joint-type\n"));
+  CHECK(contains(stats.output, "     1  yaml-duplicate-key\n"));
+
+  Run list = bodycheck("--list-rules");
+  CHECK(list.status == 0);
+  CHECK(contains(list.output, "yaml-duplicate-key"));
+  CHECK(contains(list.output, "config-invalid"));
+}

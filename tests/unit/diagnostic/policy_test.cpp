@@ -1,0 +1,175 @@
+// DiagnosticPolicy: enable/disable, werror, strict, inline suppressions, counts; config files.
+#include <bodyfmt/diagnostic_policy.h>
+
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+
+using namespace bodyfmt;
+
+namespace {
+
+Diagnostic make(int line, Severity severity, std::string rule, std::string file = "m.body") {
+  Diagnostic d;
+  d.location = {std::move(file), line, 3};
+  d.severity = severity;
+  d.rule_id = std::move(rule);
+  d.message = "m";
+  return d;
+}
+
+}  // namespace
+
+TEST_CASE("policy: disable drops a rule and enable wins; families match by prefix") {
+  CollectingSink out;
+  PolicyOptions options;
+  options.disable = {"units-*", "yaml-duplicate-key"};
+  options.enable = {"units-prismatic-millimetres"};
+  DiagnosticPolicy policy(out, options);
+  policy.report(make(1, Severity::kWarning, "yaml-duplicate-key"));
+  policy.report(make(2, Severity::kWarning, "units-mesh-millimetres"));
+  policy.report(make(3, Severity::kWarning, "units-prismatic-millimetres"));
+  policy.report(make(4, Severity::kError, "load-joint-type"));
+  policy.report(make(5, Severity::kFatal, "yaml-duplicate-key"));  // fatal is never dropped
+  REQUIRE(out.diagnostics().size() == 3);
+  CHECK(out.diagnostics()[0].rule_id == "units-prismatic-millimetres");
+  CHECK(out.diagnostics()[1].rule_id == "load-joint-type");
+  CHECK(out.diagnostics()[2].severity == Severity::kFatal);
+  CHECK(policy.disabled_count() == 2);
+  CHECK(policy.count(Severity::kWarning) == 1);
+  CHECK(policy.error_count() == 2);
+  CHECK(policy.counts_by_rule().at("units-prismatic-millimetres") == 1);
+  CHECK(!policy.enabled("units-mesh-millimetres"));
+  CHECK(policy.enabled("units-prismatic-millimetres"));
+}
+
+TEST_CASE("policy: werror turns warnings into errors, strict turns export-loss into an error") {
+  CollectingSink out;
+  PolicyOptions options;
+  options.werror = true;
+  DiagnosticPolicy policy(out, options);
+  policy.report(make(1, Severity::kWarning, "yaml-duplicate-key"));
+  policy.report(make(2, Severity::kNote, "load-info-key"));
+  CHECK(out.diagnostics()[0].severity == Severity::kError);
+  CHECK(out.diagnostics()[1].severity == Severity::kNote);
+  CHECK(policy.count(Severity::kWarning) == 0);
+  CHECK(policy.count(Severity::kError) == 1);
+
+  CollectingSink strict_out;
+  PolicyOptions strict;
+  strict.strict = true;
+  DiagnosticPolicy strict_policy(strict_out, strict);
+  strict_policy.report(make(1, Severity::kWarning, "export-loss"));
+  strict_policy.report(make(2, Severity::kNote, "export-loss"));
+  strict_policy.report(make(3, Severity::kWarning, "export-name"));
+  CHECK(strict_out.diagnostics()[0].severity == Severity::kError);
+  CHECK(strict_out.diagnostics()[1].severity == Severity::kError);
+  CHECK(strict_out.diagnostics()[2].severity == Severity::kWarning);
+}
+
+TEST_CASE("policy: inline suppression on the same line and on the line before") {
+  const std::string text =
+      "a: 1  # bodycheck: disable=rule-a\n"                     // 1: covers line 1
+      "# bodycheck: disable=rule-b, rule-c  because reasons\n"  // 2: covers line 4 (3 stacks)
+      "  # bodycheck: disable=rule-d\n"                         // 3
+      "b: 2\n"                                                  // 4
+      "c: \"# bodycheck: disable=rule-e\"\n"                    // 5: inside a string, ignored
+      "d: x#bodycheck: disable=rule-f\n"                        // 6: not a comment (no blank)
+      "e: 3 #bodycheck:disable=fam-*\n";                        // 7
+  Suppressions s = Suppressions::from_text(text);
+  CHECK(s.suppresses(1, "rule-a"));
+  CHECK(!s.suppresses(2, "rule-a"));
+  CHECK(!s.suppresses(1, "rule-b"));
+  CHECK(s.suppresses(4, "rule-b"));
+  CHECK(s.suppresses(4, "rule-c"));
+  CHECK(s.suppresses(4, "rule-d"));
+  CHECK(!s.suppresses(4, "because"));
+  CHECK(!s.suppresses(3, "rule-b"));
+  CHECK(!s.suppresses(5, "rule-e"));
+  CHECK(!s.suppresses(6, "rule-f"));
+  CHECK(s.suppresses(7, "fam-x"));
+
+  CollectingSink out;
+  DiagnosticPolicy policy(out);
+  policy.set_suppressions("m.body", s);
+  policy.report(make(1, Severity::kError, "rule-a"));
+  policy.report(make(4, Severity::kWarning, "rule-d"));
+  policy.report(make(4, Severity::kWarning, "rule-x"));
+  Diagnostic via = make(9, Severity::kError, "rule-a");
+  via.via = SourceLocation{"m.body", 1, 1};  // suppressed at the alias use site
+  policy.report(via);
+  REQUIRE(out.diagnostics().size() == 1);
+  CHECK(out.diagnostics()[0].rule_id == "rule-x");
+  CHECK(policy.suppressed_count() == 3);
+}
+
+TEST_CASE("policy: suppressions are read from the file a diagnostic points at") {
+  const std::string path = "policy_suppression_test.body";
+  std::ofstream(path) << "x: 1\n# bodycheck: disable=yaml-duplicate-key\nx: 2\n";
+  CollectingSink out;
+  DiagnosticPolicy policy(out);
+  policy.report(make(3, Severity::kWarning, "yaml-duplicate-key", path));
+  policy.report(make(1, Severity::kWarning, "yaml-duplicate-key", path));
+  policy.report(make(1, Severity::kWarning, "yaml-duplicate-key", "no/such/file.body"));
+  CHECK(out.diagnostics().size() == 2);
+  CHECK(policy.suppressed_count() == 1);
+  std::filesystem::remove(path);
+}
+
+TEST_CASE("policy: rule patterns are checked against the rule table with did-you-mean") {
+  CHECK(check_rule_pattern("yaml-duplicate-key").empty());
+  CHECK(check_rule_pattern("units-*").empty());
+  CHECK(check_rule_pattern("yaml-duplicat-key") ==
+        "unknown rule id 'yaml-duplicat-key'; did you mean 'yaml-duplicate-key'?");
+  CHECK(check_rule_pattern("nothing-like-it-*").find("--list-rules") != std::string::npos);
+  CHECK(rule_pattern_matches("a-*", "a-b"));
+  CHECK(!rule_pattern_matches("a-*", "ab"));
+  CHECK(rule_pattern_matches("a", "a"));
+}
+
+TEST_CASE("policy: config discovery walks up and the nearest config wins") {
+  namespace fs = std::filesystem;
+  const fs::path root = fs::temp_directory_path() / "bodyfmt_policy_config_test";
+  fs::remove_all(root);
+  fs::create_directories(root / "a" / "b" / "c");
+  std::ofstream(root / ".bodycheck.yaml") << "werror: true\n";
+  std::ofstream(root / "a" / "b" / ".bodycheck.yaml") << "fail_on: warning\n";
+  CHECK(find_config((root / "a" / "b" / "c" / "x.body").string()) == (root / "a" / "b" / ".bodycheck.yaml").string());
+  CHECK(find_config((root / "a" / "b" / "x.body").string()) == (root / "a" / "b" / ".bodycheck.yaml").string());
+  CHECK(find_config((root / "a" / "x.body").string()) == (root / ".bodycheck.yaml").string());
+  fs::remove_all(root);
+}
+
+TEST_CASE("policy: config keys and located errors for a malformed config") {
+  CollectingSink sink;
+  auto config = read_config_string(
+      "# comment\ndisable: [units-*, yaml-duplicate-key]\nenable: load-info-key\nfail_on: warning\nwerror: yes\n",
+      "c.yaml", sink);
+  REQUIRE(config);
+  CHECK(sink.diagnostics().empty());
+  CHECK(config->disable == std::vector<std::string>{"units-*", "yaml-duplicate-key"});
+  CHECK(config->enable == std::vector<std::string>{"load-info-key"});
+  CHECK(config->fail_on == Severity::kWarning);
+  CHECK(config->werror == true);
+
+  CHECK(read_config_string("", "c.yaml", sink));  // empty is fine
+
+  auto expect_error = [](const std::string& text, int line, int column, const std::string& fragment) {
+    CollectingSink errors;
+    CHECK(!read_config_string(text, "c.yaml", errors));
+    REQUIRE(errors.diagnostics().size() == 1);
+    const Diagnostic& d = errors.diagnostics()[0];
+    CHECK(d.rule_id == "config-invalid");
+    CHECK(d.severity == Severity::kError);
+    CHECK(d.location == SourceLocation{"c.yaml", line, column});
+    CHECK(d.message.find(fragment) != std::string::npos);
+  };
+  expect_error("disable: [yaml-duplicat-key]\n", 1, 11, "did you mean 'yaml-duplicate-key'");
+  expect_error("fail_on: sometimes\n", 1, 10, "'fail_on' must be");
+  expect_error("werror: maybe\n", 1, 9, "'werror' must be");
+  expect_error("# x\ndisabled: [a]\n", 2, 1, "unknown key 'disabled'");
+  expect_error("disable: {a: 1}\n", 1, 10, "list of rule ids");
+  expect_error("- a\n", 1, 1, "must be a mapping");
+  expect_error("disable: [a\n", 2, 1, "malformed YAML");
+}
