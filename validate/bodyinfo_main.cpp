@@ -17,11 +17,13 @@ int main(int argc, char** argv) {
   std::size_t max_nodes = bodyfmt::LoadOptions{}.max_expanded_yaml_nodes;
   bool quiet = false;
   bool no_meshes = false;
+  std::vector<std::string> package_paths;
   app.add_option("file", path, "the .body file")->required();
   app.add_option("--format", format, "output format")->check(CLI::IsMember({"text", "yaml"}));
   app.add_option("--max-yaml-nodes", max_nodes, "limit on YAML nodes after alias expansion");
   app.add_flag("-q,--quiet", quiet, "print no notes");
   app.add_flag("--no-meshes", no_meshes, "do not import external mesh files");
+  app.add_option("--package-path", package_paths, "a folder holding ROS packages for package:// URIs (repeatable)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -32,6 +34,7 @@ int main(int argc, char** argv) {
   bodyfmt::LoadOptions options;
   options.max_expanded_yaml_nodes = max_nodes;
   options.load_meshes = !no_meshes;
+  options.package_paths = package_paths;
   bodyfmt::CollectingSink sink;
   auto model = bodyfmt::load_body(path, options, sink);
   bodyfmt::Derived derived;

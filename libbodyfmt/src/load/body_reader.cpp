@@ -29,7 +29,9 @@ const std::vector<std::string_view> kHeaderKeys = {
 }  // namespace
 
 BodyReader::BodyReader(const LoadOptions& options, DiagnosticSink& sink, LoadSession& session)
-    : options_(options), ctx_(sink), session_(session) {}
+    : options_(options), ctx_(sink), session_(session) {
+  ctx_.package_paths = options.package_paths;
+}
 
 BodyReader::~BodyReader() = default;
 

@@ -266,6 +266,10 @@ std::string resolve_uri(LoadContext& ctx, const yaml::NodeRef& at, const std::st
     std::string rest = path.substr(scheme_end + 3);
     std::string package = rest.substr(0, rest.find('/'));
     std::string inside = rest.find('/') == std::string::npos ? "" : rest.substr(rest.find('/') + 1);
+    for (const std::string& root : ctx.package_paths) {
+      fs::path candidate = fs::path(root) / package / inside;
+      if (fs::exists(candidate)) return candidate.lexically_normal().string();
+    }
     if (const char* roots = std::getenv("ROS_PACKAGE_PATH")) {
       std::string all = roots;
       std::size_t start = 0;
@@ -279,7 +283,7 @@ std::string resolve_uri(LoadContext& ctx, const yaml::NodeRef& at, const std::st
       }
     }
     ctx.error("load-uri", at, "package \"" + package + "\" of URI \"" + uri + "\" is not found",
-              "add its parent folder to ROS_PACKAGE_PATH");
+              "add its parent folder to ROS_PACKAGE_PATH or pass it as a package path");
     return {};
   }
   if (path.rfind("${", 0) == 0) {

@@ -9,6 +9,7 @@
 #include <set>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace bodyfmt::detail {
 
@@ -16,6 +17,8 @@ struct LoadContext {
   DiagnosticSink& sink;
   bool degrees = true;  ///< the file's angle unit (body-format-spec §3)
   int errors = 0;
+  /// Roots searched for `package://NAME/...` before ROS_PACKAGE_PATH.
+  std::vector<std::string> package_paths;
   /// Keys of diagnostics that are reported once per load (e.g. one per plugin node type).
   std::set<std::string> reported_once;
 
