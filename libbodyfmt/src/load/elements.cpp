@@ -41,7 +41,8 @@ ElementReader::ElementReader(LoadContext& ctx, Model& model, LinkIndex link, Res
 void ElementReader::read_elements(const yaml::NodeRef& elements, const ElementFrame& frame) {
   if (!elements) return;
   if (elements->is_sequence()) {
-    for (const yaml::NodeRef& item : elements->items) {
+    for (const yaml::NodeRef& raw_item : elements->items) {
+      const yaml::NodeRef item = elements.child(raw_item);
       if (!item->is_mapping()) {
         ctx_.error("load-type", item, "an element must be a mapping");
         continue;
@@ -76,8 +77,7 @@ void ElementReader::read_elements(const yaml::NodeRef& elements, const ElementFr
                        e->key + "\" specified in the parent node");
         continue;
       }
-      yaml::NodeRef value = e->value;
-      read_node(value, e->key, frame);
+      read_node(elements.child(e->value), e->key, frame);
     }
     return;
   }

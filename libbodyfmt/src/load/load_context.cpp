@@ -15,6 +15,7 @@ void LoadContext::report(Severity severity, std::string_view rule, const yaml::N
     // Point at the text the reader sees; when that is an alias, also name the anchor's value.
     d.location = at.use_site();
     if (at.alias_site) d.via = at->location;
+    else if (at.enclosing_alias) d.via = at.enclosing_alias;
   }
   if (severity >= Severity::kError) ++errors;
   sink.report(std::move(d));

@@ -23,7 +23,7 @@ yaml::NodeRef MappingReader::take(KeyNames names) {
                          std::string(*names.begin()) + "\"",
                      "rename it to " + std::string(*names.begin()));
       }
-      return entry->value;
+      return mapping_.child(entry->value);
     }
     modern = false;
   }

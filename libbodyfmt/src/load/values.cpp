@@ -32,7 +32,7 @@ std::optional<Eigen::VectorXd> read_vector(LoadContext& ctx, const yaml::NodeRef
   }
   Eigen::VectorXd v(size);
   for (int i = 0; i < size; ++i) {
-    auto x = required_double(ctx, ref->items[static_cast<std::size_t>(i)]);
+    auto x = required_double(ctx, ref.child(ref->items[static_cast<std::size_t>(i)]));
     if (!x) return std::nullopt;
     v[i] = *x;
   }
@@ -61,7 +61,7 @@ std::optional<std::vector<double>> read_numbers(LoadContext& ctx, const yaml::No
   std::vector<double> values;
   values.reserve(ref->items.size());
   for (const yaml::NodeRef& item : ref->items) {
-    auto x = required_double(ctx, item);
+    auto x = required_double(ctx, ref.child(item));
     if (!x) return std::nullopt;
     values.push_back(*x);
   }

@@ -22,6 +22,17 @@ struct Node;
 struct NodeRef {
   const Node* node = nullptr;
   std::optional<SourceLocation> alias_site;
+  /// Set by readers on the children of a node reached through an alias: the alias use site
+  /// of the nearest such ancestor, so that a finding inside shared text can name the use
+  /// that led to it.
+  std::optional<SourceLocation> enclosing_alias;
+
+  /// `child` as seen through this node: it inherits this node's alias context.
+  NodeRef child(const NodeRef& child) const {
+    NodeRef result = child;
+    if (!result.alias_site) result.enclosing_alias = alias_site ? alias_site : enclosing_alias;
+    return result;
+  }
 
   const Node* operator->() const { return node; }
   const Node& operator*() const { return *node; }
