@@ -1,0 +1,142 @@
+// converters/common: atomic output, names, numbers, mesh bytes.
+#include <bodyfmt/converters/loss.h>
+#include <bodyfmt/converters/mesh_writer.h>
+#include <bodyfmt/converters/names.h>
+#include <bodyfmt/converters/numbers.h>
+#include <bodyfmt/converters/output_set.h>
+
+#include <doctest/doctest.h>
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace fs = std::filesystem;
+using namespace bodyfmt;
+using namespace bodyfmt::converters;
+
+namespace {
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("bodyfmt_conv_" + std::to_string(::getpid()) + "_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string read(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+int count_entries(const fs::path& dir) {
+  int n = 0;
+  for (auto it = fs::recursive_directory_iterator(dir); it != fs::recursive_directory_iterator(); ++it) ++n;
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("converters: OutputSet writes every staged file on commit and nothing before") {
+  const fs::path dir = fresh_dir("commit");
+  OutputSet out(dir / "robot.urdf");
+  out.set_main("<robot/>");
+  out.add("meshes/a.stl", "abc");
+  CHECK(count_entries(dir) == 0);
+  CollectingSink sink;
+  REQUIRE(out.commit(sink));
+  CHECK(read(dir / "robot.urdf") == "<robot/>");
+  CHECK(read(dir / "meshes/a.stl") == "abc");
+  CHECK(count_entries(dir) == 3);  // robot.urdf, meshes/, meshes/a.stl: no temporary files left
+  fs::remove_all(dir);
+}
+
+TEST_CASE("converters: a failed commit keeps the existing output and leaves no partial file") {
+  const fs::path dir = fresh_dir("fail");
+  { std::ofstream(dir / "robot.urdf") << "old"; }
+  { std::ofstream(dir / "meshes") << "a file where the mesh folder should go"; }
+  OutputSet out(dir / "robot.urdf");
+  out.set_main("new");
+  out.add("meshes/a.stl", "abc");
+  CollectingSink sink;
+  CHECK_FALSE(out.commit(sink));
+  REQUIRE(sink.diagnostics().size() == 1);
+  CHECK(sink.diagnostics()[0].rule_id == "export-write");
+  CHECK(sink.diagnostics()[0].severity == Severity::kFatal);
+  CHECK(read(dir / "robot.urdf") == "old");
+  CHECK(count_entries(dir) == 2);  // no temporary file
+  fs::remove_all(dir);
+}
+
+TEST_CASE("converters: after fail() commit writes nothing") {
+  const fs::path dir = fresh_dir("failed");
+  OutputSet out(dir / "robot.urdf");
+  out.set_main("x");
+  out.fail();
+  CollectingSink sink;
+  CHECK_FALSE(out.commit(sink));
+  CHECK(sink.diagnostics().empty());
+  CHECK(count_entries(dir) == 0);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("converters: report_loss emits export-loss at the given location") {
+  CollectingSink sink;
+  report_loss(sink, SourceLocation{"a.body", 12, 7}, "URDF", "a texture", "colours are kept");
+  REQUIRE(sink.diagnostics().size() == 1);
+  const Diagnostic& d = sink.diagnostics()[0];
+  CHECK(d.rule_id == "export-loss");
+  CHECK(d.severity == Severity::kWarning);
+  CHECK(d.location.line == 12);
+  CHECK(d.location.column == 7);
+  CHECK(d.fix_hint == "colours are kept");
+}
+
+TEST_CASE("converters: numbers are shortest round-trip and never -0") {
+  CHECK(format_number(0.1 + 0.2) == "0.30000000000000004");
+  CHECK(format_number(1.0) == "1");
+  CHECK(format_number(-0.0) == "0");
+  CHECK(format_number(1e-5) == "1e-05");
+  CHECK(std::stod(format_number(M_PI)) == M_PI);
+  CHECK(format_vector(Eigen::Vector3d(1, -0.0, 2.5)) == "1 0 2.5");
+}
+
+TEST_CASE("converters: XML escaping, comments and URDF names") {
+  CHECK(xml_escape("a<b>&\"c'") == "a&lt;b&gt;&amp;&quot;c&apos;");
+  CHECK(xml_comment_text("a--b-") == "a- -b- ");
+  CHECK(is_xml_text("caf\xc3\xa9"));
+  CHECK_FALSE(is_xml_text("bad\x01"));
+  CHECK_FALSE(is_xml_text("\xff"));
+  CHECK(urdf_name_problem("RARM_WRIST_R").empty());
+  CHECK(urdf_name_problem("link-1.a").empty());
+  CHECK_FALSE(urdf_name_problem("").empty());
+  CHECK_FALSE(urdf_name_problem("1link").empty());
+  CHECK_FALSE(urdf_name_problem("upper arm").empty());
+  CHECK(file_stem("a b/c") == "a_b_c");
+  CHECK(file_stem(".hidden") == "_.hidden");
+}
+
+TEST_CASE("converters: binary STL layout and deterministic DAE") {
+  TriangleMesh mesh;
+  mesh.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  mesh.triangles = {{0, 1, 2}};
+  const std::string stl = write_stl(mesh);
+  CHECK(stl.size() == 80 + 4 + 50);
+  CHECK(stl.rfind("solid", 0) != 0);
+  float nz;
+  std::memcpy(&nz, stl.data() + 84 + 8, 4);
+  CHECK(nz == 1.0f);
+  std::string error;
+  Material m;
+  m.diffuse_color = {1, 0, 0};
+  const auto a = write_dae(mesh, m, "tri", error);
+  REQUIRE(a);
+  const auto b = write_dae(mesh, m, "tri", error);
+  REQUIRE(b);
+  CHECK(*a == *b);
+  CHECK(a->find("<created>2000-01-01T00:00:00</created>") != std::string::npos);
+}
