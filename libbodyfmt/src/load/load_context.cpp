@@ -6,29 +6,29 @@ namespace bodyfmt::detail {
 
 void LoadContext::report(Severity severity, std::string_view rule, const yaml::NodeRef& at,
                          std::string message, std::string hint) {
-  Diagnostic d;
-  d.severity = severity;
-  d.rule_id = std::string(rule);
-  d.message = std::move(message);
-  d.fix_hint = std::move(hint);
-  if (at) {
-    // Point at the text the reader sees; when that is an alias, also name the anchor's value.
-    d.location = at.use_site();
-    if (at.alias_site) d.via = at->location;
-    else if (at.enclosing_alias) d.via = at.enclosing_alias;
-  }
-  if (severity >= Severity::kError) ++errors;
-  sink.report(std::move(d));
+  if (!at) return report(severity, rule, SourceLocation{}, std::move(message), std::move(hint));
+  // Point at the text the reader sees; when that is an alias, also name the anchor's value,
+  // and inside shared text name the alias use that led to it.
+  std::optional<SourceLocation> via;
+  if (at.alias_site) via = at->location;
+  else if (at.enclosing_alias) via = at.enclosing_alias;
+  emit(severity, rule, at.use_site(), std::move(via), std::move(message), std::move(hint));
 }
 
 void LoadContext::report(Severity severity, std::string_view rule, const SourceLocation& at,
                          std::string message, std::string hint) {
+  emit(severity, rule, at, std::nullopt, std::move(message), std::move(hint));
+}
+
+void LoadContext::emit(Severity severity, std::string_view rule, const SourceLocation& at,
+                       std::optional<SourceLocation> via, std::string message, std::string hint) {
   Diagnostic d;
   d.severity = severity;
   d.rule_id = std::string(rule);
   d.message = std::move(message);
   d.fix_hint = std::move(hint);
   d.location = at;
+  d.via = std::move(via);
   if (severity >= Severity::kError) ++errors;
   sink.report(std::move(d));
 }

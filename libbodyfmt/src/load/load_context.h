@@ -6,6 +6,7 @@
 
 #include "yaml/yaml_node.h"
 
+#include <optional>
 #include <set>
 #include <string>
 #include <string_view>
@@ -43,6 +44,10 @@ struct LoadContext {
 
   /// Converts an angle written in the file's unit to radians.
   double angle(double value) const;
+
+ private:
+  void emit(Severity severity, std::string_view rule, const SourceLocation& at,
+            std::optional<SourceLocation> via, std::string message, std::string hint);
 };
 
 }  // namespace bodyfmt::detail

@@ -119,7 +119,11 @@ class Resources final : public ResourceReader {
       ctx_.error("resource-fragment", fragment, "fragment \"" + name + "\" is not found in \"" + uri->scalar + "\"");
       return;
     }
-    yaml::NodeRef ref{target, fragment.use_site()};
+    // The fragment is used like an alias: its findings point into the library file and name
+    // the Resource node's `node:` as the use site.
+    yaml::NodeRef ref;
+    ref.node = target;
+    ref.alias_site = fragment.use_site();
     reader.read_elements(ref, frame);
   }
 

@@ -288,13 +288,13 @@ class TreeBuilder final : public YAML::EventHandler {
     }
     if (!in_key_position()) add_to_budget(target->expanded_size, site, true);
     check_depth(static_cast<int>(frames_.size()) + target->expanded_depth, site);
-    deliver(NodeRef{target, std::move(site)});
+    deliver(NodeRef{target, std::move(site), std::nullopt});
   }
 
   void finish_scalar(Node* node) {
     node->expanded_size = 1;
     node->expanded_depth = 0;
-    deliver(NodeRef{node, std::nullopt});
+    deliver(NodeRef{node, std::nullopt, std::nullopt});
   }
 
   void begin_collection(Node* node) {
@@ -325,7 +325,7 @@ class TreeBuilder final : public YAML::EventHandler {
     // full); replace it by the exact size now that the collection is final.
     expanded_count_ = frame.count_at_start;
     if (!frame.is_key) add_to_budget(size, node->location, false);
-    deliver(NodeRef{node, std::nullopt});
+    deliver(NodeRef{node, std::nullopt, std::nullopt});
   }
 
   void deliver(NodeRef ref) {
@@ -468,7 +468,7 @@ Outcome parse_once(std::string& text, std::size_t bom_size, const std::string& f
       Node* empty = document->make_node();
       empty->location = SourceLocation{file_name, 1, 1};
       empty->expanded_size = 1;
-      document->root = NodeRef{empty, std::nullopt};
+      document->root = NodeRef{empty, std::nullopt, std::nullopt};
     } else {
       document->root = builder.root();
     }
