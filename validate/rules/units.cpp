@@ -52,7 +52,11 @@ void check_radian_range(const RuleContext& ctx, const Link& link) {
     } else {
       const double w = v * 180 / kPi;
       as_written.push_back(num(w));
-      as_degrees.push_back(num(std::round(w * 180 / kPi * 1e4) / 1e4));
+      // 1.57 means π/2: suggest the 90 it stands for, not 89.9544.
+      const double k = std::round(std::abs(w) / (kPi / 12));
+      const double meant = std::abs(std::abs(w) - k * kPi / 12) <= kRadianMatch ? std::copysign(k * 15, w)
+                                                                               : std::round(w * 180 / kPi * 1e4) / 1e4;
+      as_degrees.push_back(num(meant));
     }
   }
   ctx.report("units-range-looks-radian", first_known({&link.sources.joint_range, &link.source}),
