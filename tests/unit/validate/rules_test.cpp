@@ -258,3 +258,68 @@ TEST_CASE("validate: device-fov") { expect_finding("device-fov.body", "device-fo
 TEST_CASE("validate: device-resolution") { expect_finding("device-resolution.body", "device-resolution", {14, 9}); }
 TEST_CASE("validate: device-clip") { expect_finding("device-clip.body", "device-clip", {14, 9}); }
 TEST_CASE("validate: device-light") { expect_finding("device-light.body", "device-light", {14, 9}); }
+
+namespace {
+bodyfmt::CollectingSink check_text(std::string_view text) {
+  auto r = bodyfmt::test::load_v2(text);
+  bodyfmt::CollectingSink sink;
+  const auto derived = bodyfmt::compute_derived(r.m(), sink);
+  bodyfmt::validate::check_model(r.m(), derived, {}, sink);
+  return sink;
+}
+}  // namespace
+
+TEST_CASE("validate: device-fov accepts up to 360 degrees for a fisheye lens") {
+  // TankBody's "Theta": DUAL_FISHEYE with field_of_view 180.
+  auto sink = check_text(R"(
+links:
+  - name: BASE
+    joint_type: free
+    elements:
+      - type: Camera
+        name: THETA
+        format: COLOR
+        lens_type: DUAL_FISHEYE
+        field_of_view: 180
+)");
+  CHECK_FALSE(sink.has("device-fov"));
+}
+
+TEST_CASE("validate: plausibility warnings skip links welded to the world") {
+  // A fixed root (a floor, a table) never moves, so its mass data is never simulated.
+  auto sink = check_text(R"(
+links:
+  - name: FLOOR
+    joint_type: fixed
+    mass: 1
+    center_of_mass: [5, 0, 0]
+    inertia: [1, 0, 0, 1, 0, 1]
+    elements:
+      - type: Shape
+        geometry: { type: Box, size: [0.1, 0.1, 0.1] }
+)");
+  CHECK_FALSE(sink.has("inertia-implausible"));
+  CHECK_FALSE(sink.has("inertia-com-outside"));
+}
+
+TEST_CASE("validate: a massless moving link passes when a fixed child carries the mass") {
+  // MuJoCo's rule: a moving body may be massless if a static descendant has mass.
+  auto sink = check_text(R"(
+links:
+  - name: BASE
+    joint_type: free
+    mass: 1
+    inertia: [0.1, 0, 0, 0.1, 0, 0.1]
+  - name: ARM
+    parent: BASE
+    joint_type: revolute
+    mass: 0
+  - name: HAND
+    parent: ARM
+    joint_type: fixed
+    mass: 1
+    inertia: [0.1, 0, 0, 0.1, 0, 0.1]
+)");
+  CHECK_FALSE(sink.has("inertia-nonpositive-mass"));
+  CHECK_FALSE(sink.has("inertia-tiny"));
+}
