@@ -7,12 +7,10 @@ namespace bodyfmt::detail {
 void LoadContext::report(Severity severity, std::string_view rule, const yaml::NodeRef& at,
                          std::string message, std::string hint) {
   if (!at) return report(severity, rule, SourceLocation{}, std::move(message), std::move(hint));
-  // Point at the text the reader sees; when that is an alias, also name the anchor's value,
-  // and inside shared text name the alias use that led to it.
-  std::optional<SourceLocation> via;
-  if (at.alias_site) via = at->location;
-  else if (at.enclosing_alias) via = at.enclosing_alias;
-  emit(severity, rule, at.use_site(), std::move(via), std::move(message), std::move(hint));
+  // Point at the text responsible; when it was reached through an alias (directly or as
+  // part of shared text), `via` names the alias use that led to it (style.md §2.3).
+  std::optional<SourceLocation> via = at.alias_site ? at.alias_site : at.enclosing_alias;
+  emit(severity, rule, at->location, std::move(via), std::move(message), std::move(hint));
 }
 
 void LoadContext::report(Severity severity, std::string_view rule, const SourceLocation& at,

@@ -8,7 +8,7 @@ using bodyfmt::test::load;
 using bodyfmt::test::Pos;
 using bodyfmt::test::pos;
 
-TEST_CASE("load: a diagnostic on an aliased scalar is at the alias, via the anchor") {
+TEST_CASE("load: a diagnostic on an aliased scalar is at the anchored text, via the alias") {
   auto r = load(R"(
 format: ChoreonoidBody
 format_version: 2.0
@@ -22,14 +22,14 @@ links:
     joint_axis: *BAD
 )");
   auto d = r.take("load-axis");
-  CHECK(pos(d) == Pos{10, 17});  // the alias use site
+  CHECK(pos(d) == Pos{4, 8});  // the anchored text
   REQUIRE(d.via.has_value());
-  CHECK(pos(*d.via) == Pos{4, 8});  // the anchor
+  CHECK(pos(*d.via) == Pos{10, 17});  // the alias use site
   CHECK(d.via->file == "test.body");
   r.expect_clean();
 }
 
-TEST_CASE("load: a diagnostic on an aliased mapping is at the alias, via the anchor") {
+TEST_CASE("load: a diagnostic on an aliased mapping is at the anchored text, via the alias") {
   auto r = load(R"(
 format: ChoreonoidBody
 format_version: 2.0
@@ -43,9 +43,9 @@ links:
       - *CAM
 )");
   auto d = r.take("device-camera-dropped");
-  CHECK(pos(d) == Pos{10, 9});
+  CHECK(pos(d) == Pos{4, 8});
   REQUIRE(d.via.has_value());
-  CHECK(pos(*d.via) == Pos{4, 8});
+  CHECK(pos(*d.via) == Pos{10, 9});
   r.expect_clean();
 }
 
