@@ -33,7 +33,25 @@ BoundingBox transform_box(const Eigen::Affine3d& transform, const BoundingBox& b
   return result;
 }
 
-std::vector<LinkBounds> compute_choreonoid_bounds(const Model& model, DiagnosticSink& sink) {
+namespace {
+
+// The loader has validated every shape's parameters and reported problems at the exact
+// key; tessellating them again for bounds must not report the same problems a second time.
+class GeometryAlreadyReported : public DiagnosticSink {
+ public:
+  explicit GeometryAlreadyReported(DiagnosticSink& inner) : inner_(inner) {}
+  void report(Diagnostic d) override {
+    if (d.rule_id.rfind("geometry-", 0) != 0) inner_.report(std::move(d));
+  }
+
+ private:
+  DiagnosticSink& inner_;
+};
+
+}  // namespace
+
+std::vector<LinkBounds> compute_choreonoid_bounds(const Model& model, DiagnosticSink& outer) {
+  GeometryAlreadyReported sink(outer);
   std::vector<LinkBounds> bounds(model.links.size());
   for (std::size_t i = 0; i < model.links.size(); ++i) {
     const Link& link = model.links[i];
@@ -62,7 +80,8 @@ std::vector<LinkBounds> compute_choreonoid_bounds(const Model& model, Diagnostic
   return bounds;
 }
 
-std::vector<LinkBounds> compute_link_bounds(const Model& model, DiagnosticSink& sink) {
+std::vector<LinkBounds> compute_link_bounds(const Model& model, DiagnosticSink& outer) {
+  GeometryAlreadyReported sink(outer);
   std::vector<LinkBounds> bounds(model.links.size());
   for (std::size_t i = 0; i < model.links.size(); ++i) {
     for (const Shape& shape : model.links[i].shapes) {

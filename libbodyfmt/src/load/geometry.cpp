@@ -1,5 +1,7 @@
 #include "load/geometry.h"
 
+#include <bodyfmt/tessellate.h>
+
 #include "load/mapping_reader.h"
 #include "load/scalar.h"
 #include "load/values.h"
@@ -212,6 +214,19 @@ MeshGeometry read_mesh_keys(LoadContext& ctx, MappingReader& r) {
 
 Geometry read_indexed_face_set(LoadContext& ctx, MappingReader& r) {
   auto m = read_mesh_keys<IndexedFaceSet>(ctx, r);
+  // A polygon needs three indices before its -1; Choreonoid refuses a set with none.
+  int run = 0;
+  bool any_polygon = false;
+  for (int index : m.faces) {
+    if (index == -1) {
+      any_polygon = any_polygon || run >= 3;
+      run = 0;
+    } else {
+      ++run;
+    }
+  }
+  if (!any_polygon)
+    ctx.error("geometry-degenerate", r.node(), "this IndexedFaceSet has no polygon with three or more vertices");
   if (!m.faces.empty() && m.faces.back() != -1) {
     // body-format-spec §9: Choreonoid silently drops a last polygon not closed by -1.
     const yaml::MapEntry* faces = r.node()->find("faces");
@@ -227,6 +242,8 @@ Geometry read_triangle_mesh(LoadContext& ctx, MappingReader& r) {
   auto m = read_mesh_keys<TriangleMeshGeometry>(ctx, r);
   if (m.faces.size() % 3 != 0)
     ctx.error("geometry-degenerate", r.node(), "TriangleMesh faces must be a multiple of 3 indices");
+  else if (m.faces.empty())
+    ctx.error("geometry-degenerate", r.node(), "this TriangleMesh has no triangle");
   return m;
 }
 
@@ -344,7 +361,13 @@ std::optional<Geometry> read_geometry(LoadContext& ctx, const yaml::NodeRef& geo
     return std::nullopt;
   }
   if (auto division = r.take({"division_number", "divisionNumber"})) {
-    if (auto n = optional_int(ctx, division)) division_number = *n < 4 ? 20 : static_cast<int>(*n);
+    if (auto n = optional_int(ctx, division)) {
+      division_number = *n < 4 ? 20 : static_cast<int>(std::min<long>(*n, kMaxDivisionNumber));
+      if (*n > kMaxDivisionNumber)
+        ctx.warning("geometry-invalid-size", division,
+                    "division_number " + std::to_string(*n) + " is clamped to " + std::to_string(kMaxDivisionNumber),
+                    "a sphere has about n^2/2 vertices; use a smaller division_number");
+    }
   }
   r.take({"extra_division_number"});
   r.take({"extra_division_mode"});
@@ -371,7 +394,12 @@ std::optional<Geometry> read_geometry(LoadContext& ctx, const yaml::NodeRef& geo
 Appearance read_appearance(LoadContext& ctx, const yaml::NodeRef& appearance) {
   Appearance result;
   if (!appearance->is_mapping()) {
-    ctx.error("load-type", appearance, "appearance must be a mapping");
+    // Choreonoid reads appearance as an optional mapping: anything else is ignored (SR1DH
+    // has an empty `appearance:` whose material slipped to the Shape's indentation level).
+    ctx.warning("load-ignored-value", appearance,
+                appearance->is_null() ? "this appearance is empty; Choreonoid ignores it"
+                                      : "appearance must be a mapping; Choreonoid ignores this value",
+                "indent material and texture under appearance");
     return result;
   }
   MappingReader r(ctx, appearance, "appearance");

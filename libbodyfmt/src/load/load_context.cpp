@@ -20,6 +20,7 @@ void LoadContext::report(Severity severity, std::string_view rule, const SourceL
 
 void LoadContext::emit(Severity severity, std::string_view rule, const SourceLocation& at,
                        std::optional<SourceLocation> via, std::string message, std::string hint) {
+  if (!reported.emplace(std::string(rule), at.file, at.line, at.column, message).second) return;
   Diagnostic d;
   d.severity = severity;
   d.rule_id = std::string(rule);

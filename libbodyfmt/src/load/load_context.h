@@ -9,6 +9,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <tuple>
 #include <string_view>
 #include <vector>
 
@@ -22,6 +23,9 @@ struct LoadContext {
   std::vector<std::string> package_paths;
   /// Keys of diagnostics that are reported once per load (e.g. one per plugin node type).
   std::set<std::string> reported_once;
+  /// (rule, file, line, column, message) of every diagnostic so far: text shared through
+  /// aliases is read once per use, but a problem in it is reported once.
+  std::set<std::tuple<std::string, std::string, int, int, std::string>> reported;
 
   explicit LoadContext(DiagnosticSink& s) : sink(s) {}
 
