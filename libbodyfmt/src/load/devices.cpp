@@ -22,19 +22,8 @@ constexpr std::array<std::string_view, 14> kPluginNodes = {
     "AGXVehicleContinuousTrackDevice", "AGXBreakableJointDevice", "AGXMagneticJointDevice",
     "AGXWireDevice",     "StdActionController"};
 
-template <typename T>
-void set_if(T& target, const std::optional<T>& value) {
-  if (value) target = *value;
-}
-
-std::optional<double> opt_double(MappingReader& r, KeyNames names) {
-  yaml::NodeRef ref = r.take(names);
-  if (!ref) return std::nullopt;
-  return optional_double(r.context(), ref);
-}
-
 std::optional<double> opt_angle(MappingReader& r, KeyNames names) {
-  auto v = opt_double(r, names);
+  auto v = take_optional_double(r, names);
   if (!v) return std::nullopt;
   return r.context().angle(*v);
 }
@@ -68,20 +57,20 @@ bool read_camera(MappingReader& r, Device& d) {
   }
   d.type = c.format == "COLOR" ? "Camera" : "RangeCamera";
   c.lens_type = opt_string(r, {"lens_type", "lensType"}, c.lens_type);
-  if (auto w = r.take({"width"})) set_if(c.width, std::optional<int>(optional_int(ctx, w)));
-  if (auto h = r.take({"height"})) set_if(c.height, std::optional<int>(optional_int(ctx, h)));
-  set_if(c.field_of_view, opt_angle(r, {"field_of_view", "fieldOfView"}));
-  set_if(c.near_clip_distance, opt_double(r, {"near_clip_distance", "nearClipDistance"}));
-  set_if(c.far_clip_distance, opt_double(r, {"far_clip_distance", "farClipDistance"}));
-  set_if(c.frame_rate, opt_double(r, {"frame_rate", "frameRate"}));
+  if (auto w = r.take({"width"})) assign_if(c.width, std::optional<int>(optional_int(ctx, w)));
+  if (auto h = r.take({"height"})) assign_if(c.height, std::optional<int>(optional_int(ctx, h)));
+  assign_if(c.field_of_view, opt_angle(r, {"field_of_view", "fieldOfView"}));
+  assign_if(c.near_clip_distance, take_optional_double(r, {"near_clip_distance", "nearClipDistance"}));
+  assign_if(c.far_clip_distance, take_optional_double(r, {"far_clip_distance", "farClipDistance"}));
+  assign_if(c.frame_rate, take_optional_double(r, {"frame_rate", "frameRate"}));
   c.optical_frame = opt_string(r, {"optical_frame"}, c.optical_frame);
   if (c.optical_frame != "gl" && c.optical_frame != "cv" && c.optical_frame != "robotics")
     ctx.error("device-optical-frame", r.node()->find("optical_frame")->value,
               "unknown optical frame type \"" + c.optical_frame + "\"", "use gl, cv or robotics");
-  set_if(c.min_distance, opt_double(r, {"min_distance"}));
-  set_if(c.max_distance, opt_double(r, {"max_distance"}));
-  set_if(c.detection_rate, opt_double(r, {"detection_rate"}));
-  set_if(c.error_deviation, opt_double(r, {"error_deviation"}));
+  assign_if(c.min_distance, take_optional_double(r, {"min_distance"}));
+  assign_if(c.max_distance, take_optional_double(r, {"max_distance"}));
+  assign_if(c.detection_rate, take_optional_double(r, {"detection_rate"}));
+  assign_if(c.error_deviation, take_optional_double(r, {"error_deviation"}));
   r.take({"optical_frame_rotation"});
   d.params = c;
   return true;
@@ -89,24 +78,24 @@ bool read_camera(MappingReader& r, Device& d) {
 
 void read_range_sensor(MappingReader& r, Device& d) {
   RangeSensorParams s;
-  set_if(s.yaw_range, opt_angle(r, {"yaw_range", "yawRange", "scanAngle"}));
+  assign_if(s.yaw_range, opt_angle(r, {"yaw_range", "yawRange", "scanAngle"}));
   auto min_yaw = opt_angle(r, {"min_yaw_angle"});
   auto max_yaw = opt_angle(r, {"max_yaw_angle"});
   if (min_yaw && max_yaw) s.yaw_range = *max_yaw - *min_yaw;
-  set_if(s.yaw_step, opt_angle(r, {"yaw_step", "yawStep", "scanStep"}));
+  assign_if(s.yaw_step, opt_angle(r, {"yaw_step", "yawStep", "scanStep"}));
   r.take({"yaw_samples"});
-  set_if(s.pitch_range, opt_angle(r, {"pitch_range", "pitchRange"}));
+  assign_if(s.pitch_range, opt_angle(r, {"pitch_range", "pitchRange"}));
   auto min_pitch = opt_angle(r, {"min_pitch_angle"});
   auto max_pitch = opt_angle(r, {"max_pitch_angle"});
   if (min_pitch && max_pitch) s.pitch_range = *max_pitch - *min_pitch;
-  set_if(s.pitch_step, opt_angle(r, {"pitch_step", "pitchStep"}));
+  assign_if(s.pitch_step, opt_angle(r, {"pitch_step", "pitchStep"}));
   r.take({"pitch_samples"});
-  set_if(s.min_distance, opt_double(r, {"min_distance", "minDistance"}));
-  set_if(s.max_distance, opt_double(r, {"max_distance", "maxDistance"}));
-  set_if(s.scan_rate, opt_double(r, {"scan_rate", "scanRate"}));
-  set_if(s.scan_rate, opt_double(r, {"frame_rate"}));
-  set_if(s.detection_rate, opt_double(r, {"detection_rate"}));
-  set_if(s.error_deviation, opt_double(r, {"error_deviation"}));
+  assign_if(s.min_distance, take_optional_double(r, {"min_distance", "minDistance"}));
+  assign_if(s.max_distance, take_optional_double(r, {"max_distance", "maxDistance"}));
+  assign_if(s.scan_rate, take_optional_double(r, {"scan_rate", "scanRate"}));
+  assign_if(s.scan_rate, take_optional_double(r, {"frame_rate"}));
+  assign_if(s.detection_rate, take_optional_double(r, {"detection_rate"}));
+  assign_if(s.error_deviation, take_optional_double(r, {"error_deviation"}));
   r.take({"optical_frame"});
   r.take({"optical_frame_rotation"});
   d.type = "RangeSensor";
@@ -115,14 +104,14 @@ void read_range_sensor(MappingReader& r, Device& d) {
 
 void read_light(MappingReader& r, Device& d, bool spot) {
   LightParams l;
-  set_if(l.color, opt_vec3(r, {"color"}));
-  set_if(l.intensity, opt_double(r, {"intensity"}));
-  set_if(l.attenuation, opt_vec3(r, {"attenuation"}));
+  assign_if(l.color, opt_vec3(r, {"color"}));
+  assign_if(l.intensity, take_optional_double(r, {"intensity"}));
+  assign_if(l.attenuation, opt_vec3(r, {"attenuation"}));
   if (spot) {
-    set_if(l.direction, opt_vec3(r, {"direction"}));
-    set_if(l.beam_width, opt_angle(r, {"beam_width", "beamWidth"}));
-    set_if(l.cut_off_angle, opt_angle(r, {"cut_off_angle", "cutOffAngle"}));
-    set_if(l.cut_off_exponent, opt_double(r, {"cut_off_exponent", "cutOffExponent"}));
+    assign_if(l.direction, opt_vec3(r, {"direction"}));
+    assign_if(l.beam_width, opt_angle(r, {"beam_width", "beamWidth"}));
+    assign_if(l.cut_off_angle, opt_angle(r, {"cut_off_angle", "cutOffAngle"}));
+    assign_if(l.cut_off_exponent, take_optional_double(r, {"cut_off_exponent", "cutOffExponent"}));
   }
   d.type = spot ? "SpotLight" : "PointLight";
   d.params = l;
@@ -146,19 +135,19 @@ bool read_device_params(MappingReader& r, std::string_view t, Device& d) {
     read_light(r, d, t == "SpotLight");
   } else if (t == "ForceSensor") {
     ForceSensorParams f;
-    set_if(f.max_force, opt_vec3(r, {"max_force", "maxForce"}));
-    set_if(f.max_torque, opt_vec3(r, {"max_torque", "maxTorque"}));
+    assign_if(f.max_force, opt_vec3(r, {"max_force", "maxForce"}));
+    assign_if(f.max_torque, opt_vec3(r, {"max_torque", "maxTorque"}));
     d.type = "ForceSensor";
     d.params = f;
   } else if (t == "RateGyroSensor" || t == "AccelerationSensor" || t == "IMU") {
     InertialSensorParams s;
     if (t == "IMU") {
-      set_if(s.max_angular_velocity, opt_vec3(r, {"max_angular_velocity"}));
-      set_if(s.max_acceleration, opt_vec3(r, {"max_acceleration"}));
+      assign_if(s.max_angular_velocity, opt_vec3(r, {"max_angular_velocity"}));
+      assign_if(s.max_acceleration, opt_vec3(r, {"max_acceleration"}));
     } else if (t == "RateGyroSensor") {
-      set_if(s.max_angular_velocity, opt_vec3(r, {"max_angular_velocity", "maxAngularVelocity"}));
+      assign_if(s.max_angular_velocity, opt_vec3(r, {"max_angular_velocity", "maxAngularVelocity"}));
     } else {
-      set_if(s.max_acceleration, opt_vec3(r, {"max_acceleration", "maxAcceleration"}));
+      assign_if(s.max_acceleration, opt_vec3(r, {"max_acceleration", "maxAcceleration"}));
     }
     d.type = t == "IMU" ? "Imu" : std::string(t);
     d.params = s;

@@ -1,6 +1,7 @@
 #include "load/elements.h"
 
 #include "load/devices.h"
+#include "load/appearance.h"
 #include "load/geometry.h"
 #include "load/mapping_reader.h"
 #include "load/scalar.h"

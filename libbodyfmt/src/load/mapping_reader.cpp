@@ -1,5 +1,7 @@
 #include "load/mapping_reader.h"
 
+#include "load/scalar.h"
+
 #include <algorithm>
 #include <cctype>
 
@@ -59,6 +61,18 @@ void MappingReader::report_unknown(const std::vector<std::string_view>& known) {
                       " format; it is kept as info");
     }
   }
+}
+
+std::optional<double> take_optional_double(MappingReader& r, KeyNames names) {
+  yaml::NodeRef ref = r.take(names);
+  if (!ref) return std::nullopt;
+  return optional_double(r.context(), ref);
+}
+
+std::optional<bool> take_optional_bool(MappingReader& r, KeyNames names) {
+  yaml::NodeRef ref = r.take(names);
+  if (!ref) return std::nullopt;
+  return optional_bool(r.context(), ref);
 }
 
 int edit_distance(std::string_view a, std::string_view b) {

@@ -5,6 +5,7 @@
 #include "load/load_context.h"
 
 #include <initializer_list>
+#include <optional>
 #include <map>
 #include <set>
 #include <string>
@@ -43,6 +44,16 @@ class MappingReader {
   std::set<std::string, std::less<>> consumed_;
   std::map<std::string, std::string, std::less<>> legacy_;  ///< legacy spelling -> modern, from take()
 };
+
+/// Whole-scalar reads of an optional key (body-format-spec §1.2): nullopt when the key is
+/// absent, or when its value does not parse (warned, so the caller keeps its default).
+std::optional<double> take_optional_double(MappingReader& r, KeyNames names);
+std::optional<bool> take_optional_bool(MappingReader& r, KeyNames names);
+
+template <typename T>
+void assign_if(T& target, const std::optional<T>& value) {
+  if (value) target = *value;
+}
 
 /// Case-insensitive edit distance counting adjacent transpositions as one edit, for
 /// did-you-mean hints.

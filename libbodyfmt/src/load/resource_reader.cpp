@@ -2,6 +2,7 @@
 
 #include "load/body_reader.h"
 #include "load/geometry.h"
+#include "load/uri.h"
 #include "load/link_reader.h"
 #include "load/mapping_reader.h"
 #include "load/scalar.h"

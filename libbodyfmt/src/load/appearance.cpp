@@ -1,0 +1,87 @@
+#include "load/appearance.h"
+
+#include "load/mapping_reader.h"
+#include "load/scalar.h"
+#include "load/uri.h"
+#include "load/values.h"
+
+#include <algorithm>
+
+namespace bodyfmt::detail {
+Appearance read_appearance(LoadContext& ctx, const yaml::NodeRef& appearance) {
+  Appearance result;
+  if (!appearance->is_mapping()) {
+    // Choreonoid reads appearance as an optional mapping: anything else is ignored (SR1DH
+    // has an empty `appearance:` whose material slipped to the Shape's indentation level).
+    ctx.warning("load-ignored-value", appearance,
+                appearance->is_null() ? "this appearance is empty; Choreonoid ignores it"
+                                      : "appearance must be a mapping; Choreonoid ignores this value",
+                "indent material and texture under appearance");
+    return result;
+  }
+  MappingReader r(ctx, appearance, "appearance");
+  if (yaml::NodeRef m = r.take({"material"})) {
+    if (!m->is_mapping()) {
+      ctx.error("load-type", m, "material must be a mapping");
+    } else {
+      Material material;
+      MappingReader mr(ctx, m, "material");
+      assign_if(material.ambient_intensity, take_optional_double(mr, {"ambient", "ambientIntensity"}));
+      if (auto v = mr.take({"diffuse", "diffuseColor"})) assign_if(material.diffuse_color, read_optional_vec3(ctx, v));
+      if (auto v = mr.take({"emissive", "emissiveColor"})) assign_if(material.emissive_color, read_optional_vec3(ctx, v));
+      if (auto v = mr.take({"specular", "specularColor"})) assign_if(material.specular_color, read_optional_vec3(ctx, v));
+      if (auto v = mr.take({"specular_exponent"})) {
+        assign_if(material.specular_exponent, optional_double(ctx, v));
+        if (auto shininess = mr.take({"shininess"}))
+          ctx.warning("load-ignored-key", shininess,
+                      "\"shininess\" is ignored by Choreonoid when specular_exponent is given",
+                      "remove shininess");
+      } else if (auto shininess = mr.take({"shininess"})) {
+        // body-format-spec §8.7: legacy VRML shininess maps to an exponent.
+        if (auto s = optional_double(ctx, shininess)) {
+          material.specular_exponent = 127.0 * std::clamp(*s, 0.0, 1.0) + 1.0;
+          ctx.note("load-legacy-key", shininess, "legacy key \"shininess\"; the modern key is \"specular_exponent\"",
+                   "write specular_exponent: " + std::to_string(material.specular_exponent));
+        }
+      }
+      assign_if(material.transparency, take_optional_double(mr, {"transparency"}));
+      mr.report_unknown({"ambient", "diffuse", "emissive", "specular", "specular_exponent",
+                         "shininess", "transparency"});
+      result.material = material;
+    }
+  }
+  if (yaml::NodeRef t = r.take({"texture"})) {
+    if (t->is_mapping()) {
+      Texture texture;
+      MappingReader tr(ctx, t, "texture");
+      if (auto uri = tr.take({"uri", "url"})) {
+        texture.uri = uri->scalar;
+        texture.resolved_path = resolve_uri(ctx, uri, texture.uri, uri->location.file);
+      }
+      if (auto repeat = tr.take({"repeat"})) {
+        if (repeat->is_sequence() && repeat->items.size() == 2) {
+          assign_if(texture.repeat_s, optional_bool(ctx, repeat->items[0]));
+          assign_if(texture.repeat_t, optional_bool(ctx, repeat->items[1]));
+        } else if (repeat->is_scalar()) {
+          auto b = optional_bool(ctx, repeat);
+          assign_if(texture.repeat_s, b);
+          assign_if(texture.repeat_t, b);
+        } else {
+          ctx.error("load-vector-size", repeat, "the number of the repeat elements must be two");
+        }
+      } else {
+        assign_if(texture.repeat_s, take_optional_bool(tr, {"repeat_s", "repeatS"}));
+        assign_if(texture.repeat_t, take_optional_bool(tr, {"repeat_t", "repeatT"}));
+      }
+      tr.report_unknown({"uri", "repeat", "repeat_s", "repeat_t"});
+      result.texture = texture;
+    } else {
+      ctx.error("load-type", t, "texture must be a mapping");
+    }
+  }
+  r.take({"texture_transform", "textureTransform"});
+  r.report_unknown({"material", "texture", "texture_transform"});
+  return result;
+}
+
+}  // namespace bodyfmt::detail

@@ -1,0 +1,22 @@
+#pragma once
+// Resource URIs (body-format-spec §9.1) and mesh metadata (§9.4).
+
+#include <bodyfmt/model.h>
+
+#include "load/load_context.h"
+
+#include <string>
+
+namespace bodyfmt::detail {
+
+/// Resolves a resource URI written in `referring_file` to a local path; empty when it cannot.
+/// Relative paths, `file://`, `${HOME}` and `package://NAME/` (LoadContext::package_paths,
+/// then ROS_PACKAGE_PATH). Reports `load-uri` for unsupported schemes, unknown packages and
+/// undefined path variables.
+std::string resolve_uri(LoadContext& ctx, const yaml::NodeRef& at, const std::string& uri,
+                        const std::string& referring_file);
+
+/// Reads `metadata` (length_unit, upper_axis, legacy string form) into `mesh`.
+void read_mesh_metadata(LoadContext& ctx, const yaml::NodeRef& metadata, MeshResource& mesh);
+
+}  // namespace bodyfmt::detail
