@@ -264,7 +264,7 @@ class TreeBuilder final : public YAML::EventHandler {
            via_alias ? "expanding this alias makes the document larger than the limit of " + limit +
                            " nodes (alias bomb?)"
                      : "the document has more than the limit of " + limit + " nodes",
-           "if the file is legitimate, raise the limit (ParseOptions::max_expanded_nodes)");
+           "if the file is legitimate, raise the limit (--max-yaml-nodes, LoadOptions::max_expanded_yaml_nodes)");
     throw ParseAborted{};
   }
 

@@ -2,7 +2,6 @@
 
 #include <doctest/doctest.h>
 
-#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -421,13 +420,12 @@ TEST_CASE("yaml: an empty document gives a null root; only the first document is
   CHECK(keys_of(*doc->root) == "a ");
 }
 
-TEST_CASE("yaml: billion laughs is rejected at the crossing alias, fast") {
+// Time and memory are measured in bench/billion_laughs.sh, not asserted here.
+TEST_CASE("yaml: billion laughs is rejected at the crossing alias, before any expansion") {
   const std::string text = billion_laughs();
   CHECK(text.size() < 1024);
   CollectingSink sink;
-  auto start = std::chrono::steady_clock::now();
   auto doc = parse(text, sink);
-  auto elapsed = std::chrono::steady_clock::now() - start;
   CHECK(doc == nullptr);
   const Diagnostic& d = only_diagnostic(sink, "yaml-alias-expansion");
   CHECK(d.severity == Severity::kFatal);
@@ -436,11 +434,6 @@ TEST_CASE("yaml: billion laughs is rejected at the crossing alias, fast") {
   CHECK(d.location == at(9, 10));
   CHECK(d.message.find("10000000") != std::string::npos);
   CHECK_FALSE(d.fix_hint.empty());
-  MESSAGE("billion laughs rejected in "
-          << std::chrono::duration<double, std::milli>(elapsed).count() << " ms");
-  // Typically 0.1-0.4 ms; the bound leaves room for a loaded 2-core machine, while any
-  // expansion of the 435-million-node a9 would take seconds.
-  CHECK(elapsed < std::chrono::milliseconds(250));
 }
 
 TEST_CASE("yaml: the 9x9 alias bomb is measured exactly when the limit allows it") {
