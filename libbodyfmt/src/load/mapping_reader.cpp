@@ -20,10 +20,11 @@ yaml::NodeRef MappingReader::take(KeyNames names) {
     if (const yaml::MapEntry* entry = mapping_->find(name)) {
       consumed_.emplace(name);
       if (!modern) {
-        ctx_.warning("load-legacy-key", entry->value,
-                     "legacy key \"" + std::string(name) + "\"; the modern spelling is \"" +
-                         std::string(*names.begin()) + "\"",
-                     "rename it to " + std::string(*names.begin()));
+        // Located at the key: that is the text to change.
+        ctx_.report(Severity::kWarning, "load-legacy-key", entry->key_location,
+                    "legacy key \"" + std::string(name) + "\"; the modern spelling is \"" +
+                        std::string(*names.begin()) + "\"",
+                    "rename it to " + std::string(*names.begin()));
       }
       return mapping_.child(entry->value);
     }

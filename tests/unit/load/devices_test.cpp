@@ -91,7 +91,7 @@ links:
   CHECK(rc.error_deviation == 0.005);
   CHECK(rc.min_distance == 0.1);
   CHECK(rc.max_distance == 10);
-  CHECK(pos(r.take("load-legacy-key")) == Pos{18, 22});  // fieldOfView
+  CHECK(pos(r.take("load-legacy-key")) == Pos{18, 9});  // fieldOfView
   r.expect_clean();
 }
 
@@ -157,7 +157,7 @@ links:
   CHECK(d.severity == Severity::kError);
   CHECK(pos(d) == Pos{9, 15});
   CHECK(d.fix_hint.find("IMU") != std::string::npos);
-  CHECK(pos(r.take("load-legacy-key")) == Pos{12, 29});  // maxAngularVelocity
+  CHECK(pos(r.take("load-legacy-key")) == Pos{12, 9});  // maxAngularVelocity
   r.expect_clean();
 }
 

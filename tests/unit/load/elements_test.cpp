@@ -196,7 +196,7 @@ links:
   auto d2 = r.take("load-unknown-node-type");
   CHECK(d2.severity == bodyfmt::Severity::kWarning);
   CHECK(pos(d2) == Pos{8, 15});
-  CHECK(pos(r.take("load-legacy-key")) == Pos{9, 21});  // isOptional
+  CHECK(pos(r.take("load-legacy-key")) == Pos{9, 9});  // isOptional
   CHECK(r.m().devices.empty());
   r.expect_clean();
 }

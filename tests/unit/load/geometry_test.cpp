@@ -135,8 +135,8 @@ links:
   CHECK(e.crease_angle == doctest::Approx(kPi / 6).epsilon(1e-15));
   CHECK_FALSE(e.begin_cap);
   CHECK_FALSE(e.end_cap);
-  CHECK(pos(r.take("load-legacy-key")) == Pos{15, 19});  // endCap
-  CHECK(pos(r.take("load-legacy-key")) == Pos{19, 25});  // crossSection
+  CHECK(pos(r.take("load-legacy-key")) == Pos{15, 11});  // endCap
+  CHECK(pos(r.take("load-legacy-key")) == Pos{19, 11});  // crossSection
   const auto& e2 = std::get<Extrusion>(s[1].geometry);
   CHECK(e2.cross_section.size() == 3);
   CHECK(e2.begin_cap);  // begin_cap is not read
@@ -177,7 +177,7 @@ links:
           z_dimension: 3
           height: [0, 1, 2, 3, 4]
 )");
-  CHECK(pos(r.take("load-legacy-key")) == Pos{12, 21});  // zSpacing
+  CHECK(pos(r.take("load-legacy-key")) == Pos{12, 11});  // zSpacing
   const auto& g = std::get<ElevationGrid>(r.link("A").shapes.at(0).geometry);
   CHECK(g.x_dimension == 2);
   CHECK(g.z_dimension == 3);
@@ -234,8 +234,8 @@ links:
   auto w = r.take("geometry-unterminated-polygon");
   CHECK(w.severity == Severity::kWarning);
   CHECK(pos(w) == Pos{23, 23});
-  CHECK(pos(r.take("load-legacy-key")) == Pos{22, 23});  // coordinate
-  CHECK(pos(r.take("load-legacy-key")) == Pos{23, 23});  // coordIndex
+  CHECK(pos(r.take("load-legacy-key")) == Pos{22, 11});  // coordinate
+  CHECK(pos(r.take("load-legacy-key")) == Pos{23, 11});  // coordIndex
   r.expect_clean();
 }
 
@@ -302,7 +302,7 @@ links:
   CHECK(m.ambient_intensity == 0.3);
   CHECK(m.transparency == 0.25);  // 0 = opaque, 1 = invisible
   CHECK_FALSE(s[2].appearance.material.has_value());
-  CHECK(pos(r.take("load-legacy-key")) == Pos{14, 28});  // emissiveColor
+  CHECK(pos(r.take("load-legacy-key")) == Pos{14, 13});  // emissiveColor
   r.expect_clean();
 }
 
@@ -365,7 +365,7 @@ links:
   CHECK_FALSE(t2.repeat_t);
   CHECK(s[3].appearance.texture->repeat_s);
   CHECK(s[3].appearance.texture->repeat_t);
-  CHECK(pos(r.take("load-legacy-key")) == Pos{7, 74});  // url
+  CHECK(pos(r.take("load-legacy-key")) == Pos{7, 69});  // url
   // "      - {type: Shape, geometry: {type: Box}, appearance: {texture: {uri: tex.png, repeat: "
   // is 90 characters.
   CHECK(pos(r.take("load-vector-size")) == Pos{9, 91});

@@ -18,10 +18,10 @@ links:
 )");
   auto type = r.take("load-legacy-key");
   CHECK(type.severity == bodyfmt::Severity::kWarning);
-  CHECK(pos(type) == Pos{7, 16});
+  CHECK(pos(type) == Pos{7, 5});
   CHECK(type.fix_hint.find("joint_type") != std::string::npos);
   auto range = r.take("load-legacy-key");
-  CHECK(pos(range) == Pos{8, 17});
+  CHECK(pos(range) == Pos{8, 5});
   CHECK(range.fix_hint.find("joint_range") != std::string::npos);
   CHECK(r.link("B").joint_type == bodyfmt::JointType::kRevolute);
   CHECK(r.link("B").joint_range_upper == doctest::Approx(3.14159265358979323846 / 2).epsilon(1e-15));

@@ -206,7 +206,7 @@ TEST_CASE("validate: load-unknown-key with a did-you-mean hint (loader)") {
   const auto result = bodyfmt::test::check_file(data("load-unknown-key.body"));
   CHECK(find(result.diagnostics, "load-unknown-key")->message.find("joint_range") != std::string::npos);
 }
-TEST_CASE("validate: load-legacy-key (loader)") { expect_finding("load-legacy-key.body", "load-legacy-key", {11, 16}); }
+TEST_CASE("validate: load-legacy-key (loader)") { expect_finding("load-legacy-key.body", "load-legacy-key", {11, 5}); }
 TEST_CASE("validate: yaml-duplicate-key (loader)") { expect_finding("yaml-duplicate-key.body", "yaml-duplicate-key", {9, 5}); }
 TEST_CASE("validate: load-unknown-node-type (loader)") {
   expect_finding("load-unknown-node-type.body", "load-unknown-node-type", {10, 15});
