@@ -20,6 +20,8 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/libbodyfmt/include/bodyfmt
 # Tools: every executable defined in these folders (so new tools are installed without
 # touching this file). Installed tools find libbodyfmt through a relative RPATH.
 set(BODYFMT_TOOL_DIRS validate converters)
+# Developer utilities that build the docs; not installed.
+set(BODYFMT_INTERNAL_TOOLS rules_doc)
 get_property(_bodyfmt_subdirs DIRECTORY ${PROJECT_SOURCE_DIR} PROPERTY SUBDIRECTORIES)
 foreach(_dir IN LISTS BODYFMT_TOOL_DIRS)
   if(NOT "${PROJECT_SOURCE_DIR}/${_dir}" IN_LIST _bodyfmt_subdirs)
@@ -28,7 +30,7 @@ foreach(_dir IN LISTS BODYFMT_TOOL_DIRS)
   get_property(_targets DIRECTORY ${PROJECT_SOURCE_DIR}/${_dir} PROPERTY BUILDSYSTEM_TARGETS)
   foreach(_target IN LISTS _targets)
     get_target_property(_type ${_target} TYPE)
-    if(_type STREQUAL "EXECUTABLE")
+    if(_type STREQUAL "EXECUTABLE" AND NOT _target IN_LIST BODYFMT_INTERNAL_TOOLS)
       set_target_properties(${_target} PROPERTIES
         INSTALL_RPATH "$ORIGIN/../${CMAKE_INSTALL_LIBDIR}")
       install(TARGETS ${_target} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
