@@ -4,6 +4,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cassert>
 #include <fstream>
 #include <system_error>
@@ -96,6 +97,10 @@ bool OutputSet::commit(DiagnosticSink& sink) {
       return false;
     }
   }
+  // The main file goes last: if a rename fails, no new main file refers to missing parts.
+  std::stable_partition(staged.begin(), staged.end(),
+                        [&](const Staged& s) { return s.target.filename() != main_path_.filename() ||
+                                                      s.target.parent_path() != dir; });
   for (std::size_t i = 0; i < staged.size(); ++i) {
     fs::rename(staged[i].temp, staged[i].target, ec);
     if (ec) {
