@@ -196,7 +196,7 @@ TEST_CASE("yaml: null scalars keep their spelling and quoted ones are not null")
   const NodeRef& empty = value_of(root, "empty");
   CHECK(empty->is_null());
   CHECK(empty->scalar.empty());
-  // yaml-cpp marks a missing value at the next token; it is reported at its key instead.
+  // A missing value has no text of its own; it is reported at its key.
   CHECK(empty->location == at(1, 1));
   CHECK(value_of(root, "null")->scalar == "1");  // `null` as a key is just a string
   CHECK(value_of(root, "tilde")->is_null());
@@ -372,11 +372,31 @@ TEST_CASE("yaml: a syntax error is fatal and located") {
   const Diagnostic& d = only_diagnostic(sink, "yaml-syntax");
   CHECK(d.severity == Severity::kFatal);
   CHECK(d.location == at(1, 5));
-  CHECK(d.message.find("yaml-cpp") == std::string::npos);  // no duplicated position prefix
+  CHECK(d.message.find("line 1") == std::string::npos);  // no duplicated position prefix
 
   CollectingSink flow;
   CHECK(parse("a: [1, 2\n", flow) == nullptr);
   CHECK(only_diagnostic(flow, "yaml-syntax").location == at(2, 1));
+}
+
+TEST_CASE("yaml: columns count bytes in multi-byte text; bad UTF-8 is a located syntax error") {
+  // libyaml's marks count characters; the toolchain's columns count bytes (as before).
+  CollectingSink sink;
+  auto doc = parse("a: \"\xC3\xA9\xC3\xA9\"\nb: [\xC3\xA9, 1]\n", sink);
+  REQUIRE(doc);
+  CHECK(sink.diagnostics().empty());
+  const NodeRef& b = value_of(*doc->root, "b");
+  REQUIRE(b->items.size() == 2);
+  CHECK(b->items[0]->scalar == "\xC3\xA9");
+  CHECK(b->items[1]->location == at(2, 9));
+
+  CollectingSink alias;
+  CHECK(parse("a: [\xC3\xA9, *x]\n", alias) == nullptr);
+  CHECK(only_diagnostic(alias, "yaml-undefined-alias").location == at(1, 9));
+
+  CollectingSink bad;
+  CHECK(parse("a: 1\nc: \xFF\n", bad) == nullptr);
+  CHECK(only_diagnostic(bad, "yaml-syntax").location == at(2, 4));
 }
 
 TEST_CASE("yaml: a tab inside a flow sequence is accepted") {
@@ -481,7 +501,7 @@ TEST_CASE("yaml: nesting deeper than max_depth is fatal, counted through aliases
   CHECK(parse(six + "b: " + nested_sequences(4, "*a") + "\n", through_alias, options) == nullptr);
   CHECK(only_diagnostic(through_alias, "yaml-depth").location == at(2, 8));
 
-  // yaml-cpp's own recursion guard (500) is reported the same way.
+  // The parser's fixed nesting ceiling (500) is reported the same way.
   options.max_depth = 100'000;
   CollectingSink guard;
   CHECK(parse(nested_sequences(600, ""), guard, options) == nullptr);
