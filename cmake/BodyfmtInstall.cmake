@@ -2,7 +2,7 @@
 # CMake package so that other projects can do
 #   find_package(bodyfmt REQUIRED)
 #   target_link_libraries(app PRIVATE bodyfmt::bodyfmt)
-# yaml-cpp, libyaml, assimp and fmt are PRIVATE dependencies of the shared library, so the package
+# libyaml, assimp and fmt are PRIVATE dependencies of the shared library, so the package
 # only needs Eigen (the public headers use it).
 include(CMakePackageConfigHelpers)
 

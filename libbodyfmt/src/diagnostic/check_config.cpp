@@ -5,11 +5,12 @@
 //   fail_on: warning                          # or error
 //   werror: true
 //
-// yaml-cpp is private to libbodyfmt; its marks are 0-based, so 1 is added here.
+// Read with the project's own YAML parser (yaml/yaml_node.h), so that the config and the body
+// files share one YAML dialect and positions are 1-based like every other diagnostic.
 
 #include <bodyfmt/diagnostic_policy.h>
 
-#include <yaml-cpp/yaml.h>
+#include "yaml/yaml_node.h"
 
 #include <fstream>
 #include <sstream>
@@ -17,50 +18,41 @@
 namespace bodyfmt {
 namespace {
 
-SourceLocation at(const std::string& path, const YAML::Mark& mark) {
-  SourceLocation loc;
-  loc.file = path;
-  if (mark.line >= 0) {
-    loc.line = mark.line + 1;
-    loc.column = mark.column + 1;
-  }
-  return loc;
-}
-
-void error(DiagnosticSink& sink, const std::string& path, const YAML::Mark& mark, std::string message,
+void error(DiagnosticSink& sink, SourceLocation location, std::string message,
            std::string hint = {}) {
   Diagnostic d;
   d.severity = Severity::kError;
   d.rule_id = "config-invalid";
   d.message = std::move(message);
-  d.location = at(path, mark);
+  d.location = std::move(location);
   d.fix_hint = std::move(hint);
   sink.report(std::move(d));
 }
 
 /// A scalar or a sequence of scalars, each a rule id or pattern the rule table knows.
-bool read_rules(const YAML::Node& node, const std::string& key, const std::string& path,
-                DiagnosticSink& sink, std::vector<std::string>& out) {
-  std::vector<YAML::Node> items;
-  if (node.IsNull()) return true;
-  if (node.IsScalar()) items.push_back(node);
-  else if (node.IsSequence())
-    for (const auto& item : node) items.push_back(item);
-  else {
-    error(sink, path, node.Mark(), "'" + key + "' must be a list of rule ids");
+bool read_rules(const yaml::NodeRef& node, const std::string& key, DiagnosticSink& sink,
+                std::vector<std::string>& out) {
+  std::vector<yaml::NodeRef> items;
+  if (node->is_null()) return true;
+  if (node->is_scalar()) {
+    items.push_back(node);
+  } else if (node->is_sequence()) {
+    items = node->items;
+  } else {
+    error(sink, node.use_site(), "'" + key + "' must be a list of rule ids");
     return false;
   }
   bool ok = true;
-  for (const YAML::Node& item : items) {
-    if (!item.IsScalar()) {
-      error(sink, path, item.Mark(), "'" + key + "' must be a list of rule ids");
+  for (const yaml::NodeRef& item : items) {
+    if (!item->is_scalar()) {
+      error(sink, item.use_site(), "'" + key + "' must be a list of rule ids");
       ok = false;
       continue;
     }
-    const std::string id = item.Scalar();
+    const std::string& id = item->scalar;
     std::string problem = check_rule_pattern(id);
     if (!problem.empty()) {
-      error(sink, path, item.Mark(), problem);
+      error(sink, item.use_site(), problem);
       ok = false;
       continue;
     }
@@ -69,60 +61,74 @@ bool read_rules(const YAML::Node& node, const std::string& key, const std::strin
   return ok;
 }
 
+// The YAML 1.1 booleans that yaml-cpp's convert<bool> accepted here before, kept so that
+// existing configs read the same.
+std::optional<bool> read_bool(const yaml::Node& node) {
+  if (!node.is_scalar()) return std::nullopt;
+  for (const char* word : {"y", "Y", "yes", "Yes", "YES", "true", "True", "TRUE", "on", "On", "ON"})
+    if (node.scalar == word) return true;
+  for (const char* word : {"n", "N", "no", "No", "NO", "false", "False", "FALSE", "off", "Off", "OFF"})
+    if (node.scalar == word) return false;
+  return std::nullopt;
+}
+
 }  // namespace
 
 std::optional<CheckConfig> read_config_string(const std::string& text, const std::string& path,
                                               DiagnosticSink& sink) {
-  try {
-    YAML::Node root;
-    try {
-      root = YAML::Load(text);
-    } catch (const YAML::ParserException& e) {
-      error(sink, path, e.mark, "malformed YAML: " + e.msg);
-      return std::nullopt;
+  CollectingSink yaml_sink;
+  auto document = yaml::parse_yaml(text, path, yaml::ParseOptions{}, yaml_sink);
+  bool yaml_ok = document != nullptr;
+  for (Diagnostic& d : yaml_sink.diagnostics()) {
+    if (d.severity == Severity::kWarning || d.severity == Severity::kNote) {
+      sink.report(std::move(d));  // e.g. a duplicated key: the config is still usable
+    } else {
+      error(sink, d.location, "malformed YAML: " + d.message);
+      yaml_ok = false;
     }
-    CheckConfig config;
-    config.path = path;
-    if (root.IsNull()) return config;  // an empty file is a valid, empty config
-    if (!root.IsMap()) {
-      error(sink, path, root.Mark(), "a .bodycheck.yaml must be a mapping",
-            "keys: disable, enable, fail_on, werror");
-      return std::nullopt;
-    }
-    bool ok = true;
-    for (const auto& entry : root) {
-      const YAML::Node& key_node = entry.first;
-      const YAML::Node& value = entry.second;
-      const std::string key = key_node.IsScalar() ? key_node.Scalar() : std::string();
-      if (key == "disable" || key == "enable") {
-        ok &= read_rules(value, key, path, sink, key == "disable" ? config.disable : config.enable);
-      } else if (key == "fail_on") {
-        const std::string v = value.IsScalar() ? value.Scalar() : std::string();
-        if (v == "error") config.fail_on = Severity::kError;
-        else if (v == "warning") config.fail_on = Severity::kWarning;
-        else {
-          error(sink, path, value.Mark(), "'fail_on' must be 'error' or 'warning'");
-          ok = false;
-        }
-      } else if (key == "werror") {
-        bool b = false;
-        if (value.IsScalar() && YAML::convert<bool>::decode(value, b)) config.werror = b;
-        else {
-          error(sink, path, value.Mark(), "'werror' must be true or false");
-          ok = false;
-        }
-      } else {
-        error(sink, path, key_node.Mark(), "unknown key '" + key + "' in .bodycheck.yaml",
-              "keys: disable, enable, fail_on, werror");
-        ok = false;
-      }
-    }
-    if (!ok) return std::nullopt;
-    return config;
-  } catch (const std::exception& e) {
-    error(sink, path, YAML::Mark::null_mark(), std::string("cannot read the config: ") + e.what());
+  }
+  if (!yaml_ok) return std::nullopt;
+
+  CheckConfig config;
+  config.path = path;
+  const yaml::NodeRef& root = document->root;
+  if (root->is_null()) return config;  // an empty file is a valid, empty config
+  if (!root->is_mapping()) {
+    error(sink, root.use_site(), "a .bodycheck.yaml must be a mapping",
+          "keys: disable, enable, fail_on, werror");
     return std::nullopt;
   }
+  bool ok = true;
+  for (const yaml::MapEntry& entry : root->entries) {
+    const std::string& key = entry.key;
+    const yaml::NodeRef& value = entry.value;
+    if (key == "disable" || key == "enable") {
+      ok &= read_rules(value, key, sink, key == "disable" ? config.disable : config.enable);
+    } else if (key == "fail_on") {
+      const std::string v = value->is_scalar() ? value->scalar : std::string();
+      if (v == "error") {
+        config.fail_on = Severity::kError;
+      } else if (v == "warning") {
+        config.fail_on = Severity::kWarning;
+      } else {
+        error(sink, value.use_site(), "'fail_on' must be 'error' or 'warning'");
+        ok = false;
+      }
+    } else if (key == "werror") {
+      if (std::optional<bool> b = read_bool(*value)) {
+        config.werror = *b;
+      } else {
+        error(sink, value.use_site(), "'werror' must be true or false");
+        ok = false;
+      }
+    } else {
+      error(sink, entry.key_location, "unknown key '" + key + "' in .bodycheck.yaml",
+            "keys: disable, enable, fail_on, werror");
+      ok = false;
+    }
+  }
+  if (!ok) return std::nullopt;
+  return config;
 }
 
 std::optional<CheckConfig> read_config(const std::string& path, DiagnosticSink& sink) {
