@@ -2,8 +2,9 @@
 # CMake package so that other projects can do
 #   find_package(bodyfmt REQUIRED)
 #   target_link_libraries(app PRIVATE bodyfmt::bodyfmt)
-# libyaml, assimp and fmt are PRIVATE dependencies of the shared library, so the package
-# only needs Eigen (the public headers use it).
+# libyaml and fmt are PRIVATE dependencies of the shared library, and assimp is only linked by
+# the importer module it loads at run time, so the package only needs Eigen (the public
+# headers use it).
 include(CMakePackageConfigHelpers)
 
 set(BODYFMT_INSTALL_CMAKEDIR "${CMAKE_INSTALL_LIBDIR}/cmake/bodyfmt" CACHE STRING
@@ -13,6 +14,9 @@ install(TARGETS bodyfmt EXPORT bodyfmtTargets
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# The assimp importer module: libbodyfmt dlopen()s it from its own directory, so it goes into
+# the same lib dir. Not exported: it is a plug-in of libbodyfmt, not something to link against.
+install(TARGETS bodyfmt_assimp LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/libbodyfmt/include/bodyfmt
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
   FILES_MATCHING PATTERN "*.h")

@@ -97,6 +97,7 @@ std::vector<RuleInfo> make_table() {
       {"mesh-file-missing", E, "a mesh file does not exist", "its geometry is missing", ""},
       {"mesh-file-unreadable", E, "a mesh file cannot be read", "its geometry is missing", ""},
       {"mesh-format-unsupported", E, "a mesh file extension no reader supports", "its geometry is missing", ""},
+      {"mesh-importer-unavailable", E, "the assimp import module (libbodyfmt_assimp.so) cannot be loaded", "STL, OBJ, COLLADA and glTF meshes are left out", "looked for next to libbodyfmt"},
       {"mesh-parse", E, "a mesh file is malformed", "its geometry is missing or partial", ""},
       {"mesh-node-not-found", E, "the selected node is not in the mesh file", "Choreonoid refuses the file", ""},
       {"mesh-inline-cycle", E, "VRML Inline files include each other", "loading would never end", ""},

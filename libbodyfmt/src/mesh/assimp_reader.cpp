@@ -142,3 +142,9 @@ SceneTree read_with_assimp(const std::string& path, DiagnosticSink& sink, const 
 }
 
 }  // namespace bodyfmt::mesh
+
+extern "C" void bodyfmt_assimp_read_v1(const char* path, bodyfmt::DiagnosticSink* sink,
+                                       const bodyfmt::SourceLocation* where,
+                                       bodyfmt::mesh::SceneTree* out) {
+  *out = bodyfmt::mesh::read_with_assimp(path, *sink, *where);
+}

@@ -2,7 +2,7 @@
 // and one asset per (file, node, metadata) (body-format-spec §9.2, §9.4).
 #include <bodyfmt/mesh_import.h>
 
-#include "mesh/assimp_reader.h"
+#include "mesh/assimp_module.h"
 #include "mesh/scene_tree.h"
 #include "mesh/vrml_reader.h"
 
@@ -81,7 +81,7 @@ struct MeshCache::Impl {
       return nullptr;
     }
     ++parsed;
-    if (format == Format::kAssimp) return mesh::read_with_assimp(path, sink, where);
+    if (format == Format::kAssimp) return mesh::import_with_assimp(path, sink, where);
 
     std::ifstream in(path, std::ios::binary);
     std::ostringstream text;
