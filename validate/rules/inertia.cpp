@@ -65,27 +65,24 @@ std::string nearest_valid(const Principal& p) {
                      num(I(0, 0)), num(I(0, 1)), num(I(0, 2)), num(I(1, 1)), num(I(1, 2)), num(I(2, 2)));
 }
 
+// The first RigidBody node that contributes to the link, if any.
+const SourceLocation* rigid_body_source(const Link& link) {
+  for (const MassContribution& c : link.mass_contributions)
+    if (!c.from_link_keys && c.source.known()) return &c.source;
+  return nullptr;
+}
+
 // The most specific place a link's mass data is written.
 SourceLocation inertia_location(const Link& link) {
-  const SourceLocation* contribution = nullptr;
-  for (const MassContribution& c : link.mass_contributions)
-    if (!c.from_link_keys && c.source.known()) {
-      contribution = &c.source;
-      break;
-    }
-  SourceLocation none;
-  return first_known({&link.sources.inertia, contribution ? contribution : &none, &link.sources.mass, &link.source});
+  const SourceLocation none;
+  const SourceLocation* rigid_body = rigid_body_source(link);
+  return first_known({&link.sources.inertia, rigid_body ? rigid_body : &none, &link.sources.mass, &link.source});
 }
 
 SourceLocation mass_location(const Link& link) {
-  const SourceLocation* contribution = nullptr;
-  for (const MassContribution& c : link.mass_contributions)
-    if (!c.from_link_keys && c.source.known()) {
-      contribution = &c.source;
-      break;
-    }
-  SourceLocation none;
-  return first_known({&link.sources.mass, contribution ? contribution : &none, &link.sources.inertia, &link.source});
+  const SourceLocation none;
+  const SourceLocation* rigid_body = rigid_body_source(link);
+  return first_known({&link.sources.mass, rigid_body ? rigid_body : &none, &link.sources.inertia, &link.source});
 }
 
 bool welded_to_world(const Model& model, LinkIndex index) {

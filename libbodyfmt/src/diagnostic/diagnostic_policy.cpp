@@ -1,4 +1,5 @@
 #include <bodyfmt/diagnostic_policy.h>
+#include <bodyfmt/report.h>
 #include <bodyfmt/rules.h>
 
 #include "load/mapping_reader.h"  // detail::edit_distance
@@ -107,13 +108,8 @@ Suppressions Suppressions::from_text(std::string_view text) {
   Suppressions result;
   std::vector<std::string> pending;  // from comment-only lines, for the next content line
   int line_number = 0;
-  std::size_t pos = 0;
-  while (pos < text.size()) {
-    std::size_t end = text.find('\n', pos);
-    if (end == std::string_view::npos) end = text.size();
-    std::string_view line = text.substr(pos, end - pos);
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    pos = end + 1;
+  for (const std::string& text_line : split_lines(text)) {
+    const std::string_view line = text_line;
     ++line_number;
 
     const std::size_t hash = comment_start(line);
