@@ -3,6 +3,7 @@
 #include <bodyfmt/converters/loss.h>
 #include <bodyfmt/converters/names.h>
 #include <bodyfmt/converters/numbers.h>
+#include <bodyfmt/inertia.h>
 #include <bodyfmt/tessellate.h>
 
 #include <fmt/format.h>
@@ -180,7 +181,7 @@ void Writer::write_inertial(XMLElement* link_el, std::size_t index) {
   // tensor is written as it is (symmetrised); defaults (1 kg, identity) are written too.
   origin(inertial, Eigen::Isometry3d(Eigen::Translation3d(mp.center_of_mass)), true);
   element(inertial, "mass")->SetAttribute("value", format_number(mp.mass).c_str());
-  const Eigen::Matrix3d I = 0.5 * (mp.inertia + mp.inertia.transpose());
+  const Eigen::Matrix3d I = symmetrized_inertia(mp.inertia);
   XMLElement* in = element(inertial, "inertia");
   in->SetAttribute("ixx", format_number(I(0, 0)).c_str());
   in->SetAttribute("ixy", format_number(I(0, 1)).c_str());

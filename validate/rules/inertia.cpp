@@ -3,7 +3,8 @@
 
 #include "rule_context.h"
 
-#include <Eigen/Eigenvalues>
+#include <bodyfmt/inertia.h>
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -17,50 +18,11 @@ namespace {
 // MuJoCo's mjMINVAL (include/mujoco/mjtype.h, double build).
 constexpr double kMjMinVal = 1e-15;
 
-struct Principal {
-  Eigen::Vector3d moments;  // ascending
-  Eigen::Matrix3d axes;     // columns
-  bool exact = false;       // read off a diagonal tensor, no eigen-solver rounding
-};
-
-Principal principal(const Eigen::Matrix3d& inertia) {
-  const Eigen::Matrix3d sym = 0.5 * (inertia + inertia.transpose());
-  Principal p;
-  if (sym(0, 1) == 0 && sym(0, 2) == 0 && sym(1, 2) == 0) {
-    // A diagonal tensor: MuJoCo checks these numbers exactly, so do not add solver rounding.
-    std::vector<int> order = {0, 1, 2};
-    std::sort(order.begin(), order.end(), [&](int a, int b) { return sym(a, a) < sym(b, b); });
-    p.axes.setZero();
-    for (int i = 0; i < 3; ++i) {
-      p.moments[i] = sym(order[i], order[i]);
-      p.axes(order[i], i) = 1;
-    }
-    p.exact = true;
-    return p;
-  }
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(sym);
-  p.moments = solver.eigenvalues();
-  p.axes = solver.eigenvectors();
-  return p;
-}
-
-// The nearest tensor (Euclidean distance between principal moments, same principal axes)
-// that is positive semi-definite and satisfies the triangle inequality with a small margin,
-// printed as the 6-element form [Ixx, Ixy, Ixz, Iyy, Iyz, Izz] in link axes.
-std::string nearest_valid(const Principal& p) {
-  Eigen::Vector3d m = p.moments.cwiseMax(0.0);  // clamp negative moments
-  std::sort(m.data(), m.data() + 3);
-  const double excess = m[2] - m[0] - m[1];
-  if (excess > 0) {
-    // Orthogonal projection onto the plane m0 + m1 - m2 = s (s > 0 keeps rounding safe).
-    const double s = 1e-7 * m.sum();
-    const double t = (excess + s) / 3;
-    m += Eigen::Vector3d(t, t, -t);
-  }
-  // Map back onto the original axes order (moments were sorted ascending already).
-  Eigen::Vector3d moments = m;
-  if (moments.isZero(0)) return {};
-  const Eigen::Matrix3d I = p.axes * moments.asDiagonal() * p.axes.transpose();
+// The balanced tensor as the fix hint, in the 6-element form [Ixx, Ixy, Ixz, Iyy, Iyz, Izz].
+std::string nearest_valid(const Eigen::Matrix3d& inertia) {
+  const std::optional<Eigen::Matrix3d> balanced = balance_inertia(inertia);
+  if (!balanced) return {};
+  const Eigen::Matrix3d& I = *balanced;
   return fmt::format("nearest valid inertia (link axes, about the centre of mass): [{}, {}, {}, {}, {}, {}]",
                      num(I(0, 0)), num(I(0, 1)), num(I(0, 2)), num(I(1, 1)), num(I(1, 2)), num(I(2, 2)));
 }
@@ -114,14 +76,14 @@ void check_symmetry(const RuleContext& ctx, const Link& link) {
 }
 
 // Moments and mass that MuJoCo accepts for a moving body (mjCBody::Compile).
-bool mujoco_valid(double mass, const Principal& p) { return mass >= kMjMinVal && p.moments[0] >= kMjMinVal; }
+bool mujoco_valid(double mass, const PrincipalInertia& p) { return mass >= kMjMinVal && p.moments[0] >= kMjMinVal; }
 
 void check_link(const RuleContext& ctx, LinkIndex index) {
   const Link& link = ctx.model.links[index];
   check_symmetry(ctx, link);
   if (link.mass_contributions.empty()) return;  // Choreonoid's defaults (load-default-mass)
   const MassProperties& mp = ctx.derived.mass[index];
-  const Principal p = principal(mp.inertia);
+  const PrincipalInertia p = principal_inertia(mp.inertia);
   const double trace = p.moments.sum();
   const SourceLocation at = inertia_location(link);
   const std::string moments = fmt::format("({}, {}, {})", num(p.moments[0]), num(p.moments[1]), num(p.moments[2]));
@@ -136,29 +98,25 @@ void check_link(const RuleContext& ctx, LinkIndex index) {
   // Drake's tolerance for a negative moment, ε = 16·DBL_EPSILON·max(1, tr/2).
   const double drake_eps = 16 * DBL_EPSILON * std::max(1.0, std::abs(trace) / 2);
   const double gz_eps = 10 * DBL_EPSILON * std::abs(trace) / 2;
-  bool semidefinite = true;
-  if (p.moments[0] < -(p.exact ? 0.0 : drake_eps)) {
-    semidefinite = false;
+  const InertiaValidity validity = inertia_validity(p);
+  const bool semidefinite = !validity.negative_moment;
+  if (validity.negative_moment) {
     ctx.report("inertia-not-positive-definite", at,
                fmt::format("inertia of link \"{}\" has a negative principal moment: principal moments {}",
                            link.name, moments),
-               nearest_valid(p));
+               nearest_valid(mp.inertia));
   }
-  if (semidefinite) {
-    // MuJoCo: no tolerance on a diagonal tensor; otherwise allow the eigen-solver's rounding.
-    const double margin = p.moments[0] + p.moments[1] - p.moments[2];
-    const double rounding = p.exact ? 0.0 : 4 * DBL_EPSILON * std::abs(trace);
-    if (margin < -rounding) {
-      std::vector<std::string> refuse = {"MuJoCo (A + B >= C, no tolerance)"};
-      if (margin < -drake_eps) refuse.push_back(fmt::format("Drake (tolerance 16ε·max(1, tr/2) = {})", num(drake_eps)));
-      if (margin < -gz_eps) refuse.push_back(fmt::format("gz-math (tolerance 10ε·tr/2 = {})", num(gz_eps)));
-      ctx.report("inertia-triangle", at,
-                 fmt::format("principal moments {} of link \"{}\" violate the triangle inequality: {} + {} - {} = "
-                             "{}; refused by {}",
-                             moments, link.name, num(p.moments[0]), num(p.moments[1]), num(p.moments[2]),
-                             num(margin), fmt::join(refuse, ", ")),
-                 nearest_valid(p));
-    }
+  if (validity.triangle) {
+    const double margin = validity.triangle_margin;
+    std::vector<std::string> refuse = {"MuJoCo (A + B >= C, no tolerance)"};
+    if (margin < -drake_eps) refuse.push_back(fmt::format("Drake (tolerance 16ε·max(1, tr/2) = {})", num(drake_eps)));
+    if (margin < -gz_eps) refuse.push_back(fmt::format("gz-math (tolerance 10ε·tr/2 = {})", num(gz_eps)));
+    ctx.report("inertia-triangle", at,
+               fmt::format("principal moments {} of link \"{}\" violate the triangle inequality: {} + {} - {} = "
+                           "{}; refused by {}",
+                           moments, link.name, num(p.moments[0]), num(p.moments[1]), num(p.moments[2]),
+                           num(margin), fmt::join(refuse, ", ")),
+               nearest_valid(mp.inertia));
   }
 
   // The two plausibility warnings only for links that can move: the mass data of a link welded
@@ -198,7 +156,7 @@ bool welded_descendant_valid(const Model& model, const Derived& derived, LinkInd
   for (LinkIndex child : model.links[index].children) {
     const Link& c = model.links[child];
     if (is_moving(c)) continue;
-    if (mujoco_valid(derived.mass[child].mass, principal(derived.mass[child].inertia))) return true;
+    if (mujoco_valid(derived.mass[child].mass, principal_inertia(derived.mass[child].inertia))) return true;
     if (welded_descendant_valid(model, derived, child)) return true;
   }
   return false;
@@ -209,7 +167,7 @@ void check_moving(const RuleContext& ctx, LinkIndex index) {
   if (!is_moving(link)) return;
   const MassProperties& mp = ctx.derived.mass[index];
   if (mp.mass < 0) return;  // reported above
-  const Principal p = principal(mp.inertia);
+  const PrincipalInertia p = principal_inertia(mp.inertia);
   if (mujoco_valid(mp.mass, p) || welded_descendant_valid(ctx.model, ctx.derived, index)) return;
   const std::string joint = index == 0 ? "the free root" : fmt::format("a {} joint", joint_type_name(link.joint_type));
   if (mp.mass == 0) {
