@@ -1,18 +1,13 @@
 #include <bodyfmt/converters/loss.h>
 
+#include <bodyfmt/rules.h>
 #include <fmt/format.h>
 
 namespace bodyfmt::converters {
 
 void report_loss(DiagnosticSink& sink, const SourceLocation& location, std::string_view target,
                  std::string_view what, std::string_view hint) {
-  Diagnostic d;
-  d.severity = Severity::kWarning;
-  d.rule_id = "export-loss";
-  d.message = fmt::format("{} cannot express {}", target, what);
-  d.location = location;
-  d.fix_hint = std::string(hint);
-  sink.report(std::move(d));
+  report_rule(sink, "export-loss", location, fmt::format("{} cannot express {}", target, what), std::string(hint));
 }
 
 }  // namespace bodyfmt::converters

@@ -1,5 +1,6 @@
 #include <bodyfmt/converters/output_set.h>
 
+#include <bodyfmt/rules.h>
 #include <fmt/format.h>
 
 #include <unistd.h>
@@ -39,12 +40,8 @@ struct Staged {
 };
 
 void report_write(DiagnosticSink& sink, const fs::path& path, const std::string& why) {
-  Diagnostic d;
-  d.severity = Severity::kFatal;
-  d.rule_id = "export-write";
-  d.message = fmt::format("cannot write '{}': {}", path.string(), why);
-  d.location.file = path.string();
-  sink.report(std::move(d));
+  report_rule(sink, "export-write", SourceLocation{path.string(), 0, 0},
+              fmt::format("cannot write '{}': {}", path.string(), why));
 }
 
 }  // namespace

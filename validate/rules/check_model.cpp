@@ -12,16 +12,9 @@ namespace detail {
 
 void RuleContext::report(std::string_view rule_id, const SourceLocation& location, std::string message,
                          std::string fix_hint) const {
-  const RuleInfo* rule = find_rule(rule_id);
-  assert(rule && "every validator rule id has a row in rule_table.cpp");
-  Diagnostic d;
-  d.severity = rule ? rule->default_severity : Severity::kError;
-  d.rule_id = std::string(rule_id);
-  d.message = std::move(message);
-  d.location = location.known() || !location.file.empty() ? location : model.source;
-  if (d.location.file.empty()) d.location.file = model.source_file;
-  d.fix_hint = std::move(fix_hint);
-  sink.report(std::move(d));
+  SourceLocation at = location.known() || !location.file.empty() ? location : model.source;
+  if (at.file.empty()) at.file = model.source_file;
+  report_rule(sink, rule_id, std::move(at), std::move(message), std::move(fix_hint));
 }
 
 SourceLocation first_known(std::initializer_list<const SourceLocation*> locations) {

@@ -5,6 +5,7 @@
 
 #include <bodyfmt/diagnostic.h>
 
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -23,5 +24,14 @@ const std::vector<RuleInfo>& all_rules();
 
 /// The row of `id`, or nullptr.
 const RuleInfo* find_rule(std::string_view id);
+
+/// The one way to make a diagnostic: its severity is the rule's default from the table (a
+/// DiagnosticPolicy may change it later; an id missing from the table, which a test forbids,
+/// gives an error).
+Diagnostic make_diagnostic(std::string_view rule_id, SourceLocation location, std::string message,
+                           std::string fix_hint = {});
+/// sink.report(make_diagnostic(...)).
+void report_rule(DiagnosticSink& sink, std::string_view rule_id, SourceLocation location, std::string message,
+                 std::string fix_hint = {});
 
 }  // namespace bodyfmt

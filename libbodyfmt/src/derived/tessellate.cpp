@@ -4,6 +4,8 @@
 
 #include "derived/tessellate_internal.h"
 
+#include <bodyfmt/rules.h>
+
 #include <fmt/format.h>
 
 #include <cmath>
@@ -17,35 +19,19 @@ namespace tessellate_detail {
 
 Reporter::~Reporter() {
   if (suppressed_ > 0) {
-    Diagnostic d;
-    d.severity = Severity::kNote;
-    d.rule_id = suppressed_rule_;
-    d.message = fmt::format("{} more geometry problem(s) of this shape not reported", suppressed_);
-    d.location = where_;
-    sink_.report(std::move(d));
+    report_rule(sink_, "geometry-more-problems", where_,
+                fmt::format("{} more geometry problem(s) of this shape not reported (the first: {})", suppressed_,
+                            first_suppressed_));
   }
 }
 
-void Reporter::error(const char* rule_id, std::string message) {
-  report(Severity::kError, rule_id, std::move(message));
-}
-
-void Reporter::warning(const char* rule_id, std::string message) {
-  report(Severity::kWarning, rule_id, std::move(message));
-}
-
-void Reporter::report(Severity severity, const char* rule_id, std::string message) {
+void Reporter::report(const char* rule_id, std::string message) {
   if (reported_ >= kMaxReports) {
-    if (suppressed_++ == 0) suppressed_rule_ = rule_id;
+    if (suppressed_++ == 0) first_suppressed_ = rule_id;
     return;
   }
   ++reported_;
-  Diagnostic d;
-  d.severity = severity;
-  d.rule_id = rule_id;
-  d.message = std::move(message);
-  d.location = where_;
-  sink_.report(std::move(d));
+  report_rule(sink_, rule_id, where_, std::move(message));
 }
 
 void flip_triangles(TriangleMesh& mesh) {
@@ -73,7 +59,7 @@ TriangleMesh box_mesh(const Box& box, Reporter& reporter) {
   const Eigen::Vector3d& s = box.size;
   if (!non_negative(s.x()) || !non_negative(s.y()) || !non_negative(s.z())) {
     // §9: negative -> "A box cannot be generated with the given parameters"; zero is allowed.
-    reporter.error(kRuleInvalidSize,
+    reporter.report(kRuleInvalidSize,
                    fmt::format("Box size ({}, {}, {}) has a negative or non-finite component",
                                s.x(), s.y(), s.z()));
     return {};
@@ -93,7 +79,7 @@ TriangleMesh box_mesh(const Box& box, Reporter& reporter) {
 TriangleMesh sphere_mesh(const Sphere& sphere, int n, Reporter& reporter) {
   const double r = sphere.radius;
   if (!positive(r)) {
-    reporter.error(kRuleInvalidSize, fmt::format("Sphere radius {} is not positive", r));
+    reporter.report(kRuleInvalidSize, fmt::format("Sphere radius {} is not positive", r));
     return {};
   }
   const int vdn = n / 2;  // latitude bands
@@ -132,7 +118,7 @@ TriangleMesh sphere_mesh(const Sphere& sphere, int n, Reporter& reporter) {
 TriangleMesh cylinder_mesh(const Cylinder& cylinder, int n, Reporter& reporter) {
   const double r = cylinder.radius, h = cylinder.height;
   if (!positive(r) || !positive(h)) {
-    reporter.error(kRuleInvalidSize,
+    reporter.report(kRuleInvalidSize,
                    fmt::format("Cylinder radius {} and height {} must both be positive", r, h));
     return {};
   }
@@ -163,7 +149,7 @@ TriangleMesh cylinder_mesh(const Cylinder& cylinder, int n, Reporter& reporter) 
 TriangleMesh cone_mesh(const Cone& cone, int n, Reporter& reporter) {
   const double r = cone.radius, h = cone.height;
   if (!positive(r) || !positive(h)) {
-    reporter.error(kRuleInvalidSize,
+    reporter.report(kRuleInvalidSize,
                    fmt::format("Cone radius {} and height {} must both be positive", r, h));
     return {};
   }
@@ -190,7 +176,7 @@ TriangleMesh capsule_mesh(const Capsule& capsule, int n, Reporter& reporter) {
   const double r = capsule.radius, h = capsule.height;
   if (!positive(r) || !non_negative(h)) {
     // §9: height 0 is allowed (a sphere), < 0 or radius <= 0 is an error.
-    reporter.error(kRuleInvalidSize,
+    reporter.report(kRuleInvalidSize,
                    fmt::format("Capsule radius {} must be positive and height {} non-negative",
                                r, h));
     return {};
@@ -234,20 +220,20 @@ TriangleMesh capsule_mesh(const Capsule& capsule, int n, Reporter& reporter) {
 TriangleMesh elevation_grid_mesh(const ElevationGrid& grid, Reporter& reporter) {
   const int xd = grid.x_dimension, zd = grid.z_dimension;
   if (xd < 0 || zd < 0) {
-    reporter.error(kRuleInvalidSize,
+    reporter.report(kRuleInvalidSize,
                    fmt::format("ElevationGrid dimensions {} x {} must not be negative", xd, zd));
     return {};
   }
   const std::int64_t expected = static_cast<std::int64_t>(xd) * zd;
   if (static_cast<std::int64_t>(grid.height.size()) != expected) {
-    reporter.error(kRuleInvalidSize,
+    reporter.report(kRuleInvalidSize,
                    fmt::format("ElevationGrid has {} height values; x_dimension * z_dimension "
                                "= {} x {} = {} are required",
                                grid.height.size(), xd, zd, expected));
     return {};
   }
   if (xd < 2 || zd < 2) {
-    reporter.error(kRuleDegenerate,
+    reporter.report(kRuleDegenerate,
                    fmt::format("ElevationGrid of {} x {} points has no cell (at least 2 x 2 "
                                "points are needed)",
                                xd, zd));
@@ -296,7 +282,7 @@ TriangleMesh face_set_mesh(const IndexedFaceSet& face_set, Reporter& reporter) {
     bool indices_ok = true;
     for (int i : polygon) {
       if (i < 0 || static_cast<std::size_t>(i) >= num_vertices) {
-        reporter.error(kRuleIndexOutOfRange,
+        reporter.report(kRuleIndexOutOfRange,
                        fmt::format("IndexedFaceSet polygon {}: vertex index {} is out of range "
                                    "(the face set has {} vertices)",
                                    polygon_number, i, num_vertices));
@@ -306,7 +292,7 @@ TriangleMesh face_set_mesh(const IndexedFaceSet& face_set, Reporter& reporter) {
       }
     }
     if (indices_ok && !triangulate_polygon(mesh.vertices, polygon, mesh.triangles)) {
-      reporter.error(kRuleDegenerate,
+      reporter.report(kRuleDegenerate,
                      fmt::format("IndexedFaceSet polygon {} ({} indices) has fewer than three "
                                  "distinct points or no area",
                                  polygon_number, polygon.size()));
@@ -318,7 +304,7 @@ TriangleMesh face_set_mesh(const IndexedFaceSet& face_set, Reporter& reporter) {
   // A trailing polygon without -1 is dropped silently, as Choreonoid does (§9, §15); the
   // loader flags it.
   if (mesh.triangles.empty() && !reported) {
-    reporter.error(kRuleDegenerate, "IndexedFaceSet has no valid polygon");
+    reporter.report(kRuleDegenerate, "IndexedFaceSet has no valid polygon");
   }
   return mesh;
 }
@@ -336,7 +322,7 @@ TriangleMesh triangle_list_mesh(const TriangleMeshGeometry& geometry, Reporter& 
     bool ok = true;
     for (int i : t) {
       if (i < 0 || static_cast<std::size_t>(i) >= num_vertices) {
-        reporter.error(kRuleIndexOutOfRange,
+        reporter.report(kRuleIndexOutOfRange,
                        fmt::format("TriangleMesh triangle {}: vertex index {} is out of range "
                                    "(the mesh has {} vertices)",
                                    k / 3, i, num_vertices));
@@ -347,12 +333,12 @@ TriangleMesh triangle_list_mesh(const TriangleMeshGeometry& geometry, Reporter& 
     if (ok) mesh.triangles.push_back(t);
   }
   if (num_full != geometry.faces.size()) {
-    reporter.error(kRuleDegenerate,
+    reporter.report(kRuleDegenerate,
                    fmt::format("TriangleMesh faces has {} indices, not a multiple of 3; the "
                                "last {} are ignored",
                                geometry.faces.size(), geometry.faces.size() - num_full));
   }
-  if (geometry.faces.empty()) reporter.error(kRuleDegenerate, "TriangleMesh has no triangle");
+  if (geometry.faces.empty()) reporter.report(kRuleDegenerate, "TriangleMesh has no triangle");
   return mesh;
 }
 
@@ -371,7 +357,7 @@ TriangleMesh tessellate(const Geometry& geometry, int division_number, Diagnosti
                              std::holds_alternative<Cone>(geometry) ||
                              std::holds_alternative<Capsule>(geometry);
   if (uses_division && n > kMaxDivisionNumber) {
-    reporter.warning(kRuleInvalidSize,
+    reporter.report(kRuleInvalidSize,
                      fmt::format("division_number {} exceeds the tessellator's limit {}; {} is "
                                  "used",
                                  n, kMaxDivisionNumber, kMaxDivisionNumber));

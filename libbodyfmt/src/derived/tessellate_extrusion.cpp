@@ -61,7 +61,7 @@ TriangleMesh tessellate_extrusion(const Extrusion& extrusion, Reporter& reporter
   // An empty list means the default (identity, 1), as in Choreonoid.
   bool ok = true;
   if (cs.size() < 2 || spine.size() < 2) {
-    reporter.error(kRuleInvalidSize,
+    reporter.report(kRuleInvalidSize,
                    fmt::format("Extrusion needs at least 2 cross_section points and 2 spine "
                                "points; it has {} and {}",
                                cs.size(), spine.size()));
@@ -69,14 +69,14 @@ TriangleMesh tessellate_extrusion(const Extrusion& extrusion, Reporter& reporter
   }
   const std::size_t num_given = spine.size();
   if (extrusion.orientation.size() > 1 && extrusion.orientation.size() != num_given) {
-    reporter.error(kRuleInvalidSize,
+    reporter.report(kRuleInvalidSize,
                    fmt::format("Extrusion has {} orientation entries; 1 or one per spine point "
                                "({}) are required",
                                extrusion.orientation.size(), num_given));
     ok = false;
   }
   if (extrusion.scale.size() > 1 && extrusion.scale.size() != num_given) {
-    reporter.error(kRuleInvalidSize,
+    reporter.report(kRuleInvalidSize,
                    fmt::format("Extrusion has {} scale entries; 1 or one per spine point ({}) "
                                "are required",
                                extrusion.scale.size(), num_given));
@@ -91,7 +91,7 @@ TriangleMesh tessellate_extrusion(const Extrusion& extrusion, Reporter& reporter
   const int ns = static_cast<int>(spine.size()) - (spine_closed ? 1 : 0);
   const int nc = static_cast<int>(cs.size()) - (cs_closed ? 1 : 0);
   if (ns < 2 || nc < 2) {
-    reporter.error(kRuleDegenerate,
+    reporter.report(kRuleDegenerate,
                    fmt::format("Extrusion {} has fewer than 2 distinct points once its closing "
                                "point is removed",
                                ns < 2 ? "spine" : "cross_section"));
@@ -146,7 +146,7 @@ TriangleMesh tessellate_extrusion(const Extrusion& extrusion, Reporter& reporter
       }
     }
     if (first_defined == -1) {
-      reporter.error(kRuleDegenerate, "Extrusion spine points all coincide");
+      reporter.report(kRuleDegenerate, "Extrusion spine points all coincide");
       return {};
     }
     Eigen::Vector3d last = y_axes[static_cast<std::size_t>(first_defined)];

@@ -16,18 +16,16 @@ class Reporter {
   Reporter(const Reporter&) = delete;
   Reporter& operator=(const Reporter&) = delete;
 
-  void error(const char* rule_id, std::string message);
-  void warning(const char* rule_id, std::string message);
+  void report(const char* rule_id, std::string message);
 
  private:
-  void report(Severity severity, const char* rule_id, std::string message);
 
   static constexpr int kMaxReports = 10;
   DiagnosticSink& sink_;
   const SourceLocation& where_;
   int reported_ = 0;
   int suppressed_ = 0;
-  std::string suppressed_rule_;  ///< rule of the first suppressed diagnostic
+  std::string first_suppressed_;  ///< rule id of the first diagnostic left out
 };
 
 constexpr const char* kRuleInvalidSize = "geometry-invalid-size";

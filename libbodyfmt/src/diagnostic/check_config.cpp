@@ -10,6 +10,7 @@
 
 #include <bodyfmt/diagnostic_policy.h>
 
+#include <bodyfmt/rules.h>
 #include "yaml/yaml_node.h"
 
 #include <fstream>
@@ -20,13 +21,7 @@ namespace {
 
 void error(DiagnosticSink& sink, SourceLocation location, std::string message,
            std::string hint = {}) {
-  Diagnostic d;
-  d.severity = Severity::kError;
-  d.rule_id = "config-invalid";
-  d.message = std::move(message);
-  d.location = std::move(location);
-  d.fix_hint = std::move(hint);
-  sink.report(std::move(d));
+  report_rule(sink, "config-invalid", std::move(location), std::move(message), std::move(hint));
 }
 
 /// A scalar or a sequence of scalars, each a rule id or pattern the rule table knows.
@@ -134,12 +129,7 @@ std::optional<CheckConfig> read_config_string(const std::string& text, const std
 std::optional<CheckConfig> read_config(const std::string& path, DiagnosticSink& sink) {
   std::ifstream in(path, std::ios::binary);
   if (!in.is_open()) {
-    Diagnostic d;
-    d.severity = Severity::kError;
-    d.rule_id = "io-read";
-    d.message = "cannot read the configuration file";
-    d.location.file = path;
-    sink.report(std::move(d));
+    report_rule(sink, "io-read", SourceLocation{path, 0, 0}, "cannot read the configuration file");
     return std::nullopt;
   }
   std::ostringstream text;

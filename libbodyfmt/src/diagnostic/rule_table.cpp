@@ -34,6 +34,7 @@ std::vector<RuleInfo> make_table() {
       {"load-angle-unit", F, "`angle_unit` is neither degree nor radian", "Choreonoid refuses the file", ""},
       {"load-wrapper", F, "a wrapper file (model_file without format)", "not supported by bodyfmt", ""},
       {"load-no-links", F, "no links are defined", "a body needs at least one link", ""},
+      {"load-legacy-shininess", N, "the VRML-style material key shininess (0..1), converted to specular_exponent", "it loads as 127 * shininess + 1; specular_exponent is the format's own key", ""},
       {"load-legacy-key", W, "a legacy camelCase key or value", "it loads, but the modern snake_case spelling is the documented one", ""},
       {"load-unknown-key", W, "an unknown key close to a known one (probable typo)", "Choreonoid ignores it silently, so the intended value is lost", "edit distance <= 1 (4-7 characters) or 2 (8+ characters), transpositions count once"},
       {"load-info-key", N, "a key the format does not define", "Choreonoid keeps it as info for other subsystems", ""},
@@ -59,7 +60,8 @@ std::vector<RuleInfo> make_table() {
       {"load-default-mass", N, "a link has no mass data and gets 1 kg with identity inertia", "Choreonoid simulates these defaults; other engines differ", ""},
       {"load-import", N, "`import` only adds info keys", "model keys inside it have no effect", ""},
       {"load-scene-node", N, "a scene-only node (light, camera, fog) in a body", "it has no meaning for the body", ""},
-      {"load-unknown-node-type", E, "an unknown element node type", "Choreonoid refuses the file (a warning when is_optional)", ""},
+      {"load-unknown-node-type", E, "an unknown element node type", "Choreonoid refuses the file", ""},
+      {"load-optional-node-skipped", W, "an unknown element node type marked is_optional", "Choreonoid skips it, so whatever it was meant to add is missing", ""},
       {"load-plugin-node", W, "a node type that needs a Choreonoid plugin", "kept as an opaque device; Choreonoid refuses the file without the plugin", ""},
       {"load-visual-collision-conflict", E, "Visual inside Collision or the reverse", "Choreonoid refuses the file", ""},
       {"load-continuous-track", E, "an invalid ContinuousTrack node", "Choreonoid refuses the file", ""},
@@ -75,6 +77,8 @@ std::vector<RuleInfo> make_table() {
       {"structure-cycle", E, "parents form a cycle", "Choreonoid refuses the file", ""},
       {"structure-unreachable", E, "a link is not connected to the root", "it is not part of the body", ""},
       // Geometry (§9)
+      {"geometry-division-clamped", W, "a division_number above the tessellation limit is clamped", "a sphere has about n^2/2 vertices: a huge division number would exhaust memory", ""},
+      {"geometry-more-problems", N, "further geometry problems of one shape are summarised, not listed", "one broken mesh would otherwise print thousands of lines", ""},
       {"geometry-invalid-size", E, "a non-positive size, radius or height", "Choreonoid refuses the shape", ""},
       {"geometry-degenerate", E, "an Extrusion, ElevationGrid or mesh that produces no valid surface", "Choreonoid crashes or drops the shape", ""},
       {"geometry-index-out-of-range", E, "a face index outside the vertex list", "Choreonoid refuses the file", ""},
@@ -136,6 +140,8 @@ std::vector<RuleInfo> make_table() {
       // Exporters (converters/, each target's SUPPORT.md)
       {"export-loss", W, "the target format cannot express a construct of the model", "the exported file silently differs from what Choreonoid simulates unless this is reported", ""},
       {"export-name", W, "a name the target format's tools cannot use, or one renamed to stay unique", "ROS tools (tf, MoveIt) rely on URDF names of letters, digits and '_'", ""},
+      {"export-name-conflict", F, "a name the export must add is already used by the model (e.g. --floating-base's 'world')", "two elements of one name make the output ambiguous, so nothing is written", ""},
+      {"export-xml-text", F, "a name or text that XML cannot hold (control characters, non-characters or invalid UTF-8)", "no XML parser would read the output, so nothing is written", ""},
       {"export-write", F, "an output file cannot be written or encoded", "nothing is written, so no output is left half-written", ""},
   };
   std::sort(rules.begin(), rules.end(), [](const RuleInfo& a, const RuleInfo& b) { return a.id < b.id; });
@@ -147,6 +153,23 @@ std::vector<RuleInfo> make_table() {
 const std::vector<RuleInfo>& all_rules() {
   static const std::vector<RuleInfo> rules = make_table();
   return rules;
+}
+
+Diagnostic make_diagnostic(std::string_view rule_id, SourceLocation location, std::string message,
+                           std::string fix_hint) {
+  const RuleInfo* rule = find_rule(rule_id);
+  Diagnostic d;
+  d.severity = rule ? rule->default_severity : Severity::kError;
+  d.rule_id = std::string(rule_id);
+  d.message = std::move(message);
+  d.location = std::move(location);
+  d.fix_hint = std::move(fix_hint);
+  return d;
+}
+
+void report_rule(DiagnosticSink& sink, std::string_view rule_id, SourceLocation location, std::string message,
+                 std::string fix_hint) {
+  sink.report(make_diagnostic(rule_id, std::move(location), std::move(message), std::move(fix_hint)));
 }
 
 const RuleInfo* find_rule(std::string_view id) {

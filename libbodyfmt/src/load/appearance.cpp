@@ -13,7 +13,7 @@ Appearance read_appearance(LoadContext& ctx, const yaml::NodeRef& appearance) {
   if (!appearance->is_mapping()) {
     // Choreonoid reads appearance as an optional mapping: anything else is ignored (SR1DH
     // has an empty `appearance:` whose material slipped to the Shape's indentation level).
-    ctx.warning("load-ignored-value", appearance,
+    ctx.report("load-ignored-value", appearance,
                 appearance->is_null() ? "this appearance is empty; Choreonoid ignores it"
                                       : "appearance must be a mapping; Choreonoid ignores this value",
                 "indent material and texture under appearance");
@@ -22,7 +22,7 @@ Appearance read_appearance(LoadContext& ctx, const yaml::NodeRef& appearance) {
   MappingReader r(ctx, appearance, "appearance");
   if (yaml::NodeRef m = r.take({"material"})) {
     if (!m->is_mapping()) {
-      ctx.error("load-type", m, "material must be a mapping");
+      ctx.report("load-type", m, "material must be a mapping");
     } else {
       Material material;
       MappingReader mr(ctx, m, "material");
@@ -33,14 +33,14 @@ Appearance read_appearance(LoadContext& ctx, const yaml::NodeRef& appearance) {
       if (auto v = mr.take({"specular_exponent"})) {
         assign_if(material.specular_exponent, optional_double(ctx, v));
         if (auto shininess = mr.take({"shininess"}))
-          ctx.warning("load-ignored-key", shininess,
+          ctx.report("load-ignored-key", shininess,
                       "\"shininess\" is ignored by Choreonoid when specular_exponent is given",
                       "remove shininess");
       } else if (auto shininess = mr.take({"shininess"})) {
         // body-format-spec §8.7: legacy VRML shininess maps to an exponent.
         if (auto s = optional_double(ctx, shininess)) {
           material.specular_exponent = 127.0 * std::clamp(*s, 0.0, 1.0) + 1.0;
-          ctx.note("load-legacy-key", shininess, "legacy key \"shininess\"; the modern key is \"specular_exponent\"",
+          ctx.report("load-legacy-shininess", shininess, "legacy key \"shininess\"; the modern key is \"specular_exponent\"",
                    "write specular_exponent: " + std::to_string(material.specular_exponent));
         }
       }
@@ -67,7 +67,7 @@ Appearance read_appearance(LoadContext& ctx, const yaml::NodeRef& appearance) {
           assign_if(texture.repeat_s, b);
           assign_if(texture.repeat_t, b);
         } else {
-          ctx.error("load-vector-size", repeat, "the number of the repeat elements must be two");
+          ctx.report("load-vector-size", repeat, "the number of the repeat elements must be two");
         }
       } else {
         assign_if(texture.repeat_s, take_optional_bool(tr, {"repeat_s", "repeatS"}));
@@ -76,7 +76,7 @@ Appearance read_appearance(LoadContext& ctx, const yaml::NodeRef& appearance) {
       tr.report_unknown({"uri", "repeat", "repeat_s", "repeat_t"});
       result.texture = texture;
     } else {
-      ctx.error("load-type", t, "texture must be a mapping");
+      ctx.report("load-type", t, "texture must be a mapping");
     }
   }
   r.take({"texture_transform", "textureTransform"});

@@ -44,7 +44,7 @@ std::optional<Model> BodyReader::read(const std::string& text, const std::string
   const yaml::NodeRef root = document->root;
   if (!root || !root->is_mapping()) {
     SourceLocation at{file_name, 1, 1};
-    ctx_.report(Severity::kFatal, "load-top-level", root ? root.use_site() : at,
+    ctx_.report("load-top-level", root ? root.use_site() : at,
                 "the top level of a body file must be a mapping");
     return std::nullopt;
   }
@@ -69,12 +69,12 @@ std::optional<Model> BodyReader::read(const std::string& text, const std::string
   std::vector<LinkEntry> entries;
   const yaml::MapEntry* links = root->find("links");
   if (!links) {
-    ctx_.report(Severity::kFatal, "load-no-links", root.use_site(), "there is no \"links\" key defining the links of the body");
+    ctx_.report("load-no-links", root.use_site(), "there is no \"links\" key defining the links of the body");
     return std::nullopt;
   }
   read_links(links->value, model, entries);
   if (model.links.empty()) {
-    ctx_.report(Severity::kFatal, "load-no-links", links->value.use_site(), "no link is defined");
+    ctx_.report("load-no-links", links->value.use_site(), "no link is defined");
     return std::nullopt;
   }
   // take() warns about the camelCase spellings, like the other header keys (§14).
@@ -130,21 +130,21 @@ bool BodyReader::read_header(const yaml::NodeRef& root, Model& model) {
   yaml::NodeRef format = r.take({"format"});
   if (!format) {
     if (r.take({"model_file", "modelFile"}))
-      ctx_.report(Severity::kFatal, "load-wrapper", root.use_site(),
+      ctx_.report("load-wrapper", root.use_site(),
                   "wrapper body files (model_file without format) are not supported");
     else
-      ctx_.report(Severity::kFatal, "load-format", root.use_site(),
+      ctx_.report("load-format", root.use_site(),
                   "neither format nor model_file is specified", "add format: ChoreonoidBody");
     return false;
   }
   if (format->scalar != "ChoreonoidBody") {
-    ctx_.report(Severity::kFatal, "load-format", format.use_site(),
+    ctx_.report("load-format", format.use_site(),
                 "the format \"" + format->scalar + "\" cannot be loaded as a Choreonoid body model");
     return false;
   }
   yaml::NodeRef version = r.take({"format_version", "formatVersion"});
   if (!version) {
-    ctx_.report(Severity::kFatal, "load-format-version", root.use_site(),
+    ctx_.report("load-format-version", root.use_site(),
                 "the version of the Choreonoid body file format is not specified",
                 "add format_version: 2.0");
     return false;
@@ -152,7 +152,7 @@ bool BodyReader::read_header(const yaml::NodeRef& root, Model& model) {
   auto v = required_double(ctx_, version);
   if (!v) return false;
   if (*v >= 2.1) {
-    ctx_.report(Severity::kFatal, "load-format-version", version.use_site(),
+    ctx_.report("load-format-version", version.use_site(),
                 "version " + version->scalar + " of the Choreonoid body format is not supported");
     return false;
   }
@@ -161,14 +161,14 @@ bool BodyReader::read_header(const yaml::NodeRef& root, Model& model) {
     if (unit->scalar == "radian") {
       if (*v >= 2.0) {
         // body-format-spec §2.1: radian mode is rejected in format 2.0.
-        ctx_.report(Severity::kFatal, "units-radian-in-2.0", unit.use_site(),
+        ctx_.report("units-radian-in-2.0", unit.use_site(),
                     "radian mode is not supported in format version 2.0",
                     "write angles in degrees, or use format_version: 1.0");
         return false;
       }
       ctx_.degrees = false;
     } else if (unit->scalar != "degree") {
-      ctx_.report(Severity::kFatal, "load-angle-unit", unit.use_site(),
+      ctx_.report("load-angle-unit", unit.use_site(),
                   "the angle_unit value must be either \"radian\" or \"degree\"");
       return false;
     }
@@ -187,7 +187,7 @@ bool BodyReader::read_header(const yaml::NodeRef& root, Model& model) {
 void BodyReader::read_links(const yaml::NodeRef& links, Model& model, std::vector<LinkEntry>& entries) {
   auto read_one = [&](const yaml::NodeRef& node, const std::string& type) {
     if (!node->is_mapping()) {
-      ctx_.error("load-type", node, "a link must be a mapping");
+      ctx_.report("load-type", node, "a link must be a mapping");
       return;
     }
     if (type == "Skip") return;
@@ -199,11 +199,11 @@ void BodyReader::read_links(const yaml::NodeRef& links, Model& model, std::vecto
       resources_->read_link_node(node, type, entries);
       return;
     }
-    ctx_.error("load-link-type", node, "a " + type + " node cannot be specified in links",
+    ctx_.report("load-link-type", node, "a " + type + " node cannot be specified in links",
                "use Link, SubBody, ContinuousTrack or Skip");
   };
   if (links->is_sequence()) {
-    if (links->items.empty()) ctx_.error("load-no-links", links, "no link is contained in the \"links\" listing");
+    if (links->items.empty()) ctx_.report("load-no-links", links, "no link is contained in the \"links\" listing");
     for (const yaml::NodeRef& item : links->items) {
       const yaml::MapEntry* type = item->is_mapping() ? item->find("type") : nullptr;
       read_one(item, type ? type->value->scalar : std::string());
@@ -214,7 +214,7 @@ void BodyReader::read_links(const yaml::NodeRef& links, Model& model, std::vecto
     std::sort(sorted.begin(), sorted.end(), [](auto* a, auto* b) { return a->key < b->key; });
     for (const yaml::MapEntry* e : sorted) read_one(e->value, e->key);
   } else {
-    ctx_.error("load-no-links", links, "invalid value specified in the \"links\" key");
+    ctx_.report("load-no-links", links, "invalid value specified in the \"links\" key");
   }
 }
 
@@ -227,19 +227,19 @@ bool BodyReader::build_tree(Model& model, const std::vector<LinkEntry>& entries,
     if (link.name.empty()) continue;
     auto [it, inserted] = by_name.emplace(link.name, i);
     if (!inserted) {
-      ctx_.report(Severity::kError, "structure-duplicate-link", link.sources.name,
+      ctx_.report("structure-duplicate-link", link.sources.name,
                   "duplicated link name \"" + link.name + "\" (first defined at line " +
                       std::to_string(model.links[static_cast<std::size_t>(it->second)].sources.name.line) + ")");
     }
     if (!link.joint_name.empty() && !by_joint_name.emplace(link.joint_name, i).second)
-      ctx_.report(Severity::kError, "structure-duplicate-joint-name", link.source,
+      ctx_.report("structure-duplicate-joint-name", link.source,
                   "duplicated joint name \"" + link.joint_name + "\"");
   }
   LinkIndex root = 0;
   if (root_link) {
     auto it = by_name.find(root_link->scalar);
     if (it == by_name.end()) {
-      ctx_.report(Severity::kFatal, "structure-root-link", root_link.use_site(),
+      ctx_.report("structure-root-link", root_link.use_site(),
                   "link \"" + root_link->scalar + "\" specified in root_link is not defined");
       return false;
     }
@@ -251,12 +251,12 @@ bool BodyReader::build_tree(Model& model, const std::vector<LinkEntry>& entries,
     const LinkEntry& entry = entries[static_cast<std::size_t>(i)];
     if (i == root) {
       if (!entry.parent_name.empty())
-        ctx_.report(Severity::kError, "structure-root-parent", link.sources.parent,
+        ctx_.report("structure-root-parent", link.sources.parent,
                     "the root link \"" + link.name + "\" must not have a parent");
       continue;
     }
     if (entry.parent_name.empty()) {
-      ctx_.report(Severity::kError, "structure-no-parent", link.source,
+      ctx_.report("structure-no-parent", link.source,
                   "the parent of link \"" + link.name + "\" is not specified", "add parent: PARENT_LINK");
       continue;
     }
@@ -265,7 +265,7 @@ bool BodyReader::build_tree(Model& model, const std::vector<LinkEntry>& entries,
       std::vector<std::string_view> names;
       for (const auto& [name, index] : by_name) names.push_back(name);
       std::string_view guess = suggest(entry.parent_name, names);
-      ctx_.report(Severity::kError, "structure-unknown-parent", entry.parent_ref.use_site(),
+      ctx_.report("structure-unknown-parent", entry.parent_ref.use_site(),
                   "parent link \"" + entry.parent_name + "\" of \"" + link.name + "\" is not defined",
                   guess.empty() ? std::string() : "did you mean \"" + std::string(guess) + "\"?");
       continue;
@@ -280,7 +280,7 @@ bool BodyReader::build_tree(Model& model, const std::vector<LinkEntry>& entries,
       }
     }
     if (cycle) {
-      ctx_.report(Severity::kError, "structure-cycle", entry.parent_ref.use_site(),
+      ctx_.report("structure-cycle", entry.parent_ref.use_site(),
                   "adding \"" + link.name + "\" to link \"" + entry.parent_name + "\" would make a cycle");
       continue;
     }
@@ -304,7 +304,7 @@ bool BodyReader::build_tree(Model& model, const std::vector<LinkEntry>& entries,
   for (LinkIndex i = 0; i < n; ++i) {
     if (new_index[static_cast<std::size_t>(i)] < 0 && parent[static_cast<std::size_t>(i)] >= 0) {
       const Link& link = model.links[static_cast<std::size_t>(i)];
-      ctx_.report(Severity::kError, "structure-unreachable", link.source,
+      ctx_.report("structure-unreachable", link.source,
                   "link \"" + link.name + "\" is not connected to the root link \"" +
                       model.links[static_cast<std::size_t>(root)].name + "\"");
     }
@@ -335,12 +335,12 @@ bool BodyReader::build_tree(Model& model, const std::vector<LinkEntry>& entries,
 
 void BodyReader::read_extra_joints(const yaml::NodeRef& extra_joints, Model& model) {
   if (!extra_joints->is_sequence()) {
-    ctx_.warning("load-ignored-value", extra_joints, "extra_joints must be a sequence; Choreonoid ignores it");
+    ctx_.report("load-ignored-value", extra_joints, "extra_joints must be a sequence; Choreonoid ignores it");
     return;
   }
   for (const yaml::NodeRef& node : extra_joints->items) {
     if (!node->is_mapping()) {
-      ctx_.error("load-type", node, "an extra joint must be a mapping");
+      ctx_.report("load-type", node, "an extra joint must be a mapping");
       continue;
     }
     MappingReader r(ctx_, node, "extra joint");
@@ -352,23 +352,23 @@ void BodyReader::read_extra_joints(const yaml::NodeRef& extra_joints, Model& mod
       std::string camel = "link" + std::to_string(k) + "Name";
       yaml::NodeRef name = r.take({snake, camel});
       if (!name) {
-        ctx_.error("extra-joint-link", node, snake + " is not specified");
+        ctx_.report("extra-joint-link", node, snake + " is not specified");
         ok = false;
         continue;
       }
       LinkIndex index = model.find_link(name->scalar);
       if (index < 0) {
-        ctx_.error("extra-joint-link", name, "the link \"" + name->scalar + "\" specified in " + snake + " is not found");
+        ctx_.report("extra-joint-link", name, "the link \"" + name->scalar + "\" specified in " + snake + " is not found");
         ok = false;
       }
       (k == 1 ? joint.link1 : joint.link2) = index;
     }
     yaml::NodeRef type = r.take({"joint_type", "jointType"});
     if (!type) {
-      ctx_.error("extra-joint-type", node, "the joint type must be specified with the \"joint_type\" key");
+      ctx_.report("extra-joint-type", node, "the joint type must be specified with the \"joint_type\" key");
       ok = false;
     } else if (type->scalar != "fixed" && type->scalar != "hinge" && type->scalar != "ball" && type->scalar != "piston") {
-      ctx_.error("extra-joint-type", type, "joint type \"" + type->scalar + "\" is not available",
+      ctx_.report("extra-joint-type", type, "joint type \"" + type->scalar + "\" is not available",
                  "use fixed, hinge, ball or piston");
       ok = false;
     } else {
@@ -377,7 +377,7 @@ void BodyReader::read_extra_joints(const yaml::NodeRef& extra_joints, Model& mod
     if (auto axis = r.take({"axis", "jointAxis"})) {
       if (auto a = read_vec3(ctx_, axis)) {
         if (a->norm() > 0) joint.axis = a->normalized();
-        else ctx_.error("extra-joint-axis", axis, "the extra joint axis is the zero vector");
+        else ctx_.report("extra-joint-axis", axis, "the extra joint axis is the zero vector");
       }
     }
     if (auto t = r.take({"translation_in_link1", "link1LocalPos"}))
@@ -390,7 +390,7 @@ void BodyReader::read_extra_joints(const yaml::NodeRef& extra_joints, Model& mod
       if (auto R = read_rotation(ctx_, rot)) joint.X_2J.linear() = *R;
     for (const char* ignored : {"link1_local_pos", "link2_local_pos"}) {
       if (auto v = r.take({ignored}))
-        ctx_.warning("load-ignored-key", v, std::string("Choreonoid does not read \"") + ignored + "\"",
+        ctx_.report("load-ignored-key", v, std::string("Choreonoid does not read \"") + ignored + "\"",
                      std::string("use translation_in_link") + ignored[4]);
     }
     r.report_unknown({"link1_name", "link2_name", "joint_type", "axis", "translation_in_link1",

@@ -49,7 +49,7 @@ bool read_camera(MappingReader& r, Device& d) {
                                                            "POINT_CLOUD", "COLOR_POINT_CLOUD"};
   if (std::find(kFormats.begin(), kFormats.end(), c.format) == kFormats.end()) {
     // body-format-spec §10.2: Choreonoid drops such a camera without a word.
-    ctx.warning("device-camera-dropped", format ? format : r.node(),
+    ctx.report("device-camera-dropped", format ? format : r.node(),
                 c.format.empty() ? "this Camera has no format; Choreonoid silently drops it"
                                  : "unknown camera format \"" + c.format + "\"; Choreonoid silently drops the camera",
                 "set format to COLOR, DEPTH, COLOR_DEPTH, POINT_CLOUD or COLOR_POINT_CLOUD");
@@ -65,7 +65,7 @@ bool read_camera(MappingReader& r, Device& d) {
   assign_if(c.frame_rate, take_optional_double(r, {"frame_rate", "frameRate"}));
   c.optical_frame = opt_string(r, {"optical_frame"}, c.optical_frame);
   if (c.optical_frame != "gl" && c.optical_frame != "cv" && c.optical_frame != "robotics")
-    ctx.error("device-optical-frame", r.node()->find("optical_frame")->value,
+    ctx.report("device-optical-frame", r.node()->find("optical_frame")->value,
               "unknown optical frame type \"" + c.optical_frame + "\"", "use gl, cv or robotics");
   assign_if(c.min_distance, take_optional_double(r, {"min_distance"}));
   assign_if(c.max_distance, take_optional_double(r, {"max_distance"}));

@@ -45,12 +45,12 @@ void ElementReader::read_elements(const yaml::NodeRef& elements, const ElementFr
     for (const yaml::NodeRef& raw_item : elements->items) {
       const yaml::NodeRef item = elements.child(raw_item);
       if (!item->is_mapping()) {
-        ctx_.error("load-type", item, "an element must be a mapping");
+        ctx_.report("load-type", item, "an element must be a mapping");
         continue;
       }
       const yaml::MapEntry* type = item->find("type");
       if (!type) {
-        ctx_.error("load-missing-key", item, "key \"type\" is not found in this element");
+        ctx_.report("load-missing-key", item, "key \"type\" is not found in this element");
         continue;
       }
       read_node(item, type->value->scalar, frame);
@@ -69,11 +69,11 @@ void ElementReader::read_elements(const yaml::NodeRef& elements, const ElementFr
               [](const yaml::MapEntry* a, const yaml::MapEntry* b) { return a->key < b->key; });
     for (const yaml::MapEntry* e : entries) {
       if (!e->value->is_mapping()) {
-        ctx_.error("load-type", e->value, "the \"" + e->key + "\" element must be a mapping");
+        ctx_.report("load-type", e->value, "the \"" + e->key + "\" element must be a mapping");
         continue;
       }
       if (const yaml::MapEntry* inner = e->value->find("type"); inner && inner->value->scalar != e->key) {
-        ctx_.error("load-type-mismatch", inner->value,
+        ctx_.report("load-type-mismatch", inner->value,
                    "the node type \"" + inner->value->scalar + "\" is different from the type \"" +
                        e->key + "\" specified in the parent node");
         continue;
@@ -82,7 +82,7 @@ void ElementReader::read_elements(const yaml::NodeRef& elements, const ElementFr
     }
     return;
   }
-  ctx_.error("load-type", elements, "a value of the \"elements\" key must be a sequence or a mapping");
+  ctx_.report("load-type", elements, "a value of the \"elements\" key must be a sequence or a mapping");
 }
 
 std::optional<ElementFrame> ElementReader::enter(const yaml::NodeRef& node, MappingReader& r,
@@ -99,7 +99,7 @@ std::optional<ElementFrame> ElementReader::enter(const yaml::NodeRef& node, Mapp
     if (auto s = r.take({"scale"})) {
       if (!s->is_sequence()) {
         // body-format-spec §4.4: a scalar scale is silently ignored by Choreonoid.
-        ctx_.warning("load-ignored-value", s, "scale must be a 3-element sequence; Choreonoid ignores a scalar",
+        ctx_.report("load-ignored-value", s, "scale must be a 3-element sequence; Choreonoid ignores a scalar",
                      "write [sx, sy, sz]");
       } else if (auto v = read_vec3(ctx_, s)) {
         X.linear() = X.linear() * v->asDiagonal();
@@ -121,7 +121,7 @@ ElementFrame ElementReader::push_frame(const ElementFrame& frame, const Eigen::A
 
 void ElementReader::read_node(const yaml::NodeRef& node, const std::string& type, const ElementFrame& frame) {
   if (!node->is_mapping()) {
-    ctx_.error("load-type", node, "a " + type + " node must be a mapping");
+    ctx_.report("load-type", node, "a " + type + " node must be a mapping");
     return;
   }
   if (type == "Skip") return;
@@ -136,7 +136,7 @@ void ElementReader::read_node(const yaml::NodeRef& node, const std::string& type
       for (KeyNames names : {KeyNames{"mass"}, KeyNames{"center_of_mass", "centerOfMass", "centerofMass"},
                              KeyNames{"inertia"}}) {
         if (auto ignored = r.take(names)) {
-          ctx_.warning("load-mass-ignored", ignored,
+          ctx_.report("load-mass-ignored", ignored,
                        "mass properties on a Transform node are ignored by Choreonoid",
                        "move them into a RigidBody node");
         }
@@ -144,7 +144,7 @@ void ElementReader::read_node(const yaml::NodeRef& node, const std::string& type
     } else if (type == "Group" && r.has({"translation", "rotation", "scale"})) {
       for (const char* k : {"translation", "rotation", "scale"}) {
         if (auto ignored = r.take({k}))
-          ctx_.warning("load-ignored-key", ignored, std::string("a Group has no ") + k + "; it is ignored",
+          ctx_.report("load-ignored-key", ignored, std::string("a Group has no ") + k + "; it is ignored",
                        "use a Transform node");
       }
     }
@@ -160,13 +160,13 @@ void ElementReader::read_node(const yaml::NodeRef& node, const std::string& type
     if (resources_) {
       resources_->read_resource(*this, node, frame);
     } else {
-      ctx_.error("resource-unsupported", node, "Resource nodes are not supported by this loader");
+      ctx_.report("resource-unsupported", node, "Resource nodes are not supported by this loader");
     }
     return;
   }
   if (is_core_device_type(type) || is_plugin_node_type(type)) return read_device(node, type, frame);
   if (is_scene_only_type(type)) {
-    ctx_.note("load-scene-node", node, "a " + type + " node has no meaning in a body model; it is ignored");
+    ctx_.report("load-scene-node", node, "a " + type + " node has no meaning in a body model; it is ignored");
     return;
   }
   // body-format-spec §7.2 rule 3.
@@ -176,7 +176,7 @@ void ElementReader::read_node(const yaml::NodeRef& node, const std::string& type
   std::string_view guess = suggest(type, kElementTypes);
   const yaml::MapEntry* type_entry = node->find("type");
   yaml::NodeRef at = type_entry ? type_entry->value : node;
-  ctx_.report(is_optional ? Severity::kWarning : Severity::kError, "load-unknown-node-type", at,
+  ctx_.report(is_optional ? "load-optional-node-skipped" : "load-unknown-node-type", at,
               "the node type \"" + type + "\" is not defined" +
                   (is_optional ? std::string("; this optional node is skipped") : std::string()),
               guess.empty() ? std::string() : "did you mean " + std::string(guess) + "?");
@@ -188,7 +188,7 @@ void ElementReader::read_part(const yaml::NodeRef& node, ModelPart part, const E
   r.take({"type"});
   r.take({"name"});
   if (frame.part != ModelPart::kBoth && frame.part != part) {
-    ctx_.error("load-visual-collision-conflict", node,
+    ctx_.report("load-visual-collision-conflict", node,
                std::string("this ") + name + " node is inside a " +
                    (part == ModelPart::kVisual ? "Collision" : "Visual") +
                    " node defined at a higher level");
@@ -200,7 +200,7 @@ void ElementReader::read_part(const yaml::NodeRef& node, ModelPart part, const E
   // Inline shortcuts come before `elements` (body-format-spec §8.4).
   if (auto resource = r.take({"resource"})) {
     if (resources_ && resource->is_mapping()) resources_->read_resource(*this, resource, inner);
-    else if (!resource->is_mapping()) ctx_.error("load-type", resource, "resource must be a mapping");
+    else if (!resource->is_mapping()) ctx_.report("load-type", resource, "resource must be a mapping");
   }
   if (auto shape = r.take({"shape"})) read_shape(shape, inner);
   read_elements(r.take({"elements"}), inner);
@@ -226,7 +226,7 @@ void ElementReader::read_rigid_body(const yaml::NodeRef& node, const ElementFram
     if (v->is_sequence()) {
       if (auto x = read_inertia(ctx_, v)) I = *x;
     } else {
-      ctx_.warning("load-ignored-value", v, "a RigidBody inertia that is not a sequence is read as zero");
+      ctx_.report("load-ignored-value", v, "a RigidBody inertia that is not a sequence is read as zero");
     }
   }
   // body-format-spec §6.4 rule 1: the accumulated transform, scale included.
@@ -241,7 +241,7 @@ void ElementReader::read_rigid_body(const yaml::NodeRef& node, const ElementFram
 
 void ElementReader::read_shape(const yaml::NodeRef& node, const ElementFrame& frame) {
   if (!node->is_mapping()) {
-    ctx_.error("load-type", node, "a Shape node must be a mapping");
+    ctx_.report("load-type", node, "a Shape node must be a mapping");
     return;
   }
   MappingReader r(ctx_, node, "Shape node");
@@ -259,7 +259,7 @@ void ElementReader::read_shape(const yaml::NodeRef& node, const ElementFrame& fr
   }
   if (auto appearance = r.take({"appearance"})) shape.appearance = read_appearance(ctx_, appearance);
   if (auto material = r.take({"material"})) {
-    ctx_.warning("load-ignored-key", material,
+    ctx_.report("load-ignored-key", material,
                  "\"material\" directly on a Shape is ignored by Choreonoid", "move it under appearance");
   }
   r.take({"is_meta_scene"});
@@ -303,7 +303,7 @@ void ElementReader::read_device(const yaml::NodeRef& node, const std::string& ty
     d.type = type;
     for (const yaml::MapEntry& e : node->entries) r.ignore(e.key);
     if (ctx_.reported_once.insert("plugin:" + type).second) {
-      ctx_.warning("load-plugin-node", node,
+      ctx_.report("load-plugin-node", node,
                    "\"" + type + "\" is a plugin node type: Choreonoid loads it only with its plugin; "
                    "it is kept as an opaque device");
     }

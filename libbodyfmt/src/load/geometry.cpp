@@ -27,7 +27,7 @@ std::vector<Eigen::Vector3d> triples(const std::vector<double>& v) {
 std::vector<int> indices(LoadContext& ctx, const yaml::NodeRef& ref) {
   std::vector<int> out;
   if (!ref || !ref->is_sequence()) {
-    if (ref) ctx.error("load-type", ref, "an index list must be a sequence");
+    if (ref) ctx.report("load-type", ref, "an index list must be a sequence");
     return out;
   }
   for (const yaml::NodeRef& item : ref->items) {
@@ -45,7 +45,7 @@ std::vector<double> numbers_or_empty(LoadContext& ctx, const yaml::NodeRef& ref)
 
 void check_positive(LoadContext& ctx, MappingReader& r, const char* key, double value) {
   if (value <= 0) {
-    ctx.error("geometry-invalid-size", r.node()->find(key) ? r.node()->find(key)->value : r.node(),
+    ctx.report("geometry-invalid-size", r.node()->find(key) ? r.node()->find(key)->value : r.node(),
               std::string(key) + " must be positive, found " + std::to_string(value));
   }
 }
@@ -54,7 +54,7 @@ Geometry read_box(LoadContext& ctx, MappingReader& r) {
   Box box;
   if (yaml::NodeRef size = r.take({"size"})) assign_if(box.size, read_optional_vec3(ctx, size));
   if ((box.size.array() < 0).any())
-    ctx.error("geometry-invalid-size", r.node()->find("size")->value,
+    ctx.report("geometry-invalid-size", r.node()->find("size")->value,
               "a box cannot have a negative size");
   r.report_unknown({"size", "type", "division_number", "extra_division_mode"});
   return box;
@@ -97,7 +97,7 @@ Geometry read_capsule(LoadContext& ctx, MappingReader& r) {
   assign_if(c.height, take_optional_double(r, {"height"}));
   check_positive(ctx, r, "radius", c.radius);
   if (c.height < 0)  // height 0 is a sphere, which Choreonoid allows
-    ctx.error("geometry-invalid-size", r.node()->find("height")->value,
+    ctx.report("geometry-invalid-size", r.node()->find("height")->value,
               "capsule height must not be negative");
   r.report_unknown({"radius", "height", "type", "division_number"});
   return c;
@@ -122,17 +122,17 @@ Geometry read_extrusion(LoadContext& ctx, MappingReader& r) {
   r.ignore("solid");
   const yaml::NodeRef where = r.node();
   if (r.has({"begin_cap"})) {
-    ctx.warning("load-ignored-key", r.node()->find("begin_cap")->value,
+    ctx.report("load-ignored-key", r.node()->find("begin_cap")->value,
                 "Choreonoid does not read \"begin_cap\"; only \"beginCap\" works", "rename it to beginCap");
     r.ignore("begin_cap");
   }
   // Fewer than two points crash Choreonoid (null mesh), §9.
   if (e.cross_section.size() < 2)
-    ctx.error("geometry-degenerate", where, "an Extrusion needs at least 2 cross-section points");
-  if (e.spine.size() < 2) ctx.error("geometry-degenerate", where, "an Extrusion needs at least 2 spine points");
+    ctx.report("geometry-degenerate", where, "an Extrusion needs at least 2 cross-section points");
+  if (e.spine.size() < 2) ctx.report("geometry-degenerate", where, "an Extrusion needs at least 2 spine points");
   auto check_count = [&](std::size_t n, const char* key) {
     if (n > 1 && n != e.spine.size())
-      ctx.error("geometry-degenerate", where,
+      ctx.report("geometry-degenerate", where,
                 std::string(key) + " must have 1 entry or one per spine point (" +
                     std::to_string(e.spine.size()) + "), found " + std::to_string(n));
   };
@@ -155,9 +155,9 @@ Geometry read_elevation_grid(LoadContext& ctx, MappingReader& r) {
   r.take({"tex_coord", "texCoord"});
   r.ignore("solid");
   if (g.x_dimension < 2 || g.z_dimension < 2)
-    ctx.error("geometry-degenerate", r.node(), "an ElevationGrid needs x_dimension and z_dimension of at least 2");
+    ctx.report("geometry-degenerate", r.node(), "an ElevationGrid needs x_dimension and z_dimension of at least 2");
   else if (g.height.size() != static_cast<std::size_t>(g.x_dimension) * g.z_dimension)
-    ctx.error("geometry-degenerate", r.node(),
+    ctx.report("geometry-degenerate", r.node(),
               "an ElevationGrid needs x_dimension * z_dimension = " +
                   std::to_string(g.x_dimension * g.z_dimension) + " heights, found " +
                   std::to_string(g.height.size()));
@@ -179,7 +179,7 @@ MeshGeometry read_mesh_keys(LoadContext& ctx, MappingReader& r) {
   const int n = static_cast<int>(m.vertices.size());
   for (int index : m.faces) {
     if (index >= n || index < -1) {
-      ctx.error("geometry-index-out-of-range", r.node()->find("faces") ? r.node()->find("faces")->value
+      ctx.report("geometry-index-out-of-range", r.node()->find("faces") ? r.node()->find("faces")->value
                                                                       : r.node()->find("coordIndex")->value,
                 "vertex index " + std::to_string(index) + " is out of range (" + std::to_string(n) +
                     " vertices)");
@@ -205,12 +205,12 @@ Geometry read_indexed_face_set(LoadContext& ctx, MappingReader& r) {
     }
   }
   if (!any_polygon)
-    ctx.error("geometry-degenerate", r.node(), "this IndexedFaceSet has no polygon with three or more vertices");
+    ctx.report("geometry-degenerate", r.node(), "this IndexedFaceSet has no polygon with three or more vertices");
   if (!m.faces.empty() && m.faces.back() != -1) {
     // body-format-spec §9: Choreonoid silently drops a last polygon not closed by -1.
     const yaml::MapEntry* faces = r.node()->find("faces");
     if (!faces) faces = r.node()->find("coordIndex");
-    ctx.warning("geometry-unterminated-polygon", faces ? faces->value : r.node(),
+    ctx.report("geometry-unterminated-polygon", faces ? faces->value : r.node(),
                 "the last polygon of this IndexedFaceSet is not terminated by -1; Choreonoid drops it",
                 "append -1 to faces");
   }
@@ -220,9 +220,9 @@ Geometry read_indexed_face_set(LoadContext& ctx, MappingReader& r) {
 Geometry read_triangle_mesh(LoadContext& ctx, MappingReader& r) {
   auto m = read_mesh_keys<TriangleMeshGeometry>(ctx, r);
   if (m.faces.size() % 3 != 0)
-    ctx.error("geometry-degenerate", r.node(), "TriangleMesh faces must be a multiple of 3 indices");
+    ctx.report("geometry-degenerate", r.node(), "TriangleMesh faces must be a multiple of 3 indices");
   else if (m.faces.empty())
-    ctx.error("geometry-degenerate", r.node(), "this TriangleMesh has no triangle");
+    ctx.report("geometry-degenerate", r.node(), "this TriangleMesh has no triangle");
   return m;
 }
 
@@ -230,7 +230,7 @@ Geometry read_resource_geometry(LoadContext& ctx, MappingReader& r) {
   MeshResource mesh;
   yaml::NodeRef uri = r.take({"uri"});
   if (!uri) {
-    ctx.error("load-missing-key", r.node(), "key \"uri\" is not found in a Resource geometry");
+    ctx.report("load-missing-key", r.node(), "key \"uri\" is not found in a Resource geometry");
   } else if (auto text = required_string(ctx, uri)) {
     mesh.uri = *text;
     mesh.resolved_path = resolve_uri(ctx, uri, mesh.uri, uri->location.file);
@@ -248,20 +248,20 @@ Geometry read_resource_geometry(LoadContext& ctx, MappingReader& r) {
 std::optional<Geometry> read_geometry(LoadContext& ctx, const yaml::NodeRef& geometry,
                                       int& division_number) {
   if (!geometry->is_mapping()) {
-    ctx.error("load-type", geometry, "geometry must be a mapping");
+    ctx.report("load-type", geometry, "geometry must be a mapping");
     return std::nullopt;
   }
   MappingReader r(ctx, geometry, "geometry");
   yaml::NodeRef type = r.take({"type"});
   if (!type) {
-    ctx.error("load-missing-key", geometry, "key \"type\" is not found in the geometry");
+    ctx.report("load-missing-key", geometry, "key \"type\" is not found in the geometry");
     return std::nullopt;
   }
   if (auto division = r.take({"division_number", "divisionNumber"})) {
     if (auto n = optional_int(ctx, division)) {
       division_number = *n < 4 ? 20 : static_cast<int>(std::min<long>(*n, kMaxDivisionNumber));
       if (*n > kMaxDivisionNumber)
-        ctx.warning("geometry-invalid-size", division,
+        ctx.report("geometry-division-clamped", division,
                     "division_number " + std::to_string(*n) + " is clamped to " + std::to_string(kMaxDivisionNumber),
                     "a sphere has about n^2/2 vertices; use a smaller division_number");
     }
@@ -283,7 +283,7 @@ std::optional<Geometry> read_geometry(LoadContext& ctx, const yaml::NodeRef& geo
       "Box", "Sphere", "Cylinder", "Cone", "Capsule", "Extrusion", "ElevationGrid",
       "IndexedFaceSet", "TriangleMesh", "Resource"};
   std::string_view guess = suggest(t, kTypes);
-  ctx.error("geometry-unknown-type", type, "unknown geometry \"" + t + "\"",
+  ctx.report("geometry-unknown-type", type, "unknown geometry \"" + t + "\"",
             guess.empty() ? std::string() : "did you mean " + std::string(guess) + "?");
   return std::nullopt;
 }

@@ -29,13 +29,13 @@ void read_joint(LoadContext& ctx, MappingReader& r, Link& link) {
     if (auto type = parse_joint_type(t->scalar)) {
       link.joint_type = *type;
       if (t->scalar == "slide" || t->scalar == "pseudoContinuousTrack")
-        ctx.warning("load-legacy-key", t, "legacy joint type \"" + t->scalar + "\"",
+        ctx.report("load-legacy-key", t, "legacy joint type \"" + t->scalar + "\"",
                     std::string("write ") + std::string(joint_type_name(*type)));
     } else {
       std::string hint;
       if (t->scalar == "continuous" || t->scalar == "hinge")
         hint = "use revolute (with joint_range: unlimited for a continuous joint)";
-      ctx.error("load-joint-type", t, "illegal joint type \"" + t->scalar + "\"", hint);
+      ctx.report("load-joint-type", t, "illegal joint type \"" + t->scalar + "\"", hint);
     }
   }
   if (auto mode = r.take({"actuation_mode", "actuationMode"})) {
@@ -47,10 +47,10 @@ void read_joint(LoadContext& ctx, MappingReader& r, Link& link) {
     if (mode->scalar == "jointSurfaceVelocity") {
       // body-format-spec §6.3: the deprecated mode turns the joint into a pseudo track.
       link.joint_type = JointType::kPseudoContinuousTrack;
-      ctx.warning("load-legacy-key", mode, "actuation mode \"jointSurfaceVelocity\" is deprecated",
+      ctx.report("load-legacy-key", mode, "actuation mode \"jointSurfaceVelocity\" is deprecated",
                   "write joint_type: pseudo_continuous_track");
     } else if (std::find(kModes.begin(), kModes.end(), mode->scalar) == kModes.end()) {
-      ctx.error("load-actuation-mode", mode, "illegal actuation mode \"" + mode->scalar + "\"");
+      ctx.report("load-actuation-mode", mode, "illegal actuation mode \"" + mode->scalar + "\"");
     }
   }
   const bool revolute = link.joint_type == JointType::kRevolute;
@@ -71,7 +71,7 @@ void read_joint(LoadContext& ctx, MappingReader& r, Link& link) {
     if (auto v = required_double(ctx, angle)) {
       link.initial_displacement = ctx.angle(*v);
       if (link.joint_type == JointType::kPrismatic && ctx.degrees)
-        ctx.warning("load-angle-on-prismatic", angle,
+        ctx.report("load-angle-on-prismatic", angle,
                     "joint_angle on a prismatic joint is converted from degrees by Choreonoid",
                     "use joint_displacement for a prismatic joint");
     }
@@ -87,7 +87,7 @@ void read_joint(LoadContext& ctx, MappingReader& r, Link& link) {
     if (auto v = read_symmetric_limit(ctx, max_velocity, revolute))
       std::tie(link.velocity_lower, link.velocity_upper) = *v;
     if (velocity_range)
-      ctx.warning("load-ignored-key", velocity_range,
+      ctx.report("load-ignored-key", velocity_range,
                   "joint_velocity_range is ignored by Choreonoid when max_joint_velocity is given");
   } else if (velocity_range) {
     link.sources.joint_velocity = velocity_range.use_site();
@@ -133,7 +133,7 @@ void read_link_mass(LoadContext& ctx, MappingReader& r, Link& link, bool has_rig
     if (inertia->is_sequence()) {
       if (auto v = read_inertia(ctx, inertia)) c.inertia = *v;
     } else {
-      ctx.warning("load-ignored-value", inertia,
+      ctx.report("load-ignored-value", inertia,
                   "a link-level inertia that is not a sequence is ignored by Choreonoid");
     }
   }
@@ -157,7 +157,7 @@ LinkEntry read_link(LoadContext& ctx, const yaml::NodeRef& node, Model& model, R
     link().sources.name = name.use_site();
     link().name = required_string(ctx, name).value_or("");
   } else {
-    ctx.error("load-link-name", node, "this link has no name", "add name: LINK_NAME");
+    ctx.report("load-link-name", node, "this link has no name", "add name: LINK_NAME");
   }
   if (auto parent = r.take({"parent"})) {
     link().sources.parent = parent.use_site();
@@ -177,14 +177,14 @@ LinkEntry read_link(LoadContext& ctx, const yaml::NodeRef& node, Model& model, R
   if (auto material = r.take({"material"})) link().contact_material = material->scalar;
   if (auto import = r.take({"import"})) {
     // body-format-spec §6.5: import only adds info keys; model keys in it have no effect.
-    ctx.note("load-import", import, "import only adds info keys; model keys inside it are ignored by Choreonoid");
+    ctx.report("load-import", import, "import only adds info keys; model keys inside it are ignored by Choreonoid");
   }
   ElementReader elements(ctx, model, index, resources);
   elements.read_elements(r.take({"elements"}), ElementFrame{});
   read_link_mass(ctx, r, link(), elements.has_rigid_body());
   if (link().mass_contributions.empty()) {
     // body-format-spec §6.4 rule 4: Choreonoid simulates these defaults; other engines differ.
-    ctx.note("load-default-mass", node, "link \"" + link().name + "\" has no mass data; Choreonoid uses 1 kg with identity inertia",
+    ctx.report("load-default-mass", node, "link \"" + link().name + "\" has no mass data; Choreonoid uses 1 kg with identity inertia",
              "add mass, center_of_mass and inertia");
   }
   r.report_unknown(kLinkKeys);
@@ -211,14 +211,14 @@ void apply_subbody_overrides(LoadContext& ctx, MappingReader& r, Model& model, L
   if (auto material = r.take({"material"})) link.contact_material = material->scalar;
   for (KeyNames names : {KeyNames{"mass"}, KeyNames{"center_of_mass", "centerOfMass"}, KeyNames{"inertia"}}) {
     if (auto ignored = r.take(names))
-      ctx.warning("load-mass-ignored", ignored, "mass properties on a SubBody node are ignored by Choreonoid");
+      ctx.report("load-mass-ignored", ignored, "mass properties on a SubBody node are ignored by Choreonoid");
   }
   const std::size_t contributions = link.mass_contributions.size();
   ElementReader elements(ctx, model, root, resources);
   elements.read_elements(r.take({"elements"}), ElementFrame{});
   Link& after = model.links[static_cast<std::size_t>(root)];
   if (after.mass_contributions.size() != contributions) {
-    ctx.report(Severity::kWarning, "load-mass-ignored", after.mass_contributions[contributions].source,
+    ctx.report("load-mass-ignored", after.mass_contributions[contributions].source,
                "RigidBody nodes of a SubBody node are ignored by Choreonoid");
     after.mass_contributions.resize(contributions);
   }

@@ -1,5 +1,6 @@
 #include <bodyfmt/load.h>
 
+#include <bodyfmt/rules.h>
 #include "load/body_reader.h"
 
 #include <fstream>
@@ -10,12 +11,7 @@ namespace bodyfmt {
 std::optional<Model> load_body(const std::string& path, const LoadOptions& options, DiagnosticSink& sink) {
   std::ifstream in(path, std::ios::binary);
   if (!in) {
-    Diagnostic d;
-    d.severity = Severity::kFatal;
-    d.rule_id = "io-read";
-    d.message = "cannot open \"" + path + "\"";
-    d.location.file = path;
-    sink.report(std::move(d));
+    report_rule(sink, "io-read", SourceLocation{path, 0, 0}, "cannot open \"" + path + "\"");
     return std::nullopt;
   }
   std::ostringstream text;
@@ -31,12 +27,8 @@ std::optional<Model> load_body_string(const std::string& text, const std::string
     return reader.read(text, file_name);
   } catch (const std::exception& e) {
     // A broken invariant must not take the caller down; report it as fatal.
-    Diagnostic d;
-    d.severity = Severity::kFatal;
-    d.rule_id = "internal-error";
-    d.message = std::string("internal error while loading: ") + e.what();
-    d.location.file = file_name;
-    sink.report(std::move(d));
+    report_rule(sink, "internal-error", SourceLocation{file_name, 0, 0},
+                std::string("internal error while loading: ") + e.what());
     return std::nullopt;
   }
 }

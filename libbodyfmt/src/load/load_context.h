@@ -29,29 +29,16 @@ struct LoadContext {
 
   explicit LoadContext(DiagnosticSink& s) : sink(s) {}
 
-  void report(Severity severity, std::string_view rule, const yaml::NodeRef& at,
-              std::string message, std::string hint = {});
-  void report(Severity severity, std::string_view rule, const SourceLocation& at,
-              std::string message, std::string hint = {});
-  void error(std::string_view rule, const yaml::NodeRef& at, std::string message,
-             std::string hint = {}) {
-    report(Severity::kError, rule, at, std::move(message), std::move(hint));
-  }
-  void warning(std::string_view rule, const yaml::NodeRef& at, std::string message,
-               std::string hint = {}) {
-    report(Severity::kWarning, rule, at, std::move(message), std::move(hint));
-  }
-  void note(std::string_view rule, const yaml::NodeRef& at, std::string message,
-            std::string hint = {}) {
-    report(Severity::kNote, rule, at, std::move(message), std::move(hint));
-  }
+  /// Reports `rule` with the rule table's severity at the text responsible.
+  void report(std::string_view rule, const yaml::NodeRef& at, std::string message, std::string hint = {});
+  void report(std::string_view rule, const SourceLocation& at, std::string message, std::string hint = {});
 
   /// Converts an angle written in the file's unit to radians.
   double angle(double value) const;
 
  private:
-  void emit(Severity severity, std::string_view rule, const SourceLocation& at,
-            std::optional<SourceLocation> via, std::string message, std::string hint);
+  void emit(std::string_view rule, const SourceLocation& at, std::optional<SourceLocation> via,
+            std::string message, std::string hint);
 };
 
 }  // namespace bodyfmt::detail

@@ -21,7 +21,7 @@ yaml::NodeRef MappingReader::take(KeyNames names) {
       consumed_.emplace(name);
       if (!modern) {
         // Located at the key: that is the text to change.
-        ctx_.report(Severity::kWarning, "load-legacy-key", entry->key_location,
+        ctx_.report("load-legacy-key", entry->key_location,
                     "legacy key \"" + std::string(name) + "\"; the modern spelling is \"" +
                         std::string(*names.begin()) + "\"",
                     "rename it to " + std::string(*names.begin()));
@@ -52,12 +52,12 @@ void MappingReader::report_unknown(const std::vector<std::string_view>& known) {
     std::string_view guess = suggest(entry.key, candidates);
     if (auto it = legacy_.find(guess); it != legacy_.end()) guess = it->second;
     if (!guess.empty()) {
-      ctx_.report(Severity::kWarning, "load-unknown-key", entry.key_location,
+      ctx_.report("load-unknown-key", entry.key_location,
                   "unknown key \"" + entry.key + "\" in " + what_ + "; did you mean \"" +
                       std::string(guess) + "\"?",
                   "Choreonoid ignores it; rename it to " + std::string(guess));
     } else {
-      ctx_.report(Severity::kNote, "load-info-key", entry.key_location,
+      ctx_.report("load-info-key", entry.key_location,
                   "key \"" + entry.key + "\" is not part of the " + what_ +
                       " format; it is kept as info");
     }

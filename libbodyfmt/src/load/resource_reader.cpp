@@ -52,7 +52,7 @@ class Resources final : public ResourceReader {
     r.report_unknown({"type", "name", "uri", "node", "fragment", "metadata", "translation", "rotation", "scale",
                       "crease_angle"});
     if (!uri) {
-      ctx_.error("load-missing-key", node, "key \"uri\" is not found in a Resource node");
+      ctx_.report("load-missing-key", node, "key \"uri\" is not found in a Resource node");
       return;
     }
     std::string path = resolve_uri(ctx_, uri, uri->scalar, uri->location.file);
@@ -85,7 +85,7 @@ class Resources final : public ResourceReader {
     if (it != yaml_files_.end()) return it->second.get();
     std::ifstream in(path, std::ios::binary);
     if (!in) {
-      ctx_.error("resource-missing", at, "YAML resource \"" + path + "\" cannot be read");
+      ctx_.report("resource-missing", at, "YAML resource \"" + path + "\" cannot be read");
       yaml_files_[path] = nullptr;
       return nullptr;
     }
@@ -117,7 +117,7 @@ class Resources final : public ResourceReader {
       if (auto m = main_->anchors.find(name); m != main_->anchors.end()) target = m->second;
     }
     if (!target) {
-      ctx_.error("resource-fragment", fragment, "fragment \"" + name + "\" is not found in \"" + uri->scalar + "\"");
+      ctx_.report("resource-fragment", fragment, "fragment \"" + name + "\" is not found in \"" + uri->scalar + "\"");
       return;
     }
     // The fragment is used like an alias: its findings point into the library file and name
@@ -134,20 +134,20 @@ class Resources final : public ResourceReader {
       std::string chain;
       for (const std::string& file : session_.chain) chain += std::filesystem::path(file).filename().string() + " -> ";
       chain += std::filesystem::path(canonical).filename().string();
-      ctx_.error("subbody-recursion", uri, "recursive sub-body include: " + chain);
+      ctx_.report("subbody-recursion", uri, "recursive sub-body include: " + chain);
       return nullptr;
     }
     if (auto it = session_.subbodies.find(canonical); it != session_.subbodies.end()) return it->second;
     std::shared_ptr<const Model> result;
     std::ifstream in(path, std::ios::binary);
     if (!in) {
-      ctx_.error("subbody-missing", uri, "sub-body \"" + uri->scalar + "\" cannot be read at \"" + path + "\"");
+      ctx_.report("subbody-missing", uri, "sub-body \"" + uri->scalar + "\" cannot be read at \"" + path + "\"");
     } else {
       std::ostringstream text;
       text << in.rdbuf();
       BodyReader reader(options_, ctx_.sink, session_);
       if (auto model = reader.read(text.str(), path, false)) result = std::make_shared<const Model>(std::move(*model));
-      else ctx_.error("subbody-load", uri, "the sub-body \"" + uri->scalar + "\" cannot be loaded");
+      else ctx_.report("subbody-load", uri, "the sub-body \"" + uri->scalar + "\" cannot be loaded");
     }
     session_.subbodies[canonical] = result;
     return result;
@@ -158,7 +158,7 @@ class Resources final : public ResourceReader {
     r.take({"type"});
     yaml::NodeRef uri = r.take({"uri"});
     if (!uri) {
-      ctx_.error("load-missing-key", node, "uri must be specified for a SubBody");
+      ctx_.report("load-missing-key", node, "uri must be specified for a SubBody");
       return;
     }
     std::string path = resolve_uri(ctx_, uri, uri->scalar, uri->location.file);
@@ -221,18 +221,18 @@ class Resources final : public ResourceReader {
     const yaml::MapEntry* offset = node->find("joint_offset");
     if (!offset) offset = node->find("jointOffset");
     const yaml::MapEntry* angles = node->find("initialJointAngles");
-    if (!node->find("parent")) ctx_.error("load-missing-key", node, "parent must be specified for a ContinuousTrack");
+    if (!node->find("parent")) ctx_.report("load-missing-key", node, "parent must be specified for a ContinuousTrack");
     if (!num) {
-      ctx_.error("load-missing-key", node, "numJoints must be specified for a ContinuousTrack");
+      ctx_.report("load-missing-key", node, "numJoints must be specified for a ContinuousTrack");
       return;
     }
     const long n = required_int(ctx_, num->value).value_or(0);
     if (n < 3) {
-      ctx_.error("load-continuous-track", num->value, "numJoints must be more than 2");
+      ctx_.report("load-continuous-track", num->value, "numJoints must be more than 2");
       return;
     }
     if (!offset) {
-      ctx_.error("load-missing-key", node, "jointOffset must be specified for a ContinuousTrack");
+      ctx_.report("load-missing-key", node, "jointOffset must be specified for a ContinuousTrack");
       return;
     }
     auto joint_offset = read_vec3(ctx_, offset->value);

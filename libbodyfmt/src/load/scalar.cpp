@@ -9,7 +9,7 @@ namespace {
 
 bool is_scalar(LoadContext& ctx, const yaml::NodeRef& ref, const char* what) {
   if (ref && ref->is_scalar()) return true;
-  ctx.error("load-type", ref, std::string("expected ") + what + ", found a " +
+  ctx.report("load-type", ref, std::string("expected ") + what + ", found a " +
                                   (ref && ref->is_mapping() ? "mapping" : "sequence"));
   return false;
 }
@@ -48,19 +48,19 @@ std::optional<double> required_double(LoadContext& ctx, const yaml::NodeRef& ref
   char* end = nullptr;
   double value = std::strtod(begin, &end);
   if (end == begin) {
-    ctx.error("load-number", ref, "the value \"" + text + "\" must be a floating point number");
+    ctx.report("load-number", ref, "the value \"" + text + "\" must be a floating point number");
     return std::nullopt;
   }
   if (!only_trailing_space(end)) {
     // body-format-spec §1.2: Choreonoid reads "0.t" as 0 (strtod prefix); we load the same
     // value and warn, since the text is almost certainly a typo.
     const std::string prefix(begin, static_cast<std::size_t>(end - begin));
-    ctx.warning("load-lenient-number", ref,
+    ctx.report("load-lenient-number", ref,
                 "\"" + text + "\" is not a number; Choreonoid reads its prefix " + prefix +
                     " and ignores \"" + std::string(end) + "\"",
                 "write the number in full, e.g. " + prefix);
   }
-  if (std::isnan(value)) ctx.warning("load-lenient-number", ref, "the value \"" + text + "\" is not a number (NaN)");
+  if (std::isnan(value)) ctx.report("load-lenient-number", ref, "the value \"" + text + "\" is not a number (NaN)");
   return value;
 }
 
@@ -72,11 +72,11 @@ std::optional<long> required_int(LoadContext& ctx, const yaml::NodeRef& ref) {
   errno = 0;
   long value = std::strtol(begin, &end, 10);
   if (end == begin) {
-    ctx.error("load-number", ref, "the value \"" + text + "\" must be an integer value");
+    ctx.report("load-number", ref, "the value \"" + text + "\" must be an integer value");
     return std::nullopt;
   }
   if (!only_trailing_space(end)) {
-    ctx.warning("load-lenient-number", ref,
+    ctx.report("load-lenient-number", ref,
                 "\"" + text + "\" is not an integer; Choreonoid reads it as " + std::to_string(value),
                 "write " + std::to_string(value));
   }
@@ -86,7 +86,7 @@ std::optional<long> required_int(LoadContext& ctx, const yaml::NodeRef& ref) {
 std::optional<bool> required_bool(LoadContext& ctx, const yaml::NodeRef& ref) {
   if (!is_scalar(ctx, ref, "a boolean")) return std::nullopt;
   auto value = parse_bool_exact(ref->scalar);
-  if (!value) ctx.error("load-bool", ref, "the value \"" + ref->scalar + "\" must be a boolean value");
+  if (!value) ctx.report("load-bool", ref, "the value \"" + ref->scalar + "\" must be a boolean value");
   return value;
 }
 
@@ -99,7 +99,7 @@ std::optional<double> optional_double(LoadContext& ctx, const yaml::NodeRef& ref
   if (ref && ref->is_scalar()) {
     if (auto value = parse_double_exact(ref->scalar)) return value;
   }
-  ctx.warning("load-ignored-value", ref,
+  ctx.report("load-ignored-value", ref,
               "this value is not a number; Choreonoid ignores it and uses the default");
   return std::nullopt;
 }
@@ -111,7 +111,7 @@ std::optional<long> optional_int(LoadContext& ctx, const yaml::NodeRef& ref) {
     long value = std::strtol(text.c_str(), &end, 10);
     if (end != text.c_str() && only_trailing_space(end)) return value;
   }
-  ctx.warning("load-ignored-value", ref,
+  ctx.report("load-ignored-value", ref,
               "this value is not an integer; Choreonoid ignores it and uses the default");
   return std::nullopt;
 }
@@ -120,7 +120,7 @@ std::optional<bool> optional_bool(LoadContext& ctx, const yaml::NodeRef& ref) {
   if (ref && ref->is_scalar()) {
     if (auto value = parse_bool_exact(ref->scalar)) return value;
   }
-  ctx.warning("load-ignored-value", ref,
+  ctx.report("load-ignored-value", ref,
               "this value is not a boolean; Choreonoid ignores it and uses the default");
   return std::nullopt;
 }

@@ -17,7 +17,7 @@ std::string resolve_uri(LoadContext& ctx, const yaml::NodeRef& at, const std::st
   if (scheme_end != std::string::npos) {
     std::string scheme = path.substr(0, scheme_end);
     if (scheme != "package") {
-      ctx.error("load-uri", at, "the \"" + scheme + "\" scheme in URI \"" + uri + "\" is not supported");
+      ctx.report("load-uri", at, "the \"" + scheme + "\" scheme in URI \"" + uri + "\" is not supported");
       return {};
     }
     // package://NAME/rest through ROS_PACKAGE_PATH.
@@ -40,7 +40,7 @@ std::string resolve_uri(LoadContext& ctx, const yaml::NodeRef& at, const std::st
         start = end + 1;
       }
     }
-    ctx.error("load-uri", at, "package \"" + package + "\" of URI \"" + uri + "\" is not found",
+    ctx.report("load-uri", at, "package \"" + package + "\" of URI \"" + uri + "\" is not found",
               "add its parent folder to ROS_PACKAGE_PATH or pass it as a package path");
     return {};
   }
@@ -49,7 +49,7 @@ std::string resolve_uri(LoadContext& ctx, const yaml::NodeRef& at, const std::st
     std::string variable = path.substr(2, close == std::string::npos ? std::string::npos : close - 2);
     const char* value = variable == "HOME" ? std::getenv("HOME") : nullptr;
     if (!value) {
-      ctx.error("load-uri", at, "path variable \"" + variable + "\" in \"" + uri + "\" is not defined");
+      ctx.report("load-uri", at, "path variable \"" + variable + "\" in \"" + uri + "\" is not defined");
       return {};
     }
     path = std::string(value) + path.substr(close + 1);
@@ -64,7 +64,7 @@ void read_mesh_metadata(LoadContext& ctx, const yaml::NodeRef& metadata, MeshRes
     if (unit == "millimeter") mesh.length_scale = 0.001;
     else if (unit == "inch") mesh.length_scale = 0.0254;
     else if (unit == "meter") mesh.length_scale = 1.0;
-    else ctx.warning("load-ignored-value", at, "unknown length unit \"" + unit + "\"");
+    else ctx.report("load-ignored-value", at, "unknown length unit \"" + unit + "\"");
   };
   if (metadata->is_scalar()) {
     // Legacy form: space-separated words (body-format-spec §9.4).
@@ -84,7 +84,7 @@ void read_mesh_metadata(LoadContext& ctx, const yaml::NodeRef& metadata, MeshRes
   if (auto unit = r.take({"length_unit"})) apply_unit(unit->scalar, unit);
   if (auto axis = r.take({"upper_axis"})) {
     if (axis->scalar == "Y") mesh.y_up = true;
-    else if (axis->scalar != "Z") ctx.warning("load-ignored-value", axis, "upper_axis must be Y or Z");
+    else if (axis->scalar != "Z") ctx.report("load-ignored-value", axis, "upper_axis must be Y or Z");
   }
   r.report_unknown({"length_unit", "upper_axis"});
 }

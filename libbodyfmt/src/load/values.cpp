@@ -12,7 +12,7 @@ namespace {
 
 bool expect_sequence(LoadContext& ctx, const yaml::NodeRef& ref, const char* what) {
   if (ref && ref->is_sequence()) return true;
-  ctx.error("load-type", ref, std::string(what) + " must be a sequence");
+  ctx.report("load-type", ref, std::string(what) + " must be a sequence");
   return false;
 }
 
@@ -25,7 +25,7 @@ bool is_sequence_of_sequences(const yaml::NodeRef& ref) {
 std::optional<Eigen::VectorXd> read_vector(LoadContext& ctx, const yaml::NodeRef& ref, int size) {
   if (!expect_sequence(ctx, ref, "this value")) return std::nullopt;
   if (static_cast<int>(ref->items.size()) != size) {
-    ctx.error("load-vector-size", ref,
+    ctx.report("load-vector-size", ref,
               "a " + std::to_string(size) + "-element vector is expected, found " +
                   std::to_string(ref->items.size()) + " elements");
     return std::nullopt;
@@ -48,7 +48,7 @@ std::optional<Eigen::Vector3d> read_vec3(LoadContext& ctx, const yaml::NodeRef& 
 std::optional<Eigen::Vector3d> read_optional_vec3(LoadContext& ctx, const yaml::NodeRef& ref) {
   if (ref && !ref->is_sequence()) {
     // body-format-spec §1.2: `size: 1` is silently treated as absent by Choreonoid.
-    ctx.warning("load-ignored-value", ref,
+    ctx.report("load-ignored-value", ref,
                 "this value must be a 3-element sequence; Choreonoid ignores it and uses the default",
                 "write [x, y, z]");
     return std::nullopt;
@@ -72,7 +72,7 @@ std::optional<Eigen::Vector3d> read_translation(LoadContext& ctx, const yaml::No
   if (!expect_sequence(ctx, ref, "translation")) return std::nullopt;
   if (ref->items.empty()) {
     // body-format-spec §4.2: Choreonoid leaves the value undefined; reject it.
-    ctx.error("load-vector-size", ref, "translation is an empty sequence", "write [x, y, z]");
+    ctx.report("load-vector-size", ref, "translation is an empty sequence", "write [x, y, z]");
     return std::nullopt;
   }
   if (!is_sequence_of_sequences(ref)) return read_vec3(ctx, ref);
@@ -88,7 +88,7 @@ std::optional<Eigen::Vector3d> read_translation(LoadContext& ctx, const yaml::No
 std::optional<Eigen::Matrix3d> read_rotation(LoadContext& ctx, const yaml::NodeRef& ref) {
   if (!expect_sequence(ctx, ref, "rotation")) return std::nullopt;
   if (ref->items.empty()) {
-    ctx.error("load-vector-size", ref, "rotation is an empty sequence", "write [x, y, z, angle]");
+    ctx.report("load-vector-size", ref, "rotation is an empty sequence", "write [x, y, z, angle]");
     return std::nullopt;
   }
   auto one = [&](const yaml::NodeRef& r) -> std::optional<Eigen::Matrix3d> {
@@ -96,7 +96,7 @@ std::optional<Eigen::Matrix3d> read_rotation(LoadContext& ctx, const yaml::NodeR
     if (!v) return std::nullopt;
     Eigen::Vector3d axis = v->head<3>();
     if (axis.norm() < 1e-6) {
-      ctx.error("load-rotation-axis", r, "rotation axis is the zero vector");
+      ctx.report("load-rotation-axis", r, "rotation axis is the zero vector");
       return std::nullopt;
     }
     return Eigen::AngleAxisd(ctx.angle((*v)[3]), axis.normalized()).toRotationMatrix();
@@ -116,7 +116,7 @@ std::optional<Eigen::Matrix3d> read_inertia(LoadContext& ctx, const yaml::NodeRe
   if (!expect_sequence(ctx, ref, "inertia")) return std::nullopt;
   std::size_t n = ref->items.size();
   if (n != 6 && n != 9) {
-    ctx.error("load-inertia-size", ref,
+    ctx.report("load-inertia-size", ref,
               "the number of elements of an inertia value must be six or nine, found " +
                   std::to_string(n));
     return std::nullopt;
@@ -145,7 +145,7 @@ std::optional<Eigen::Vector3d> read_joint_axis(LoadContext& ctx, const yaml::Nod
     if (s == "X") return Eigen::Vector3d(sign, 0, 0);
     if (s == "Y") return Eigen::Vector3d(0, sign, 0);
     if (s == "Z") return Eigen::Vector3d(0, 0, sign);
-    ctx.error("load-axis", ref, "illegal axis value \"" + ref->scalar + "\"",
+    ctx.report("load-axis", ref, "illegal axis value \"" + ref->scalar + "\"",
               "use X, Y, Z, -X, -Y, -Z or [x, y, z]");
     return std::nullopt;
   }
@@ -158,7 +158,7 @@ namespace {
 std::optional<double> limit_value(LoadContext& ctx, const yaml::NodeRef& ref, bool convert_angle,
                                   double unlimited_value) {
   if (!ref || !ref->is_scalar()) {
-    ctx.error("load-range", ref, "invalid type value is used as a joint range value");
+    ctx.report("load-range", ref, "invalid type value is used as a joint range value");
     return std::nullopt;
   }
   if (ref->scalar == "unlimited") return unlimited_value;
@@ -168,7 +168,7 @@ std::optional<double> limit_value(LoadContext& ctx, const yaml::NodeRef& ref, bo
     char* e = nullptr;
     std::strtod(b, &e);
     if (e == b) {
-      ctx.error("load-range", ref, "unknown symbol \"" + ref->scalar + "\" is used as a range value",
+      ctx.report("load-range", ref, "unknown symbol \"" + ref->scalar + "\" is used as a range value",
                 "use a number or unlimited");
       return std::nullopt;
     }
@@ -189,11 +189,11 @@ std::optional<std::pair<double, double>> read_range(LoadContext& ctx, const yaml
     return std::make_pair(-*v, *v);
   }
   if (ref->is_mapping()) {
-    ctx.error("load-range", ref, "invalid joint range value (a mapping)");
+    ctx.report("load-range", ref, "invalid joint range value (a mapping)");
     return std::nullopt;
   }
   if (ref->items.size() != 2) {
-    ctx.error("load-range", ref, "a joint range must have two elements, found " +
+    ctx.report("load-range", ref, "a joint range must have two elements, found " +
                                      std::to_string(ref->items.size()));
     return std::nullopt;
   }
@@ -208,7 +208,7 @@ std::optional<std::pair<double, double>> read_symmetric_limit(LoadContext& ctx,
                                                               bool convert_angle) {
   if (!ref) return std::nullopt;
   if (!ref->is_scalar()) {
-    ctx.error("load-range", ref, "this limit must be a scalar");
+    ctx.report("load-range", ref, "this limit must be a scalar");
     return std::nullopt;
   }
   auto v = limit_value(ctx, ref, convert_angle, kUnlimited);
@@ -221,7 +221,7 @@ std::optional<std::pair<double, double>> read_velocity_range(LoadContext& ctx,
                                                              bool convert_angle) {
   if (!ref) return std::nullopt;
   if (!ref->is_sequence() || ref->items.size() != 2) {
-    ctx.error("load-range", ref, "the joint velocity range must have two elements");
+    ctx.report("load-range", ref, "the joint velocity range must have two elements");
     return std::nullopt;
   }
   auto lower = limit_value(ctx, ref->items[0], convert_angle, -kUnlimited);

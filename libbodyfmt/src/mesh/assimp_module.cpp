@@ -1,5 +1,6 @@
 #include "mesh/assimp_module.h"
 
+#include <bodyfmt/rules.h>
 #include "mesh/assimp_reader.h"  // the entry point's declaration, for its type
 
 #include <dlfcn.h>
@@ -67,14 +68,10 @@ const Module& module() {
 SceneTree import_with_assimp(const std::string& path, DiagnosticSink& sink, const SourceLocation& where) {
   const Module& m = module();
   if (!m.read) {
-    Diagnostic d;
-    d.severity = Severity::kError;
-    d.rule_id = "mesh-importer-unavailable";
-    d.message = "cannot import \"" + path + "\": the mesh importer module \"" + m.path +
-                "\" could not be loaded: " + m.error;
-    d.location = where;
-    d.fix_hint = std::string("install ") + kModuleName + " next to libbodyfmt (it is part of the bodyfmt build)";
-    sink.report(std::move(d));
+    report_rule(sink, "mesh-importer-unavailable", where,
+                "cannot import \"" + path + "\": the mesh importer module \"" + m.path +
+                    "\" could not be loaded: " + m.error,
+                std::string("install ") + kModuleName + " next to libbodyfmt (it is part of the bodyfmt build)");
     return nullptr;
   }
   SceneTree tree;

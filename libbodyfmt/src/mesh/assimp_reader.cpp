@@ -1,5 +1,6 @@
 #include "mesh/assimp_reader.h"
 
+#include <bodyfmt/rules.h>
 #include "mesh/vrml_reader.h"  // resolve_relative
 
 #include <assimp/Importer.hpp>
@@ -119,12 +120,8 @@ SceneTree read_with_assimp(const std::string& path, DiagnosticSink& sink, const 
                          aiProcess_SortByPType;
   const aiScene* scene = importer.ReadFile(path, flags);
   if (!scene || !scene->mRootNode || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE)) {
-    Diagnostic d;
-    d.severity = Severity::kError;
-    d.rule_id = "mesh-parse";
-    d.message = "cannot read mesh file \"" + path + "\": " + importer.GetErrorString();
-    d.location = where;
-    sink.report(std::move(d));
+    report_rule(sink, "mesh-parse", where,
+                "cannot read mesh file \"" + path + "\": " + importer.GetErrorString());
     return nullptr;
   }
   std::vector<MeshPart> meshes;

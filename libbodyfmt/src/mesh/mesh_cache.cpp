@@ -1,6 +1,7 @@
 // MeshCache and import_mesh(): file checks, format dispatch by extension, one parse per file,
 // and one asset per (file, node, metadata) (body-format-spec §9.2, §9.4).
 #include <bodyfmt/mesh_import.h>
+#include <bodyfmt/rules.h>
 
 #include "mesh/assimp_module.h"
 #include "mesh/scene_tree.h"
@@ -29,13 +30,7 @@ Format format_of(const std::string& path) {
 
 void report(DiagnosticSink& sink, const char* rule, const SourceLocation& where, std::string message,
             std::string hint = {}) {
-  Diagnostic d;
-  d.severity = Severity::kError;
-  d.rule_id = rule;
-  d.message = std::move(message);
-  d.location = where;
-  d.fix_hint = std::move(hint);
-  sink.report(std::move(d));
+  report_rule(sink, rule, where, std::move(message), std::move(hint));
 }
 
 }  // namespace
@@ -136,14 +131,9 @@ std::shared_ptr<const MeshAsset> MeshCache::get(const std::string& path, const M
     return nullptr;
   }
   if (asset->parts.empty() && !known_file) {
-    Diagnostic d;
-    d.severity = Severity::kWarning;
-    d.rule_id = "mesh-empty";
-    d.message = "mesh file \"" + normal + "\"" +
-                (options.node.empty() ? std::string() : " node \"" + options.node + "\"") +
-                " contains no triangles";
-    d.location = where;
-    sink.report(std::move(d));
+    report(sink, "mesh-empty", where,
+           "mesh file \"" + normal + "\"" +
+               (options.node.empty() ? std::string() : " node \"" + options.node + "\"") + " contains no triangles");
   }
   impl_->assets[key] = asset;
   return asset;

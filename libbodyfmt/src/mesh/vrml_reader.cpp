@@ -3,6 +3,8 @@
 #include "mesh/primitives.h"
 #include "mesh/vrml_lexer.h"
 
+#include <bodyfmt/rules.h>
+
 #include <algorithm>
 #include <charconv>
 #include <cstdlib>
@@ -54,20 +56,10 @@ class Parser {
   void fail(const Token& at, const std::string& message) {
     if (failed_) return;
     failed_ = true;
-    Diagnostic d;
-    d.severity = Severity::kError;
-    d.rule_id = "mesh-parse";
-    d.message = "VRML: " + message;
-    d.location = {path_, at.line, at.column};
-    sink_.report(std::move(d));
+    report("mesh-parse", at, "VRML: " + message);
   }
-  void report(Severity severity, const std::string& rule, const Token& at, const std::string& message) {
-    Diagnostic d;
-    d.severity = severity;
-    d.rule_id = rule;
-    d.message = message;
-    d.location = {path_, at.line, at.column};
-    sink_.report(std::move(d));
+  void report(std::string_view rule, const Token& at, std::string message) {
+    report_rule(sink_, rule, {path_, at.line, at.column}, std::move(message));
   }
   static std::string describe(const Token& t) {
     switch (t.kind) {
@@ -595,7 +587,7 @@ class Parser {
       start = i + 1;
     }
     if (bad_index >= 0) {
-      report(Severity::kError, "mesh-invalid-geometry", type,
+      report("mesh-invalid-geometry", type,
              "IndexedFaceSet: vertex index " + std::to_string(bad_index) +
                  " is over the number of vertices (" + std::to_string(n_points) +
                  "); polygons using it were dropped");

@@ -7,6 +7,8 @@
 
 #include "yaml/yaml_node.h"
 
+#include <bodyfmt/rules.h>
+
 #include <yaml.h>
 
 #include <algorithm>
@@ -148,16 +150,9 @@ class TreeBuilder {
     return SourceLocation{file_, static_cast<int>(mark.line) + 1, column};
   }
 
-  void report(Severity severity, std::string rule_id, SourceLocation location, std::string message,
-              std::string fix_hint = {}) {
-    Diagnostic diagnostic;
-    diagnostic.severity = severity;
-    diagnostic.rule_id = std::move(rule_id);
-    diagnostic.message = std::move(message);
-    diagnostic.location = std::move(location);
-    diagnostic.fix_hint = std::move(fix_hint);
-    diagnostics_.push_back(std::move(diagnostic));
-    if (severity == Severity::kFatal) failed_ = true;
+  void report(std::string_view rule_id, SourceLocation location, std::string message, std::string fix_hint = {}) {
+    diagnostics_.push_back(make_diagnostic(rule_id, std::move(location), std::move(message), std::move(fix_hint)));
+    if (diagnostics_.back().severity == Severity::kFatal) failed_ = true;
   }
 
  private:
@@ -212,7 +207,7 @@ class TreeBuilder {
                    std::to_string(context.line) + ", column " + std::to_string(context.column) + ")";
       }
     }
-    report(Severity::kFatal, "yaml-syntax", std::move(where), std::move(message));
+    report("yaml-syntax", std::move(where), std::move(message));
     throw ParseAborted{};
   }
 
@@ -245,7 +240,7 @@ class TreeBuilder {
     }
     if (target == nullptr) {
       // body-format-spec §1.4: Choreonoid refuses the file (Anchor is not defined).
-      report(Severity::kError, "yaml-undefined-alias", location(e.start_mark),
+      report("yaml-undefined-alias", location(e.start_mark),
              "alias \"*" + name + "\" refers to an anchor that is not defined before it",
              "define the anchor (&" + name + ") before its first use");
       failed_ = true;
@@ -277,7 +272,7 @@ class TreeBuilder {
     auto [it, inserted] = document_.anchors.emplace(node->anchor, node);
     if (!inserted) {
       // body-format-spec §1.4: Choreonoid rejects a duplicated anchor, stricter than YAML 1.2.
-      report(Severity::kError, "yaml-anchor-redefined", node->location,
+      report("yaml-anchor-redefined", node->location,
              "anchor \"" + node->anchor + "\" is already defined at line " +
                  std::to_string(it->second->location.line),
              "give each anchor a unique name");
@@ -289,7 +284,7 @@ class TreeBuilder {
     expanded_count_ = saturating_add(expanded_count_, nodes);
     if (expanded_count_ <= options_.max_expanded_nodes) return;
     std::string limit = std::to_string(options_.max_expanded_nodes);
-    report(Severity::kFatal, "yaml-alias-expansion", where,
+    report("yaml-alias-expansion", where,
            via_alias ? "expanding this alias makes the document larger than the limit of " + limit +
                            " nodes (alias bomb?)"
                      : "the document has more than the limit of " + limit + " nodes",
@@ -299,7 +294,7 @@ class TreeBuilder {
 
   void check_depth(int depth, const SourceLocation& where) {
     if (depth <= options_.max_depth) return;
-    report(Severity::kFatal, "yaml-depth", where,
+    report("yaml-depth", where,
            "nesting is deeper than the limit of " + std::to_string(options_.max_depth) +
                " levels (counted through aliases)",
            "if the file is legitimate, raise the limit (ParseOptions::max_depth)");
@@ -310,7 +305,7 @@ class TreeBuilder {
     SourceLocation site = location(mark);
     if (target->expanded_size == 0) {
       // `&a [*a]`: the anchor is registered before its content, so this would be a cycle.
-      report(Severity::kFatal, "yaml-recursive-alias", site,
+      report("yaml-recursive-alias", site,
              "alias \"*" + target->anchor + "\" refers to a node that contains it (defined at line " +
                  std::to_string(target->location.line) + ")");
       throw ParseAborted{};
@@ -334,7 +329,7 @@ class TreeBuilder {
     frames_.push_back(std::move(frame));
     check_depth(static_cast<int>(frames_.size()), node->location);
     if (frames_.size() > kNestingCeiling) {
-      report(Severity::kFatal, "yaml-depth", node->location,
+      report("yaml-depth", node->location,
              "nesting is deeper than the parser's limit of " + std::to_string(kNestingCeiling) +
                  " levels");
       throw ParseAborted{};
@@ -383,13 +378,13 @@ class TreeBuilder {
   void accept_key(Frame& frame, const NodeRef& ref) {
     frame.key_location = ref.use_site();
     if (!ref->is_scalar()) {
-      report(Severity::kError, "yaml-complex-key", frame.key_location,
+      report("yaml-complex-key", frame.key_location,
              "a mapping key must be a scalar, not a " +
                  std::string(ref->is_mapping() ? "mapping" : "sequence"));
       frame.key_state = KeyState::kSkip;
     } else if (ref->scalar.empty()) {
       // body-format-spec §1.8: Choreonoid reports "empty key".
-      report(Severity::kError, "yaml-empty-key", frame.key_location, "empty mapping key");
+      report("yaml-empty-key", frame.key_location, "empty mapping key");
       frame.key_state = KeyState::kSkip;
     } else {
       // body-format-spec §1.5: Choreonoid compares the key text, whatever its quoting.
@@ -412,7 +407,7 @@ class TreeBuilder {
       return;
     }
     // body-format-spec §1.6: the last one wins (WAREC1's `type: Collision` then `type: Group`).
-    report(Severity::kWarning, "yaml-duplicate-key", frame.key_location,
+    report("yaml-duplicate-key", frame.key_location,
            "duplicate key \"" + frame.key + "\" (first at line " +
                std::to_string(it->second.second) + "); the last value wins",
            "remove one of the two entries");
@@ -432,12 +427,12 @@ class TreeBuilder {
         if (item->is_mapping()) {
           slot.sources.push_back(item);
         } else {
-          report(Severity::kError, "yaml-merge-invalid", item.use_site(),
+          report("yaml-merge-invalid", item.use_site(),
                  "an element to merge by the \"<<\" key must be a mapping");
         }
       }
     } else {
-      report(Severity::kError, "yaml-merge-invalid", value.use_site(),
+      report("yaml-merge-invalid", value.use_site(),
              "a value to merge by the \"<<\" key must be a mapping or a sequence of mappings");
     }
     frame.merges.push_back(std::move(slot));
@@ -509,13 +504,9 @@ std::unique_ptr<Document> parse_yaml(std::string_view text, const std::string& f
     if (!usable || builder.failed()) document.reset();
   } catch (...) {  // e.g. std::bad_alloc: never throw across the API (style.md §2.4)
     document.reset();
-    Diagnostic diagnostic;
-    diagnostic.severity = Severity::kFatal;
-    diagnostic.rule_id = "yaml-syntax";
-    diagnostic.message = "cannot read the YAML text (out of memory?)";
-    diagnostic.location = SourceLocation{file_name, 0, 0};
     diagnostics.clear();
-    diagnostics.push_back(std::move(diagnostic));
+    diagnostics.push_back(
+        make_diagnostic("yaml-syntax", SourceLocation{file_name, 0, 0}, "cannot read the YAML text (out of memory?)"));
   }
   for (Diagnostic& diagnostic : diagnostics) sink.report(std::move(diagnostic));
   return document;

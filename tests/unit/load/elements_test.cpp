@@ -190,10 +190,10 @@ links:
       - type: OtherThing
         isOptional: yes
 )");
-  auto d = r.take("load-unknown-node-type");
+  auto d = r.take("load-optional-node-skipped");
   CHECK(d.severity == bodyfmt::Severity::kWarning);
   CHECK(pos(d) == Pos{6, 15});
-  auto d2 = r.take("load-unknown-node-type");
+  auto d2 = r.take("load-optional-node-skipped");
   CHECK(d2.severity == bodyfmt::Severity::kWarning);
   CHECK(pos(d2) == Pos{8, 15});
   CHECK(pos(r.take("load-legacy-key")) == Pos{9, 9});  // isOptional
