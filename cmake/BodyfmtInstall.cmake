@@ -23,7 +23,7 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/libbodyfmt/include/bodyfmt
 
 # Tools: every executable defined in these folders (so new tools are installed without
 # touching this file). Installed tools find libbodyfmt through a relative RPATH.
-set(BODYFMT_TOOL_DIRS validate converters)
+set(BODYFMT_TOOL_DIRS tools)
 # Developer utilities that build the docs; not installed.
 set(BODYFMT_INTERNAL_TOOLS rules_doc)
 get_property(_bodyfmt_subdirs DIRECTORY ${PROJECT_SOURCE_DIR} PROPERTY SUBDIRECTORIES)

@@ -282,8 +282,8 @@ std::vector<Piece> Writer::pieces(XMLElement* link_el, const Link& link, std::si
            fmt::format("a non-uniformly scaled {} as a primitive", geometry_type_name(shape.geometry)),
            "written as a tessellated mesh");
     }
-    CollectingSink ignored;  // the loader and validators already report bad geometry
-    TriangleMesh mesh = compute_shape_local_mesh(model_, shape, ignored);
+    GeometryAlreadyReported filtered(sink_);
+    TriangleMesh mesh = compute_shape_local_mesh(model_, shape, filtered);
     if (mesh.empty()) {
       loss(link_el, shape.source, fmt::format("an empty {} (nothing to draw)", geometry_type_name(shape.geometry)));
       return;

@@ -20,6 +20,19 @@ std::vector<Eigen::Isometry3d> compute_root_relative_frames(const Model& model,
 /// X_WL: link frames in the world, the root placed at its initial pose from the file.
 std::vector<Eigen::Isometry3d> compute_world_frames(const Model& model, const std::vector<double>& q = {});
 
+/// The one way to keep a geometry problem from being reported twice: the loader validates
+/// every shape's parameters and reports problems at the exact key, and whatever tessellates
+/// the shapes again (bounds, exporters) reports through this sink, which drops `geometry-*`
+/// findings and forwards everything else.
+class GeometryAlreadyReported : public DiagnosticSink {
+ public:
+  explicit GeometryAlreadyReported(DiagnosticSink& inner) : inner_(inner) {}
+  void report(Diagnostic d) override;
+
+ private:
+  DiagnosticSink& inner_;
+};
+
 /// Triangle mesh of one shape in its own frame (before Shape::X_LS): tessellated primitives
 /// or the imported mesh parts.
 TriangleMesh compute_shape_local_mesh(const Model& model, const Shape& shape, DiagnosticSink& sink);

@@ -7,7 +7,8 @@
 /// becomes an error) and `werror` (warnings become errors). It counts what it forwards by
 /// severity and by rule. It never throws. Fatal diagnostics are never dropped or changed.
 ///
-/// The `.bodycheck.yaml` configuration file is read here too (find_config, read_config).
+/// The `.bodycheck.yaml` file that sets these options for a folder is the tools' business
+/// (tools/common/check_config.h).
 
 #include <bodyfmt/diagnostic.h>
 
@@ -90,27 +91,5 @@ class DiagnosticPolicy : public DiagnosticSink {
   int disabled_ = 0;
   int suppressed_ = 0;
 };
-
-/// The contents of a `.bodycheck.yaml`. Absent keys stay empty.
-struct CheckConfig {
-  std::string path;  ///< the file it was read from
-  std::vector<std::string> disable;
-  std::vector<std::string> enable;
-  std::optional<Severity> fail_on;  ///< kWarning or kError
-  std::optional<bool> werror;
-};
-
-/// The nearest `.bodycheck.yaml`, walking up from the directory of `file` (made absolute
-/// first). Empty when there is none up to the file system root.
-std::string find_config(const std::string& file);
-
-/// Reads a config file. Reports `config-invalid` errors at the offending line and column
-/// (unknown keys, wrong types, unknown rule ids, YAML syntax) and `io-read` when the file
-/// cannot be read; returns nullopt when anything was wrong.
-std::optional<CheckConfig> read_config(const std::string& path, DiagnosticSink& sink);
-
-/// Same, from text (`path` is used in locations).
-std::optional<CheckConfig> read_config_string(const std::string& text, const std::string& path,
-                                              DiagnosticSink& sink);
 
 }  // namespace bodyfmt

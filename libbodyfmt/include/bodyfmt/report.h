@@ -29,6 +29,8 @@ struct Report {
 /// The lines of source files, each file read once, for carets and suppressions.
 class SourceLines {
  public:
+  /// Uses `text` as the contents of `file` (text that is not on disk: standard input).
+  void add(const std::string& file, std::string_view text);
   /// Line `line` (1-based) of `file` without its line break, or nullptr when the file cannot
   /// be read or is shorter.
   const std::string* line(const std::string& file, int line);
@@ -37,12 +39,10 @@ class SourceLines {
   std::map<std::string, std::optional<std::vector<std::string>>> files_;
 };
 
-/// Splits text into lines (LF or CRLF), without the breaks.
-std::vector<std::string> split_lines(std::string_view text);
-
 struct TextOptions {
   bool source_lines = true;  ///< print the source line and a caret under the column
   bool notes = true;         ///< print note-severity diagnostics
+  bool color = false;        ///< ANSI colours as GCC and Clang use them (bold location, coloured severity, green caret)
 };
 
 /// One diagnostic in GCC/Clang style:
@@ -70,9 +70,6 @@ struct ToolInfo {
   std::string version;          ///< required by SARIF consumers; the project version
   std::string information_uri;  ///< absolute URI of the tool's documentation
 };
-
-/// JSON text for `s` between quotes: `"` `\` and control characters escaped, UTF-8 kept.
-std::string json_quote(std::string_view s);
 
 /// The JSON document of docs/bodycheck-json.md (schema version 1), with a final newline.
 std::string format_json_report(const Report& report, const ToolInfo& tool);

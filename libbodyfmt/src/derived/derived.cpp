@@ -33,22 +33,9 @@ BoundingBox transform_box(const Eigen::Affine3d& transform, const BoundingBox& b
   return result;
 }
 
-namespace {
-
-// The loader has validated every shape's parameters and reported problems at the exact
-// key; tessellating them again for bounds must not report the same problems a second time.
-class GeometryAlreadyReported : public DiagnosticSink {
- public:
-  explicit GeometryAlreadyReported(DiagnosticSink& inner) : inner_(inner) {}
-  void report(Diagnostic d) override {
-    if (d.rule_id.rfind("geometry-", 0) != 0) inner_.report(std::move(d));
-  }
-
- private:
-  DiagnosticSink& inner_;
-};
-
-}  // namespace
+void GeometryAlreadyReported::report(Diagnostic d) {
+  if (d.rule_id.rfind("geometry-", 0) != 0) inner_.report(std::move(d));
+}
 
 std::vector<LinkBounds> compute_choreonoid_bounds(const Model& model, DiagnosticSink& outer) {
   GeometryAlreadyReported sink(outer);

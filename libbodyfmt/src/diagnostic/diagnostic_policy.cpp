@@ -2,7 +2,7 @@
 #include <bodyfmt/report.h>
 #include <bodyfmt/rules.h>
 
-#include "load/mapping_reader.h"  // detail::edit_distance
+#include "text/text_util.h"
 
 #include <algorithm>
 #include <cctype>
@@ -29,7 +29,7 @@ std::string check_rule_pattern(std::string_view pattern) {
   std::string_view best;
   int best_distance = 1 << 30;
   for (const RuleInfo& r : rules) {
-    int d = detail::edit_distance(pattern, r.id);
+    int d = text::edit_distance(pattern, r.id);
     if (d < best_distance) best_distance = d, best = r.id;
   }
   const int allowed = std::max<int>(2, static_cast<int>(pattern.size()) / 3);
@@ -108,7 +108,7 @@ Suppressions Suppressions::from_text(std::string_view text) {
   Suppressions result;
   std::vector<std::string> pending;  // from comment-only lines, for the next content line
   int line_number = 0;
-  for (const std::string& text_line : split_lines(text)) {
+  for (const std::string& text_line : text::split_lines(text)) {
     const std::string_view line = text_line;
     ++line_number;
 
@@ -205,26 +205,4 @@ void DiagnosticPolicy::report(Diagnostic d) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// .bodycheck.yaml
-
-std::string find_config(const std::string& file) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  fs::path dir = fs::absolute(fs::path(file), ec).parent_path();
-  if (ec) return {};
-  for (;;) {
-    fs::path candidate = dir / ".bodycheck.yaml";
-    if (fs::is_regular_file(candidate, ec)) {
-      // Relative to the working directory when below it, as the user would write it.
-      fs::path normal = candidate.lexically_normal();
-      fs::path relative = normal.lexically_relative(fs::current_path(ec));
-      if (!ec && !relative.empty() && relative.begin()->string() != "..") return relative.string();
-      return normal.string();
-    }
-    fs::path parent = dir.parent_path();
-    if (parent == dir || parent.empty()) return {};
-    dir = parent;
-  }
-}
-
 }  // namespace bodyfmt

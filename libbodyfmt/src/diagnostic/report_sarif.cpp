@@ -6,6 +6,10 @@
 // with an absolute, slash-terminated URI), SARIF1009 (indices in range).
 
 #include <bodyfmt/report.h>
+
+#include "text/text_util.h"
+
+using bodyfmt::text::json_quote;
 #include <bodyfmt/rules.h>
 
 #include <algorithm>

@@ -2,6 +2,8 @@
 
 #include <bodyfmt/report.h>
 
+#include "text/text_util.h"
+
 #include <algorithm>
 #include <fstream>
 #include <sstream>
@@ -20,19 +22,7 @@ std::map<std::string, int> Report::counts_by_rule() const {
   return counts;
 }
 
-std::vector<std::string> split_lines(std::string_view text) {
-  std::vector<std::string> lines;
-  std::size_t pos = 0;
-  while (pos < text.size()) {
-    std::size_t end = text.find('\n', pos);
-    if (end == std::string_view::npos) end = text.size();
-    std::string_view line = text.substr(pos, end - pos);
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    lines.emplace_back(line);
-    pos = end + 1;
-  }
-  return lines;
-}
+void SourceLines::add(const std::string& file, std::string_view text) { files_[file] = text::split_lines(text); }
 
 const std::string* SourceLines::line(const std::string& file, int line) {
   auto it = files_.find(file);
@@ -43,7 +33,7 @@ const std::string* SourceLines::line(const std::string& file, int line) {
       if (in.is_open()) {
         std::ostringstream text;
         text << in.rdbuf();
-        lines = split_lines(text.str());
+        lines = text::split_lines(text.str());
       }
     } catch (...) {
       lines.reset();
@@ -82,17 +72,31 @@ std::string caret_line(const std::string& source, int column) {
 }  // namespace
 
 std::string format_text_diagnostic(const Diagnostic& d, SourceLines& sources, const TextOptions& options) {
-  std::string text = location_text(d.location) + ": " + std::string(severity_name(d.severity)) + ": " + d.message;
+  // GCC's colours: bold locations, bold red errors, bold magenta warnings, bold cyan notes,
+  // bold green carets.
+  const auto paint = [&](std::string_view code, const std::string& text) {
+    return options.color ? "\x1b[" + std::string(code) + "m" + text + "\x1b[0m" : text;
+  };
+  const auto severity_code = [](Severity severity) -> std::string_view {
+    switch (severity) {
+      case Severity::kNote: return "1;36";
+      case Severity::kWarning: return "1;35";
+      default: return "1;31";
+    }
+  };
+  std::string text = paint("1", location_text(d.location) + ":") + " " +
+                     paint(severity_code(d.severity), std::string(severity_name(d.severity)) + ":") + " " + d.message;
   if (!d.rule_id.empty()) text += " [" + d.rule_id + "]";
   text += '\n';
   if (options.source_lines && d.location.known() && !d.location.file.empty()) {
     if (const std::string* source = sources.line(d.location.file, d.location.line)) {
       text += *source + '\n';
-      if (d.location.column > 0) text += caret_line(*source, d.location.column) + '\n';
+      if (d.location.column > 0) text += paint("1;32", caret_line(*source, d.location.column)) + '\n';
     }
   }
-  if (d.via) text += location_text(*d.via) + ": note: reached through this alias\n";
-  if (!d.fix_hint.empty()) text += location_text(d.location) + ": note: " + d.fix_hint + '\n';
+  const std::string note = paint(severity_code(Severity::kNote), "note:");
+  if (d.via) text += paint("1", location_text(*d.via) + ":") + " " + note + " reached through this alias\n";
+  if (!d.fix_hint.empty()) text += paint("1", location_text(d.location) + ":") + " " + note + " " + d.fix_hint + '\n';
   return text;
 }
 

@@ -1,4 +1,6 @@
+#include "load/uri.h"
 #include "load/body_reader.h"
+#include "text/text_util.h"
 
 #include "load/link_reader.h"
 #include "load/mapping_reader.h"
@@ -52,7 +54,7 @@ std::optional<Model> BodyReader::read(const std::string& text, const std::string
     std::vector<std::string>& chain;
     ChainEntry(std::vector<std::string>& c, std::string path) : chain(c) { chain.push_back(std::move(path)); }
     ~ChainEntry() { chain.pop_back(); }
-  } chain_entry(session_.chain, std::filesystem::weakly_canonical(file_name).string());
+  } chain_entry(session_.chain, file_identity(file_name));
   Model model;
   model.source_file = file_name;
   model.source = root->location;
@@ -264,7 +266,7 @@ bool BodyReader::build_tree(Model& model, const std::vector<LinkEntry>& entries,
     if (it == by_name.end()) {
       std::vector<std::string_view> names;
       for (const auto& [name, index] : by_name) names.push_back(name);
-      std::string_view guess = suggest(entry.parent_name, names);
+      std::string_view guess = text::suggest(entry.parent_name, names);
       ctx_.report("structure-unknown-parent", entry.parent_ref.use_site(),
                   "parent link \"" + entry.parent_name + "\" of \"" + link.name + "\" is not defined",
                   guess.empty() ? std::string() : "did you mean \"" + std::string(guess) + "\"?");

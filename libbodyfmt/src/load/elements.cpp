@@ -1,4 +1,5 @@
 #include "load/elements.h"
+#include "text/text_util.h"
 
 #include "load/devices.h"
 #include "load/appearance.h"
@@ -172,8 +173,8 @@ void ElementReader::read_node(const yaml::NodeRef& node, const std::string& type
   // body-format-spec §7.2 rule 3.
   MappingReader r(ctx_, node, type);
   yaml::NodeRef optional = r.take({"is_optional", "isOptional"});
-  bool is_optional = optional && parse_bool_exact(optional->scalar).value_or(false);
-  std::string_view guess = suggest(type, kElementTypes);
+  bool is_optional = optional && text::parse_bool_word(optional->scalar).value_or(false);
+  std::string_view guess = text::suggest(type, kElementTypes);
   const yaml::MapEntry* type_entry = node->find("type");
   yaml::NodeRef at = type_entry ? type_entry->value : node;
   ctx_.report(is_optional ? "load-optional-node-skipped" : "load-unknown-node-type", at,

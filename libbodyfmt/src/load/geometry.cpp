@@ -1,4 +1,5 @@
 #include "load/geometry.h"
+#include "text/text_util.h"
 
 #include <bodyfmt/tessellate.h>
 
@@ -282,7 +283,7 @@ std::optional<Geometry> read_geometry(LoadContext& ctx, const yaml::NodeRef& geo
   static const std::vector<std::string_view> kTypes = {
       "Box", "Sphere", "Cylinder", "Cone", "Capsule", "Extrusion", "ElevationGrid",
       "IndexedFaceSet", "TriangleMesh", "Resource"};
-  std::string_view guess = suggest(t, kTypes);
+  std::string_view guess = text::suggest(t, kTypes);
   ctx.report("geometry-unknown-type", type, "unknown geometry \"" + t + "\"",
             guess.empty() ? std::string() : "did you mean " + std::string(guess) + "?");
   return std::nullopt;

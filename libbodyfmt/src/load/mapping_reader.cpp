@@ -1,4 +1,5 @@
 #include "load/mapping_reader.h"
+#include "text/text_util.h"
 
 #include "load/scalar.h"
 
@@ -49,7 +50,7 @@ void MappingReader::report_unknown(const std::vector<std::string_view>& known) {
   for (const auto& [legacy, modern] : legacy_) candidates.push_back(legacy);
   for (const yaml::MapEntry& entry : mapping_->entries) {
     if (consumed_.count(entry.key) || entry.merged) continue;
-    std::string_view guess = suggest(entry.key, candidates);
+    std::string_view guess = text::suggest(entry.key, candidates);
     if (auto it = legacy_.find(guess); it != legacy_.end()) guess = it->second;
     if (!guess.empty()) {
       ctx_.report("load-unknown-key", entry.key_location,
@@ -74,42 +75,6 @@ std::optional<bool> take_optional_bool(MappingReader& r, KeyNames names) {
   yaml::NodeRef ref = r.take(names);
   if (!ref) return std::nullopt;
   return optional_bool(r.context(), ref);
-}
-
-int edit_distance(std::string_view a, std::string_view b) {
-  // Optimal string alignment: insertions, deletions, substitutions and transpositions of two
-  // adjacent characters each cost 1, case-insensitively (`jointRnage` is 1 from `jointRange`).
-  auto lower = [](char c) { return std::tolower(static_cast<unsigned char>(c)); };
-  const std::size_t n = b.size();
-  std::vector<int> before(n + 1), previous(n + 1), current(n + 1);
-  for (std::size_t j = 0; j <= n; ++j) previous[j] = static_cast<int>(j);
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    current[0] = static_cast<int>(i);
-    for (std::size_t j = 1; j <= n; ++j) {
-      int cost = lower(a[i - 1]) == lower(b[j - 1]) ? 0 : 1;
-      current[j] = std::min({previous[j] + 1, current[j - 1] + 1, previous[j - 1] + cost});
-      if (i > 1 && j > 1 && lower(a[i - 1]) == lower(b[j - 2]) && lower(a[i - 2]) == lower(b[j - 1]))
-        current[j] = std::min(current[j], before[j - 2] + 1);
-    }
-    std::swap(before, previous);
-    std::swap(previous, current);
-  }
-  return previous[n];
-}
-
-std::string_view suggest(std::string_view word, const std::vector<std::string_view>& candidates) {
-  std::string_view best;
-  int best_distance = 1 << 30;
-  for (std::string_view candidate : candidates) {
-    int d = edit_distance(word, candidate);
-    if (d < best_distance) {
-      best_distance = d;
-      best = candidate;
-    }
-  }
-  // A typo changes a few characters of a long-enough word; short words are too ambiguous.
-  int allowed = word.size() >= 8 ? 2 : (word.size() >= 4 ? 1 : 0);
-  return best_distance <= allowed ? best : std::string_view{};
 }
 
 }  // namespace bodyfmt::detail

@@ -55,11 +55,4 @@ void assign_if(T& target, const std::optional<T>& value) {
   if (value) target = *value;
 }
 
-/// Case-insensitive edit distance counting adjacent transpositions as one edit, for
-/// did-you-mean hints.
-int edit_distance(std::string_view a, std::string_view b);
-
-/// The closest of `candidates` to `word` if it is a plausible typo, else empty.
-std::string_view suggest(std::string_view word, const std::vector<std::string_view>& candidates);
-
 }  // namespace bodyfmt::detail

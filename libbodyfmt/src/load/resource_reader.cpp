@@ -129,7 +129,7 @@ class Resources final : public ResourceReader {
   }
 
   std::shared_ptr<const Model> load_subbody(const yaml::NodeRef& uri, const std::string& path) {
-    const std::string canonical = std::filesystem::weakly_canonical(path).string();
+    const std::string canonical = file_identity(path);
     if (std::find(session_.chain.begin(), session_.chain.end(), canonical) != session_.chain.end()) {
       std::string chain;
       for (const std::string& file : session_.chain) chain += std::filesystem::path(file).filename().string() + " -> ";

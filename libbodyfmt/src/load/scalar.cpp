@@ -1,4 +1,5 @@
 #include "load/scalar.h"
+#include "text/text_util.h"
 
 #include <cerrno>
 #include <cmath>
@@ -28,17 +29,6 @@ std::optional<double> parse_double_exact(const std::string& text) {
   double value = std::strtod(begin, &end);
   if (end == begin || !only_trailing_space(end)) return std::nullopt;
   return value;
-}
-
-std::optional<bool> parse_bool_exact(const std::string& t) {
-  // body-format-spec §1.3: exactly these spellings.
-  static const char* const kTrue[] = {"y", "Y", "yes", "Yes", "YES", "true", "True", "TRUE", "on", "On", "ON"};
-  static const char* const kFalse[] = {"n", "N", "no", "No", "NO", "false", "False", "FALSE", "off", "Off", "OFF"};
-  for (const char* s : kTrue)
-    if (t == s) return true;
-  for (const char* s : kFalse)
-    if (t == s) return false;
-  return std::nullopt;
 }
 
 std::optional<double> required_double(LoadContext& ctx, const yaml::NodeRef& ref) {
@@ -85,7 +75,7 @@ std::optional<long> required_int(LoadContext& ctx, const yaml::NodeRef& ref) {
 
 std::optional<bool> required_bool(LoadContext& ctx, const yaml::NodeRef& ref) {
   if (!is_scalar(ctx, ref, "a boolean")) return std::nullopt;
-  auto value = parse_bool_exact(ref->scalar);
+  auto value = text::parse_bool_word(ref->scalar);
   if (!value) ctx.report("load-bool", ref, "the value \"" + ref->scalar + "\" must be a boolean value");
   return value;
 }
@@ -118,7 +108,7 @@ std::optional<long> optional_int(LoadContext& ctx, const yaml::NodeRef& ref) {
 
 std::optional<bool> optional_bool(LoadContext& ctx, const yaml::NodeRef& ref) {
   if (ref && ref->is_scalar()) {
-    if (auto value = parse_bool_exact(ref->scalar)) return value;
+    if (auto value = text::parse_bool_word(ref->scalar)) return value;
   }
   ctx.report("load-ignored-value", ref,
               "this value is not a boolean; Choreonoid ignores it and uses the default");

@@ -23,6 +23,5 @@ std::optional<bool> optional_bool(LoadContext& ctx, const yaml::NodeRef& ref);
 
 /// Parses a whole scalar as a double, nothing else (no diagnostics).
 std::optional<double> parse_double_exact(const std::string& text);
-std::optional<bool> parse_bool_exact(const std::string& text);
 
 }  // namespace bodyfmt::detail

@@ -89,4 +89,12 @@ void read_mesh_metadata(LoadContext& ctx, const yaml::NodeRef& metadata, MeshRes
   r.report_unknown({"length_unit", "upper_axis"});
 }
 
+std::string file_identity(const std::string& path) {
+  std::error_code ec;
+  std::filesystem::path canonical = std::filesystem::weakly_canonical(path, ec);
+  if (!ec) return canonical.string();
+  std::filesystem::path absolute = std::filesystem::absolute(path, ec);
+  return (ec ? std::filesystem::path(path) : absolute).lexically_normal().string();
+}
+
 }  // namespace bodyfmt::detail

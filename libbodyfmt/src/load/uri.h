@@ -16,6 +16,11 @@ namespace bodyfmt::detail {
 std::string resolve_uri(LoadContext& ctx, const yaml::NodeRef& at, const std::string& uri,
                         const std::string& referring_file);
 
+/// The key that identifies a file for include-cycle detection and caching: its canonical path,
+/// or, where that cannot be made (a pipe such as /dev/fd/63, a name given for standard
+/// input), the absolute, lexically normal path. Never throws.
+std::string file_identity(const std::string& path);
+
 /// Reads `metadata` (length_unit, upper_axis, legacy string form) into `mesh`.
 void read_mesh_metadata(LoadContext& ctx, const yaml::NodeRef& metadata, MeshResource& mesh);
 

@@ -2,6 +2,8 @@
 #include <bodyfmt/report.h>
 #include <bodyfmt/rules.h>
 
+#include "text/text_util.h"
+
 #include <doctest/doctest.h>
 
 #include <cstdio>
@@ -9,6 +11,7 @@
 #include <string>
 
 using namespace bodyfmt;
+using bodyfmt::text::json_quote;
 
 namespace {
 

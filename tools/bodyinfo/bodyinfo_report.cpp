@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-namespace bodyfmt::info {
+namespace bodyfmt::tools {
 namespace {
 
 std::string number(double v) {
@@ -160,4 +160,4 @@ std::string format_reference_yaml(const Model& model, const Derived& derived,
   return out;
 }
 
-}  // namespace bodyfmt::info
+}  // namespace bodyfmt::tools

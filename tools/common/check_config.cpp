@@ -1,4 +1,4 @@
-// `.bodycheck.yaml`: the per-tree configuration of bodycheck (README "Configuration").
+// `.bodycheck.yaml`: the per-tree policy settings of every tool (README "Configuration").
 //
 //   disable: [inertia-com-outside, units-*]   # rule ids or family prefixes
 //   enable: [units-degree-looks-radian]       # wins over disable
@@ -8,15 +8,21 @@
 // Read with the project's own YAML parser (yaml/yaml_node.h), so that the config and the body
 // files share one YAML dialect and positions are 1-based like every other diagnostic.
 
-#include <bodyfmt/diagnostic_policy.h>
+#include "check_config.h"
 
+#include <bodyfmt/diagnostic_policy.h>
 #include <bodyfmt/rules.h>
+
+// The library's private YAML layer and text utilities: the config is the tools' concern, but
+// it is read with the same YAML dialect and positions as the body files.
+#include "text/text_util.h"
 #include "yaml/yaml_node.h"
 
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
-namespace bodyfmt {
+namespace bodyfmt::tools {
 namespace {
 
 void error(DiagnosticSink& sink, SourceLocation location, std::string message,
@@ -56,18 +62,28 @@ bool read_rules(const yaml::NodeRef& node, const std::string& key, DiagnosticSin
   return ok;
 }
 
-// The YAML 1.1 booleans that yaml-cpp's convert<bool> accepted here before, kept so that
-// existing configs read the same.
-std::optional<bool> read_bool(const yaml::Node& node) {
-  if (!node.is_scalar()) return std::nullopt;
-  for (const char* word : {"y", "Y", "yes", "Yes", "YES", "true", "True", "TRUE", "on", "On", "ON"})
-    if (node.scalar == word) return true;
-  for (const char* word : {"n", "N", "no", "No", "NO", "false", "False", "FALSE", "off", "Off", "OFF"})
-    if (node.scalar == word) return false;
-  return std::nullopt;
+}  // namespace
+
+std::string find_config(const std::string& file) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::path dir = fs::absolute(fs::path(file), ec).parent_path();
+  if (ec) return {};
+  for (;;) {
+    fs::path candidate = dir / ".bodycheck.yaml";
+    if (fs::is_regular_file(candidate, ec)) {
+      // Relative to the working directory when below it, as the user would write it.
+      fs::path normal = candidate.lexically_normal();
+      fs::path relative = normal.lexically_relative(fs::current_path(ec));
+      if (!ec && !relative.empty() && relative.begin()->string() != "..") return relative.string();
+      return normal.string();
+    }
+    fs::path parent = dir.parent_path();
+    if (parent == dir || parent.empty()) return {};
+    dir = parent;
+  }
 }
 
-}  // namespace
 
 std::optional<CheckConfig> read_config_string(const std::string& text, const std::string& path,
                                               DiagnosticSink& sink) {
@@ -110,7 +126,7 @@ std::optional<CheckConfig> read_config_string(const std::string& text, const std
         ok = false;
       }
     } else if (key == "werror") {
-      if (std::optional<bool> b = read_bool(*value)) {
+      if (std::optional<bool> b = value->is_scalar() ? text::parse_bool_word(value->scalar) : std::nullopt) {
         config.werror = *b;
       } else {
         error(sink, value.use_site(), "'werror' must be true or false");
@@ -137,4 +153,4 @@ std::optional<CheckConfig> read_config(const std::string& path, DiagnosticSink& 
   return read_config_string(text.str(), path, sink);
 }
 
-}  // namespace bodyfmt
+}  // namespace bodyfmt::tools

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace bodyfmt::info {
+namespace bodyfmt::tools {
 
 std::string format_summary(const Model& model, const Derived& derived);
 /// `boxes`: Choreonoid's scene-graph boxes (compute_choreonoid_bounds), which the reference
@@ -18,4 +18,4 @@ std::string format_reference_yaml(const Model& model, const Derived& derived,
                                   const std::vector<LinkBounds>& boxes,
                                   const std::vector<Diagnostic>& diagnostics);
 
-}  // namespace bodyfmt::info
+}  // namespace bodyfmt::tools

@@ -1,0 +1,30 @@
+#pragma once
+// Small text utilities below the loader and the diagnostics: did-you-mean spelling, the YAML
+// 1.1 boolean words, line splitting and JSON string quoting. No YAML, no model.
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace bodyfmt::text {
+
+/// Case-insensitive edit distance counting adjacent transpositions as one edit (optimal
+/// string alignment), for did-you-mean hints.
+int edit_distance(std::string_view a, std::string_view b);
+
+/// The closest of `candidates` to `word` if it is a plausible typo, else empty.
+std::string_view suggest(std::string_view word, const std::vector<std::string_view>& candidates);
+
+/// The boolean words of body-format-spec §1.3 (YAML 1.1: y/yes/true/on and n/no/false/off in
+/// three cases), exactly; nullopt for anything else.
+std::optional<bool> parse_bool_word(std::string_view word);
+
+/// Splits text into lines (LF or CRLF), without the breaks.
+std::vector<std::string> split_lines(std::string_view text);
+
+/// JSON text for `s` between quotes: `"` `\` and control characters escaped, UTF-8 kept,
+/// invalid UTF-8 bytes replaced by U+FFFD.
+std::string json_quote(std::string_view s);
+
+}  // namespace bodyfmt::text

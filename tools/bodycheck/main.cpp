@@ -1,0 +1,255 @@
+// bodycheck: checks .body files and reports located diagnostics as text, JSON or SARIF.
+// Exit codes (tools/common/front.h): 0 nothing at or above the fail level, 1 findings,
+// 2 usage, I/O or fatal error.
+
+#include "front.h"
+
+#include <bodyfmt/derived.h>
+#include <bodyfmt/rules.h>
+#include <bodyfmt/validate.h>
+
+#include <fmt/format.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <thread>
+
+#ifndef BODYCHECK_INFORMATION_URI
+#define BODYCHECK_INFORMATION_URI ""
+#endif
+
+namespace fs = std::filesystem;
+using namespace bodyfmt;
+
+namespace {
+
+struct Job {
+  tools::ModelInput input;
+  tools::Front::FilePolicy policy;
+};
+
+struct JobResult {
+  std::vector<Diagnostic> diagnostics;
+  bool loaded = false;
+  int suppressed = 0;
+  int disabled = 0;
+};
+
+struct Settings {
+  std::string format = "text";
+  std::string output;
+  bool stats = false;
+  bool list_rules = false;
+  int jobs = 0;
+};
+
+JobResult check_file(tools::Front& front, const Job& job) {
+  JobResult result;
+  CollectingSink collected;
+  DiagnosticPolicy policy(collected, job.policy.options);
+  try {
+    auto model = front.load(job.input, policy);
+    result.loaded = model.has_value();
+    if (model) {
+      Derived derived = compute_derived(*model, policy);
+      validate::check_model(*model, derived, {}, policy);
+    }
+  } catch (const std::exception& e) {
+    policy.report(make_diagnostic("internal-error", SourceLocation{job.input.name, 0, 0},
+                                  std::string("unexpected failure: ") + e.what()));
+    result.loaded = false;
+  }
+  result.diagnostics = std::move(collected.diagnostics());
+  result.suppressed = policy.suppressed_count();
+  result.disabled = policy.disabled_count();
+  return result;
+}
+
+void print_rules(std::ostream& out) {
+  std::size_t width = 0;
+  for (const auto& rule : all_rules()) width = std::max(width, rule.id.size());
+  for (const auto& rule : all_rules())
+    out << fmt::format("{:<{}}  {:<11}  {}\n", rule.id, width, severity_name(rule.default_severity), rule.summary);
+}
+
+/// The files to check: each named file, and every *.body below each named directory, in a
+/// stable order, each once. Missing paths are reported and make the run fail.
+std::vector<std::string> expand_inputs(const tools::Front& front, bool& fatal) {
+  std::vector<std::string> files;
+  for (const std::string& input : front.inputs()) {
+    std::error_code ec;
+    if (input == "-") {
+      files.push_back(input);
+    } else if (fs::is_directory(input, ec)) {
+      std::vector<std::string> found;
+      for (fs::recursive_directory_iterator it(input, fs::directory_options::skip_permission_denied, ec), end;
+           !ec && it != end; it.increment(ec)) {
+        if (it->path().extension() == ".body" && it->is_regular_file(ec)) found.push_back(it->path().string());
+      }
+      if (ec) {
+        std::cerr << input << ": error: cannot read the directory: " << ec.message() << '\n';
+        fatal = true;
+      }
+      std::sort(found.begin(), found.end());
+      files.insert(files.end(), found.begin(), found.end());
+    } else if (fs::exists(input, ec)) {
+      files.push_back(input);
+    } else {
+      std::cerr << input << ": error: no such file or directory\n";
+      fatal = true;
+    }
+  }
+  std::sort(files.begin(), files.end());
+  files.erase(std::unique(files.begin(), files.end()), files.end());
+  return files;
+}
+
+/// One job per file, with its policy (command line over its .bodycheck.yaml). A file whose
+/// input or config cannot be read is left out and makes the run fail.
+std::vector<Job> make_jobs(tools::Front& front, const std::vector<std::string>& files, bool& fatal) {
+  std::vector<Job> jobs;
+  for (const std::string& file : files) {
+    auto policy = front.policy_for(file);
+    if (!policy) {
+      fatal = true;  // a malformed config: its files are not checked
+      continue;
+    }
+    CollectingSink open_sink;
+    auto input = front.open_input(file, open_sink);
+    if (!input) {
+      front.print(std::move(open_sink.diagnostics()));
+      fatal = true;
+      continue;
+    }
+    jobs.push_back(Job{std::move(*input), std::move(*policy)});
+  }
+  return jobs;
+}
+
+/// Checks the jobs on a few threads; each file's diagnostics are kept apart, in job order.
+std::vector<JobResult> run_jobs(tools::Front& front, const std::vector<Job>& jobs, int requested_threads) {
+  std::vector<JobResult> results(jobs.size());
+  unsigned threads = requested_threads > 0 ? static_cast<unsigned>(requested_threads)
+                                           : std::clamp(std::thread::hardware_concurrency(), 2u, 4u);
+  threads = std::min<unsigned>(threads, static_cast<unsigned>(std::max<std::size_t>(jobs.size(), 1)));
+  std::atomic<std::size_t> next{0};
+  auto worker = [&] {
+    for (std::size_t i; (i = next.fetch_add(1)) < jobs.size();) results[i] = check_file(front, jobs[i]);
+  };
+  if (threads <= 1) {
+    worker();
+  } else {
+    std::vector<std::thread> pool;
+    for (unsigned t = 0; t < threads; ++t) pool.emplace_back(worker);
+    for (auto& t : pool) t.join();
+  }
+  return results;
+}
+
+bool same_diagnostic(const Diagnostic& a, const Diagnostic& b) {
+  return a.location == b.location && a.rule_id == b.rule_id && a.message == b.message && a.severity == b.severity;
+}
+
+/// Merges the results into one report, deciding the exit code on the way.
+Report make_report(const std::vector<Job>& jobs, std::vector<JobResult>& results, bool quiet, bool& fatal,
+                   bool& findings) {
+  Report report;
+  for (std::size_t i = 0; i < jobs.size(); ++i) {
+    JobResult& r = results[i];
+    report.files.push_back(jobs[i].input.name);
+    report.suppressed += r.suppressed;
+    report.disabled += r.disabled;
+    if (!r.loaded) fatal = true;
+    switch (tools::exit_code(r.diagnostics, jobs[i].policy.exit, false)) {
+      case tools::kExitFatal: fatal = true; break;
+      case tools::kExitFindings: findings = true; break;
+      default: break;
+    }
+    for (Diagnostic& d : r.diagnostics) {
+      if (quiet && d.severity == Severity::kNote) continue;
+      report.diagnostics.push_back(std::move(d));
+    }
+  }
+  sort_diagnostics(report.diagnostics);
+  // A file included by several checked files (SubBody) reports the same finding each time.
+  report.diagnostics.erase(std::unique(report.diagnostics.begin(), report.diagnostics.end(), same_diagnostic),
+                           report.diagnostics.end());
+  return report;
+}
+
+std::string format_report(tools::Front& front, const Report& report, const Settings& settings) {
+  ToolInfo tool;
+  tool.version = BODYFMT_VERSION;
+  tool.information_uri = BODYCHECK_INFORMATION_URI;
+  std::string text;
+  if (settings.format == "json") {
+    text = format_json_report(report, tool);
+  } else if (settings.format == "sarif") {
+    text = format_sarif_report(report, tool);
+  } else {
+    const bool terminal = settings.output.empty() && ::isatty(STDOUT_FILENO) != 0;
+    text = format_text_report(report, front.sources(), front.text_options(terminal));
+    if (!front.quiet()) text += format_summary_line(report);
+  }
+  if (settings.stats) {
+    std::string lines;
+    for (const auto& [rule, n] : report.counts_by_rule()) lines += fmt::format("{:>6}  {}\n", n, rule);
+    if (settings.format == "text") text += lines;
+    else std::cerr << lines;
+  }
+  return text;
+}
+
+bool write_report(const tools::Front& front, const std::string& text, const std::string& output) {
+  if (output.empty()) {
+    std::cout << text << std::flush;
+    return true;
+  }
+  std::ofstream out(output, std::ios::binary);
+  out << text;
+  out.close();
+  if (!out) {
+    front.print_error(output + ": cannot write the report");
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  tools::Front front("bodycheck", "Check Choreonoid .body models: located diagnostics as text, JSON or SARIF",
+                     {true, false});
+  Settings settings;
+  CLI::App& app = front.app();
+  app.add_option("--format", settings.format, "output format")->check(CLI::IsMember({"text", "json", "sarif"}));
+  app.add_flag("--stats", settings.stats, "print the number of findings per rule");
+  app.add_flag("--list-rules", settings.list_rules, "list every rule with its default severity and exit");
+  app.add_option("-o,--output", settings.output, "write the report to this file instead of stdout");
+  app.add_option("-j,--jobs", settings.jobs, "worker threads (default: 2 to 4, by the cores available)")
+      ->check(CLI::Range(1, 64));
+  if (auto code = front.parse(argc, argv)) return *code;
+  if (settings.list_rules) {
+    print_rules(std::cout);
+    return tools::kExitClean;
+  }
+  if (front.inputs().empty()) {
+    front.print_error("no input files (bodycheck --help)");
+    return tools::kExitFatal;
+  }
+
+  bool fatal = false;
+  bool findings = false;
+  const std::vector<std::string> files = expand_inputs(front, fatal);
+  const std::vector<Job> jobs = make_jobs(front, files, fatal);
+  std::vector<JobResult> results = run_jobs(front, jobs, settings.jobs);
+  const Report report = make_report(jobs, results, front.quiet(), fatal, findings);
+  if (!write_report(front, format_report(front, report, settings), settings.output)) return tools::kExitFatal;
+  if (fatal) return tools::kExitFatal;
+  return findings ? tools::kExitFindings : tools::kExitClean;
+}

@@ -1,0 +1,210 @@
+#include "front.h"
+
+#include <bodyfmt/rules.h>
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <iterator>
+#include <sstream>
+
+#ifndef BODYFMT_VERSION
+#error "BODYFMT_VERSION comes from CMake (project version)"
+#endif
+
+namespace bodyfmt::tools {
+
+bool is_finding(const Diagnostic& d, const ExitPolicy& policy) {
+  if (d.severity >= policy.fail_level) return true;
+  return policy.export_warnings_fail && d.severity >= Severity::kWarning && d.rule_id.rfind("export-", 0) == 0;
+}
+
+int exit_code(const std::vector<Diagnostic>& diagnostics, const ExitPolicy& policy, bool fatal) {
+  bool findings = false;
+  for (const Diagnostic& d : diagnostics) {
+    fatal = fatal || d.severity == Severity::kFatal;
+    findings = findings || is_finding(d, policy);
+  }
+  if (fatal) return kExitFatal;
+  return findings ? kExitFindings : kExitClean;
+}
+
+namespace {
+
+/// Rule ids switched off by the layered settings: command line over config, and within each,
+/// enable over disable.
+std::vector<std::string> disabled_rules(const std::vector<std::string>& cli_disable,
+                                        const std::vector<std::string>& cli_enable, const CheckConfig* config) {
+  auto any = [](const std::vector<std::string>& patterns, std::string_view id) {
+    return std::any_of(patterns.begin(), patterns.end(),
+                       [&](const std::string& p) { return rule_pattern_matches(p, id); });
+  };
+  std::vector<std::string> off;
+  for (const RuleInfo& rule : all_rules()) {
+    bool enabled = true;
+    if (any(cli_enable, rule.id)) enabled = true;
+    else if (any(cli_disable, rule.id)) enabled = false;
+    else if (config && any(config->enable, rule.id)) enabled = true;
+    else if (config && any(config->disable, rule.id)) enabled = false;
+    if (!enabled) off.emplace_back(rule.id);
+  }
+  return off;
+}
+
+/// A CLI11 validator for rule ids and `family-*` patterns, with a did-you-mean.
+std::string check_patterns(const std::string& value) { return check_rule_pattern(value); }
+
+bool regular_file(const std::string& path) {
+  struct stat st {};
+  return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+}
+
+}  // namespace
+
+Front::Front(std::string tool_name, std::string description, Features features)
+    : name_(std::move(tool_name)), features_(features), app_(std::move(description), name_) {
+  app_.set_version_flag("--version", name_ + " " + BODYFMT_VERSION, "print the version and exit");
+  if (features_.many_inputs) {
+    app_.add_option("paths", inputs_, "a .body file, a directory searched recursively for *.body, or - for standard input");
+  } else {
+    app_.add_option("file", inputs_, "the .body file, or - for standard input")->required()->expected(1);
+  }
+  app_.add_option("--stdin-filename", stdin_filename_,
+                  "the file name used for standard input in locations and to resolve its relative URIs");
+
+  const std::string loading = "Loading";
+  app_.add_option("--package-path", package_paths_, "a folder holding ROS packages for package:// URIs (repeatable)")
+      ->group(loading);
+  app_.add_flag("--no-meshes", no_meshes_, "do not import external mesh files")->group(loading);
+  app_.add_option("--max-yaml-nodes", load_options_.max_expanded_yaml_nodes,
+                  "limit on YAML nodes after alias expansion")
+      ->group(loading);
+  app_.add_option("--max-yaml-depth", load_options_.max_yaml_depth, "limit on YAML nesting depth")->group(loading);
+
+  const std::string policy = "Diagnostics";
+  app_.add_option("--enable", enable_, "enable a rule (or a family: units-*), over .bodycheck.yaml (repeatable)")
+      ->allow_extra_args(false)
+      ->check(check_patterns, "RULE")
+      ->group(policy);
+  app_.add_option("--disable", disable_, "disable a rule (or a family: units-*) (repeatable)")
+      ->allow_extra_args(false)
+      ->check(check_patterns, "RULE")
+      ->group(policy);
+  fail_on_option_ = app_.add_option("--fail-on", fail_on_, "lowest severity that fails the run (default error)")
+                        ->check(CLI::IsMember({"error", "warning"}))
+                        ->group(policy);
+  werror_option_ = app_.add_flag("--werror", werror_, "treat warnings as errors")->group(policy);
+  app_.add_flag("--no-config", no_config_, "ignore .bodycheck.yaml files")->group(policy);
+  if (features_.exporter) {
+    app_.add_flag("--strict", strict_, "treat every export loss as an error: nothing is written")->group(policy);
+  }
+  app_.add_flag("-q,--quiet", quiet_, "print no note diagnostics")->group(policy);
+  app_.add_option("--color", color_, "colour the diagnostics: auto (a terminal, unless NO_COLOR is set), always, never")
+      ->check(CLI::IsMember({"auto", "always", "never"}))
+      ->group(policy);
+}
+
+std::optional<int> Front::parse(int argc, char** argv) {
+  try {
+    app_.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app_.exit(e);
+    return code == 0 ? kExitClean : kExitFatal;
+  }
+  load_options_.package_paths = package_paths_;
+  load_options_.load_meshes = !no_meshes_;
+  return std::nullopt;
+}
+
+std::optional<ModelInput> Front::open_input(const std::string& path, DiagnosticSink& sink) {
+  ModelInput input;
+  input.path = path;
+  input.name = path == "-" ? (stdin_filename_.empty() ? std::string("<stdin>") : stdin_filename_) : path;
+  if (path != "-" && regular_file(path)) return input;  // the loader reads it
+  // Standard input, a pipe (<(...)), or a device: read once, here, so that the text is also
+  // there for the source lines of the report.
+  std::string text;
+  bool ok = false;
+  if (path == "-") {
+    text.assign(std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>());
+    ok = !std::cin.bad();
+  } else {
+    struct stat st {};
+    if (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) {
+      report_rule(sink, "io-read", SourceLocation{path, 0, 0}, "\"" + path + "\" is a directory, not a .body file");
+      return std::nullopt;
+    }
+    std::ifstream in(path, std::ios::binary);
+    if (in.is_open()) {
+      std::ostringstream buffer;
+      buffer << in.rdbuf();
+      text = buffer.str();
+      ok = !in.bad();
+    }
+  }
+  if (!ok) {
+    report_rule(sink, "io-read", SourceLocation{input.name, 0, 0}, "cannot read \"" + path + "\"");
+    return std::nullopt;
+  }
+  input.text = std::move(text);
+  input.read_by_front = true;
+  sources_.add(input.name, input.text);
+  return input;
+}
+
+std::optional<Model> Front::load(const ModelInput& input, DiagnosticSink& sink) {
+  if (input.read_by_front) return load_body_string(input.text, input.name, load_options_, sink);
+  return load_body(input.path, load_options_, sink);
+}
+
+std::optional<Front::FilePolicy> Front::policy_for(const std::string& file) {
+  const CheckConfig* config = nullptr;
+  if (!no_config_) {
+    const std::string path = find_config(file == "-" || file.rfind('<', 0) == 0 ? std::string("./x") : file);
+    if (!path.empty()) {
+      auto it = configs_.find(path);
+      if (it == configs_.end()) {
+        CollectingSink config_sink;
+        it = configs_.emplace(path, read_config(path, config_sink)).first;
+        print(std::move(config_sink.diagnostics()));
+      }
+      if (!it->second) return std::nullopt;
+      config = &*it->second;
+    }
+  }
+  FilePolicy policy;
+  policy.options.disable = disabled_rules(disable_, enable_, config);
+  policy.options.werror = werror_option_->count() > 0 ? werror_ : (config && config->werror && *config->werror);
+  policy.options.strict = strict_;
+  if (fail_on_option_->count() > 0) policy.exit.fail_level = fail_on_ == "warning" ? Severity::kWarning : Severity::kError;
+  else if (config && config->fail_on) policy.exit.fail_level = *config->fail_on;
+  policy.exit.export_warnings_fail = features_.exporter;
+  return policy;
+}
+
+TextOptions Front::text_options(bool to_terminal_stream) const {
+  TextOptions options;
+  options.notes = !quiet_;
+  if (color_ == "always") options.color = true;
+  else if (color_ == "auto") options.color = to_terminal_stream && std::getenv("NO_COLOR") == nullptr;
+  return options;
+}
+
+void Front::print(std::vector<Diagnostic> diagnostics) {
+  sort_diagnostics(diagnostics);
+  const TextOptions options = text_options(::isatty(STDERR_FILENO) != 0);
+  std::string text;
+  for (const Diagnostic& d : diagnostics) {
+    if (d.severity == Severity::kNote && !options.notes) continue;
+    text += format_text_diagnostic(d, sources_, options);
+  }
+  std::cerr << text << std::flush;
+}
+
+void Front::print_error(const std::string& message) const { std::cerr << name_ << ": error: " << message << '\n'; }
+
+}  // namespace bodyfmt::tools
