@@ -1,4 +1,5 @@
 #include <bodyfmt/converters/numbers.h>
+#include <bodyfmt/model.h>
 
 #include <fmt/format.h>
 
@@ -16,6 +17,12 @@ std::string format_vector(const Eigen::Vector3d& v) {
 std::string format_vector(const Eigen::Vector4d& v) {
   return format_number(v[0]) + ' ' + format_number(v[1]) + ' ' + format_number(v[2]) + ' ' +
          format_number(v[3]);
+}
+
+double finite_or_stand_in(double value) {
+  if (value >= kUnlimited) return kUnlimitedStandIn;
+  if (value <= -kUnlimited) return -kUnlimitedStandIn;
+  return value;
 }
 
 }  // namespace bodyfmt::converters

@@ -3,6 +3,8 @@
 #include <bodyfmt/converters/loss.h>
 #include <bodyfmt/converters/names.h>
 #include <bodyfmt/converters/numbers.h>
+#include <bodyfmt/converters/staged_files.h>
+#include <bodyfmt/converters/transforms.h>
 #include <bodyfmt/inertia.h>
 #include <bodyfmt/rules.h>
 #include <bodyfmt/tessellate.h>
@@ -28,42 +30,10 @@ using tinyxml2::XMLElement;
 
 constexpr std::string_view kTarget = "URDF";
 
-/// URDF's rpy (R = Rz(yaw) Ry(pitch) Rx(roll)). Yaw is taken first and roll from what is left,
-/// so that near pitch = ±90° (gimbal lock) the pair still reproduces R to rounding error.
-Eigen::Vector3d rpy_of(const Eigen::Matrix3d& R) {
-  const double pitch = std::atan2(-R(2, 0), std::hypot(R(0, 0), R(1, 0)));
-  const double yaw = std::atan2(R(1, 0), R(0, 0));
-  const Eigen::Matrix3d rest = Eigen::AngleAxisd(-pitch, Eigen::Vector3d::UnitY()).toRotationMatrix() *
-                               Eigen::AngleAxisd(-yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix() * R;
-  const double roll = std::atan2(rest(2, 1), rest(2, 2));
-  return {roll, pitch, yaw};
-}
-
-/// L = R diag(s) with R a proper rotation: the scale a URDF <mesh scale> or a primitive's
-/// size can carry. Empty when L shears or mirrors.
-struct ScaledRotation {
-  Eigen::Matrix3d rotation;
-  Eigen::Vector3d scale;
-};
-std::optional<ScaledRotation> decompose(const Eigen::Matrix3d& L) {
-  ScaledRotation out;
-  out.scale = L.colwise().norm().transpose();
-  if ((out.scale.array() <= 0).any()) return std::nullopt;
-  out.rotation = L * out.scale.cwiseInverse().asDiagonal();
-  if ((out.rotation.transpose() * out.rotation - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-12 ||
-      out.rotation.determinant() < 0) {
-    return std::nullopt;
-  }
-  return out;
-}
-
-bool nearly_equal(double a, double b) { return std::abs(a - b) <= 1e-12 * std::max(std::abs(a), std::abs(b)); }
-
-double finite_or_stand_in(double v) {
-  if (v >= kUnlimited) return kUnlimitedStandIn;
-  if (v <= -kUnlimited) return -kUnlimitedStandIn;
-  return v;
-}
+using converters::decompose;
+using converters::finite_or_stand_in;
+using converters::nearly_equal;
+using converters::rpy_of;
 
 std::string lower_extension(const std::string& path) {
   std::string ext = fs::path(path).extension().string();
@@ -139,8 +109,7 @@ class Writer {
   bool failed_ = false;
   std::vector<std::pair<std::string, std::string>> materials_;  // name, rgba; first-use order
   std::map<std::string, std::string> material_by_rgba_;
-  std::map<std::string, std::string> mesh_by_key_;  // key -> relative path
-  std::set<std::string> used_mesh_paths_;
+  converters::StagedFiles staged_{output_, options_.mesh_folder};
   std::set<std::string> link_names_;
   std::vector<XMLElement*> pending_joints_;
 };
@@ -197,48 +166,17 @@ std::string Writer::material_name(const Material& material) {
 
 std::string Writer::stage_mesh(const std::string& key, const std::string& stem, const TriangleMesh& mesh,
                                const std::optional<Material>& material) {
-  auto it = mesh_by_key_.find(key);
-  if (it != mesh_by_key_.end()) return it->second;
-  const std::string ext(converters::mesh_format_extension(options_.mesh_format));
-  std::string base = converters::file_stem(stem);
-  std::string relative = options_.mesh_folder + "/" + base + "." + ext;
-  for (int n = 2; used_mesh_paths_.count(relative); ++n) {
-    relative = fmt::format("{}/{}_{}.{}", options_.mesh_folder, base, n, ext);
-  }
   std::string error;
-  auto bytes = converters::write_mesh(options_.mesh_format, mesh, material, base, error);
-  if (!bytes) {
-    fatal("export-write", model_.source, fmt::format("cannot encode mesh '{}': {}", relative, error));
-    return {};
-  }
-  output_.add(relative, std::move(*bytes));
-  used_mesh_paths_.insert(relative);
-  mesh_by_key_.emplace(key, relative);
-  return relative;
+  std::optional<std::string> relative = staged_.mesh(key, stem, mesh, material, options_.mesh_format, error);
+  if (!relative) fatal("export-write", model_.source, error);
+  return relative.value_or(std::string());
 }
 
 std::string Writer::stage_file_copy(const std::string& source_path) {
-  const std::string key = "copy:" + source_path;
-  auto it = mesh_by_key_.find(key);
-  if (it != mesh_by_key_.end()) return it->second;
-  std::ifstream in(source_path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (!in) {
-    fatal("export-write", model_.source, fmt::format("cannot read mesh '{}' to copy it", source_path));
-    return {};
-  }
-  const fs::path p(source_path);
-  const std::string base = converters::file_stem(p.stem().string());
-  const std::string ext = p.extension().string();
-  std::string relative = options_.mesh_folder + "/" + base + ext;
-  for (int n = 2; used_mesh_paths_.count(relative); ++n) {
-    relative = fmt::format("{}/{}_{}{}", options_.mesh_folder, base, n, ext);
-  }
-  output_.add(relative, text.str());
-  used_mesh_paths_.insert(relative);
-  mesh_by_key_.emplace(key, relative);
-  return relative;
+  std::string error;
+  std::optional<std::string> relative = staged_.copy(source_path, error);
+  if (!relative) fatal("export-write", model_.source, error);
+  return relative.value_or(std::string());
 }
 
 void Writer::add_mesh_pieces(std::vector<Piece>& out, const std::string& key, const std::string& stem,
@@ -512,9 +450,7 @@ bool Writer::run() {
   }
   robot_->SetAttribute("name", model_.name.empty() ? "robot" : model_.name.c_str());
   comment(robot_, fmt::format("Generated by body2urdf from {}", fs::path(model_.source_file).filename().string()));
-  XMLElement* material_anchor = robot_->LastChildElement() ? robot_->LastChildElement() : nullptr;
   tinyxml2::XMLNode* after_header = robot_->LastChild();
-  (void)material_anchor;
 
   for (const Link& link : model_.links) link_names_.insert(link.name);
   const Link& root = model_.root();

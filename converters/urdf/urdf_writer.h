@@ -3,6 +3,7 @@
 /// what is lost; every lost construct is reported as `export-loss` at its source line and
 /// noted in an XML comment in the output).
 #include <bodyfmt/converters/mesh_writer.h>
+#include <bodyfmt/converters/numbers.h>
 #include <bodyfmt/converters/output_set.h>
 #include <bodyfmt/derived.h>
 #include <bodyfmt/diagnostic.h>
@@ -12,10 +13,8 @@
 
 namespace bodyfmt::urdf {
 
-/// Written for limits Choreonoid leaves unlimited where URDF requires a number (`effort` and
-/// `velocity` of every <limit>, `lower`/`upper` of a prismatic joint or of one side of a
-/// revolute range). Large enough to never bind, small enough for float-based tools.
-constexpr double kUnlimitedStandIn = 1e30;
+/// Unlimited effort, velocity and one-sided ranges are written as this stand-in.
+using converters::kUnlimitedStandIn;
 
 struct UrdfOptions {
   converters::MeshFormat mesh_format = converters::MeshFormat::kStl;

@@ -86,9 +86,7 @@ void ElementReader::read_elements(const yaml::NodeRef& elements, const ElementFr
   ctx_.report("load-type", elements, "a value of the \"elements\" key must be a sequence or a mapping");
 }
 
-std::optional<ElementFrame> ElementReader::enter(const yaml::NodeRef& node, MappingReader& r,
-                                                 const ElementFrame& frame, bool allow_scale) {
-  ElementFrame inner = frame;
+std::optional<ElementFrame> ElementReader::enter(MappingReader& r, const ElementFrame& frame, bool allow_scale) {
   Eigen::Affine3d X = Eigen::Affine3d::Identity();
   if (auto t = r.take({"translation"})) {
     if (auto v = read_translation(ctx_, t)) X.translation() = *v;
@@ -107,8 +105,6 @@ std::optional<ElementFrame> ElementReader::enter(const yaml::NodeRef& node, Mapp
       }
     }
   }
-  (void)node;
-  (void)inner;
   return push_frame(frame, X);
 }
 
@@ -132,7 +128,7 @@ void ElementReader::read_node(const yaml::NodeRef& node, const std::string& type
     r.take({"name"});
     ElementFrame inner = frame;
     if (type == "Transform") {
-      inner = *enter(node, r, frame);
+      inner = *enter(r, frame);
       // body-format-spec §6.4 rule 5: mass keys on a Transform are ignored by Choreonoid.
       for (KeyNames names : {KeyNames{"mass"}, KeyNames{"center_of_mass", "centerOfMass", "centerofMass"},
                              KeyNames{"inertia"}}) {
@@ -195,7 +191,7 @@ void ElementReader::read_part(const yaml::NodeRef& node, ModelPart part, const E
                    " node defined at a higher level");
     return;
   }
-  ElementFrame inner = *enter(node, r, frame);
+  ElementFrame inner = *enter(r, frame);
   inner.part = part;
   inner.part_source = node.use_site();
   // Inline shortcuts come before `elements` (body-format-spec §8.4).
@@ -212,7 +208,7 @@ void ElementReader::read_rigid_body(const yaml::NodeRef& node, const ElementFram
   MappingReader r(ctx_, node, "RigidBody node");
   r.take({"type"});
   r.take({"name"});
-  ElementFrame inner = *enter(node, r, frame);
+  ElementFrame inner = *enter(r, frame);
   MassContribution c;
   c.source = node.use_site();
   Eigen::Vector3d com = Eigen::Vector3d::Zero();
@@ -249,7 +245,7 @@ void ElementReader::read_shape(const yaml::NodeRef& node, const ElementFrame& fr
   r.take({"type"});
   Shape shape;
   if (auto name = r.take({"name"})) shape.name = name->scalar;
-  ElementFrame inner = *enter(node, r, frame);
+  ElementFrame inner = *enter(r, frame);
   shape.source = node.use_site();
   if (auto geometry = r.take({"geometry"})) {
     auto g = read_geometry(ctx_, geometry, shape.division_number);
@@ -293,7 +289,7 @@ void ElementReader::read_device(const yaml::NodeRef& node, const std::string& ty
     if (auto v = optional_bool(ctx_, on)) d.on = *v;
   }
   r.take({"is_optional", "isOptional"});
-  ElementFrame inner = *enter(node, r, frame);
+  ElementFrame inner = *enter(r, frame);
   // A device frame is rigid; scale on an enclosing node only affects its child shapes.
   Eigen::Matrix3d R = inner.X_LF.rotation();
   d.X_LD.linear() = R;

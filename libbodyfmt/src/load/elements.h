@@ -51,8 +51,7 @@ class ElementReader {
 
  private:
   Link& link() { return model_.links[static_cast<std::size_t>(link_)]; }
-  std::optional<ElementFrame> enter(const yaml::NodeRef& node, class MappingReader& r,
-                                    const ElementFrame& frame, bool allow_scale = true);
+  std::optional<ElementFrame> enter(class MappingReader& r, const ElementFrame& frame, bool allow_scale = true);
   void read_rigid_body(const yaml::NodeRef& node, const ElementFrame& frame);
   void read_device(const yaml::NodeRef& node, const std::string& type, const ElementFrame& frame);
   void read_part(const yaml::NodeRef& node, ModelPart part, const ElementFrame& frame);

@@ -7,6 +7,14 @@
 
 namespace bodyfmt::converters {
 
+/// Written for limits Choreonoid leaves unlimited where a format requires a number (URDF's
+/// `effort` and `velocity`, a one-sided range). Large enough to never bind, small enough for
+/// float-based tools.
+constexpr double kUnlimitedStandIn = 1e30;
+
+/// `value`, or ±kUnlimitedStandIn where it is Choreonoid's ±unlimited (model.h kUnlimited).
+double finite_or_stand_in(double value);
+
 std::string format_number(double value);
 /// "x y z" with format_number for each.
 std::string format_vector(const Eigen::Vector3d& v);

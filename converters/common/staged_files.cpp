@@ -1,0 +1,53 @@
+#include <bodyfmt/converters/names.h>
+#include <bodyfmt/converters/staged_files.h>
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace bodyfmt::converters {
+
+std::string StagedFiles::unique_path(const std::string& base, const std::string& dot_extension) {
+  std::string relative = folder_ + "/" + base + dot_extension;
+  for (int n = 2; used_.count(relative); ++n) relative = fmt::format("{}/{}_{}{}", folder_, base, n, dot_extension);
+  return relative;
+}
+
+std::optional<std::string> StagedFiles::add(const std::string& key, const std::string& relative, std::string contents) {
+  output_.add(relative, std::move(contents));
+  used_.insert(relative);
+  by_key_.emplace(key, relative);
+  return relative;
+}
+
+std::optional<std::string> StagedFiles::mesh(const std::string& key, const std::string& stem, const TriangleMesh& mesh,
+                                             const std::optional<Material>& material, MeshFormat format,
+                                             std::string& error) {
+  if (auto it = by_key_.find(key); it != by_key_.end()) return it->second;
+  const std::string base = file_stem(stem);
+  const std::string relative = unique_path(base, "." + std::string(mesh_format_extension(format)));
+  auto bytes = write_mesh(format, mesh, material, base, error);
+  if (!bytes) {
+    error = fmt::format("cannot encode mesh '{}': {}", relative, error);
+    return std::nullopt;
+  }
+  return add(key, relative, std::move(*bytes));
+}
+
+std::optional<std::string> StagedFiles::copy(const std::string& source_path, std::string& error) {
+  const std::string key = "copy:" + source_path;
+  if (auto it = by_key_.find(key); it != by_key_.end()) return it->second;
+  std::ifstream in(source_path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in) {
+    error = fmt::format("cannot read mesh '{}' to copy it", source_path);
+    return std::nullopt;
+  }
+  const std::filesystem::path p(source_path);
+  return add(key, unique_path(file_stem(p.stem().string()), p.extension().string()), text.str());
+}
+
+}  // namespace bodyfmt::converters
