@@ -146,6 +146,9 @@ struct MassContribution {
   SourceLocation source;
 };
 
+/// Mass, centre of mass (link frame) and inertia about it (link axes). Default-constructed,
+/// it holds Choreonoid's defaults for a link without mass data (body-format-spec §6.4 rule 4:
+/// 1 kg at the origin with identity inertia); this is the one place they are written.
 struct MassProperties {
   double mass = 1.0;
   Eigen::Vector3d center_of_mass = Eigen::Vector3d::Zero();

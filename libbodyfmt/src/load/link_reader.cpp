@@ -118,8 +118,12 @@ void read_link_mass(LoadContext& ctx, MappingReader& r, Link& link, bool has_rig
   if (!com && !mass && !inertia) return;
   MassContribution c;
   c.from_link_keys = true;
-  c.mass = has_rigid_bodies ? 0.0 : 1.0;
-  c.inertia = has_rigid_bodies ? Eigen::Matrix3d(Eigen::Matrix3d::Zero()) : Eigen::Matrix3d(Eigen::Matrix3d::Identity());
+  // Keys left out take Choreonoid's defaults, unless RigidBody nodes carry the mass (§6.4).
+  if (!has_rigid_bodies) {
+    const MassProperties defaults;
+    c.mass = defaults.mass;
+    c.inertia = defaults.inertia;
+  }
   if (com) {
     link.sources.center_of_mass = com.use_site();
     if (auto v = read_vec3(ctx, com)) c.center_of_mass = *v;
