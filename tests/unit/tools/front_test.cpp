@@ -1,0 +1,168 @@
+// The command-line front every tool shares (tools/common/front.h), tried on every tool with
+// the same table of inputs: --help, --version, standard input ('-', /dev/stdin, <(...)), the
+// same --disable, the source line and caret, colour, usage errors and exit codes.
+#include <doctest/doctest.h>
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Tool {
+  const char* name;
+  std::string binary;
+  std::string extra;  // arguments every run of this tool needs (an exporter's output)
+};
+
+std::vector<Tool> tools() {
+  const fs::path out = fs::temp_directory_path() / "bodyfmt_front_test";
+  fs::create_directories(out);
+  return {
+      {"bodyinfo", BODYFMT_BODYINFO, ""},
+      {"bodycheck", BODYFMT_BODYCHECK, ""},
+      {"body2urdf", BODYFMT_BODY2URDF, "-o '" + (out / "front.urdf").string() + "'"},
+  };
+}
+
+struct Run {
+  int status = -1;
+  std::string output;  // stdout and stderr
+};
+
+/// Runs `command` with bash (for <(...)) in tests/data/bodycheck, stdout and stderr merged.
+Run run(const std::string& command) {
+  const std::string script = std::string("cd '") + BODYFMT_TEST_DATA_DIR + "/bodycheck' && " + command + " 2>&1";
+  const std::string quoted = "bash -c '" + [&] {
+    std::string s;
+    for (char c : script) s += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return s;
+  }() + "'";
+  Run r;
+  FILE* pipe = popen(quoted.c_str(), "r");
+  REQUIRE(pipe != nullptr);
+  char buffer[4096];
+  std::size_t n;
+  while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) r.output.append(buffer, n);
+  const int status = pclose(pipe);
+  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+std::string invoke(const Tool& tool, const std::string& args) {
+  return "'" + tool.binary + "' " + args + (tool.extra.empty() ? "" : " " + tool.extra);
+}
+
+bool contains(const std::string& text, const std::string& what) { return text.find(what) != std::string::npos; }
+
+// warning.body: a duplicate key on line 11, column 5, and nothing else.
+const std::string kWarning = "warning: duplicate key \"mass\" (first at line 10); the last value wins [yaml-duplicate-key]\n"
+                             "    mass: 1.2\n"
+                             "    ^\n";
+
+}  // namespace
+
+TEST_CASE("front: --help exits 0 and shows the shared option groups, in every tool") {
+  for (const Tool& tool : tools()) {
+    CAPTURE(tool.name);
+    const Run r = run("'" + tool.binary + "' --help");
+    CHECK(r.status == 0);
+    CHECK(contains(r.output, std::string("Usage: ") + tool.name));
+    for (const char* option : {"--version", "--stdin-filename", "--package-path", "--no-meshes", "--max-yaml-nodes",
+                               "--max-yaml-depth", "--enable", "--disable", "--fail-on", "--werror", "--no-config",
+                               "--quiet", "--color"})
+      CHECK(contains(r.output, option));
+  }
+}
+
+TEST_CASE("front: --version prints the CMake project version, in every tool") {
+  for (const Tool& tool : tools()) {
+    CAPTURE(tool.name);
+    const Run r = run("'" + tool.binary + "' --version");
+    CHECK(r.status == 0);
+    CHECK(r.output == std::string(tool.name) + " " + BODYFMT_PROJECT_VERSION + "\n");
+  }
+}
+
+TEST_CASE("front: '-' reads standard input, located with --stdin-filename and a caret, in every tool") {
+  for (const Tool& tool : tools()) {
+    CAPTURE(tool.name);
+    const Run r = run("cat warning.body | " + invoke(tool, "- --stdin-filename warning.body"));
+    CHECK(r.status == 0);
+    CHECK(contains(r.output, "warning.body:11:5: " + kWarning));
+    const Run unnamed = run("cat warning.body | " + invoke(tool, "-"));
+    CHECK(contains(unnamed.output, "<stdin>:11:5: " + kWarning));
+  }
+}
+
+TEST_CASE("front: /dev/stdin and a process substitution load, with source lines, in every tool") {
+  for (const Tool& tool : tools()) {
+    CAPTURE(tool.name);
+    const Run piped = run("cat warning.body | " + invoke(tool, "/dev/stdin"));
+    CHECK(piped.status == 0);
+    CHECK(contains(piped.output, "/dev/stdin:11:5: " + kWarning));
+    CHECK(!contains(piped.output, "canonical"));
+    const Run substituted = run(invoke(tool, "<(cat warning.body)"));
+    CHECK(substituted.status == 0);
+    CHECK(contains(substituted.output, ":11:5: " + kWarning));
+    CHECK(!contains(substituted.output, "internal-error"));
+  }
+}
+
+TEST_CASE("front: the same --disable, --fail-on and --werror work in every tool") {
+  for (const Tool& tool : tools()) {
+    CAPTURE(tool.name);
+    const Run disabled = run(invoke(tool, "--disable yaml-duplicate-key warning.body"));
+    CHECK(disabled.status == 0);
+    CHECK(!contains(disabled.output, "yaml-duplicate-key"));
+    CHECK(run(invoke(tool, "--fail-on warning warning.body")).status == 1);
+    const Run werror = run(invoke(tool, "--werror warning.body"));
+    CHECK(werror.status == 1);
+    CHECK(contains(werror.output, "warning.body:11:5: error: duplicate key"));
+    const Run unknown = run(invoke(tool, "--disable yaml-duplicat-key warning.body"));
+    CHECK(unknown.status == 2);
+    CHECK(contains(unknown.output, "did you mean 'yaml-duplicate-key'?"));
+  }
+}
+
+TEST_CASE("front: a defective model gives the located error with its caret and exit 1, in every tool") {
+  for (const Tool& tool : tools()) {
+    CAPTURE(tool.name);
+    const Run r = run(invoke(tool, "defective.body"));
+    CHECK(r.status == 1);
+    CHECK(contains(r.output, "defective.body:16:17: error: illegal joint type \"hinge\" [load-joint-type]\n"
+                             "    joint_type: hinge\n"
+                             "                ^\n"));
+  }
+}
+
+TEST_CASE("front: --color always paints like GCC; never, and NO_COLOR with auto, do not") {
+  for (const Tool& tool : tools()) {
+    CAPTURE(tool.name);
+    const Run colored = run(invoke(tool, "--color always warning.body"));
+    CHECK(contains(colored.output, "\x1b[1mwarning.body:11:5:\x1b[0m \x1b[1;35mwarning:\x1b[0m duplicate key"));
+    CHECK(contains(colored.output, "\x1b[1;32m    ^\x1b[0m"));
+    CHECK(!contains(run(invoke(tool, "--color never warning.body")).output, "\x1b["));
+    // `script` gives the tool a terminal: auto colours it, unless NO_COLOR is set.
+    CHECK(contains(run("script -qec \"" + invoke(tool, "warning.body") + "\" /dev/null").output, "\x1b[1;35m"));
+    CHECK(!contains(run("NO_COLOR=1 script -qec \"" + invoke(tool, "warning.body") + "\" /dev/null").output, "\x1b[1;35m"));
+  }
+}
+
+TEST_CASE("front: usage errors and unreadable inputs exit 2, in every tool") {
+  for (const Tool& tool : tools()) {
+    CAPTURE(tool.name);
+    CHECK(run(invoke(tool, "--max-yaml-depth many warning.body")).status == 2);
+    CHECK(run(invoke(tool, "--color sometimes warning.body")).status == 2);
+    CHECK(run(invoke(tool, "no-such-file.body")).status == 2);
+    if (std::string(tool.name) == "bodycheck") continue;  // bodycheck searches directories
+    const Run directory = run(invoke(tool, "configured"));
+    CHECK(directory.status == 2);
+    CHECK(contains(directory.output, "\"configured\" is a directory, not a .body file [io-read]"));
+  }
+}
