@@ -15,7 +15,7 @@
 
 namespace bodyfmt {
 
-namespace tessellate_detail {
+namespace detail {
 
 Reporter::~Reporter() {
   if (suppressed_ > 0) {
@@ -38,14 +38,14 @@ void flip_triangles(TriangleMesh& mesh) {
   for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
 }
 
-}  // namespace tessellate_detail
+}  // namespace detail
 
 namespace {
 
-using tessellate_detail::kRuleDegenerate;
-using tessellate_detail::kRuleIndexOutOfRange;
-using tessellate_detail::kRuleInvalidSize;
-using tessellate_detail::Reporter;
+using detail::kRuleDegenerate;
+using detail::kRuleIndexOutOfRange;
+using detail::kRuleInvalidSize;
+using detail::Reporter;
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -372,7 +372,7 @@ TriangleMesh tessellate(const Geometry& geometry, int division_number, Diagnosti
     TriangleMesh operator()(const Cone& g) const { return cone_mesh(g, n, reporter); }
     TriangleMesh operator()(const Capsule& g) const { return capsule_mesh(g, n, reporter); }
     TriangleMesh operator()(const Extrusion& g) const {
-      return tessellate_detail::tessellate_extrusion(g, reporter);
+      return detail::tessellate_extrusion(g, reporter);
     }
     TriangleMesh operator()(const ElevationGrid& g) const {
       return elevation_grid_mesh(g, reporter);

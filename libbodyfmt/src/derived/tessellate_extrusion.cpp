@@ -18,7 +18,7 @@
 #include <cmath>
 #include <cstddef>
 
-namespace bodyfmt::tessellate_detail {
+namespace bodyfmt::detail {
 
 namespace {
 
@@ -246,4 +246,4 @@ TriangleMesh tessellate_extrusion(const Extrusion& extrusion, Reporter& reporter
   return mesh;
 }
 
-}  // namespace bodyfmt::tessellate_detail
+}  // namespace bodyfmt::detail

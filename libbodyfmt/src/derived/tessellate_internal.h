@@ -5,7 +5,7 @@
 
 #include <string>
 
-namespace bodyfmt::tessellate_detail {
+namespace bodyfmt::detail {
 
 /// Reports geometry problems at the shape's location. Caps the number of diagnostics per
 /// geometry so that a face list with a million bad indices stays readable.
@@ -37,4 +37,4 @@ TriangleMesh tessellate_extrusion(const Extrusion& extrusion, Reporter& reporter
 /// Reverses every triangle (inside-out -> outside-out).
 void flip_triangles(TriangleMesh& mesh);
 
-}  // namespace bodyfmt::tessellate_detail
+}  // namespace bodyfmt::detail
