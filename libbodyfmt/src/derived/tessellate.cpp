@@ -357,7 +357,7 @@ TriangleMesh tessellate(const Geometry& geometry, int division_number, Diagnosti
                              std::holds_alternative<Cone>(geometry) ||
                              std::holds_alternative<Capsule>(geometry);
   if (uses_division && n > kMaxDivisionNumber) {
-    reporter.report(kRuleInvalidSize,
+    reporter.report("geometry-division-clamped",
                      fmt::format("division_number {} exceeds the tessellator's limit {}; {} is "
                                  "used",
                                  n, kMaxDivisionNumber, kMaxDivisionNumber));

@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <optional>
 
 namespace bodyfmt::detail {
 
@@ -50,199 +51,242 @@ double cross_section_area2(const std::vector<Eigen::Vector2d>& cs) {
   return area2;
 }
 
-}  // namespace
-
-TriangleMesh tessellate_extrusion(const Extrusion& extrusion, Reporter& reporter) {
-  const std::vector<Eigen::Vector2d>& cs = extrusion.cross_section;
-  const std::vector<Eigen::Vector3d>& spine = extrusion.spine;
-
-  // §9: no defaults; fewer than 2 points crash Choreonoid. Orientation and scale must have
-  // one entry or one per spine point (shorter lists are read past their end by Choreonoid).
-  // An empty list means the default (identity, 1), as in Choreonoid.
+/// §9: no defaults; fewer than 2 points crash Choreonoid. Orientation and scale must have one
+/// entry or one per spine point (shorter lists are read past their end by Choreonoid). An
+/// empty list means the default (identity, 1), as in Choreonoid.
+bool check_list_sizes(const Extrusion& extrusion, Reporter& reporter) {
+  const std::size_t num_cs = extrusion.cross_section.size(), num_spine = extrusion.spine.size();
   bool ok = true;
-  if (cs.size() < 2 || spine.size() < 2) {
+  if (num_cs < 2 || num_spine < 2) {
     reporter.report(kRuleInvalidSize,
-                   fmt::format("Extrusion needs at least 2 cross_section points and 2 spine "
-                               "points; it has {} and {}",
-                               cs.size(), spine.size()));
+                    fmt::format("Extrusion needs at least 2 cross_section points and 2 spine "
+                                "points; it has {} and {}",
+                                num_cs, num_spine));
     ok = false;
   }
-  const std::size_t num_given = spine.size();
-  if (extrusion.orientation.size() > 1 && extrusion.orientation.size() != num_given) {
+  if (extrusion.orientation.size() > 1 && extrusion.orientation.size() != num_spine) {
     reporter.report(kRuleInvalidSize,
-                   fmt::format("Extrusion has {} orientation entries; 1 or one per spine point "
-                               "({}) are required",
-                               extrusion.orientation.size(), num_given));
+                    fmt::format("Extrusion has {} orientation entries; 1 or one per spine point "
+                                "({}) are required",
+                                extrusion.orientation.size(), num_spine));
     ok = false;
   }
-  if (extrusion.scale.size() > 1 && extrusion.scale.size() != num_given) {
+  if (extrusion.scale.size() > 1 && extrusion.scale.size() != num_spine) {
     reporter.report(kRuleInvalidSize,
-                   fmt::format("Extrusion has {} scale entries; 1 or one per spine point ({}) "
-                               "are required",
-                               extrusion.scale.size(), num_given));
+                    fmt::format("Extrusion has {} scale entries; 1 or one per spine point ({}) "
+                                "are required",
+                                extrusion.scale.size(), num_spine));
     ok = false;
   }
-  if (!ok) return {};
+  return ok;
+}
 
-  // A first == last point closes the spine / cross-section; the closing point is dropped and
-  // the indices wrap around instead.
-  const bool spine_closed = spine.front() == spine.back();
-  const bool cs_closed = cs.front() == cs.back();
-  const int ns = static_cast<int>(spine.size()) - (spine_closed ? 1 : 0);
-  const int nc = static_cast<int>(cs.size()) - (cs_closed ? 1 : 0);
-  if (ns < 2 || nc < 2) {
+/// Point counts once a closing point (first == last) is dropped; the indices wrap instead.
+struct Layout {
+  bool spine_closed = false;
+  bool cs_closed = false;
+  int ns = 0;  ///< distinct spine points
+  int nc = 0;  ///< distinct cross-section points
+};
+
+std::optional<Layout> layout_of(const Extrusion& extrusion, Reporter& reporter) {
+  Layout l;
+  l.spine_closed = extrusion.spine.front() == extrusion.spine.back();
+  l.cs_closed = extrusion.cross_section.front() == extrusion.cross_section.back();
+  l.ns = static_cast<int>(extrusion.spine.size()) - (l.spine_closed ? 1 : 0);
+  l.nc = static_cast<int>(extrusion.cross_section.size()) - (l.cs_closed ? 1 : 0);
+  if (l.ns < 2 || l.nc < 2) {
     reporter.report(kRuleDegenerate,
-                   fmt::format("Extrusion {} has fewer than 2 distinct points once its closing "
-                               "point is removed",
-                               ns < 2 ? "spine" : "cross_section"));
-    return {};
+                    fmt::format("Extrusion {} has fewer than 2 distinct points once its closing "
+                                "point is removed",
+                                l.ns < 2 ? "spine" : "cross_section"));
+    return std::nullopt;
   }
-  auto S = [&](int k) -> const Eigen::Vector3d& { return spine[static_cast<std::size_t>(k)]; };
+  return l;
+}
 
-  // SCP axes (VRML97 §6.18): Y along the spine tangent, Z perpendicular to the two adjacent
-  // segments. Indices follow Choreonoid, including its open-end conventions.
-  std::vector<Eigen::Vector3d> y_axes(static_cast<std::size_t>(ns));
-  std::vector<Eigen::Vector3d> z_axes(static_cast<std::size_t>(ns), Eigen::Vector3d::Zero());
+/// The spine-aligned cross-section planes' raw axes (VRML97 §6.18): Y along the spine tangent,
+/// Z perpendicular to the two adjacent segments. Indices follow Choreonoid, including its
+/// open-end conventions. `defined_z` is the first point with a Z of its own (-1: none).
+struct SpineAxes {
+  std::vector<Eigen::Vector3d> y;
+  std::vector<Eigen::Vector3d> z;
   int defined_z = -1;
-  if (ns > 2) {
-    Eigen::Vector3d previous_z = Eigen::Vector3d::Zero();
-    for (int i = 0; i < ns; ++i) {
-      int prev, cur, next;
-      Eigen::Vector3d y;
-      if (i == 0 && !spine_closed) {
-        prev = 0, cur = 1, next = 2;
-        y = S(1) - S(0);
-      } else if (i == ns - 1 && !spine_closed) {
-        prev = ns - 3, cur = ns - 2, next = ns - 1;
-        y = S(ns - 1) - S(ns - 2);
-      } else {
-        prev = (i + ns - 1) % ns, cur = i, next = (i + 1) % ns;
-        y = S(next) - S(prev);
-      }
-      const Eigen::Vector3d a = S(next) - S(cur), b = S(prev) - S(cur);
-      Eigen::Vector3d z = a.cross(b);
-      // Collinear points: VRML97 takes the previous Z. A relative tolerance instead of
-      // Choreonoid's exact zero test keeps rounding noise from defining a random Z.
-      if (z.norm() <= 1e-12 * a.norm() * b.norm()) {
-        z = defined_z != -1 ? previous_z : Eigen::Vector3d::Zero();
-      } else {
-        if (defined_z == -1) defined_z = i;
-        previous_z = z;
-      }
-      y_axes[static_cast<std::size_t>(i)] = y;
-      z_axes[static_cast<std::size_t>(i)] = z;
-    }
-  } else {
-    y_axes[0] = y_axes[1] = S(1) - S(0);
+};
+
+SpineAxes spine_axes(const std::vector<Eigen::Vector3d>& spine, const Layout& l) {
+  const int ns = l.ns;
+  auto S = [&](int k) -> const Eigen::Vector3d& { return spine[static_cast<std::size_t>(k)]; };
+  SpineAxes axes;
+  axes.y.resize(static_cast<std::size_t>(ns));
+  axes.z.assign(static_cast<std::size_t>(ns), Eigen::Vector3d::Zero());
+  if (ns <= 2) {
+    axes.y[0] = axes.y[1] = S(1) - S(0);
+    return axes;
   }
-
-  // Zero-length tangents (repeated spine points) take the nearest defined direction.
-  {
-    int first_defined = -1;
-    for (int i = 0; i < ns; ++i) {
-      if (y_axes[static_cast<std::size_t>(i)].norm() > 0) {
-        first_defined = i;
-        break;
-      }
-    }
-    if (first_defined == -1) {
-      reporter.report(kRuleDegenerate, "Extrusion spine points all coincide");
-      return {};
-    }
-    Eigen::Vector3d last = y_axes[static_cast<std::size_t>(first_defined)];
-    for (auto& y : y_axes) {
-      if (y.norm() > 0) {
-        last = y;
-      } else {
-        y = last;
-      }
-    }
-  }
-
-  const std::size_t num_scales = extrusion.scale.size();
-  const std::size_t num_orientations = extrusion.orientation.size();
-
-  TriangleMesh mesh;
-  mesh.vertices.reserve(static_cast<std::size_t>(ns) * static_cast<std::size_t>(nc));
+  Eigen::Vector3d previous_z = Eigen::Vector3d::Zero();
   for (int i = 0; i < ns; ++i) {
-    const std::size_t ui = static_cast<std::size_t>(i);
-    const Eigen::Vector3d y = y_axes[ui].normalized();
-    Eigen::Matrix3d scp;
-    bool have_scp = false;
-    if (defined_z != -1) {
-      if (i < defined_z) z_axes[ui] = z_axes[static_cast<std::size_t>(defined_z)];
-      // Keep Z from flipping between neighbours (Choreonoid does the same).
-      if (i > 0 && z_axes[ui].dot(z_axes[ui - 1]) < 0) z_axes[ui] = -z_axes[ui];
-      Eigen::Vector3d z = z_axes[ui] - z_axes[ui].dot(y) * y;
-      if (z.norm() > 1e-12 * z_axes[ui].norm()) {
-        z.normalize();
-        scp.col(0) = y.cross(z);
-        scp.col(1) = y;
-        scp.col(2) = z;
-        have_scp = true;
-      }
+    int prev, cur, next;
+    Eigen::Vector3d y;
+    if (i == 0 && !l.spine_closed) {
+      prev = 0, cur = 1, next = 2;
+      y = S(1) - S(0);
+    } else if (i == ns - 1 && !l.spine_closed) {
+      prev = ns - 3, cur = ns - 2, next = ns - 1;
+      y = S(ns - 1) - S(ns - 2);
+    } else {
+      prev = (i + ns - 1) % ns, cur = i, next = (i + 1) % ns;
+      y = S(next) - S(prev);
     }
-    if (!have_scp) scp = rotation_from_y(y);
+    const Eigen::Vector3d a = S(next) - S(cur), b = S(prev) - S(cur);
+    Eigen::Vector3d z = a.cross(b);
+    // Collinear points: VRML97 takes the previous Z. A relative tolerance instead of
+    // Choreonoid's exact zero test keeps rounding noise from defining a random Z.
+    if (z.norm() <= 1e-12 * a.norm() * b.norm()) {
+      z = axes.defined_z != -1 ? previous_z : Eigen::Vector3d::Zero();
+    } else {
+      if (axes.defined_z == -1) axes.defined_z = i;
+      previous_z = z;
+    }
+    axes.y[static_cast<std::size_t>(i)] = y;
+    axes.z[static_cast<std::size_t>(i)] = z;
+  }
+  return axes;
+}
 
-    Eigen::Vector2d scale(1, 1);
-    if (num_scales == 1) scale = extrusion.scale[0];
-    if (num_scales > 1) scale = extrusion.scale[ui];
-    Eigen::Matrix3d orientation = Eigen::Matrix3d::Identity();
-    if (num_orientations > 0) {
-      const Eigen::AngleAxisd& o = extrusion.orientation[num_orientations == 1 ? 0 : ui];
-      const double axis_norm = o.axis().norm();
-      if (axis_norm > 0) orientation = Eigen::AngleAxisd(o.angle(), o.axis() / axis_norm).toRotationMatrix();
-    }
-    const Eigen::Matrix3d m = scp * orientation;
-    for (int j = 0; j < nc; ++j) {
-      const Eigen::Vector2d& c = cs[static_cast<std::size_t>(j)];
-      mesh.vertices.push_back(m * Eigen::Vector3d(c.x() * scale.x(), 0, c.y() * scale.y()) + S(i));
+/// Zero-length tangents (repeated spine points) take the nearest defined direction. False
+/// when every spine point coincides.
+bool fill_zero_tangents(std::vector<Eigen::Vector3d>& y_axes) {
+  const auto first = std::find_if(y_axes.begin(), y_axes.end(), [](const Eigen::Vector3d& y) { return y.norm() > 0; });
+  if (first == y_axes.end()) return false;
+  Eigen::Vector3d last = *first;
+  for (auto& y : y_axes) {
+    if (y.norm() > 0) {
+      last = y;
+    } else {
+      y = last;
     }
   }
+  return true;
+}
 
-  const int spine_segments = spine_closed ? ns : ns - 1;
-  const int cs_segments = cs_closed ? nc : nc - 1;
-  mesh.triangles.reserve(static_cast<std::size_t>(2 * spine_segments) *
-                             static_cast<std::size_t>(cs_segments) +
-                         static_cast<std::size_t>(2 * nc));
+/// The rotation of cross-section `i`: its SCP, or the collinear-spine rotation where no Z is
+/// defined. Updates `axes.z[i]` as Choreonoid does (inherited, then kept from flipping).
+Eigen::Matrix3d section_rotation(SpineAxes& axes, int i) {
+  const std::size_t ui = static_cast<std::size_t>(i);
+  const Eigen::Vector3d y = axes.y[ui].normalized();
+  if (axes.defined_z != -1) {
+    if (i < axes.defined_z) axes.z[ui] = axes.z[static_cast<std::size_t>(axes.defined_z)];
+    // Keep Z from flipping between neighbours (Choreonoid does the same).
+    if (i > 0 && axes.z[ui].dot(axes.z[ui - 1]) < 0) axes.z[ui] = -axes.z[ui];
+    Eigen::Vector3d z = axes.z[ui] - axes.z[ui].dot(y) * y;
+    if (z.norm() > 1e-12 * axes.z[ui].norm()) {
+      z.normalize();
+      Eigen::Matrix3d scp;
+      scp.col(0) = y.cross(z);
+      scp.col(1) = y;
+      scp.col(2) = z;
+      return scp;
+    }
+  }
+  return rotation_from_y(y);
+}
+
+/// The orientation entry of cross-section `i` as a rotation (identity when absent or when
+/// its axis is zero).
+Eigen::Matrix3d section_orientation(const Extrusion& extrusion, std::size_t i) {
+  const std::size_t n = extrusion.orientation.size();
+  if (n == 0) return Eigen::Matrix3d::Identity();
+  const Eigen::AngleAxisd& o = extrusion.orientation[n == 1 ? 0 : i];
+  const double axis_norm = o.axis().norm();
+  if (axis_norm == 0) return Eigen::Matrix3d::Identity();
+  return Eigen::AngleAxisd(o.angle(), o.axis() / axis_norm).toRotationMatrix();
+}
+
+Eigen::Vector2d section_scale(const Extrusion& extrusion, std::size_t i) {
+  const std::size_t n = extrusion.scale.size();
+  if (n == 0) return Eigen::Vector2d(1, 1);
+  return extrusion.scale[n == 1 ? 0 : i];
+}
+
+/// Spine-major, cross-section-minor vertices, as Choreonoid lays them out.
+void add_vertices(const Extrusion& extrusion, const Layout& l, SpineAxes& axes, TriangleMesh& mesh) {
+  mesh.vertices.reserve(static_cast<std::size_t>(l.ns) * static_cast<std::size_t>(l.nc));
+  for (int i = 0; i < l.ns; ++i) {
+    const std::size_t ui = static_cast<std::size_t>(i);
+    const Eigen::Matrix3d m = section_rotation(axes, i) * section_orientation(extrusion, ui);
+    const Eigen::Vector2d scale = section_scale(extrusion, ui);
+    for (int j = 0; j < l.nc; ++j) {
+      const Eigen::Vector2d& c = extrusion.cross_section[static_cast<std::size_t>(j)];
+      mesh.vertices.push_back(m * Eigen::Vector3d(c.x() * scale.x(), 0, c.y() * scale.y()) + extrusion.spine[ui]);
+    }
+  }
+}
+
+void add_sides(const Layout& l, TriangleMesh& mesh) {
+  const int spine_segments = l.spine_closed ? l.ns : l.ns - 1;
+  const int cs_segments = l.cs_closed ? l.nc : l.nc - 1;
+  mesh.triangles.reserve(static_cast<std::size_t>(2 * spine_segments) * static_cast<std::size_t>(cs_segments) +
+                         static_cast<std::size_t>(2 * l.nc));
   for (int i = 0; i < spine_segments; ++i) {
-    const int upper = i * nc, lower = ((i + 1) % ns) * nc;
+    const int upper = i * l.nc, lower = ((i + 1) % l.ns) * l.nc;
     for (int j = 0; j < cs_segments; ++j) {
-      const int jj = (j + 1) % nc;
+      const int jj = (j + 1) % l.nc;
       mesh.triangles.push_back({j + upper, j + lower, jj + lower});
       mesh.triangles.push_back({j + upper, jj + lower, jj + upper});
     }
   }
+}
 
-  // Caps: only on an open spine. A cap that collapses (scale 0 at an end, a common way to
-  // make a point) is simply omitted: it has no area to cover.
-  if (!spine_closed) {
-    std::vector<int> polygon(static_cast<std::size_t>(nc));
-    if (extrusion.begin_cap) {
-      for (int j = 0; j < nc; ++j) polygon[static_cast<std::size_t>(j)] = j;
-      triangulate_polygon(mesh.vertices, polygon, mesh.triangles);
-    }
-    if (extrusion.end_cap) {
-      const int base = nc * (ns - 1);
-      for (int j = 0; j < nc; ++j) polygon[static_cast<std::size_t>(j)] = base + nc - 1 - j;
-      triangulate_polygon(mesh.vertices, polygon, mesh.triangles);
-    }
+/// Caps: only on an open spine. A cap that collapses (scale 0 at an end, a common way to make
+/// a point) is simply omitted: it has no area to cover.
+void add_caps(const Extrusion& extrusion, const Layout& l, TriangleMesh& mesh) {
+  if (l.spine_closed) return;
+  std::vector<int> polygon(static_cast<std::size_t>(l.nc));
+  if (extrusion.begin_cap) {
+    for (int j = 0; j < l.nc; ++j) polygon[static_cast<std::size_t>(j)] = j;
+    triangulate_polygon(mesh.vertices, polygon, mesh.triangles);
   }
+  if (extrusion.end_cap) {
+    const int base = l.nc * (l.ns - 1);
+    for (int j = 0; j < l.nc; ++j) polygon[static_cast<std::size_t>(j)] = base + l.nc - 1 - j;
+    triangulate_polygon(mesh.vertices, polygon, mesh.triangles);
+  }
+}
 
-  // Outward orientation. For a closed solid the signed volume decides, which covers every
-  // combination of cross-section direction, negative scale and spine shape. For an open
-  // surface, Choreonoid's winding faces outward when the cross-section runs counter-clockwise
-  // in (x, z) with a positive scale; the SCP and orientation are rotations and do not change
-  // that.
-  const bool solid = cs_closed && (spine_closed || (extrusion.begin_cap && extrusion.end_cap));
+/// Outward orientation. For a closed solid the signed volume decides, which covers every
+/// combination of cross-section direction, negative scale and spine shape. For an open
+/// surface, Choreonoid's winding faces outward when the cross-section runs counter-clockwise
+/// in (x, z) with a positive scale; the SCP and orientation are rotations and do not change
+/// that.
+void orient_outward(const Extrusion& extrusion, const Layout& l, TriangleMesh& mesh) {
+  const bool solid = l.cs_closed && (l.spine_closed || (extrusion.begin_cap && extrusion.end_cap));
   bool flip = false;
   if (solid) {
     flip = signed_volume(mesh) < 0;
   } else {
-    const Eigen::Vector2d s = num_scales > 0 ? extrusion.scale[0] : Eigen::Vector2d(1, 1);
-    flip = cross_section_area2(cs) * s.x() * s.y() < 0;
+    const Eigen::Vector2d s = section_scale(extrusion, 0);
+    flip = cross_section_area2(extrusion.cross_section) * s.x() * s.y() < 0;
   }
   if (flip) flip_triangles(mesh);
+}
+
+}  // namespace
+
+TriangleMesh tessellate_extrusion(const Extrusion& extrusion, Reporter& reporter) {
+  if (!check_list_sizes(extrusion, reporter)) return {};
+  const std::optional<Layout> layout = layout_of(extrusion, reporter);
+  if (!layout) return {};
+  SpineAxes axes = spine_axes(extrusion.spine, *layout);
+  if (!fill_zero_tangents(axes.y)) {
+    reporter.report(kRuleDegenerate, "Extrusion spine points all coincide");
+    return {};
+  }
+  TriangleMesh mesh;
+  add_vertices(extrusion, *layout, axes, mesh);
+  add_sides(*layout, mesh);
+  add_caps(extrusion, *layout, mesh);
+  orient_outward(extrusion, *layout, mesh);
   return mesh;
 }
 
