@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <optional>
 
 namespace bodyfmt {
 
@@ -18,33 +19,30 @@ double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   return a.x() * b.y() - a.y() * b.x();
 }
 
-}  // namespace
-
-bool triangulate_polygon(const std::vector<Eigen::Vector3d>& vertices,
-                         const std::vector<int>& polygon,
-                         std::vector<std::array<int, 3>>& triangles) {
-  // Drop consecutive repeats (same index or same position, wrapping around): they add no
-  // area and would make zero-length edges that break the convexity test.
+/// The polygon's indices without consecutive repeats (same index or same position, wrapping
+/// around): they add no area and would make zero-length edges that break the convexity test.
+std::vector<int> distinct_corners(const std::vector<Eigen::Vector3d>& vertices, const std::vector<int>& polygon) {
+  auto at = [&](int index) -> const Eigen::Vector3d& { return vertices[static_cast<std::size_t>(index)]; };
   std::vector<int> ids;
   ids.reserve(polygon.size());
   for (int index : polygon) {
-    const Eigen::Vector3d& p = vertices[static_cast<std::size_t>(index)];
-    if (!ids.empty() && (ids.back() == index || vertices[static_cast<std::size_t>(ids.back())] == p))
-      continue;
+    if (!ids.empty() && (ids.back() == index || at(ids.back()) == at(index))) continue;
     ids.push_back(index);
   }
-  while (ids.size() > 1 && (ids.front() == ids.back() ||
-                            vertices[static_cast<std::size_t>(ids.front())] ==
-                                vertices[static_cast<std::size_t>(ids.back())])) {
-    ids.pop_back();
-  }
+  while (ids.size() > 1 && (ids.front() == ids.back() || at(ids.front()) == at(ids.back()))) ids.pop_back();
+  return ids;
+}
+
+/// The corners projected onto the polygon's best-fit plane, counter-clockwise, with the area
+/// below which a corner or triangle counts as flat.
+struct PlanarPolygon {
+  std::vector<Eigen::Vector2d> p;
+  double area_tolerance = 0;
+};
+
+std::optional<PlanarPolygon> project_to_plane(const std::vector<Eigen::Vector3d>& vertices, const std::vector<int>& ids) {
   const std::size_t n = ids.size();
-  if (n < 3) return false;
-
-  auto at = [&](std::size_t k) -> const Eigen::Vector3d& {
-    return vertices[static_cast<std::size_t>(ids[k])];
-  };
-
+  auto at = [&](std::size_t k) -> const Eigen::Vector3d& { return vertices[static_cast<std::size_t>(ids[k])]; };
   // Newell's normal: twice the vector area of the polygon, robust for non-planar and
   // non-convex polygons. Coordinates relative to the centroid keep it accurate far from the
   // origin.
@@ -59,89 +57,112 @@ bool triangulate_polygon(const std::vector<Eigen::Vector3d>& vertices,
     normal += a.cross(b);
     extent = std::max(extent, a.cwiseAbs().maxCoeff());
   }
-  if (!std::isfinite(normal.norm()) || !(extent > 0)) return false;
-  const double area_tolerance = 1e-12 * extent * extent;
-  if (normal.norm() <= area_tolerance) return false;
+  if (!std::isfinite(normal.norm()) || !(extent > 0)) return std::nullopt;
+  PlanarPolygon planar;
+  planar.area_tolerance = 1e-12 * extent * extent;
+  if (normal.norm() <= planar.area_tolerance) return std::nullopt;
   normal.normalize();
-
   // In-plane basis (u, v) with u x v = normal: the projected polygon is counter-clockwise.
-  Eigen::Vector3d u = normal.unitOrthogonal();
-  Eigen::Vector3d v = normal.cross(u);
-  std::vector<Eigen::Vector2d> p(n);
+  const Eigen::Vector3d u = normal.unitOrthogonal();
+  const Eigen::Vector3d v = normal.cross(u);
+  planar.p.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
     const Eigen::Vector3d d = at(k) - centroid;
-    p[k] = Eigen::Vector2d(d.dot(u), d.dot(v));
+    planar.p[k] = Eigen::Vector2d(d.dot(u), d.dot(v));
+  }
+  return planar;
+}
+
+/// Ear clipping over the corners still in the polygon (positions into PlanarPolygon::p).
+class EarClipper {
+ public:
+  explicit EarClipper(const PlanarPolygon& polygon) : p_(polygon.p), tolerance_(polygon.area_tolerance) {
+    remaining_.resize(p_.size());
+    for (std::size_t k = 0; k < remaining_.size(); ++k) remaining_[k] = k;
   }
 
-  std::vector<std::array<int, 3>> result;
-  result.reserve(n - 2);
-  std::vector<std::size_t> remaining(n);
-  for (std::size_t k = 0; k < n; ++k) remaining[k] = k;
+  /// Triangles as positions into the corners. Every pass removes one corner, so this ends
+  /// after n - 3 passes at most.
+  std::vector<std::array<std::size_t, 3>> run() {
+    std::vector<std::array<std::size_t, 3>> result;
+    result.reserve(p_.size() - 2);
+    while (remaining_.size() > 3) {
+      bool emit = true;
+      const std::size_t clip = next_clip(emit);
+      if (emit) result.push_back(corner(clip));
+      remaining_.erase(remaining_.begin() + static_cast<std::ptrdiff_t>(clip));
+    }
+    const std::array<std::size_t, 3> last = {remaining_[0], remaining_[1], remaining_[2]};  // = corner(1)
+    if (std::abs(turn(1)) > tolerance_) result.push_back(last);
+    return result;
+  }
 
-  auto inside_or_on = [&](const Eigen::Vector2d& q, std::size_t a, std::size_t b, std::size_t c) {
-    return cross2(p[b] - p[a], q - p[a]) >= -area_tolerance &&
-           cross2(p[c] - p[b], q - p[b]) >= -area_tolerance &&
-           cross2(p[a] - p[c], q - p[c]) >= -area_tolerance;
-  };
-  auto is_ear = [&](std::size_t m, std::size_t k) {
-    const std::size_t a = remaining[(k + m - 1) % m];
-    const std::size_t b = remaining[k];
-    const std::size_t c = remaining[(k + 1) % m];
-    if (cross2(p[b] - p[a], p[c] - p[b]) <= area_tolerance) return false;  // reflex or flat
-    for (std::size_t r : remaining) {
+ private:
+  /// The corner at position k of the remaining ones, with its two neighbours.
+  std::array<std::size_t, 3> corner(std::size_t k) const {
+    const std::size_t m = remaining_.size();
+    return {remaining_[(k + m - 1) % m], remaining_[k], remaining_[(k + 1) % m]};
+  }
+  double turn(std::size_t k) const {
+    const auto [a, b, c] = corner(k);
+    return cross2(p_[b] - p_[a], p_[c] - p_[b]);
+  }
+  bool inside_or_on(const Eigen::Vector2d& q, std::size_t a, std::size_t b, std::size_t c) const {
+    return cross2(p_[b] - p_[a], q - p_[a]) >= -tolerance_ && cross2(p_[c] - p_[b], q - p_[b]) >= -tolerance_ &&
+           cross2(p_[a] - p_[c], q - p_[c]) >= -tolerance_;
+  }
+  bool is_ear(std::size_t k) const {
+    if (turn(k) <= tolerance_) return false;  // reflex or flat
+    const auto [a, b, c] = corner(k);
+    for (std::size_t r : remaining_) {
       if (r == a || r == b || r == c) continue;
       // A vertex at the same place as a corner (bridged holes, touching polygons) does not
       // block the ear.
-      if (p[r] == p[a] || p[r] == p[b] || p[r] == p[c]) continue;
-      if (inside_or_on(p[r], a, b, c)) return false;
+      if (p_[r] == p_[a] || p_[r] == p_[b] || p_[r] == p_[c]) continue;
+      if (inside_or_on(p_[r], a, b, c)) return false;
     }
     return true;
-  };
-
-  // Every pass removes one vertex, so this terminates after n - 3 passes at most.
-  while (remaining.size() > 3) {
-    const std::size_t m = remaining.size();
+  }
+  /// The first ear; without one (the polygon self-intersects or is numerically flat
+  /// somewhere), a flat corner, which is dropped without a triangle (`emit` false), or else
+  /// the most convex corner.
+  std::size_t next_clip(bool& emit) const {
+    const std::size_t m = remaining_.size();
+    for (std::size_t k = 0; k < m; ++k)
+      if (is_ear(k)) return k;
+    double best = -std::numeric_limits<double>::infinity();
     std::size_t clip = m;
     for (std::size_t k = 0; k < m; ++k) {
-      if (is_ear(m, k)) {
+      const double t = turn(k);
+      if (std::abs(t) <= tolerance_) {
+        emit = false;
+        return k;
+      }
+      if (t > best) {
+        best = t;
         clip = k;
-        break;
       }
     }
-    bool emit = true;
-    if (clip == m) {
-      // No ear: the polygon self-intersects or is numerically flat somewhere. Drop a flat
-      // vertex if there is one (it adds no area); otherwise clip the most convex corner.
-      double best = -std::numeric_limits<double>::infinity();
-      for (std::size_t k = 0; k < m; ++k) {
-        const std::size_t a = remaining[(k + m - 1) % m];
-        const std::size_t b = remaining[k];
-        const std::size_t c = remaining[(k + 1) % m];
-        const double turn = cross2(p[b] - p[a], p[c] - p[b]);
-        if (std::abs(turn) <= area_tolerance) {
-          clip = k;
-          emit = false;
-          break;
-        }
-        if (turn > best) {
-          best = turn;
-          clip = k;
-        }
-      }
-    }
-    const std::size_t a = remaining[(clip + m - 1) % m];
-    const std::size_t b = remaining[clip];
-    const std::size_t c = remaining[(clip + 1) % m];
-    if (emit) result.push_back({ids[a], ids[b], ids[c]});
-    remaining.erase(remaining.begin() + static_cast<std::ptrdiff_t>(clip));
+    return clip;
   }
-  {
-    const std::size_t a = remaining[0], b = remaining[1], c = remaining[2];
-    if (std::abs(cross2(p[b] - p[a], p[c] - p[b])) > area_tolerance)
-      result.push_back({ids[a], ids[b], ids[c]});
-  }
-  if (result.empty()) return false;
-  triangles.insert(triangles.end(), result.begin(), result.end());
+
+  const std::vector<Eigen::Vector2d>& p_;
+  double tolerance_;
+  std::vector<std::size_t> remaining_;
+};
+
+}  // namespace
+
+bool triangulate_polygon(const std::vector<Eigen::Vector3d>& vertices,
+                         const std::vector<int>& polygon,
+                         std::vector<std::array<int, 3>>& triangles) {
+  const std::vector<int> ids = distinct_corners(vertices, polygon);
+  if (ids.size() < 3) return false;
+  const std::optional<PlanarPolygon> planar = project_to_plane(vertices, ids);
+  if (!planar) return false;
+  const std::vector<std::array<std::size_t, 3>> clipped = EarClipper(*planar).run();
+  if (clipped.empty()) return false;
+  for (const auto& [a, b, c] : clipped) triangles.push_back({ids[a], ids[b], ids[c]});
   return true;
 }
 
