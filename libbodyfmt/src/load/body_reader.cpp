@@ -1,16 +1,17 @@
-#include "load/uri.h"
 #include "load/body_reader.h"
-#include "text/text_util.h"
 
 #include "load/link_reader.h"
 #include "load/mapping_reader.h"
 #include "load/resource_reader.h"
 #include "load/scalar.h"
+#include "load/uri.h"
 #include "load/values.h"
+#include "text/text_util.h"
 
 #include <algorithm>
 #include <filesystem>
 #include <map>
+#include <utility>
 
 namespace bodyfmt::detail {
 namespace {
@@ -220,37 +221,83 @@ void BodyReader::read_links(const yaml::NodeRef& links, Model& model, std::vecto
   }
 }
 
-bool BodyReader::build_tree(Model& model, const std::vector<LinkEntry>& entries, const yaml::NodeRef& root_link) {
-  const int n = static_cast<int>(model.links.size());
-  std::map<std::string, LinkIndex> by_name;
-  std::map<std::string, LinkIndex> by_joint_name;
-  for (LinkIndex i = 0; i < n; ++i) {
-    Link& link = model.links[static_cast<std::size_t>(i)];
+namespace {
+
+using Index = std::size_t;
+Index at(LinkIndex i) { return static_cast<Index>(i); }
+
+/// The roots of the trees the parent links accepted so far form, kept in a union-find so
+/// that each cycle check is near O(1): a link gets a parent once, while it is still the root
+/// of its own tree, so adding it under `p` closes a cycle exactly when `p`'s root is the link.
+class TreeRoots {
+ public:
+  explicit TreeRoots(std::size_t n) : set_(n), size_(n, 1), root_(n) {
+    for (Index i = 0; i < n; ++i) set_[i] = root_[i] = static_cast<LinkIndex>(i);
+  }
+  LinkIndex root_of(LinkIndex i) { return root_[at(find(i))]; }
+  /// Records `child` (a tree root) under `parent`.
+  void attach(LinkIndex child, LinkIndex parent) {
+    LinkIndex a = find(child), b = find(parent);
+    const LinkIndex root = root_[at(b)];
+    if (size_[at(a)] > size_[at(b)]) std::swap(a, b);
+    set_[at(a)] = b;
+    size_[at(b)] += size_[at(a)];
+    root_[at(b)] = root;
+  }
+
+ private:
+  LinkIndex find(LinkIndex i) {
+    LinkIndex r = i;
+    while (set_[at(r)] != r) r = set_[at(r)];
+    while (set_[at(i)] != r) i = std::exchange(set_[at(i)], r);
+    return r;
+  }
+  std::vector<LinkIndex> set_;
+  std::vector<std::size_t> size_;
+  std::vector<LinkIndex> root_;
+};
+
+/// Depth-first pre-order from the root, children in definition order (§5.2).
+std::vector<LinkIndex> depth_first_order(LinkIndex root, const std::vector<std::vector<LinkIndex>>& children) {
+  std::vector<LinkIndex> order;
+  std::vector<LinkIndex> stack{root};
+  while (!stack.empty()) {
+    const LinkIndex i = stack.back();
+    stack.pop_back();
+    order.push_back(i);
+    const auto& c = children[at(i)];
+    for (auto it = c.rbegin(); it != c.rend(); ++it) stack.push_back(*it);
+  }
+  return order;
+}
+
+}  // namespace
+
+BodyReader::LinkNames BodyReader::index_link_names(const Model& model) {
+  LinkNames names;
+  for (LinkIndex i = 0; i < static_cast<LinkIndex>(model.links.size()); ++i) {
+    const Link& link = model.links[at(i)];
     if (link.name.empty()) continue;
-    auto [it, inserted] = by_name.emplace(link.name, i);
+    auto [it, inserted] = names.by_name.emplace(link.name, i);
     if (!inserted) {
       ctx_.report("structure-duplicate-link", link.sources.name,
                   "duplicated link name \"" + link.name + "\" (first defined at line " +
-                      std::to_string(model.links[static_cast<std::size_t>(it->second)].sources.name.line) + ")");
+                      std::to_string(model.links[at(it->second)].sources.name.line) + ")");
     }
-    if (!link.joint_name.empty() && !by_joint_name.emplace(link.joint_name, i).second)
-      ctx_.report("structure-duplicate-joint-name", link.source,
-                  "duplicated joint name \"" + link.joint_name + "\"");
+    if (!link.joint_name.empty() && !names.by_joint_name.emplace(link.joint_name, i).second)
+      ctx_.report("structure-duplicate-joint-name", link.source, "duplicated joint name \"" + link.joint_name + "\"");
   }
-  LinkIndex root = 0;
-  if (root_link) {
-    auto it = by_name.find(root_link->scalar);
-    if (it == by_name.end()) {
-      ctx_.report("structure-root-link", root_link.use_site(),
-                  "link \"" + root_link->scalar + "\" specified in root_link is not defined");
-      return false;
-    }
-    root = it->second;
-  }
-  std::vector<LinkIndex> parent(static_cast<std::size_t>(n), -1);
-  for (LinkIndex i = 0; i < n; ++i) {
-    const Link& link = model.links[static_cast<std::size_t>(i)];
-    const LinkEntry& entry = entries[static_cast<std::size_t>(i)];
+  return names;
+}
+
+std::vector<LinkIndex> BodyReader::link_parents(const Model& model, const std::vector<LinkEntry>& entries,
+                                                const LinkNames& names, LinkIndex root) {
+  const std::size_t n = model.links.size();
+  std::vector<LinkIndex> parent(n, -1);
+  TreeRoots roots(n);
+  for (LinkIndex i = 0; i < static_cast<LinkIndex>(n); ++i) {
+    const Link& link = model.links[at(i)];
+    const LinkEntry& entry = entries[at(i)];
     if (i == root) {
       if (!entry.parent_name.empty())
         ctx_.report("structure-root-parent", link.sources.parent,
@@ -258,80 +305,83 @@ bool BodyReader::build_tree(Model& model, const std::vector<LinkEntry>& entries,
       continue;
     }
     if (entry.parent_name.empty()) {
-      ctx_.report("structure-no-parent", link.source,
-                  "the parent of link \"" + link.name + "\" is not specified", "add parent: PARENT_LINK");
+      ctx_.report("structure-no-parent", link.source, "the parent of link \"" + link.name + "\" is not specified",
+                  "add parent: PARENT_LINK");
       continue;
     }
-    auto it = by_name.find(entry.parent_name);
-    if (it == by_name.end()) {
-      std::vector<std::string_view> names;
-      for (const auto& [name, index] : by_name) names.push_back(name);
-      std::string_view guess = text::suggest(entry.parent_name, names);
+    auto it = names.by_name.find(entry.parent_name);
+    if (it == names.by_name.end()) {
+      std::vector<std::string_view> known;
+      for (const auto& [name, index] : names.by_name) known.push_back(name);
+      std::string_view guess = text::suggest(entry.parent_name, known);
       ctx_.report("structure-unknown-parent", entry.parent_ref.use_site(),
                   "parent link \"" + entry.parent_name + "\" of \"" + link.name + "\" is not defined",
                   guess.empty() ? std::string() : "did you mean \"" + std::string(guess) + "\"?");
       continue;
     }
     // A parent chain that comes back to this link is a cycle (§5.2).
-    LinkIndex p = it->second;
-    bool cycle = false;
-    for (LinkIndex q = p; q >= 0; q = parent[static_cast<std::size_t>(q)]) {
-      if (q == i) {
-        cycle = true;
-        break;
-      }
-    }
-    if (cycle) {
+    if (roots.root_of(it->second) == i) {
       ctx_.report("structure-cycle", entry.parent_ref.use_site(),
                   "adding \"" + link.name + "\" to link \"" + entry.parent_name + "\" would make a cycle");
       continue;
     }
-    parent[static_cast<std::size_t>(i)] = p;
+    parent[at(i)] = it->second;
+    roots.attach(i, it->second);
   }
-  // Depth-first pre-order from the root, children in definition order (§5.2).
-  std::vector<std::vector<LinkIndex>> children(static_cast<std::size_t>(n));
-  for (LinkIndex i = 0; i < n; ++i)
-    if (parent[static_cast<std::size_t>(i)] >= 0) children[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])].push_back(i);
-  std::vector<LinkIndex> order;
-  std::vector<LinkIndex> stack{root};
-  while (!stack.empty()) {
-    LinkIndex i = stack.back();
-    stack.pop_back();
-    order.push_back(i);
-    const auto& c = children[static_cast<std::size_t>(i)];
-    for (auto it = c.rbegin(); it != c.rend(); ++it) stack.push_back(*it);
-  }
-  std::vector<LinkIndex> new_index(static_cast<std::size_t>(n), -1);
-  for (std::size_t k = 0; k < order.size(); ++k) new_index[static_cast<std::size_t>(order[k])] = static_cast<LinkIndex>(k);
-  for (LinkIndex i = 0; i < n; ++i) {
-    if (new_index[static_cast<std::size_t>(i)] < 0 && parent[static_cast<std::size_t>(i)] >= 0) {
-      const Link& link = model.links[static_cast<std::size_t>(i)];
+  return parent;
+}
+
+void BodyReader::reorder_links(Model& model, const std::vector<LinkIndex>& order, const std::vector<LinkIndex>& parent,
+                               const std::vector<std::vector<LinkIndex>>& children) {
+  std::vector<LinkIndex> new_index(model.links.size(), -1);
+  for (std::size_t k = 0; k < order.size(); ++k) new_index[at(order[k])] = static_cast<LinkIndex>(k);
+  for (LinkIndex i = 0; i < static_cast<LinkIndex>(model.links.size()); ++i) {
+    if (new_index[at(i)] < 0 && parent[at(i)] >= 0) {
+      const Link& link = model.links[at(i)];
       ctx_.report("structure-unreachable", link.source,
-                  "link \"" + link.name + "\" is not connected to the root link \"" +
-                      model.links[static_cast<std::size_t>(root)].name + "\"");
+                  "link \"" + link.name + "\" is not connected to the root link \"" + model.links[at(order[0])].name + "\"");
     }
   }
   std::vector<Link> ordered;
   ordered.reserve(order.size());
   for (LinkIndex old : order) {
-    Link link = std::move(model.links[static_cast<std::size_t>(old)]);
-    LinkIndex p = parent[static_cast<std::size_t>(old)];
-    link.parent = p >= 0 ? new_index[static_cast<std::size_t>(p)] : -1;
+    Link link = std::move(model.links[at(old)]);
+    const LinkIndex p = parent[at(old)];
+    link.parent = p >= 0 ? new_index[at(p)] : -1;
     link.children.clear();
-    for (LinkIndex c : children[static_cast<std::size_t>(old)]) link.children.push_back(new_index[static_cast<std::size_t>(c)]);
+    for (LinkIndex c : children[at(old)]) link.children.push_back(new_index[at(c)]);
     ordered.push_back(std::move(link));
   }
   model.links = std::move(ordered);
   // Devices follow their links; devices of dropped links are dropped with them.
   std::vector<Device> devices;
   for (Device& d : model.devices) {
-    LinkIndex k = new_index[static_cast<std::size_t>(d.link)];
+    const LinkIndex k = new_index[at(d.link)];
     if (k < 0) continue;
     d.link = k;
     devices.push_back(std::move(d));
   }
   std::stable_sort(devices.begin(), devices.end(), [](const Device& a, const Device& b) { return a.link < b.link; });
   model.devices = std::move(devices);
+}
+
+bool BodyReader::build_tree(Model& model, const std::vector<LinkEntry>& entries, const yaml::NodeRef& root_link) {
+  const LinkNames names = index_link_names(model);
+  LinkIndex root = 0;
+  if (root_link) {
+    auto it = names.by_name.find(root_link->scalar);
+    if (it == names.by_name.end()) {
+      ctx_.report("structure-root-link", root_link.use_site(),
+                  "link \"" + root_link->scalar + "\" specified in root_link is not defined");
+      return false;
+    }
+    root = it->second;
+  }
+  const std::vector<LinkIndex> parent = link_parents(model, entries, names, root);
+  std::vector<std::vector<LinkIndex>> children(model.links.size());
+  for (LinkIndex i = 0; i < static_cast<LinkIndex>(model.links.size()); ++i)
+    if (parent[at(i)] >= 0) children[at(parent[at(i)])].push_back(i);
+  reorder_links(model, depth_first_order(root, children), parent, children);
   return true;
 }
 

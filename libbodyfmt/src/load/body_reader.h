@@ -34,7 +34,17 @@ class BodyReader {
  private:
   bool read_header(const yaml::NodeRef& root, Model& model);
   void read_links(const yaml::NodeRef& links, Model& model, std::vector<struct LinkEntry>& entries);
+  /// Orders the links depth-first from the root and sets parents and children (§5.2).
   bool build_tree(Model& model, const std::vector<struct LinkEntry>& entries, const yaml::NodeRef& root_link);
+  struct LinkNames {
+    std::map<std::string, LinkIndex> by_name;
+    std::map<std::string, LinkIndex> by_joint_name;
+  };
+  LinkNames index_link_names(const Model& model);
+  std::vector<LinkIndex> link_parents(const Model& model, const std::vector<struct LinkEntry>& entries,
+                                      const LinkNames& names, LinkIndex root);
+  void reorder_links(Model& model, const std::vector<LinkIndex>& order, const std::vector<LinkIndex>& parent,
+                     const std::vector<std::vector<LinkIndex>>& children);
   void read_extra_joints(const yaml::NodeRef& extra_joints, Model& model);
   void import_meshes(Model& model);
 

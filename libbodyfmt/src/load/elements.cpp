@@ -1,5 +1,4 @@
 #include "load/elements.h"
-#include "text/text_util.h"
 
 #include "load/devices.h"
 #include "load/appearance.h"
@@ -7,6 +6,7 @@
 #include "load/mapping_reader.h"
 #include "load/scalar.h"
 #include "load/values.h"
+#include "text/text_util.h"
 
 #include <algorithm>
 

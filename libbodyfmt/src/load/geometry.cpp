@@ -1,5 +1,4 @@
 #include "load/geometry.h"
-#include "text/text_util.h"
 
 #include <bodyfmt/tessellate.h>
 
@@ -7,6 +6,7 @@
 #include "load/scalar.h"
 #include "load/uri.h"
 #include "load/values.h"
+#include "text/text_util.h"
 
 #include <algorithm>
 

@@ -1,7 +1,7 @@
 #include "load/mapping_reader.h"
-#include "text/text_util.h"
 
 #include "load/scalar.h"
+#include "text/text_util.h"
 
 #include <algorithm>
 #include <cctype>

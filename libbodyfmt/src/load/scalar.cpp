@@ -1,4 +1,5 @@
 #include "load/scalar.h"
+
 #include "text/text_util.h"
 
 #include <cerrno>
