@@ -2,7 +2,6 @@
 #include <bodyfmt/report.h>
 #include <bodyfmt/rules.h>
 
-#include "text/text_util.h"
 
 #include <doctest/doctest.h>
 
@@ -11,7 +10,6 @@
 #include <string>
 
 using namespace bodyfmt;
-using bodyfmt::text::json_quote;
 
 namespace {
 
@@ -90,14 +88,6 @@ TEST_CASE("report: text report drops notes on request; summary line counts") {
         "a.body:2:1: warning: a warning [w]\nb.body:1:1: fatal error: fatal [f]\n");
   CHECK(occurrences(format_text_report(report, sources), "a note") == 1);
   CHECK(format_summary_line(report) == "bodycheck: 2 files checked: 1 error, 1 warning, 1 note, 3 suppressed\n");
-}
-
-TEST_CASE("report: JSON escaping") {
-  CHECK(json_quote("plain") == "\"plain\"");
-  CHECK(json_quote("a\"b\\c\nd\te\x01") == "\"a\\\"b\\\\c\\nd\\te\\u0001\"");
-  CHECK(json_quote("\xC3\xA9\xE2\x80\xA2") == "\"\xC3\xA9\xE2\x80\xA2\"");  // valid UTF-8 kept
-  CHECK(json_quote("x\xFFy") == "\"x\\ufffdy\"");                         // invalid byte replaced
-  CHECK(json_quote("\xC3") == "\"\\ufffd\"");                              // truncated sequence
 }
 
 TEST_CASE("report: JSON document structure") {
