@@ -5,7 +5,10 @@
 #include <iostream>
 
 int main(int argc, char** argv) {
-  if (argc != 2) { std::cerr << "usage: api_example FILE.body\n"; return 2; }
+  if (argc != 2) {
+    std::cerr << "usage: api_example FILE.body\n";
+    return 2;
+  }
   bodyfmt::CollectingSink sink;
   std::optional<bodyfmt::Model> model = bodyfmt::load_body(argv[1], {}, sink);
   bodyfmt::Derived derived;
@@ -14,8 +17,8 @@ int main(int argc, char** argv) {
   if (!model) return 2;
   for (std::size_t i = 0; i < model->links.size(); ++i) {
     Eigen::Vector3d p = derived.X_WL[i].translation();
-    std::cout << model->links[i].name << ": " << derived.mass[i].mass << " kg at (" << p.x() << ", "
-              << p.y() << ", " << p.z() << ")\n";
+    std::cout << model->links[i].name << ": " << derived.mass[i].mass << " kg at (" << p.x() << ", " << p.y() << ", "
+              << p.z() << ")\n";
   }
   return sink.error_count() > 0 ? 1 : 0;
 }

@@ -1,8 +1,8 @@
 #include <bodyfmt/converters/mesh_writer.h>
 
-#include <assimp/Exporter.hpp>
 #include <assimp/material.h>
 #include <assimp/scene.h>
+#include <assimp/Exporter.hpp>
 
 #include <cstdint>
 #include <cstring>
@@ -10,9 +10,7 @@
 
 namespace bodyfmt::converters {
 
-std::string_view mesh_format_extension(MeshFormat format) {
-  return format == MeshFormat::kStl ? "stl" : "dae";
-}
+std::string_view mesh_format_extension(MeshFormat format) { return format == MeshFormat::kStl ? "stl" : "dae"; }
 
 namespace {
 
@@ -69,17 +67,13 @@ std::optional<std::string> write_dae(const TriangleMesh& mesh, const std::option
     const aiString material_name(std::string(name) + "_material");
     m->AddProperty(&material_name, AI_MATKEY_NAME);
     const Material mat = material.value_or(Material{});
-    const aiColor4D diffuse(static_cast<ai_real>(mat.diffuse_color.x()),
-                            static_cast<ai_real>(mat.diffuse_color.y()),
-                            static_cast<ai_real>(mat.diffuse_color.z()),
-                            static_cast<ai_real>(1.0 - mat.transparency));
+    const aiColor4D diffuse(static_cast<ai_real>(mat.diffuse_color.x()), static_cast<ai_real>(mat.diffuse_color.y()),
+                            static_cast<ai_real>(mat.diffuse_color.z()), static_cast<ai_real>(1.0 - mat.transparency));
     m->AddProperty(&diffuse, 1, AI_MATKEY_COLOR_DIFFUSE);
-    const aiColor4D emissive(static_cast<ai_real>(mat.emissive_color.x()),
-                             static_cast<ai_real>(mat.emissive_color.y()),
+    const aiColor4D emissive(static_cast<ai_real>(mat.emissive_color.x()), static_cast<ai_real>(mat.emissive_color.y()),
                              static_cast<ai_real>(mat.emissive_color.z()), 1);
     m->AddProperty(&emissive, 1, AI_MATKEY_COLOR_EMISSIVE);
-    const aiColor4D specular(static_cast<ai_real>(mat.specular_color.x()),
-                             static_cast<ai_real>(mat.specular_color.y()),
+    const aiColor4D specular(static_cast<ai_real>(mat.specular_color.x()), static_cast<ai_real>(mat.specular_color.y()),
                              static_cast<ai_real>(mat.specular_color.z()), 1);
     m->AddProperty(&specular, 1, AI_MATKEY_COLOR_SPECULAR);
     const float opacity = static_cast<float>(1.0 - mat.transparency);
@@ -95,15 +89,14 @@ std::optional<std::string> write_dae(const TriangleMesh& mesh, const std::option
   m->mVertices = new aiVector3D[mesh.vertices.size()];
   for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
     const auto& v = mesh.vertices[i];
-    m->mVertices[i] = aiVector3D(static_cast<ai_real>(v.x()), static_cast<ai_real>(v.y()),
-                                 static_cast<ai_real>(v.z()));
+    m->mVertices[i] = aiVector3D(static_cast<ai_real>(v.x()), static_cast<ai_real>(v.y()), static_cast<ai_real>(v.z()));
   }
   if (mesh.normals.size() == mesh.vertices.size() && !mesh.normals.empty()) {
     m->mNormals = new aiVector3D[mesh.normals.size()];
     for (std::size_t i = 0; i < mesh.normals.size(); ++i) {
       const auto& n = mesh.normals[i];
-      m->mNormals[i] = aiVector3D(static_cast<ai_real>(n.x()), static_cast<ai_real>(n.y()),
-                                  static_cast<ai_real>(n.z()));
+      m->mNormals[i] =
+          aiVector3D(static_cast<ai_real>(n.x()), static_cast<ai_real>(n.y()), static_cast<ai_real>(n.z()));
     }
   }
   m->mNumFaces = static_cast<unsigned>(mesh.triangles.size());
@@ -133,8 +126,8 @@ std::optional<std::string> write_dae(const TriangleMesh& mesh, const std::option
 }
 
 std::optional<std::string> write_mesh(MeshFormat format, const TriangleMesh& mesh,
-                                      const std::optional<Material>& material,
-                                      std::string_view name, std::string& error) {
+                                      const std::optional<Material>& material, std::string_view name,
+                                      std::string& error) {
   if (format == MeshFormat::kStl) return write_stl(mesh);
   return write_dae(mesh, material, name, error);
 }

@@ -15,8 +15,7 @@ std::string format_vector(const Eigen::Vector3d& v) {
 }
 
 std::string format_vector(const Eigen::Vector4d& v) {
-  return format_number(v[0]) + ' ' + format_number(v[1]) + ' ' + format_number(v[2]) + ' ' +
-         format_number(v[3]);
+  return format_number(v[0]) + ' ' + format_number(v[1]) + ' ' + format_number(v[2]) + ' ' + format_number(v[3]);
 }
 
 double finite_or_stand_in(double value) {

@@ -28,9 +28,7 @@ void OutputSet::add(const std::string& relative, std::string contents) {
   files_[relative] = std::move(contents);
 }
 
-void OutputSet::set_main(std::string contents) {
-  files_[main_path_.filename().string()] = std::move(contents);
-}
+void OutputSet::set_main(std::string contents) { files_[main_path_.filename().string()] = std::move(contents); }
 
 namespace {
 
@@ -82,8 +80,8 @@ bool OutputSet::commit(DiagnosticSink& sink) {
       }
       created_dirs.insert(created_dirs.end(), missing.begin(), missing.end());
     }
-    const fs::path temp = parent / fmt::format(".{}.tmp-{}-{}", target.filename().string(),
-                                               static_cast<long>(::getpid()), counter++);
+    const fs::path temp =
+        parent / fmt::format(".{}.tmp-{}-{}", target.filename().string(), static_cast<long>(::getpid()), counter++);
     staged.push_back({temp, target});
     std::ofstream out(temp, std::ios::binary | std::ios::trunc);
     out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
@@ -95,9 +93,9 @@ bool OutputSet::commit(DiagnosticSink& sink) {
     }
   }
   // The main file goes last: if a rename fails, no new main file refers to missing parts.
-  std::stable_partition(staged.begin(), staged.end(),
-                        [&](const Staged& s) { return s.target.filename() != main_path_.filename() ||
-                                                      s.target.parent_path() != dir; });
+  std::stable_partition(staged.begin(), staged.end(), [&](const Staged& s) {
+    return s.target.filename() != main_path_.filename() || s.target.parent_path() != dir;
+  });
   for (std::size_t i = 0; i < staged.size(); ++i) {
     fs::rename(staged[i].temp, staged[i].target, ec);
     if (ec) {

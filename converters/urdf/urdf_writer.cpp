@@ -37,7 +37,8 @@ using converters::rpy_of;
 
 std::string lower_extension(const std::string& path) {
   std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext;
 }
 
@@ -50,8 +51,8 @@ struct Piece {
 
 class Writer {
  public:
-  Writer(const Model& model, const Derived& derived, const UrdfOptions& options,
-         converters::OutputSet& output, DiagnosticSink& sink)
+  Writer(const Model& model, const Derived& derived, const UrdfOptions& options, converters::OutputSet& output,
+         DiagnosticSink& sink)
       : model_(model), derived_(derived), options_(options), output_(output), sink_(sink) {}
 
   bool run();
@@ -79,11 +80,11 @@ class Writer {
   void origin(XMLElement* parent, const Eigen::Isometry3d& X, bool always = false);
   void write_inertial(XMLElement* link_el, std::size_t index);
   void write_shapes(XMLElement* link_el, std::size_t link_index);
-  std::vector<Piece> pieces(XMLElement* link_el, const Link& link, std::size_t link_index,
-                            std::size_t shape_index, const Shape& shape);
+  std::vector<Piece> pieces(XMLElement* link_el, const Link& link, std::size_t link_index, std::size_t shape_index,
+                            const Shape& shape);
   void add_mesh_pieces(std::vector<Piece>& out, const std::string& key, const std::string& stem,
-                       const TriangleMesh& mesh, const Eigen::Affine3d& X_LS,
-                       const std::optional<Material>& material, double extra_scale = 1.0);
+                       const TriangleMesh& mesh, const Eigen::Affine3d& X_LS, const std::optional<Material>& material,
+                       double extra_scale = 1.0);
   std::string stage_mesh(const std::string& key, const std::string& stem, const TriangleMesh& mesh,
                          const std::optional<Material>& material);
   std::string stage_file_copy(const std::string& source_path);
@@ -116,12 +117,14 @@ class Writer {
 
 void Writer::check_name(const std::string& name, const char* what, const SourceLocation& at) {
   if (!converters::is_xml_text(name)) {
-    fatal("export-xml-text", at, fmt::format("{} name cannot be written in XML (control characters or invalid UTF-8)", what));
+    fatal("export-xml-text", at,
+          fmt::format("{} name cannot be written in XML (control characters or invalid UTF-8)", what));
     return;
   }
   const std::string problem = converters::urdf_name_problem(name);
   if (!problem.empty()) {
-    report_rule(sink_, "export-name", at, fmt::format("{} name \"{}\" is not a valid URDF name: {}", what, name, problem),
+    report_rule(sink_, "export-name", at,
+                fmt::format("{} name \"{}\" is not a valid URDF name: {}", what, name, problem),
                 "use letters, digits and '_' (ROS tools such as tf and MoveIt rely on it)");
   }
 }
@@ -153,8 +156,8 @@ void Writer::write_inertial(XMLElement* link_el, std::size_t index) {
 }
 
 std::string Writer::material_name(const Material& material) {
-  const Eigen::Vector4d rgba(material.diffuse_color.x(), material.diffuse_color.y(),
-                             material.diffuse_color.z(), 1.0 - material.transparency);
+  const Eigen::Vector4d rgba(material.diffuse_color.x(), material.diffuse_color.y(), material.diffuse_color.z(),
+                             1.0 - material.transparency);
   const std::string key = format_vector(rgba);
   auto it = material_by_rgba_.find(key);
   if (it != material_by_rgba_.end()) return it->second;
@@ -202,7 +205,9 @@ void Writer::add_mesh_pieces(std::vector<Piece>& out, const std::string& key, co
     }
     piece.origin.translation() = X_LS.translation();
     const std::string relative = stage_mesh(key + ":baked", stem, baked, material);
-    piece.geometry = [this, relative](XMLElement* g) { write_mesh_geometry(g, uri(relative), Eigen::Vector3d::Ones()); };
+    piece.geometry = [this, relative](XMLElement* g) {
+      write_mesh_geometry(g, uri(relative), Eigen::Vector3d::Ones());
+    };
   }
   out.push_back(std::move(piece));
 }
@@ -212,7 +217,8 @@ std::vector<Piece> Writer::pieces(XMLElement* link_el, const Link& link, std::si
   std::vector<Piece> out;
   const std::optional<Material>& material = shape.appearance.material;
   const std::string shape_key = fmt::format("shape:{}:{}", link_index, shape_index);
-  const std::string stem = fmt::format("{}_{}", link.name, shape.name.empty() ? fmt::format("shape{}", shape_index) : shape.name);
+  const std::string stem =
+      fmt::format("{}_{}", link.name, shape.name.empty() ? fmt::format("shape{}", shape_index) : shape.name);
   const auto sr = decompose(shape.X_LS.linear());
   auto tessellated = [&](bool report_scale) {
     if (report_scale) {
@@ -258,12 +264,13 @@ std::vector<Piece> Writer::pieces(XMLElement* link_el, const Link& link, std::si
       const double h = cyl->height * sr->scale.y();
       // body-format-spec §19: a Body cylinder runs along +Y, a URDF cylinder along +Z.
       // Rx(-90°) maps +Z onto +Y exactly (Choreonoid's importer uses +90°; the shape is symmetric).
-      primitive([this, r, h](XMLElement* g) {
-                  XMLElement* c = element(g, "cylinder");
-                  c->SetAttribute("radius", format_number(r).c_str());
-                  c->SetAttribute("length", format_number(h).c_str());
-                },
-                Eigen::AngleAxisd(-M_PI / 2, Eigen::Vector3d::UnitX()).toRotationMatrix());
+      primitive(
+          [this, r, h](XMLElement* g) {
+            XMLElement* c = element(g, "cylinder");
+            c->SetAttribute("radius", format_number(r).c_str());
+            c->SetAttribute("length", format_number(h).c_str());
+          },
+          Eigen::AngleAxisd(-M_PI / 2, Eigen::Vector3d::UnitX()).toRotationMatrix());
     } else {
       tessellated(true);
     }
@@ -275,8 +282,8 @@ std::vector<Piece> Writer::pieces(XMLElement* link_el, const Link& link, std::si
     }
     const MeshAsset& asset = model_.meshes[static_cast<std::size_t>(res->mesh)];
     const std::string ext = lower_extension(res->resolved_path);
-    const bool usable_as_is = (ext == ".stl" || ext == ".dae" || ext == ".obj") && res->node.empty() &&
-                              !res->y_up && !res->resolved_path.empty();
+    const bool usable_as_is = (ext == ".stl" || ext == ".dae" || ext == ".obj") && res->node.empty() && !res->y_up &&
+                              !res->resolved_path.empty();
     const bool copy = options_.copy_meshes || !options_.package_uri.empty();
     bool textured = false;
     for (const MeshPart& part : asset.parts) textured = textured || part.texture.has_value();
@@ -287,7 +294,8 @@ std::vector<Piece> Writer::pieces(XMLElement* link_el, const Link& link, std::si
         target = uri(stage_file_copy(res->resolved_path));
       } else {
         std::error_code ec;
-        target = fs::relative(fs::absolute(res->resolved_path, ec), fs::absolute(output_.directory(), ec), ec).generic_string();
+        target = fs::relative(fs::absolute(res->resolved_path, ec), fs::absolute(output_.directory(), ec), ec)
+                     .generic_string();
         if (target.empty()) target = fs::absolute(res->resolved_path, ec).generic_string();
       }
       Piece piece;
@@ -299,7 +307,8 @@ std::vector<Piece> Writer::pieces(XMLElement* link_el, const Link& link, std::si
       out.push_back(std::move(piece));
     } else {
       // Converted: one mesh file per part, so that each keeps its own colour.
-      const std::string asset_stem = fs::path(asset.path).stem().string() + (asset.node.empty() ? "" : "_" + asset.node);
+      const std::string asset_stem =
+          fs::path(asset.path).stem().string() + (asset.node.empty() ? "" : "_" + asset.node);
       for (std::size_t p = 0; p < asset.parts.size(); ++p) {
         const MeshPart& part = asset.parts[p];
         if (part.mesh.empty()) continue;
@@ -400,8 +409,7 @@ void Writer::write_joint(std::size_t index, const std::string& joint_name) {
       loss(j, link.sources.joint_type.known() ? link.sources.joint_type : link.source,
            fmt::format("the free joint of the non-root link '{}' (a fixed joint is written)", link.name));
       break;
-    case JointType::kFixed:
-      break;
+    case JointType::kFixed: break;
   }
   j->SetAttribute("type", type);
   origin(j, link.X_PL);
@@ -409,7 +417,8 @@ void Writer::write_joint(std::size_t index, const std::string& joint_name) {
   element(j, "child")->SetAttribute("link", link.name.c_str());
   if (!movable) return;
   const double norm = link.joint_axis.norm();
-  element(j, "axis")->SetAttribute("xyz", format_vector(norm > 0 ? Eigen::Vector3d(link.joint_axis / norm) : link.joint_axis).c_str());
+  element(j, "axis")->SetAttribute(
+      "xyz", format_vector(norm > 0 ? Eigen::Vector3d(link.joint_axis / norm) : link.joint_axis).c_str());
   // URDF has one symmetric bound for velocity and effort.
   auto symmetric = [&](double lo, double hi, const char* what, const SourceLocation& at) {
     if (lo == -hi) return finite_or_stand_in(hi);
@@ -429,10 +438,12 @@ void Writer::write_joint(std::size_t index, const std::string& joint_name) {
   limit->SetAttribute("effort", format_number(effort).c_str());
   limit->SetAttribute("velocity", format_number(velocity).c_str());
   if (link.joint_axis_inertia != 0) {
-    loss(j, link.source, fmt::format("the rotor inertia {} of '{}'", format_number(link.joint_axis_inertia), joint_name));
+    loss(j, link.source,
+         fmt::format("the rotor inertia {} of '{}'", format_number(link.joint_axis_inertia), joint_name));
   }
   if (link.initial_displacement != 0) {
-    loss(j, link.source, fmt::format("the initial displacement {} of '{}'", format_number(link.initial_displacement), joint_name));
+    loss(j, link.source,
+         fmt::format("the initial displacement {} of '{}'", format_number(link.initial_displacement), joint_name));
   }
 }
 
@@ -446,7 +457,8 @@ bool Writer::run() {
   robot_ = doc_.NewElement("robot");
   doc_.InsertEndChild(robot_);
   if (!converters::is_xml_text(model_.name)) {
-    fatal("export-xml-text", model_.source, "the body name cannot be written in XML (control characters or invalid UTF-8)");
+    fatal("export-xml-text", model_.source,
+          "the body name cannot be written in XML (control characters or invalid UTF-8)");
   }
   robot_->SetAttribute("name", model_.name.empty() ? "robot" : model_.name.c_str());
   comment(robot_, fmt::format("Generated by body2urdf from {}", fs::path(model_.source_file).filename().string()));
@@ -476,7 +488,7 @@ bool Writer::run() {
     XMLElement* link_el = element(robot_, "link");
     link_el->SetAttribute("name", link.name.c_str());
     if (i == 0 && !options_.floating_base) {
-      if (!link.X_PL.isApprox(Eigen::Isometry3d::Identity(), 0) ) {
+      if (!link.X_PL.isApprox(Eigen::Isometry3d::Identity(), 0)) {
         loss(link_el, link.sources.translation.known() ? link.sources.translation : link.source,
              "the root link's initial pose", "--floating-base writes it as the origin of a joint to a 'world' link");
       }
@@ -548,8 +560,8 @@ bool Writer::run() {
 
 }  // namespace
 
-bool write_urdf(const Model& model, const Derived& derived, const UrdfOptions& options,
-                converters::OutputSet& output, DiagnosticSink& sink) {
+bool write_urdf(const Model& model, const Derived& derived, const UrdfOptions& options, converters::OutputSet& output,
+                DiagnosticSink& sink) {
   Writer writer(model, derived, options, output, sink);
   return writer.run();
 }

@@ -36,7 +36,7 @@ struct UrdfOptions {
 /// `sink` as `export-loss`; a problem that makes the output unusable (a name XML cannot hold,
 /// a mesh that cannot be encoded, a `world` link clash) is reported as fatal and calls
 /// output.fail(). Returns false in that case.
-bool write_urdf(const Model& model, const Derived& derived, const UrdfOptions& options,
-                converters::OutputSet& output, DiagnosticSink& sink);
+bool write_urdf(const Model& model, const Derived& derived, const UrdfOptions& options, converters::OutputSet& output,
+                DiagnosticSink& sink);
 
 }  // namespace bodyfmt::urdf

@@ -17,8 +17,8 @@ const Model& LoadResult::m() const {
 }
 
 Diagnostic LoadResult::take(std::string_view rule_id) {
-  auto it = std::find_if(diagnostics.begin(), diagnostics.end(),
-                         [&](const Diagnostic& d) { return d.rule_id == rule_id; });
+  auto it =
+      std::find_if(diagnostics.begin(), diagnostics.end(), [&](const Diagnostic& d) { return d.rule_id == rule_id; });
   if (it == diagnostics.end()) {
     FAIL_CHECK("expected a diagnostic [" << rule_id << "]; got:\n" << describe(diagnostics));
     Diagnostic missing;
@@ -33,8 +33,8 @@ Diagnostic LoadResult::take(std::string_view rule_id) {
 bool LoadResult::has(std::string_view rule_id) const { return count(rule_id) > 0; }
 
 int LoadResult::count(std::string_view rule_id) const {
-  return static_cast<int>(std::count_if(diagnostics.begin(), diagnostics.end(),
-                                        [&](const Diagnostic& d) { return d.rule_id == rule_id; }));
+  return static_cast<int>(
+      std::count_if(diagnostics.begin(), diagnostics.end(), [&](const Diagnostic& d) { return d.rule_id == rule_id; }));
 }
 
 void LoadResult::expect_clean() const {
@@ -45,11 +45,10 @@ void LoadResult::expect_clean() const {
 }
 
 void LoadResult::drop_notes(std::string_view rule_id) {
-  diagnostics.erase(std::remove_if(diagnostics.begin(), diagnostics.end(),
-                                   [&](const Diagnostic& d) {
-                                     return d.severity == Severity::kNote && d.rule_id == rule_id;
-                                   }),
-                    diagnostics.end());
+  diagnostics.erase(
+      std::remove_if(diagnostics.begin(), diagnostics.end(),
+                     [&](const Diagnostic& d) { return d.severity == Severity::kNote && d.rule_id == rule_id; }),
+      diagnostics.end());
 }
 
 const Link& LoadResult::link(std::string_view name) const {

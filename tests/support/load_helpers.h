@@ -23,9 +23,7 @@ struct Pos {
   int line = 0;
   int column = 0;
   friend bool operator==(const Pos& a, const Pos& b) { return a.line == b.line && a.column == b.column; }
-  friend std::ostream& operator<<(std::ostream& os, const Pos& p) {
-    return os << p.line << ":" << p.column;
-  }
+  friend std::ostream& operator<<(std::ostream& os, const Pos& p) { return os << p.line << ":" << p.column; }
 };
 
 inline Pos pos(const SourceLocation& location) { return {location.line, location.column}; }

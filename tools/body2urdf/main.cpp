@@ -18,10 +18,12 @@ int main(int argc, char** argv) {
   CLI::App& app = front.app();
   app.add_option("-o,--output", output, "the URDF file to write")->required();
   app.add_option("--mesh-format", mesh_format, "format of written meshes")->check(CLI::IsMember({"stl", "dae"}));
-  app.add_flag("--copy-meshes", options.copy_meshes, "copy external mesh files next to the URDF instead of referencing them");
+  app.add_flag("--copy-meshes", options.copy_meshes,
+               "copy external mesh files next to the URDF instead of referencing them");
   app.add_option("--package-uri", options.package_uri, "prefix mesh URIs with package://NAME/ (meshes are copied)");
   app.add_option("--mesh-folder", options.mesh_folder, "folder for meshes, relative to the URDF");
-  app.add_flag("--floating-base", options.floating_base, "add a 'world' link and a floating joint at the root's initial pose");
+  app.add_flag("--floating-base", options.floating_base,
+               "add a 'world' link and a floating joint at the root's initial pose");
   app.add_flag("--devices-as-frames", options.devices_as_frames, "write devices as fixed child links");
   if (auto code = front.parse(argc, argv)) return *code;
   options.mesh_format = mesh_format == "dae" ? converters::MeshFormat::kDae : converters::MeshFormat::kStl;
@@ -41,9 +43,9 @@ int main(int argc, char** argv) {
       const bool ok = urdf::write_urdf(*model, derived, options, out, sink);
       // Export errors (--strict losses) stop the write; loader errors are listed, and the
       // model that did load is still exported, as bodyinfo describes it.
-      const bool export_errors = std::any_of(collected.diagnostics().begin(), collected.diagnostics().end(), [](const Diagnostic& d) {
-        return d.severity >= Severity::kError && d.rule_id.rfind("export-", 0) == 0;
-      });
+      const bool export_errors = std::any_of(
+          collected.diagnostics().begin(), collected.diagnostics().end(),
+          [](const Diagnostic& d) { return d.severity >= Severity::kError && d.rule_id.rfind("export-", 0) == 0; });
       if (ok && !export_errors) written = out.commit(sink);
     }
   }

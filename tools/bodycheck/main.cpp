@@ -199,8 +199,10 @@ std::string format_report(tools::Front& front, const Report& report, const Setti
   if (settings.stats) {
     std::string lines;
     for (const auto& [rule, n] : report.counts_by_rule()) lines += fmt::format("{:>6}  {}\n", n, rule);
-    if (settings.format == "text") text += lines;
-    else std::cerr << lines;
+    if (settings.format == "text")
+      text += lines;
+    else
+      std::cerr << lines;
   }
   return text;
 }

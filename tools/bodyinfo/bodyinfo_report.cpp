@@ -42,8 +42,8 @@ std::string quoted(const std::string& s) {
 }
 
 std::string bbox(const BoundingBox& b) {
-  return "[" + number(b.min.x()) + ", " + number(b.min.y()) + ", " + number(b.min.z()) + ", " +
-         number(b.max.x()) + ", " + number(b.max.y()) + ", " + number(b.max.z()) + "]";
+  return "[" + number(b.min.x()) + ", " + number(b.min.y()) + ", " + number(b.min.z()) + ", " + number(b.max.x()) +
+         ", " + number(b.max.y()) + ", " + number(b.max.z()) + "]";
 }
 
 std::string pair(double lo, double hi) { return "[" + number(lo) + ", " + number(hi) + "]"; }
@@ -55,8 +55,7 @@ std::string range_text(const Link& link) {
   if (link.joint_range_lower <= -kUnlimited && link.joint_range_upper >= kUnlimited) return "unlimited";
   auto end = [&](double v) {
     if (std::abs(v) >= kUnlimited) return std::string(v > 0 ? "+inf" : "-inf");
-    return link.joint_type == JointType::kRevolute ? fmt::format("{:.4g} deg", degrees(v))
-                                                   : fmt::format("{:.4g} m", v);
+    return link.joint_type == JointType::kRevolute ? fmt::format("{:.4g} deg", degrees(v)) : fmt::format("{:.4g} m", v);
   };
   return "[" + end(link.joint_range_lower) + ", " + end(link.joint_range_upper) + "]";
 }
@@ -79,9 +78,9 @@ void summary_link(std::string& out, const Model& model, const Derived& derived, 
 
 std::string format_summary(const Model& model, const Derived& derived) {
   std::string out;
-  out += fmt::format("{}: {} links, {} joints, {} devices, {:.6g} kg, format {} ({})\n", model.name,
-                     model.links.size(), model.num_joints(), model.devices.size(), derived.total_mass,
-                     model.format_version, model.angles_in_degrees ? "degrees" : "radians");
+  out += fmt::format("{}: {} links, {} joints, {} devices, {:.6g} kg, format {} ({})\n", model.name, model.links.size(),
+                     model.num_joints(), model.devices.size(), derived.total_mass, model.format_version,
+                     model.angles_in_degrees ? "degrees" : "radians");
   out += "links:\n";
   if (!model.links.empty()) summary_link(out, model, derived, 0, 1);
   if (!model.devices.empty()) {
@@ -100,8 +99,7 @@ std::string format_summary(const Model& model, const Derived& derived) {
   return out;
 }
 
-std::string format_reference_yaml(const Model& model, const Derived& derived,
-                                  const std::vector<LinkBounds>& boxes,
+std::string format_reference_yaml(const Model& model, const Derived& derived, const std::vector<LinkBounds>& boxes,
                                   const std::vector<Diagnostic>& diagnostics) {
   std::string out = "loaded: true\n";
   out += "model_name: " + quoted(model.name) + "\n";
@@ -116,7 +114,8 @@ std::string format_reference_yaml(const Model& model, const Derived& derived,
     const Link& l = model.links[i];
     const MassProperties& m = derived.mass[i];
     out += "- name: " + quoted(l.name) + "\n";
-    out += "  parent: " + (l.parent < 0 ? std::string("null") : quoted(model.links[static_cast<std::size_t>(l.parent)].name)) + "\n";
+    out += "  parent: " +
+           (l.parent < 0 ? std::string("null") : quoted(model.links[static_cast<std::size_t>(l.parent)].name)) + "\n";
     out += "  joint_type: " + std::string(joint_type_name(l.joint_type)) + "\n";
     out += fmt::format("  joint_id: {}\n", l.joint_id);
     out += "  joint_axis: " + list(l.joint_axis) + "\n";

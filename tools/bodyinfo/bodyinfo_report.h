@@ -14,8 +14,7 @@ namespace bodyfmt::tools {
 std::string format_summary(const Model& model, const Derived& derived);
 /// `boxes`: Choreonoid's scene-graph boxes (compute_choreonoid_bounds), which the reference
 /// values were taken from.
-std::string format_reference_yaml(const Model& model, const Derived& derived,
-                                  const std::vector<LinkBounds>& boxes,
+std::string format_reference_yaml(const Model& model, const Derived& derived, const std::vector<LinkBounds>& boxes,
                                   const std::vector<Diagnostic>& diagnostics);
 
 }  // namespace bodyfmt::tools

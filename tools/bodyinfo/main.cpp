@@ -13,7 +13,8 @@ int main(int argc, char** argv) {
   using namespace bodyfmt;
   tools::Front front("bodyinfo", "Summarise a Choreonoid .body model", {});
   std::string format = "text";
-  front.app().add_option("--format", format, "output format: text, or yaml in the layout of Choreonoid's reference values")
+  front.app()
+      .add_option("--format", format, "output format: text, or yaml in the layout of Choreonoid's reference values")
       ->check(CLI::IsMember({"text", "yaml"}));
   if (auto code = front.parse(argc, argv)) return *code;
 

@@ -25,8 +25,7 @@
 namespace bodyfmt::tools {
 namespace {
 
-void error(DiagnosticSink& sink, SourceLocation location, std::string message,
-           std::string hint = {}) {
+void error(DiagnosticSink& sink, SourceLocation location, std::string message, std::string hint = {}) {
   report_rule(sink, "config-invalid", std::move(location), std::move(message), std::move(hint));
 }
 
@@ -84,9 +83,7 @@ std::string find_config(const std::string& file) {
   }
 }
 
-
-std::optional<CheckConfig> read_config_string(const std::string& text, const std::string& path,
-                                              DiagnosticSink& sink) {
+std::optional<CheckConfig> read_config_string(const std::string& text, const std::string& path, DiagnosticSink& sink) {
   CollectingSink yaml_sink;
   auto document = yaml::parse_yaml(text, path, yaml::ParseOptions{}, yaml_sink);
   bool yaml_ok = document != nullptr;
@@ -105,8 +102,7 @@ std::optional<CheckConfig> read_config_string(const std::string& text, const std
   const yaml::NodeRef& root = document->root;
   if (root->is_null()) return config;  // an empty file is a valid, empty config
   if (!root->is_mapping()) {
-    error(sink, root.use_site(), "a .bodycheck.yaml must be a mapping",
-          "keys: disable, enable, fail_on, werror");
+    error(sink, root.use_site(), "a .bodycheck.yaml must be a mapping", "keys: disable, enable, fail_on, werror");
     return std::nullopt;
   }
   bool ok = true;

@@ -29,7 +29,6 @@ std::string find_config(const std::string& file);
 std::optional<CheckConfig> read_config(const std::string& path, DiagnosticSink& sink);
 
 /// Same, from text (`path` is used in locations).
-std::optional<CheckConfig> read_config_string(const std::string& text, const std::string& path,
-                                              DiagnosticSink& sink);
+std::optional<CheckConfig> read_config_string(const std::string& text, const std::string& path, DiagnosticSink& sink);
 
 }  // namespace bodyfmt::tools

@@ -46,10 +46,14 @@ std::vector<std::string> disabled_rules(const std::vector<std::string>& cli_disa
   std::vector<std::string> off;
   for (const RuleInfo& rule : all_rules()) {
     bool enabled = true;
-    if (any(cli_enable, rule.id)) enabled = true;
-    else if (any(cli_disable, rule.id)) enabled = false;
-    else if (config && any(config->enable, rule.id)) enabled = true;
-    else if (config && any(config->disable, rule.id)) enabled = false;
+    if (any(cli_enable, rule.id))
+      enabled = true;
+    else if (any(cli_disable, rule.id))
+      enabled = false;
+    else if (config && any(config->enable, rule.id))
+      enabled = true;
+    else if (config && any(config->disable, rule.id))
+      enabled = false;
     if (!enabled) off.emplace_back(rule.id);
   }
   return off;
@@ -69,7 +73,8 @@ Front::Front(std::string tool_name, std::string description, Features features)
     : name_(std::move(tool_name)), features_(features), app_(std::move(description), name_) {
   app_.set_version_flag("--version", name_ + " " + BODYFMT_VERSION, "print the version and exit");
   if (features_.many_inputs) {
-    app_.add_option("paths", inputs_, "a .body file, a directory searched recursively for *.body, or - for standard input");
+    app_.add_option("paths", inputs_,
+                    "a .body file, a directory searched recursively for *.body, or - for standard input");
   } else {
     app_.add_option("file", inputs_, "the .body file, or - for standard input")->required()->expected(1);
   }
@@ -180,8 +185,10 @@ std::optional<Front::FilePolicy> Front::policy_for(const std::string& file) {
   policy.options.disable = disabled_rules(disable_, enable_, config);
   policy.options.werror = werror_option_->count() > 0 ? werror_ : (config && config->werror && *config->werror);
   policy.options.strict = strict_;
-  if (fail_on_option_->count() > 0) policy.exit.fail_level = fail_on_ == "warning" ? Severity::kWarning : Severity::kError;
-  else if (config && config->fail_on) policy.exit.fail_level = *config->fail_on;
+  if (fail_on_option_->count() > 0)
+    policy.exit.fail_level = fail_on_ == "warning" ? Severity::kWarning : Severity::kError;
+  else if (config && config->fail_on)
+    policy.exit.fail_level = *config->fail_on;
   policy.exit.export_warnings_fail = features_.exporter;
   return policy;
 }
@@ -189,8 +196,10 @@ std::optional<Front::FilePolicy> Front::policy_for(const std::string& file) {
 TextOptions Front::text_options(bool to_terminal_stream) const {
   TextOptions options;
   options.notes = !quiet_;
-  if (color_ == "always") options.color = true;
-  else if (color_ == "auto") options.color = to_terminal_stream && std::getenv("NO_COLOR") == nullptr;
+  if (color_ == "always")
+    options.color = true;
+  else if (color_ == "auto")
+    options.color = to_terminal_stream && std::getenv("NO_COLOR") == nullptr;
   return options;
 }
 

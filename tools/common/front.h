@@ -44,9 +44,9 @@ int exit_code(const std::vector<Diagnostic>& diagnostics, const ExitPolicy& poli
 
 /// A model file named on the command line: a path, or "-" for standard input.
 struct ModelInput {
-  std::string path;     ///< as the user spelled it ("-" for standard input)
-  std::string name;     ///< the name used in locations and to resolve relative URIs
-  std::string text;     ///< the text, when it was read by the front (stdin, pipes, devices)
+  std::string path;  ///< as the user spelled it ("-" for standard input)
+  std::string name;  ///< the name used in locations and to resolve relative URIs
+  std::string text;  ///< the text, when it was read by the front (stdin, pipes, devices)
   bool read_by_front = false;
 };
 

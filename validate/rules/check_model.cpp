@@ -58,8 +58,7 @@ BoundingBox geometry_bounds(const Derived& derived, LinkIndex link) {
 
 }  // namespace detail
 
-void check_model(const Model& model, const Derived& derived, const CheckOptions& options,
-                 DiagnosticSink& sink) {
+void check_model(const Model& model, const Derived& derived, const CheckOptions& options, DiagnosticSink& sink) {
   if (model.links.empty()) return;
   const detail::RuleContext ctx{model, derived, options, sink};
   detail::check_structure(ctx);

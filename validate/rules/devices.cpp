@@ -20,8 +20,8 @@ void check_camera(const RuleContext& ctx, const Device& d, const CameraParams& c
   // A perspective (NORMAL) lens needs 0 < fov < 180 degrees; Choreonoid's fisheye lenses
   // render up to a full 360 degrees (TankBody's DUAL_FISHEYE "Theta" uses 180).
   const bool fisheye = c.lens_type == "FISHEYE" || c.lens_type == "DUAL_FISHEYE";
-  const bool fov_ok = fisheye ? c.field_of_view > 0 && c.field_of_view <= 2 * kPi
-                              : c.field_of_view > 0 && c.field_of_view < kPi;
+  const bool fov_ok =
+      fisheye ? c.field_of_view > 0 && c.field_of_view <= 2 * kPi : c.field_of_view > 0 && c.field_of_view < kPi;
   if (!fov_ok) {
     ctx.report("device-fov", d.source,
                fmt::format("{} has field_of_view {}, outside {}", device_name(d), deg(c.field_of_view),
@@ -35,8 +35,8 @@ void check_camera(const RuleContext& ctx, const Device& d, const CameraParams& c
   }
   if (c.near_clip_distance <= 0 || c.near_clip_distance >= c.far_clip_distance) {
     ctx.report("device-clip", d.source,
-               fmt::format("{} has near_clip_distance {} and far_clip_distance {}: need 0 < near < far",
-                           device_name(d), num(c.near_clip_distance), num(c.far_clip_distance)));
+               fmt::format("{} has near_clip_distance {} and far_clip_distance {}: need 0 < near < far", device_name(d),
+                           num(c.near_clip_distance), num(c.far_clip_distance)));
   } else if (d.type == "RangeCamera" && c.min_distance >= c.max_distance) {
     ctx.report("device-clip", d.source,
                fmt::format("{} has min_distance {} >= max_distance {}", device_name(d), num(c.min_distance),
@@ -81,9 +81,12 @@ void check_light(const RuleContext& ctx, const Device& d, const LightParams& l) 
 
 void check_devices(const RuleContext& ctx) {
   for (const Device& d : ctx.model.devices) {
-    if (const auto* c = std::get_if<CameraParams>(&d.params)) check_camera(ctx, d, *c);
-    else if (const auto* r = std::get_if<RangeSensorParams>(&d.params)) check_range_sensor(ctx, d, *r);
-    else if (const auto* l = std::get_if<LightParams>(&d.params)) check_light(ctx, d, *l);
+    if (const auto* c = std::get_if<CameraParams>(&d.params))
+      check_camera(ctx, d, *c);
+    else if (const auto* r = std::get_if<RangeSensorParams>(&d.params))
+      check_range_sensor(ctx, d, *r);
+    else if (const auto* l = std::get_if<LightParams>(&d.params))
+      check_light(ctx, d, *l);
   }
 }
 

@@ -25,10 +25,10 @@ void check_geometry(const RuleContext& ctx) {
       }
       const Eigen::Vector3d scale = shape.X_LS.linear().colwise().norm();
       if ((scale.array() == 0).any()) {
-        ctx.report("geometry-zero-size", at,
-                   fmt::format("{} shape {}of link \"{}\" is scaled to zero: scale {}",
-                               geometry_type_name(shape.geometry),
-                               shape.name.empty() ? "" : "\"" + shape.name + "\" ", link.name, vec(scale)));
+        ctx.report(
+            "geometry-zero-size", at,
+            fmt::format("{} shape {}of link \"{}\" is scaled to zero: scale {}", geometry_type_name(shape.geometry),
+                        shape.name.empty() ? "" : "\"" + shape.name + "\" ", link.name, vec(scale)));
       }
     }
   }

@@ -69,8 +69,8 @@ void check_symmetry(const RuleContext& ctx, const Link& link) {
     ctx.report("inertia-asymmetric", at,
                fmt::format("inertia of link \"{}\" is not symmetric: I{}{} = {} but I{}{} = {} (relative "
                            "difference {} > {})",
-                           link.name, axis[row], axis[col], num(I(row, col)), axis[col], axis[row],
-                           num(I(col, row)), num(worst / scale), num(ctx.options.inertia_symmetry_tolerance)),
+                           link.name, axis[row], axis[col], num(I(row, col)), axis[col], axis[row], num(I(col, row)),
+                           num(worst / scale), num(ctx.options.inertia_symmetry_tolerance)),
                "write the 6-element form [Ixx, Ixy, Ixz, Iyy, Iyz, Izz]; Choreonoid uses the 9 numbers as given");
   }
 }
@@ -101,10 +101,10 @@ void check_link(const RuleContext& ctx, LinkIndex index) {
   const InertiaValidity validity = inertia_validity(p);
   const bool semidefinite = !validity.negative_moment;
   if (validity.negative_moment) {
-    ctx.report("inertia-not-positive-definite", at,
-               fmt::format("inertia of link \"{}\" has a negative principal moment: principal moments {}",
-                           link.name, moments),
-               nearest_valid(mp.inertia));
+    ctx.report(
+        "inertia-not-positive-definite", at,
+        fmt::format("inertia of link \"{}\" has a negative principal moment: principal moments {}", link.name, moments),
+        nearest_valid(mp.inertia));
   }
   if (validity.triangle) {
     const double margin = validity.triangle_margin;
@@ -114,8 +114,8 @@ void check_link(const RuleContext& ctx, LinkIndex index) {
     ctx.report("inertia-triangle", at,
                fmt::format("principal moments {} of link \"{}\" violate the triangle inequality: {} + {} - {} = "
                            "{}; refused by {}",
-                           moments, link.name, num(p.moments[0]), num(p.moments[1]), num(p.moments[2]),
-                           num(margin), fmt::join(refuse, ", ")),
+                           moments, link.name, num(p.moments[0]), num(p.moments[1]), num(p.moments[2]), num(margin),
+                           fmt::join(refuse, ", ")),
                nearest_valid(mp.inertia));
   }
 
@@ -127,8 +127,7 @@ void check_link(const RuleContext& ctx, LinkIndex index) {
     const double slack = 0.01 * (box.max - box.min).norm() + 1e-3;
     const Eigen::Vector3d& c = mp.center_of_mass;
     if ((c.array() < box.min.array() - slack).any() || (c.array() > box.max.array() + slack).any()) {
-      ctx.report("inertia-com-outside",
-                 first_known({&link.sources.center_of_mass, &at}),
+      ctx.report("inertia-com-outside", first_known({&link.sources.center_of_mass, &at}),
                  fmt::format("centre of mass {} of link \"{}\" lies outside its geometry bounds {} .. {}", vec(c),
                              link.name, vec(box.min), vec(box.max)));
     }
@@ -171,10 +170,10 @@ void check_moving(const RuleContext& ctx, LinkIndex index) {
   if (mujoco_valid(mp.mass, p) || welded_descendant_valid(ctx.model, ctx.derived, index)) return;
   const std::string joint = index == 0 ? "the free root" : fmt::format("a {} joint", joint_type_name(link.joint_type));
   if (mp.mass == 0) {
-    ctx.report("inertia-nonpositive-mass", mass_location(link),
-               fmt::format("link \"{}\" moves ({}) but has zero mass, and no fixed child carries mass", link.name,
-                           joint),
-               "give the link its mass and inertia; MuJoCo, Drake and Choreonoid's AIST simulator need it");
+    ctx.report(
+        "inertia-nonpositive-mass", mass_location(link),
+        fmt::format("link \"{}\" moves ({}) but has zero mass, and no fixed child carries mass", link.name, joint),
+        "give the link its mass and inertia; MuJoCo, Drake and Choreonoid's AIST simulator need it");
     return;
   }
   if (p.moments[0] < 0) return;  // inertia-not-positive-definite

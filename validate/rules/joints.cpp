@@ -44,7 +44,8 @@ void check_ids(const RuleContext& ctx) {
   if (missing.empty()) return;
   const Link& link = ctx.model.links[after_gap];
   const std::size_t shown = std::min<std::size_t>(missing.size(), 20);
-  std::string list = fmt::format("{}", fmt::join(missing.begin(), missing.begin() + static_cast<std::ptrdiff_t>(shown), ", "));
+  std::string list =
+      fmt::format("{}", fmt::join(missing.begin(), missing.begin() + static_cast<std::ptrdiff_t>(shown), ", "));
   if (shown < missing.size()) list += fmt::format(", ... ({} in all)", missing.size());
   ctx.report("joint-id-gap", first_known({&link.sources.joint_id, &link.source}),
              fmt::format("joint ids are not contiguous: {} {} missing below the largest id {}", list,
@@ -80,11 +81,11 @@ void check_range(const RuleContext& ctx, const Link& link) {
   const char* unit = revolute ? (ctx.model.angles_in_degrees ? " deg" : " rad") : " m";
   auto written = [&](double v) { return std::abs(v) >= kUnlimited ? limit(v) : num(v * shown) + unit; };
   if (lo > hi) {
-    ctx.report("joint-range-reversed", at,
-               fmt::format("joint range of link \"{}\" is reversed: lower {} > upper {}", link.name, written(lo),
-                           written(hi)),
-               fmt::format("write joint_range: [{}, {}]", limit(hi * (std::abs(hi) < kUnlimited ? shown : 1)),
-                           limit(lo * (std::abs(lo) < kUnlimited ? shown : 1))));
+    ctx.report(
+        "joint-range-reversed", at,
+        fmt::format("joint range of link \"{}\" is reversed: lower {} > upper {}", link.name, written(lo), written(hi)),
+        fmt::format("write joint_range: [{}, {}]", limit(hi * (std::abs(hi) < kUnlimited ? shown : 1)),
+                    limit(lo * (std::abs(lo) < kUnlimited ? shown : 1))));
   } else if (lo == hi) {
     ctx.report("joint-range-zero-width", at,
                fmt::format("joint range of link \"{}\" has zero width ({} .. {}): the joint cannot move", link.name,

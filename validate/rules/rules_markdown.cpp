@@ -17,8 +17,10 @@ namespace {
 std::string cell(std::string_view text) {
   std::string out;
   for (char c : text) {
-    if (c == '|') out += "\\|";
-    else out += c;
+    if (c == '|')
+      out += "\\|";
+    else
+      out += c;
   }
   return out.empty() ? "-" : out;
 }
@@ -31,12 +33,20 @@ std::string family(std::string_view id) {
 }  // namespace
 
 std::string rules_markdown() {
-  static const std::vector<std::pair<std::string, std::string>> kFamilies = {
-      {"io", "I/O"},           {"internal", "Internal"},       {"yaml", "YAML layer"},
-      {"load", "Loading"},     {"units", "Units"},             {"structure", "Structure"},
-      {"joint", "Joints"},     {"inertia", "Inertia"},         {"geometry", "Geometry"},
-      {"resource", "Resources"}, {"mesh", "Meshes"},           {"subbody", "SubBody"},
-      {"extra-joint", "Extra joints"}, {"device", "Devices"}};
+  static const std::vector<std::pair<std::string, std::string>> kFamilies = {{"io", "I/O"},
+                                                                             {"internal", "Internal"},
+                                                                             {"yaml", "YAML layer"},
+                                                                             {"load", "Loading"},
+                                                                             {"units", "Units"},
+                                                                             {"structure", "Structure"},
+                                                                             {"joint", "Joints"},
+                                                                             {"inertia", "Inertia"},
+                                                                             {"geometry", "Geometry"},
+                                                                             {"resource", "Resources"},
+                                                                             {"mesh", "Meshes"},
+                                                                             {"subbody", "SubBody"},
+                                                                             {"extra-joint", "Extra joints"},
+                                                                             {"device", "Devices"}};
   std::map<std::string, std::vector<const RuleInfo*>> by_family;
   for (const RuleInfo& rule : all_rules()) by_family[family(rule.id)].push_back(&rule);
 
@@ -59,7 +69,8 @@ std::string rules_markdown() {
     std::string title = key;
     for (const auto& [k, t] : kFamilies)
       if (k == key) title = t;
-    out += fmt::format("\n## {}\n\n| id | severity | summary | rationale | tolerance |\n|---|---|---|---|---|\n", title);
+    out +=
+        fmt::format("\n## {}\n\n| id | severity | summary | rationale | tolerance |\n|---|---|---|---|---|\n", title);
     for (const RuleInfo* rule : it->second) {
       out += fmt::format("| `{}` | {} | {} | {} | {} |\n", rule->id, severity_name(rule->default_severity),
                          cell(rule->summary), cell(rule->rationale), cell(rule->tolerance));

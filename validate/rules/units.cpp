@@ -55,7 +55,7 @@ void check_radian_range(const RuleContext& ctx, const Link& link) {
       // 1.57 means π/2: suggest the 90 it stands for, not 89.9544.
       const double k = std::round(std::abs(w) / (kPi / 12));
       const double meant = std::abs(std::abs(w) - k * kPi / 12) <= kRadianMatch ? std::copysign(k * 15, w)
-                                                                               : std::round(w * 180 / kPi * 1e4) / 1e4;
+                                                                                : std::round(w * 180 / kPi * 1e4) / 1e4;
       as_degrees.push_back(num(meant));
     }
   }
@@ -113,11 +113,16 @@ void check_mesh_scale(const RuleContext& ctx, LinkIndex index) {
       const Shape& shape = link.shapes[o];
       double size = sizes[o];
       if (!is_mesh[o]) {
-        if (const auto* b = std::get_if<Box>(&shape.geometry)) size = b->size.maxCoeff();
-        else if (const auto* sp = std::get_if<Sphere>(&shape.geometry)) size = 2 * sp->radius;
-        else if (const auto* c = std::get_if<Cylinder>(&shape.geometry)) size = std::max(2 * c->radius, c->height);
-        else if (const auto* k = std::get_if<Cone>(&shape.geometry)) size = std::max(2 * k->radius, k->height);
-        else if (const auto* cap = std::get_if<Capsule>(&shape.geometry)) size = cap->height + 2 * cap->radius;
+        if (const auto* b = std::get_if<Box>(&shape.geometry))
+          size = b->size.maxCoeff();
+        else if (const auto* sp = std::get_if<Sphere>(&shape.geometry))
+          size = 2 * sp->radius;
+        else if (const auto* c = std::get_if<Cylinder>(&shape.geometry))
+          size = std::max(2 * c->radius, c->height);
+        else if (const auto* k = std::get_if<Cone>(&shape.geometry))
+          size = std::max(2 * k->radius, k->height);
+        else if (const auto* cap = std::get_if<Capsule>(&shape.geometry))
+          size = cap->height + 2 * cap->radius;
         size *= shape.X_LS.linear().colwise().norm().maxCoeff();
       }
       other = std::max(other, size);
@@ -126,8 +131,9 @@ void check_mesh_scale(const RuleContext& ctx, LinkIndex index) {
     const bool huge = sizes[s] > kMeshSize && is_moving(link);
     if (!ratio && !huge) continue;
     const auto& mesh = std::get<MeshResource>(link.shapes[s].geometry);
-    const std::string why = ratio ? fmt::format("{} times the link's other geometry ({} m)", num(sizes[s] / other), num(other))
-                                  : fmt::format("more than {} m across on a moving link", num(kMeshSize));
+    const std::string why =
+        ratio ? fmt::format("{} times the link's other geometry ({} m)", num(sizes[s] / other), num(other))
+              : fmt::format("more than {} m across on a moving link", num(kMeshSize));
     ctx.report("units-mesh-millimetres", first_known({&link.shapes[s].source, &link.source}),
                fmt::format("mesh \"{}\" of link \"{}\" is {} m across, {}: it looks like millimetres", mesh.uri,
                            link.name, num(sizes[s]), why),

@@ -15,8 +15,7 @@ MassProperties compute_mass_properties(const Link& link);
 
 /// Link frames at the given joint positions (one per link, indexed like Model::links; joints
 /// without an entry are at 0). X_RL: link frame relative to the root link frame.
-std::vector<Eigen::Isometry3d> compute_root_relative_frames(const Model& model,
-                                                            const std::vector<double>& q = {});
+std::vector<Eigen::Isometry3d> compute_root_relative_frames(const Model& model, const std::vector<double>& q = {});
 /// X_WL: link frames in the world, the root placed at its initial pose from the file.
 std::vector<Eigen::Isometry3d> compute_world_frames(const Model& model, const std::vector<double>& q = {});
 
@@ -61,7 +60,7 @@ struct Derived {
   std::vector<MassProperties> mass;
   std::vector<Eigen::Isometry3d> X_RL;  ///< root-relative link frames at zero joint positions
   std::vector<Eigen::Isometry3d> X_WL;  ///< world link frames at zero joint positions
-  std::vector<LinkBounds> bounds;  ///< tight
+  std::vector<LinkBounds> bounds;       ///< tight
   double total_mass = 0;
 };
 

@@ -65,8 +65,7 @@ class CollectingSink : public DiagnosticSink {
 /// Useful where location-blind code runs on behalf of a located element.
 class LocatingSink : public DiagnosticSink {
  public:
-  LocatingSink(DiagnosticSink& inner, SourceLocation fallback)
-      : inner_(inner), fallback_(std::move(fallback)) {}
+  LocatingSink(DiagnosticSink& inner, SourceLocation fallback) : inner_(inner), fallback_(std::move(fallback)) {}
   void report(Diagnostic diagnostic) override;
 
  private:

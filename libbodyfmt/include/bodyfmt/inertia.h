@@ -14,8 +14,8 @@ namespace bodyfmt {
 Eigen::Matrix3d symmetrized_inertia(const Eigen::Matrix3d& inertia);
 
 struct PrincipalInertia {
-  Eigen::Vector3d moments = Eigen::Vector3d::Zero();  ///< ascending
-  Eigen::Matrix3d axes = Eigen::Matrix3d::Identity(); ///< columns, in the tensor's axes
+  Eigen::Vector3d moments = Eigen::Vector3d::Zero();   ///< ascending
+  Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();  ///< columns, in the tensor's axes
   /// Read off a diagonal tensor, without eigen-solver rounding (MuJoCo checks those exactly).
   bool exact = false;
 };

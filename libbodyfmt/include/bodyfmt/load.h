@@ -26,11 +26,10 @@ struct LoadOptions {
 /// even when some of them are errors, so that one run lists them all. Returns nullopt only
 /// when nothing usable exists: the file cannot be read, its YAML is malformed or exceeds the
 /// limits, or it has no links.
-std::optional<Model> load_body(const std::string& path, const LoadOptions& options,
-                               DiagnosticSink& sink);
+std::optional<Model> load_body(const std::string& path, const LoadOptions& options, DiagnosticSink& sink);
 
 /// Same, from text; `file_name` is used in locations and to resolve relative URIs.
-std::optional<Model> load_body_string(const std::string& text, const std::string& file_name,
-                                      const LoadOptions& options, DiagnosticSink& sink);
+std::optional<Model> load_body_string(const std::string& text, const std::string& file_name, const LoadOptions& options,
+                                      DiagnosticSink& sink);
 
 }  // namespace bodyfmt

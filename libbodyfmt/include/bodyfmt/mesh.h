@@ -41,11 +41,9 @@ struct TriangleMesh {
 
 /// Axis-aligned bounding box; empty until a point is added.
 struct BoundingBox {
-  Eigen::Vector3d min{std::numeric_limits<double>::infinity(),
-                      std::numeric_limits<double>::infinity(),
+  Eigen::Vector3d min{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
                       std::numeric_limits<double>::infinity()};
-  Eigen::Vector3d max{-std::numeric_limits<double>::infinity(),
-                      -std::numeric_limits<double>::infinity(),
+  Eigen::Vector3d max{-std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
                       -std::numeric_limits<double>::infinity()};
 
   bool empty() const { return !(min.x() <= max.x()); }

@@ -44,8 +44,8 @@ struct MeshImportOptions {
 /// `mesh-invalid-geometry`, `mesh-empty`) and returns nullopt when nothing usable was read.
 /// `where` is the location of the reference (the Resource node); errors inside the mesh file
 /// are located in the mesh file itself.
-std::optional<MeshAsset> import_mesh(const std::string& path, const MeshImportOptions& options,
-                                     DiagnosticSink& sink, const SourceLocation& where);
+std::optional<MeshAsset> import_mesh(const std::string& path, const MeshImportOptions& options, DiagnosticSink& sink,
+                                     const SourceLocation& where);
 
 /// Parses each mesh file once per run and hands out one shared asset per
 /// (file, node, metadata), as Choreonoid does (body-format-spec §9.2 "Each (uri, metadata)
@@ -61,8 +61,8 @@ class MeshCache {
   MeshCache& operator=(const MeshCache&) = delete;
 
   /// Same contract as import_mesh(); nullptr when nothing usable was read.
-  std::shared_ptr<const MeshAsset> get(const std::string& path, const MeshImportOptions& options,
-                                       DiagnosticSink& sink, const SourceLocation& where);
+  std::shared_ptr<const MeshAsset> get(const std::string& path, const MeshImportOptions& options, DiagnosticSink& sink,
+                                       const SourceLocation& where);
 
   /// How many files were actually parsed (including inlined VRML files and failures).
   int files_parsed() const;

@@ -95,8 +95,8 @@ struct MeshResource {
   MeshIndex mesh = -1;  ///< Model::meshes entry once imported
 };
 
-using Geometry = std::variant<Box, Sphere, Cylinder, Cone, Capsule, Extrusion, ElevationGrid,
-                              IndexedFaceSet, TriangleMeshGeometry, MeshResource>;
+using Geometry = std::variant<Box, Sphere, Cylinder, Cone, Capsule, Extrusion, ElevationGrid, IndexedFaceSet,
+                              TriangleMeshGeometry, MeshResource>;
 
 std::string_view geometry_type_name(const Geometry& geometry);
 
@@ -116,7 +116,7 @@ struct Appearance {
 /// device, Resource, or a Shape's own transform). Kept so that consumers can rebuild the
 /// hierarchy: Choreonoid's bounding boxes and a glTF node tree depend on it.
 struct SceneFrame {
-  int parent = -1;  ///< index into Link::frames; -1 = the link frame
+  int parent = -1;                                     ///< index into Link::frames; -1 = the link frame
   Eigen::Affine3d X_PF = Eigen::Affine3d::Identity();  ///< in the parent frame; may scale
 };
 
@@ -126,7 +126,7 @@ struct Shape {
   Geometry geometry;
   Appearance appearance;
   Eigen::Affine3d X_LS = Eigen::Affine3d::Identity();  ///< may contain scale
-  int frame = -1;  ///< innermost Link::frames entry enclosing the shape; X_LS is its pose
+  int frame = -1;            ///< innermost Link::frames entry enclosing the shape; X_LS is its pose
   int division_number = 20;  ///< tessellation (values < 4 mean the default, 20)
   bool visual = true;        ///< part of the visual model
   bool collision = true;     ///< part of the collision model
@@ -164,8 +164,8 @@ std::string_view joint_type_name(JointType type);
 
 /// Where the fields that rules and writers point at were written.
 struct LinkSources {
-  SourceLocation name, parent, translation, rotation, joint_type, joint_axis, joint_id,
-      joint_range, joint_velocity, mass, center_of_mass, inertia;
+  SourceLocation name, parent, translation, rotation, joint_type, joint_axis, joint_id, joint_range, joint_velocity,
+      mass, center_of_mass, inertia;
 };
 
 struct Link {
@@ -252,8 +252,8 @@ struct InertialSensorParams {  ///< RateGyroSensor, AccelerationSensor, IMU
 /// MarkerDevice, ZmpDevice) and plugin devices: kept as their scalar keys.
 struct OpaqueParams {};
 
-using DeviceParams = std::variant<OpaqueParams, CameraParams, RangeSensorParams, LightParams,
-                                  ForceSensorParams, InertialSensorParams>;
+using DeviceParams =
+    std::variant<OpaqueParams, CameraParams, RangeSensorParams, LightParams, ForceSensorParams, InertialSensorParams>;
 
 struct Device {
   std::string node_type;  ///< as written, e.g. "Camera", "IMU", "AGXVehicleContinuousTrackDevice"

@@ -55,12 +55,10 @@ struct TextOptions {
 ///
 /// The caret line copies the tabs of the source line so that it lines up; the column counts
 /// bytes and the caret advances one per UTF-8 character. Ends with a newline.
-std::string format_text_diagnostic(const Diagnostic& diagnostic, SourceLines& sources,
-                                   const TextOptions& options = {});
+std::string format_text_diagnostic(const Diagnostic& diagnostic, SourceLines& sources, const TextOptions& options = {});
 
 /// Every diagnostic of the report, in order.
-std::string format_text_report(const Report& report, SourceLines& sources,
-                               const TextOptions& options = {});
+std::string format_text_report(const Report& report, SourceLines& sources, const TextOptions& options = {});
 
 /// `bodycheck: N files checked: E errors, W warnings, K notes` (+ suppressed/disabled counts).
 std::string format_summary_line(const Report& report);
@@ -78,7 +76,6 @@ std::string format_json_report(const Report& report, const ToolInfo& tool);
 /// directory when empty) when the file lies under it, with forward slashes and
 /// `uriBaseId` "%SRCROOT%" (declared in originalUriBaseIds); other files get absolute
 /// `file://` URIs. Rules come from the rule table. With a final newline.
-std::string format_sarif_report(const Report& report, const ToolInfo& tool,
-                                const std::string& base_dir = {});
+std::string format_sarif_report(const Report& report, const ToolInfo& tool, const std::string& base_dir = {});
 
 }  // namespace bodyfmt

@@ -12,11 +12,11 @@
 namespace bodyfmt {
 
 struct RuleInfo {
-  std::string_view id;          ///< kebab-case with a family prefix, e.g. "inertia-triangle"
-  Severity default_severity;    ///< what the reporting stage uses unless a policy changes it
-  std::string_view summary;     ///< one line: what is wrong
-  std::string_view rationale;   ///< one line: why it matters (which tool fails, what is lost)
-  std::string_view tolerance;   ///< documented tolerance, empty when the rule has none
+  std::string_view id;         ///< kebab-case with a family prefix, e.g. "inertia-triangle"
+  Severity default_severity;   ///< what the reporting stage uses unless a policy changes it
+  std::string_view summary;    ///< one line: what is wrong
+  std::string_view rationale;  ///< one line: why it matters (which tool fails, what is lost)
+  std::string_view tolerance;  ///< documented tolerance, empty when the rule has none
 };
 
 /// Every rule, sorted by id.

@@ -65,8 +65,7 @@ TriangleMesh with_vertex_normals(const TriangleMesh& mesh, double crease_angle);
 /// `triangles`. Returns false, appending nothing, for a degenerate polygon: fewer than three
 /// distinct points or no area. A self-intersecting polygon still yields triangles covering it
 /// approximately. Useful for mesh importers (OBJ, VRML faces) too.
-bool triangulate_polygon(const std::vector<Eigen::Vector3d>& vertices,
-                         const std::vector<int>& polygon,
+bool triangulate_polygon(const std::vector<Eigen::Vector3d>& vertices, const std::vector<int>& polygon,
                          std::vector<std::array<int, 3>>& triangles);
 
 }  // namespace bodyfmt

@@ -50,8 +50,8 @@ std::vector<LinkBounds> compute_choreonoid_bounds(const Model& model, Diagnostic
       for (const Shape& shape : link.shapes) {
         if (visual ? !shape.visual : !shape.collision) continue;
         const auto* resource = std::get_if<MeshResource>(&shape.geometry);
-        const bool has_asset = resource && resource->mesh >= 0 &&
-                               resource->mesh < static_cast<MeshIndex>(model.meshes.size());
+        const bool has_asset =
+            resource && resource->mesh >= 0 && resource->mesh < static_cast<MeshIndex>(model.meshes.size());
         const BoundingBox box = has_asset ? model.meshes[static_cast<std::size_t>(resource->mesh)].scene_bounds
                                           : bounding_box(compute_shape_local_mesh(model, shape, sink));
         (shape.frame >= 0 ? in_frame[static_cast<std::size_t>(shape.frame)] : in_link).add(box);

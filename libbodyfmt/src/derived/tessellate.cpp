@@ -60,17 +60,14 @@ TriangleMesh box_mesh(const Box& box, Reporter& reporter) {
   if (!non_negative(s.x()) || !non_negative(s.y()) || !non_negative(s.z())) {
     // §9: negative -> "A box cannot be generated with the given parameters"; zero is allowed.
     reporter.report(kRuleInvalidSize,
-                   fmt::format("Box size ({}, {}, {}) has a negative or non-finite component",
-                               s.x(), s.y(), s.z()));
+                    fmt::format("Box size ({}, {}, {}) has a negative or non-finite component", s.x(), s.y(), s.z()));
     return {};
   }
   const double x = s.x() / 2, y = s.y() / 2, z = s.z() / 2;
   TriangleMesh mesh;
-  mesh.vertices = {{x, y, z},   {-x, y, z},  {-x, -y, z},  {x, -y, z},
-                   {x, y, -z},  {-x, y, -z}, {-x, -y, -z}, {x, -y, -z}};
-  static constexpr int kTriangles[12][3] = {{0, 1, 2}, {2, 3, 0}, {0, 5, 1}, {0, 4, 5},
-                                            {1, 5, 6}, {1, 6, 2}, {2, 6, 7}, {2, 7, 3},
-                                            {3, 7, 4}, {3, 4, 0}, {4, 6, 5}, {4, 7, 6}};
+  mesh.vertices = {{x, y, z}, {-x, y, z}, {-x, -y, z}, {x, -y, z}, {x, y, -z}, {-x, y, -z}, {-x, -y, -z}, {x, -y, -z}};
+  static constexpr int kTriangles[12][3] = {{0, 1, 2}, {2, 3, 0}, {0, 5, 1}, {0, 4, 5}, {1, 5, 6}, {1, 6, 2},
+                                            {2, 6, 7}, {2, 7, 3}, {3, 7, 4}, {3, 4, 0}, {4, 6, 5}, {4, 7, 6}};
   for (const auto& t : kTriangles) add(mesh, t[0], t[1], t[2]);
   return mesh;
 }
@@ -90,8 +87,7 @@ TriangleMesh sphere_mesh(const Sphere& sphere, int n, Reporter& reporter) {
     const double tv = i * kPi / vdn;
     for (int j = 0; j < hdn; ++j) {
       const double th = j * 2.0 * kPi / hdn;
-      mesh.vertices.emplace_back(r * std::sin(tv) * std::cos(th), r * std::cos(tv),
-                                 r * std::sin(tv) * std::sin(th));
+      mesh.vertices.emplace_back(r * std::sin(tv) * std::cos(th), r * std::cos(tv), r * std::sin(tv) * std::sin(th));
     }
   }
   const int top = static_cast<int>(mesh.vertices.size());
@@ -118,8 +114,7 @@ TriangleMesh sphere_mesh(const Sphere& sphere, int n, Reporter& reporter) {
 TriangleMesh cylinder_mesh(const Cylinder& cylinder, int n, Reporter& reporter) {
   const double r = cylinder.radius, h = cylinder.height;
   if (!positive(r) || !positive(h)) {
-    reporter.report(kRuleInvalidSize,
-                   fmt::format("Cylinder radius {} and height {} must both be positive", r, h));
+    reporter.report(kRuleInvalidSize, fmt::format("Cylinder radius {} and height {} must both be positive", r, h));
     return {};
   }
   TriangleMesh mesh;
@@ -149,8 +144,7 @@ TriangleMesh cylinder_mesh(const Cylinder& cylinder, int n, Reporter& reporter) 
 TriangleMesh cone_mesh(const Cone& cone, int n, Reporter& reporter) {
   const double r = cone.radius, h = cone.height;
   if (!positive(r) || !positive(h)) {
-    reporter.report(kRuleInvalidSize,
-                   fmt::format("Cone radius {} and height {} must both be positive", r, h));
+    reporter.report(kRuleInvalidSize, fmt::format("Cone radius {} and height {} must both be positive", r, h));
     return {};
   }
   TriangleMesh mesh;
@@ -177,8 +171,7 @@ TriangleMesh capsule_mesh(const Capsule& capsule, int n, Reporter& reporter) {
   if (!positive(r) || !non_negative(h)) {
     // §9: height 0 is allowed (a sphere), < 0 or radius <= 0 is an error.
     reporter.report(kRuleInvalidSize,
-                   fmt::format("Capsule radius {} must be positive and height {} non-negative",
-                               r, h));
+                    fmt::format("Capsule radius {} must be positive and height {} non-negative", r, h));
     return {};
   }
   int vdn = n / 2;
@@ -220,31 +213,27 @@ TriangleMesh capsule_mesh(const Capsule& capsule, int n, Reporter& reporter) {
 TriangleMesh elevation_grid_mesh(const ElevationGrid& grid, Reporter& reporter) {
   const int xd = grid.x_dimension, zd = grid.z_dimension;
   if (xd < 0 || zd < 0) {
-    reporter.report(kRuleInvalidSize,
-                   fmt::format("ElevationGrid dimensions {} x {} must not be negative", xd, zd));
+    reporter.report(kRuleInvalidSize, fmt::format("ElevationGrid dimensions {} x {} must not be negative", xd, zd));
     return {};
   }
   const std::int64_t expected = static_cast<std::int64_t>(xd) * zd;
   if (static_cast<std::int64_t>(grid.height.size()) != expected) {
-    reporter.report(kRuleInvalidSize,
-                   fmt::format("ElevationGrid has {} height values; x_dimension * z_dimension "
-                               "= {} x {} = {} are required",
-                               grid.height.size(), xd, zd, expected));
+    reporter.report(kRuleInvalidSize, fmt::format("ElevationGrid has {} height values; x_dimension * z_dimension "
+                                                  "= {} x {} = {} are required",
+                                                  grid.height.size(), xd, zd, expected));
     return {};
   }
   if (xd < 2 || zd < 2) {
-    reporter.report(kRuleDegenerate,
-                   fmt::format("ElevationGrid of {} x {} points has no cell (at least 2 x 2 "
-                               "points are needed)",
-                               xd, zd));
+    reporter.report(kRuleDegenerate, fmt::format("ElevationGrid of {} x {} points has no cell (at least 2 x 2 "
+                                                 "points are needed)",
+                                                 xd, zd));
     return {};
   }
   TriangleMesh mesh;
   mesh.vertices.reserve(static_cast<std::size_t>(expected));
   for (int z = 0; z < zd; ++z) {
     for (int x = 0; x < xd; ++x) {
-      mesh.vertices.emplace_back(x * grid.x_spacing,
-                                 grid.height[static_cast<std::size_t>(z) * xd + x],
+      mesh.vertices.emplace_back(x * grid.x_spacing, grid.height[static_cast<std::size_t>(z) * xd + x],
                                  z * grid.z_spacing);
     }
   }
@@ -282,20 +271,18 @@ TriangleMesh face_set_mesh(const IndexedFaceSet& face_set, Reporter& reporter) {
     bool indices_ok = true;
     for (int i : polygon) {
       if (i < 0 || static_cast<std::size_t>(i) >= num_vertices) {
-        reporter.report(kRuleIndexOutOfRange,
-                       fmt::format("IndexedFaceSet polygon {}: vertex index {} is out of range "
-                                   "(the face set has {} vertices)",
-                                   polygon_number, i, num_vertices));
+        reporter.report(kRuleIndexOutOfRange, fmt::format("IndexedFaceSet polygon {}: vertex index {} is out of range "
+                                                          "(the face set has {} vertices)",
+                                                          polygon_number, i, num_vertices));
         indices_ok = false;
         reported = true;
         break;
       }
     }
     if (indices_ok && !triangulate_polygon(mesh.vertices, polygon, mesh.triangles)) {
-      reporter.report(kRuleDegenerate,
-                     fmt::format("IndexedFaceSet polygon {} ({} indices) has fewer than three "
-                                 "distinct points or no area",
-                                 polygon_number, polygon.size()));
+      reporter.report(kRuleDegenerate, fmt::format("IndexedFaceSet polygon {} ({} indices) has fewer than three "
+                                                   "distinct points or no area",
+                                                   polygon_number, polygon.size()));
       reported = true;
     }
     polygon.clear();
@@ -322,10 +309,9 @@ TriangleMesh triangle_list_mesh(const TriangleMeshGeometry& geometry, Reporter& 
     bool ok = true;
     for (int i : t) {
       if (i < 0 || static_cast<std::size_t>(i) >= num_vertices) {
-        reporter.report(kRuleIndexOutOfRange,
-                       fmt::format("TriangleMesh triangle {}: vertex index {} is out of range "
-                                   "(the mesh has {} vertices)",
-                                   k / 3, i, num_vertices));
+        reporter.report(kRuleIndexOutOfRange, fmt::format("TriangleMesh triangle {}: vertex index {} is out of range "
+                                                          "(the mesh has {} vertices)",
+                                                          k / 3, i, num_vertices));
         ok = false;
         break;
       }
@@ -333,10 +319,9 @@ TriangleMesh triangle_list_mesh(const TriangleMeshGeometry& geometry, Reporter& 
     if (ok) mesh.triangles.push_back(t);
   }
   if (num_full != geometry.faces.size()) {
-    reporter.report(kRuleDegenerate,
-                   fmt::format("TriangleMesh faces has {} indices, not a multiple of 3; the "
-                               "last {} are ignored",
-                               geometry.faces.size(), geometry.faces.size() - num_full));
+    reporter.report(kRuleDegenerate, fmt::format("TriangleMesh faces has {} indices, not a multiple of 3; the "
+                                                 "last {} are ignored",
+                                                 geometry.faces.size(), geometry.faces.size() - num_full));
   }
   if (geometry.faces.empty()) reporter.report(kRuleDegenerate, "TriangleMesh has no triangle");
   return mesh;
@@ -352,15 +337,13 @@ TriangleMesh tessellate(const Geometry& geometry, int division_number, Diagnosti
                         const SourceLocation& where) {
   Reporter reporter(sink, where);
   int n = effective_division_number(division_number);
-  const bool uses_division = std::holds_alternative<Sphere>(geometry) ||
-                             std::holds_alternative<Cylinder>(geometry) ||
-                             std::holds_alternative<Cone>(geometry) ||
-                             std::holds_alternative<Capsule>(geometry);
+  const bool uses_division = std::holds_alternative<Sphere>(geometry) || std::holds_alternative<Cylinder>(geometry) ||
+                             std::holds_alternative<Cone>(geometry) || std::holds_alternative<Capsule>(geometry);
   if (uses_division && n > kMaxDivisionNumber) {
     reporter.report("geometry-division-clamped",
-                     fmt::format("division_number {} exceeds the tessellator's limit {}; {} is "
-                                 "used",
-                                 n, kMaxDivisionNumber, kMaxDivisionNumber));
+                    fmt::format("division_number {} exceeds the tessellator's limit {}; {} is "
+                                "used",
+                                n, kMaxDivisionNumber, kMaxDivisionNumber));
     n = kMaxDivisionNumber;
   }
   struct Visitor {
@@ -371,16 +354,10 @@ TriangleMesh tessellate(const Geometry& geometry, int division_number, Diagnosti
     TriangleMesh operator()(const Cylinder& g) const { return cylinder_mesh(g, n, reporter); }
     TriangleMesh operator()(const Cone& g) const { return cone_mesh(g, n, reporter); }
     TriangleMesh operator()(const Capsule& g) const { return capsule_mesh(g, n, reporter); }
-    TriangleMesh operator()(const Extrusion& g) const {
-      return detail::tessellate_extrusion(g, reporter);
-    }
-    TriangleMesh operator()(const ElevationGrid& g) const {
-      return elevation_grid_mesh(g, reporter);
-    }
+    TriangleMesh operator()(const Extrusion& g) const { return detail::tessellate_extrusion(g, reporter); }
+    TriangleMesh operator()(const ElevationGrid& g) const { return elevation_grid_mesh(g, reporter); }
     TriangleMesh operator()(const IndexedFaceSet& g) const { return face_set_mesh(g, reporter); }
-    TriangleMesh operator()(const TriangleMeshGeometry& g) const {
-      return triangle_list_mesh(g, reporter);
-    }
+    TriangleMesh operator()(const TriangleMeshGeometry& g) const { return triangle_list_mesh(g, reporter); }
     TriangleMesh operator()(const MeshResource&) const { return {}; }
   };
   return std::visit(Visitor{n, reporter}, geometry);

@@ -58,24 +58,21 @@ bool check_list_sizes(const Extrusion& extrusion, Reporter& reporter) {
   const std::size_t num_cs = extrusion.cross_section.size(), num_spine = extrusion.spine.size();
   bool ok = true;
   if (num_cs < 2 || num_spine < 2) {
-    reporter.report(kRuleInvalidSize,
-                    fmt::format("Extrusion needs at least 2 cross_section points and 2 spine "
-                                "points; it has {} and {}",
-                                num_cs, num_spine));
+    reporter.report(kRuleInvalidSize, fmt::format("Extrusion needs at least 2 cross_section points and 2 spine "
+                                                  "points; it has {} and {}",
+                                                  num_cs, num_spine));
     ok = false;
   }
   if (extrusion.orientation.size() > 1 && extrusion.orientation.size() != num_spine) {
-    reporter.report(kRuleInvalidSize,
-                    fmt::format("Extrusion has {} orientation entries; 1 or one per spine point "
-                                "({}) are required",
-                                extrusion.orientation.size(), num_spine));
+    reporter.report(kRuleInvalidSize, fmt::format("Extrusion has {} orientation entries; 1 or one per spine point "
+                                                  "({}) are required",
+                                                  extrusion.orientation.size(), num_spine));
     ok = false;
   }
   if (extrusion.scale.size() > 1 && extrusion.scale.size() != num_spine) {
-    reporter.report(kRuleInvalidSize,
-                    fmt::format("Extrusion has {} scale entries; 1 or one per spine point ({}) "
-                                "are required",
-                                extrusion.scale.size(), num_spine));
+    reporter.report(kRuleInvalidSize, fmt::format("Extrusion has {} scale entries; 1 or one per spine point ({}) "
+                                                  "are required",
+                                                  extrusion.scale.size(), num_spine));
     ok = false;
   }
   return ok;
@@ -96,10 +93,9 @@ std::optional<Layout> layout_of(const Extrusion& extrusion, Reporter& reporter) 
   l.ns = static_cast<int>(extrusion.spine.size()) - (l.spine_closed ? 1 : 0);
   l.nc = static_cast<int>(extrusion.cross_section.size()) - (l.cs_closed ? 1 : 0);
   if (l.ns < 2 || l.nc < 2) {
-    reporter.report(kRuleDegenerate,
-                    fmt::format("Extrusion {} has fewer than 2 distinct points once its closing "
-                                "point is removed",
-                                l.ns < 2 ? "spine" : "cross_section"));
+    reporter.report(kRuleDegenerate, fmt::format("Extrusion {} has fewer than 2 distinct points once its closing "
+                                                 "point is removed",
+                                                 l.ns < 2 ? "spine" : "cross_section"));
     return std::nullopt;
   }
   return l;

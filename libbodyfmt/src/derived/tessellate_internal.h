@@ -19,7 +19,6 @@ class Reporter {
   void report(const char* rule_id, std::string message);
 
  private:
-
   static constexpr int kMaxReports = 10;
   DiagnosticSink& sink_;
   const SourceLocation& where_;

@@ -70,8 +70,7 @@ TriangleMesh with_vertex_normals(const TriangleMesh& mesh, double crease_angle) 
         if (smoothed_together(f, g)) sum += weighted[g];
       }
       const double norm = sum.norm();
-      const Eigen::Vector3d n = norm > 0 && std::isfinite(norm) ? Eigen::Vector3d(sum / norm)
-                                                                : Eigen::Vector3d::Zero();
+      const Eigen::Vector3d n = norm > 0 && std::isfinite(norm) ? Eigen::Vector3d(sum / norm) : Eigen::Vector3d::Zero();
       const std::array<double, 3> key{n.x(), n.y(), n.z()};
       auto [it, inserted] = split[v].emplace(key, static_cast<int>(out.vertices.size()));
       if (inserted) {

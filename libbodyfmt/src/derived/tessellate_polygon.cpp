@@ -15,9 +15,7 @@ namespace bodyfmt {
 
 namespace {
 
-double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
+double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 /// The polygon's indices without consecutive repeats (same index or same position, wrapping
 /// around): they add no area and would make zero-length edges that break the convexity test.
@@ -40,7 +38,8 @@ struct PlanarPolygon {
   double area_tolerance = 0;
 };
 
-std::optional<PlanarPolygon> project_to_plane(const std::vector<Eigen::Vector3d>& vertices, const std::vector<int>& ids) {
+std::optional<PlanarPolygon> project_to_plane(const std::vector<Eigen::Vector3d>& vertices,
+                                              const std::vector<int>& ids) {
   const std::size_t n = ids.size();
   auto at = [&](std::size_t k) -> const Eigen::Vector3d& { return vertices[static_cast<std::size_t>(ids[k])]; };
   // Newell's normal: twice the vector area of the polygon, robust for non-planar and
@@ -153,8 +152,7 @@ class EarClipper {
 
 }  // namespace
 
-bool triangulate_polygon(const std::vector<Eigen::Vector3d>& vertices,
-                         const std::vector<int>& polygon,
+bool triangulate_polygon(const std::vector<Eigen::Vector3d>& vertices, const std::vector<int>& polygon,
                          std::vector<std::array<int, 3>>& triangles) {
   const std::vector<int> ids = distinct_corners(vertices, polygon);
   if (ids.size() < 3) return false;

@@ -42,8 +42,7 @@ static std::string format_location(const SourceLocation& location) {
 }
 
 std::string format_diagnostic(const Diagnostic& d) {
-  std::string text = format_location(d.location) + ": " + std::string(severity_name(d.severity)) +
-                     ": " + d.message;
+  std::string text = format_location(d.location) + ": " + std::string(severity_name(d.severity)) + ": " + d.message;
   if (!d.rule_id.empty()) text += " [" + d.rule_id + "]";
   if (d.via) text += "\n" + format_location(*d.via) + ": note: reached through this alias";
   if (!d.fix_hint.empty()) text += "\n" + format_location(d.location) + ": note: " + d.fix_hint;

@@ -22,8 +22,7 @@ bool rule_pattern_matches(std::string_view pattern, std::string_view rule_id) {
 
 std::string check_rule_pattern(std::string_view pattern) {
   const auto& rules = all_rules();
-  if (std::any_of(rules.begin(), rules.end(),
-                  [&](const RuleInfo& r) { return rule_pattern_matches(pattern, r.id); }))
+  if (std::any_of(rules.begin(), rules.end(), [&](const RuleInfo& r) { return rule_pattern_matches(pattern, r.id); }))
     return {};
   std::string message = "unknown rule id '" + std::string(pattern) + "'";
   std::string_view best;
@@ -33,8 +32,10 @@ std::string check_rule_pattern(std::string_view pattern) {
     if (d < best_distance) best_distance = d, best = r.id;
   }
   const int allowed = std::max<int>(2, static_cast<int>(pattern.size()) / 3);
-  if (!best.empty() && best_distance <= allowed) message += "; did you mean '" + std::string(best) + "'?";
-  else message += " (bodycheck --list-rules lists them)";
+  if (!best.empty() && best_distance <= allowed)
+    message += "; did you mean '" + std::string(best) + "'?";
+  else
+    message += " (bodycheck --list-rules lists them)";
   return message;
 }
 
@@ -50,8 +51,10 @@ std::size_t comment_start(std::string_view line) {
   for (std::size_t i = 0; i < line.size(); ++i) {
     const char c = line[i];
     if (in_double) {
-      if (c == '\\') ++i;
-      else if (c == '"') in_double = false;
+      if (c == '\\')
+        ++i;
+      else if (c == '"')
+        in_double = false;
     } else if (in_single) {
       if (c == '\'') in_single = false;
     } else if (c == '"' && (i == 0 || line[i - 1] == ' ' || line[i - 1] == '\t' || line[i - 1] == '[' ||

@@ -9,7 +9,6 @@ using bodyfmt::text::json_quote;
 
 namespace bodyfmt {
 
-
 namespace {
 
 std::string_view json_severity(Severity s) {

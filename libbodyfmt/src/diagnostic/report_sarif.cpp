@@ -157,15 +157,16 @@ std::string format_sarif_report(const Report& report, const ToolInfo& tool, cons
     std::string full = sentence(std::string(r.summary)) + ' ' + sentence(std::string(r.rationale));
     if (!r.tolerance.empty()) full += " Tolerance: " + sentence(std::string(r.tolerance));
     out += i == 0 ? "\n" : ",\n";
-    out += "            {\"id\": " + json_quote(r.id) + ", \"name\": " + json_quote(pascal_case(r.id)) + ", \"shortDescription\": {\"text\": " +
-           json_quote(sentence(std::string(r.summary))) + "}, \"fullDescription\": {\"text\": " + json_quote(full) +
+    out += "            {\"id\": " + json_quote(r.id) + ", \"name\": " + json_quote(pascal_case(r.id)) +
+           ", \"shortDescription\": {\"text\": " + json_quote(sentence(std::string(r.summary))) +
+           "}, \"fullDescription\": {\"text\": " + json_quote(full) +
            "}, \"defaultConfiguration\": {\"level\": " + json_quote(sarif_level(r.default_severity)) + "}}";
   }
   out += rules.empty() ? "]\n" : "\n          ]\n";
   out += "        }\n      },\n";
 
-  out += "      \"originalUriBaseIds\": {" + json_quote(kSrcRoot) + ": {\"uri\": " + json_quote(uris.base_uri()) +
-         "}},\n";
+  out +=
+      "      \"originalUriBaseIds\": {" + json_quote(kSrcRoot) + ": {\"uri\": " + json_quote(uris.base_uri()) + "}},\n";
   out += "      \"columnKind\": \"unicodeCodePoints\",\n";
 
   // Every checked file is an artifact, so that files without results are listed too.
@@ -193,13 +194,13 @@ std::string format_sarif_report(const Report& report, const ToolInfo& tool, cons
     out += "        {\"ruleId\": " + json_quote(d.rule_id.empty() ? std::string("unknown") : d.rule_id);
     const auto row = std::lower_bound(rules.begin(), rules.end(), d.rule_id,
                                       [](const RuleInfo& r, const std::string& key) { return r.id < key; });
-    if (row != rules.end() && row->id == d.rule_id)
-      out += ", \"ruleIndex\": " + std::to_string(row - rules.begin());
+    if (row != rules.end() && row->id == d.rule_id) out += ", \"ruleIndex\": " + std::to_string(row - rules.begin());
     out += ", \"level\": " + json_quote(sarif_level(d.severity));
     out += ", \"message\": {\"text\": " + json_quote(text) + "}";
     if (!d.location.file.empty())
-      out += ", \"locations\": [{\"physicalLocation\": " +
-             physical_location(d.location, uris, sources, artifact_index) + "}]";
+      out +=
+          ", \"locations\": [{\"physicalLocation\": " + physical_location(d.location, uris, sources, artifact_index) +
+          "}]";
     if (d.via && !d.via->file.empty())
       out += ", \"relatedLocations\": [{\"id\": 1, \"physicalLocation\": " +
              physical_location(*d.via, uris, sources, artifact_index) +

@@ -61,8 +61,10 @@ std::string caret_line(const std::string& source, int column) {
   const std::size_t limit = std::min(source.size(), static_cast<std::size_t>(column > 0 ? column - 1 : 0));
   for (std::size_t i = 0; i < limit; ++i) {
     const unsigned char c = static_cast<unsigned char>(source[i]);
-    if (c == '\t') pad += '\t';
-    else if ((c & 0xC0) != 0x80) pad += ' ';  // skip UTF-8 continuation bytes
+    if (c == '\t')
+      pad += '\t';
+    else if ((c & 0xC0) != 0x80)
+      pad += ' ';  // skip UTF-8 continuation bytes
   }
   // A column past the end (e.g. "missing key" at the end of the line) gets the caret there.
   for (std::size_t i = limit; i + 1 < static_cast<std::size_t>(column > 0 ? column : 1); ++i) pad += ' ';
@@ -110,13 +112,11 @@ std::string format_text_report(const Report& report, SourceLines& sources, const
 }
 
 std::string format_summary_line(const Report& report) {
-  auto plural = [](int n, const char* word) {
-    return std::to_string(n) + ' ' + word + (n == 1 ? "" : "s");
-  };
+  auto plural = [](int n, const char* word) { return std::to_string(n) + ' ' + word + (n == 1 ? "" : "s"); };
   const int errors = report.count(Severity::kError) + report.count(Severity::kFatal);
-  std::string text = "bodycheck: " + plural(static_cast<int>(report.files.size()), "file") + " checked: " +
-                     plural(errors, "error") + ", " + plural(report.count(Severity::kWarning), "warning") +
-                     ", " + plural(report.count(Severity::kNote), "note");
+  std::string text =
+      "bodycheck: " + plural(static_cast<int>(report.files.size()), "file") + " checked: " + plural(errors, "error") +
+      ", " + plural(report.count(Severity::kWarning), "warning") + ", " + plural(report.count(Severity::kNote), "note");
   if (report.suppressed > 0) text += ", " + std::to_string(report.suppressed) + " suppressed";
   if (report.disabled > 0) text += ", " + std::to_string(report.disabled) + " disabled";
   return text + '\n';

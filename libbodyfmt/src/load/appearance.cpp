@@ -14,9 +14,9 @@ Appearance read_appearance(LoadContext& ctx, const yaml::NodeRef& appearance) {
     // Choreonoid reads appearance as an optional mapping: anything else is ignored (SR1DH
     // has an empty `appearance:` whose material slipped to the Shape's indentation level).
     ctx.report("load-ignored-value", appearance,
-                appearance->is_null() ? "this appearance is empty; Choreonoid ignores it"
-                                      : "appearance must be a mapping; Choreonoid ignores this value",
-                "indent material and texture under appearance");
+               appearance->is_null() ? "this appearance is empty; Choreonoid ignores it"
+                                     : "appearance must be a mapping; Choreonoid ignores this value",
+               "indent material and texture under appearance");
     return result;
   }
   MappingReader r(ctx, appearance, "appearance");
@@ -28,25 +28,27 @@ Appearance read_appearance(LoadContext& ctx, const yaml::NodeRef& appearance) {
       MappingReader mr(ctx, m, "material");
       assign_if(material.ambient_intensity, take_optional_double(mr, {"ambient", "ambientIntensity"}));
       if (auto v = mr.take({"diffuse", "diffuseColor"})) assign_if(material.diffuse_color, read_optional_vec3(ctx, v));
-      if (auto v = mr.take({"emissive", "emissiveColor"})) assign_if(material.emissive_color, read_optional_vec3(ctx, v));
-      if (auto v = mr.take({"specular", "specularColor"})) assign_if(material.specular_color, read_optional_vec3(ctx, v));
+      if (auto v = mr.take({"emissive", "emissiveColor"}))
+        assign_if(material.emissive_color, read_optional_vec3(ctx, v));
+      if (auto v = mr.take({"specular", "specularColor"}))
+        assign_if(material.specular_color, read_optional_vec3(ctx, v));
       if (auto v = mr.take({"specular_exponent"})) {
         assign_if(material.specular_exponent, optional_double(ctx, v));
         if (auto shininess = mr.take({"shininess"}))
           ctx.report("load-ignored-key", shininess,
-                      "\"shininess\" is ignored by Choreonoid when specular_exponent is given",
-                      "remove shininess");
+                     "\"shininess\" is ignored by Choreonoid when specular_exponent is given", "remove shininess");
       } else if (auto shininess = mr.take({"shininess"})) {
         // body-format-spec §8.7: legacy VRML shininess maps to an exponent.
         if (auto s = optional_double(ctx, shininess)) {
           material.specular_exponent = 127.0 * std::clamp(*s, 0.0, 1.0) + 1.0;
-          ctx.report("load-legacy-shininess", shininess, "legacy key \"shininess\"; the modern key is \"specular_exponent\"",
-                   "write specular_exponent: " + std::to_string(material.specular_exponent));
+          ctx.report("load-legacy-shininess", shininess,
+                     "legacy key \"shininess\"; the modern key is \"specular_exponent\"",
+                     "write specular_exponent: " + std::to_string(material.specular_exponent));
         }
       }
       assign_if(material.transparency, take_optional_double(mr, {"transparency"}));
-      mr.report_unknown({"ambient", "diffuse", "emissive", "specular", "specular_exponent",
-                         "shininess", "transparency"});
+      mr.report_unknown(
+          {"ambient", "diffuse", "emissive", "specular", "specular_exponent", "shininess", "transparency"});
       result.material = material;
     }
   }

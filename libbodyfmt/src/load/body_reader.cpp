@@ -17,17 +17,33 @@ namespace bodyfmt::detail {
 namespace {
 
 // body-format-spec §2.3: keys other Choreonoid subsystems read from the body info.
-const std::vector<std::string_view> kKnownInfoKeys = {
-    "standard_pose", "standardPose", "link_group", "linkGroup", "foot_links", "footLinks",
-    "symmetric_joints", "symmetricJoints", "symmetric_ik_links", "symmetricIkLinks",
-    "default_ik_setup", "defaultIKsetup", "pose_conversion_info", "collision_detection_rules",
-    "collisionDetection", "available_ik_interpolation_links", "default_ik_interpolation_links",
-    "body_markers", "preset_poses", "MultiCopterTargetBody", "lipSyncShapes",
-    "linearInterpolationJoints", "apply_camera_effect"};
+const std::vector<std::string_view> kKnownInfoKeys = {"standard_pose",
+                                                      "standardPose",
+                                                      "link_group",
+                                                      "linkGroup",
+                                                      "foot_links",
+                                                      "footLinks",
+                                                      "symmetric_joints",
+                                                      "symmetricJoints",
+                                                      "symmetric_ik_links",
+                                                      "symmetricIkLinks",
+                                                      "default_ik_setup",
+                                                      "defaultIKsetup",
+                                                      "pose_conversion_info",
+                                                      "collision_detection_rules",
+                                                      "collisionDetection",
+                                                      "available_ik_interpolation_links",
+                                                      "default_ik_interpolation_links",
+                                                      "body_markers",
+                                                      "preset_poses",
+                                                      "MultiCopterTargetBody",
+                                                      "lipSyncShapes",
+                                                      "linearInterpolationJoints",
+                                                      "apply_camera_effect"};
 
-const std::vector<std::string_view> kHeaderKeys = {
-    "format", "format_version", "angle_unit", "name", "root_link", "links", "extra_joints",
-    "body_handlers", "model_file"};
+const std::vector<std::string_view> kHeaderKeys = {"format",       "format_version", "angle_unit",
+                                                   "name",         "root_link",      "links",
+                                                   "extra_joints", "body_handlers",  "model_file"};
 
 }  // namespace
 
@@ -47,8 +63,7 @@ std::optional<Model> BodyReader::read(const std::string& text, const std::string
   const yaml::NodeRef root = document->root;
   if (!root || !root->is_mapping()) {
     SourceLocation at{file_name, 1, 1};
-    ctx_.report("load-top-level", root ? root.use_site() : at,
-                "the top level of a body file must be a mapping");
+    ctx_.report("load-top-level", root ? root.use_site() : at, "the top level of a body file must be a mapping");
     return std::nullopt;
   }
   struct ChainEntry {  // recursion detection for SubBody includes (§11.2)
@@ -133,11 +148,10 @@ bool BodyReader::read_header(const yaml::NodeRef& root, Model& model) {
   yaml::NodeRef format = r.take({"format"});
   if (!format) {
     if (r.take({"model_file", "modelFile"}))
-      ctx_.report("load-wrapper", root.use_site(),
-                  "wrapper body files (model_file without format) are not supported");
+      ctx_.report("load-wrapper", root.use_site(), "wrapper body files (model_file without format) are not supported");
     else
-      ctx_.report("load-format", root.use_site(),
-                  "neither format nor model_file is specified", "add format: ChoreonoidBody");
+      ctx_.report("load-format", root.use_site(), "neither format nor model_file is specified",
+                  "add format: ChoreonoidBody");
     return false;
   }
   if (format->scalar != "ChoreonoidBody") {
@@ -148,8 +162,7 @@ bool BodyReader::read_header(const yaml::NodeRef& root, Model& model) {
   yaml::NodeRef version = r.take({"format_version", "formatVersion"});
   if (!version) {
     ctx_.report("load-format-version", root.use_site(),
-                "the version of the Choreonoid body file format is not specified",
-                "add format_version: 2.0");
+                "the version of the Choreonoid body file format is not specified", "add format_version: 2.0");
     return false;
   }
   auto v = required_double(ctx_, version);
@@ -164,22 +177,21 @@ bool BodyReader::read_header(const yaml::NodeRef& root, Model& model) {
     if (unit->scalar == "radian") {
       if (*v >= 2.0) {
         // body-format-spec §2.1: radian mode is rejected in format 2.0.
-        ctx_.report("units-radian-in-2.0", unit.use_site(),
-                    "radian mode is not supported in format version 2.0",
+        ctx_.report("units-radian-in-2.0", unit.use_site(), "radian mode is not supported in format version 2.0",
                     "write angles in degrees, or use format_version: 1.0");
         return false;
       }
       ctx_.degrees = false;
     } else if (unit->scalar != "degree") {
-      ctx_.report("load-angle-unit", unit.use_site(),
-                  "the angle_unit value must be either \"radian\" or \"degree\"");
+      ctx_.report("load-angle-unit", unit.use_site(), "the angle_unit value must be either \"radian\" or \"degree\"");
       return false;
     }
   }
   model.angles_in_degrees = ctx_.degrees;
   if (auto name = r.take({"name"})) model.name = name->scalar;
   if (auto handlers = r.take({"body_handlers"})) {
-    if (handlers->is_scalar()) model.body_handlers.push_back(handlers->scalar);
+    if (handlers->is_scalar())
+      model.body_handlers.push_back(handlers->scalar);
     else if (handlers->is_sequence())
       for (const auto& h : handlers->items)
         if (h->is_scalar()) model.body_handlers.push_back(h->scalar);
@@ -203,7 +215,7 @@ void BodyReader::read_links(const yaml::NodeRef& links, Model& model, std::vecto
       return;
     }
     ctx_.report("load-link-type", node, "a " + type + " node cannot be specified in links",
-               "use Link, SubBody, ContinuousTrack or Skip");
+                "use Link, SubBody, ContinuousTrack or Skip");
   };
   if (links->is_sequence()) {
     if (links->items.empty()) ctx_.report("load-no-links", links, "no link is contained in the \"links\" listing");
@@ -338,8 +350,9 @@ void BodyReader::reorder_links(Model& model, const std::vector<LinkIndex>& order
   for (LinkIndex i = 0; i < static_cast<LinkIndex>(model.links.size()); ++i) {
     if (new_index[at(i)] < 0 && parent[at(i)] >= 0) {
       const Link& link = model.links[at(i)];
-      ctx_.report("structure-unreachable", link.source,
-                  "link \"" + link.name + "\" is not connected to the root link \"" + model.links[at(order[0])].name + "\"");
+      ctx_.report(
+          "structure-unreachable", link.source,
+          "link \"" + link.name + "\" is not connected to the root link \"" + model.links[at(order[0])].name + "\"");
     }
   }
   std::vector<Link> ordered;
@@ -410,7 +423,8 @@ void BodyReader::read_extra_joints(const yaml::NodeRef& extra_joints, Model& mod
       }
       LinkIndex index = model.find_link(name->scalar);
       if (index < 0) {
-        ctx_.report("extra-joint-link", name, "the link \"" + name->scalar + "\" specified in " + snake + " is not found");
+        ctx_.report("extra-joint-link", name,
+                    "the link \"" + name->scalar + "\" specified in " + snake + " is not found");
         ok = false;
       }
       (k == 1 ? joint.link1 : joint.link2) = index;
@@ -419,17 +433,20 @@ void BodyReader::read_extra_joints(const yaml::NodeRef& extra_joints, Model& mod
     if (!type) {
       ctx_.report("extra-joint-type", node, "the joint type must be specified with the \"joint_type\" key");
       ok = false;
-    } else if (type->scalar != "fixed" && type->scalar != "hinge" && type->scalar != "ball" && type->scalar != "piston") {
+    } else if (type->scalar != "fixed" && type->scalar != "hinge" && type->scalar != "ball" &&
+               type->scalar != "piston") {
       ctx_.report("extra-joint-type", type, "joint type \"" + type->scalar + "\" is not available",
-                 "use fixed, hinge, ball or piston");
+                  "use fixed, hinge, ball or piston");
       ok = false;
     } else {
       joint.type = type->scalar;
     }
     if (auto axis = r.take({"axis", "jointAxis"})) {
       if (auto a = read_vec3(ctx_, axis)) {
-        if (a->norm() > 0) joint.axis = a->normalized();
-        else ctx_.report("extra-joint-axis", axis, "the extra joint axis is the zero vector");
+        if (a->norm() > 0)
+          joint.axis = a->normalized();
+        else
+          ctx_.report("extra-joint-axis", axis, "the extra joint axis is the zero vector");
       }
     }
     if (auto t = r.take({"translation_in_link1", "link1LocalPos"}))
@@ -443,10 +460,10 @@ void BodyReader::read_extra_joints(const yaml::NodeRef& extra_joints, Model& mod
     for (const char* ignored : {"link1_local_pos", "link2_local_pos"}) {
       if (auto v = r.take({ignored}))
         ctx_.report("load-ignored-key", v, std::string("Choreonoid does not read \"") + ignored + "\"",
-                     std::string("use translation_in_link") + ignored[4]);
+                    std::string("use translation_in_link") + ignored[4]);
     }
-    r.report_unknown({"link1_name", "link2_name", "joint_type", "axis", "translation_in_link1",
-                      "translation_in_link2", "rotation_in_link1", "rotation_in_link2"});
+    r.report_unknown({"link1_name", "link2_name", "joint_type", "axis", "translation_in_link1", "translation_in_link2",
+                      "rotation_in_link1", "rotation_in_link2"});
     if (ok) model.extra_joints.push_back(joint);
   }
 }

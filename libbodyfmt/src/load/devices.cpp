@@ -10,17 +10,24 @@ namespace bodyfmt::detail {
 namespace {
 
 constexpr std::array<std::string_view, 17> kCoreDevices = {
-    "ForceSensor", "RateGyroSensor", "AccelerationSensor", "IMU",        "Camera",
-    "CameraDevice", "RangeSensor",   "PointLight",         "SpotLight",  "DigitalIO",
-    "Holder",       "Attachment",    "Conveyor",           "ZmpDevice",  "MarkerDevice",
-    "VisionSensor", "RangeCamera"};
+    "ForceSensor", "RateGyroSensor", "AccelerationSensor", "IMU",          "Camera",     "CameraDevice",
+    "RangeSensor", "PointLight",     "SpotLight",          "DigitalIO",    "Holder",     "Attachment",
+    "Conveyor",    "ZmpDevice",      "MarkerDevice",       "VisionSensor", "RangeCamera"};
 
-constexpr std::array<std::string_view, 14> kPluginNodes = {
-    "RotorDevice",       "FireDevice",          "SmokeDevice",
-    "RainDevice",        "SnowDevice",          "FountainDevice",
-    "LivoxMid360",       "CompetitorMarker",    "PxContinuousTrack",
-    "AGXVehicleContinuousTrackDevice", "AGXBreakableJointDevice", "AGXMagneticJointDevice",
-    "AGXWireDevice",     "StdActionController"};
+constexpr std::array<std::string_view, 14> kPluginNodes = {"RotorDevice",
+                                                           "FireDevice",
+                                                           "SmokeDevice",
+                                                           "RainDevice",
+                                                           "SnowDevice",
+                                                           "FountainDevice",
+                                                           "LivoxMid360",
+                                                           "CompetitorMarker",
+                                                           "PxContinuousTrack",
+                                                           "AGXVehicleContinuousTrackDevice",
+                                                           "AGXBreakableJointDevice",
+                                                           "AGXMagneticJointDevice",
+                                                           "AGXWireDevice",
+                                                           "StdActionController"};
 
 std::optional<double> opt_angle(MappingReader& r, KeyNames names) {
   auto v = take_optional_double(r, names);
@@ -45,14 +52,14 @@ bool read_camera(MappingReader& r, Device& d) {
   CameraParams c;
   yaml::NodeRef format = r.take({"format"});
   c.format = format && format->is_scalar() ? format->scalar : "";
-  static const std::array<std::string_view, 5> kFormats = {"COLOR", "DEPTH", "COLOR_DEPTH",
-                                                           "POINT_CLOUD", "COLOR_POINT_CLOUD"};
+  static const std::array<std::string_view, 5> kFormats = {"COLOR", "DEPTH", "COLOR_DEPTH", "POINT_CLOUD",
+                                                           "COLOR_POINT_CLOUD"};
   if (std::find(kFormats.begin(), kFormats.end(), c.format) == kFormats.end()) {
     // body-format-spec §10.2: Choreonoid drops such a camera without a word.
     ctx.report("device-camera-dropped", format ? format : r.node(),
-                c.format.empty() ? "this Camera has no format; Choreonoid silently drops it"
-                                 : "unknown camera format \"" + c.format + "\"; Choreonoid silently drops the camera",
-                "set format to COLOR, DEPTH, COLOR_DEPTH, POINT_CLOUD or COLOR_POINT_CLOUD");
+               c.format.empty() ? "this Camera has no format; Choreonoid silently drops it"
+                                : "unknown camera format \"" + c.format + "\"; Choreonoid silently drops the camera",
+               "set format to COLOR, DEPTH, COLOR_DEPTH, POINT_CLOUD or COLOR_POINT_CLOUD");
     return false;
   }
   d.type = c.format == "COLOR" ? "Camera" : "RangeCamera";
@@ -66,7 +73,7 @@ bool read_camera(MappingReader& r, Device& d) {
   c.optical_frame = opt_string(r, {"optical_frame"}, c.optical_frame);
   if (c.optical_frame != "gl" && c.optical_frame != "cv" && c.optical_frame != "robotics")
     ctx.report("device-optical-frame", r.node()->find("optical_frame")->value,
-              "unknown optical frame type \"" + c.optical_frame + "\"", "use gl, cv or robotics");
+               "unknown optical frame type \"" + c.optical_frame + "\"", "use gl, cv or robotics");
   assign_if(c.min_distance, take_optional_double(r, {"min_distance"}));
   assign_if(c.max_distance, take_optional_double(r, {"max_distance"}));
   assign_if(c.detection_rate, take_optional_double(r, {"detection_rate"}));
@@ -153,9 +160,10 @@ bool read_device_params(MappingReader& r, std::string_view t, Device& d) {
     d.params = s;
   } else {
     // Devices no stage interprets yet keep their scalar keys only.
-    static const std::pair<std::string_view, std::string_view> kClassNames[] = {
-        {"DigitalIO", "DigitalIoDevice"}, {"Holder", "HolderDevice"},
-        {"Attachment", "AttachmentDevice"}, {"Conveyor", "ConveyorDevice"}};
+    static const std::pair<std::string_view, std::string_view> kClassNames[] = {{"DigitalIO", "DigitalIoDevice"},
+                                                                                {"Holder", "HolderDevice"},
+                                                                                {"Attachment", "AttachmentDevice"},
+                                                                                {"Conveyor", "ConveyorDevice"}};
     d.type = std::string(t);
     for (const auto& [node, cls] : kClassNames)
       if (node == t) d.type = std::string(cls);

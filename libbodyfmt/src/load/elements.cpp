@@ -1,7 +1,7 @@
 #include "load/elements.h"
 
-#include "load/devices.h"
 #include "load/appearance.h"
+#include "load/devices.h"
 #include "load/geometry.h"
 #include "load/mapping_reader.h"
 #include "load/scalar.h"
@@ -13,26 +13,47 @@
 namespace bodyfmt::detail {
 namespace {
 
-const std::vector<std::string_view> kElementTypes = {
-    "Skip",   "Group",    "Transform",         "RigidBody",          "Visual",
-    "Collision", "Resource", "Shape",          "LineSet",            "DirectionalLight",
-    "PerspectiveCamera", "OrthographicCamera", "Fog", "Text", "Node",
-    "ForceSensor", "RateGyroSensor", "AccelerationSensor", "IMU", "Camera", "CameraDevice",
-    "RangeSensor", "PointLight", "SpotLight", "DigitalIO", "Holder", "Attachment",
-    "Conveyor", "ZmpDevice", "MarkerDevice"};
+const std::vector<std::string_view> kElementTypes = {"Skip",
+                                                     "Group",
+                                                     "Transform",
+                                                     "RigidBody",
+                                                     "Visual",
+                                                     "Collision",
+                                                     "Resource",
+                                                     "Shape",
+                                                     "LineSet",
+                                                     "DirectionalLight",
+                                                     "PerspectiveCamera",
+                                                     "OrthographicCamera",
+                                                     "Fog",
+                                                     "Text",
+                                                     "Node",
+                                                     "ForceSensor",
+                                                     "RateGyroSensor",
+                                                     "AccelerationSensor",
+                                                     "IMU",
+                                                     "Camera",
+                                                     "CameraDevice",
+                                                     "RangeSensor",
+                                                     "PointLight",
+                                                     "SpotLight",
+                                                     "DigitalIO",
+                                                     "Holder",
+                                                     "Attachment",
+                                                     "Conveyor",
+                                                     "ZmpDevice",
+                                                     "MarkerDevice"};
 
-const std::vector<std::string_view> kTransformKeys = {"type", "name", "translation", "rotation",
-                                                      "scale", "elements"};
+const std::vector<std::string_view> kTransformKeys = {"type", "name", "translation", "rotation", "scale", "elements"};
 
-std::vector<std::string_view> with(std::vector<std::string_view> a,
-                                   std::initializer_list<std::string_view> b) {
+std::vector<std::string_view> with(std::vector<std::string_view> a, std::initializer_list<std::string_view> b) {
   a.insert(a.end(), b.begin(), b.end());
   return a;
 }
 
 bool is_scene_only_type(std::string_view t) {
-  return t == "LineSet" || t == "DirectionalLight" || t == "PerspectiveCamera" ||
-         t == "OrthographicCamera" || t == "Fog" || t == "Text" || t == "Node";
+  return t == "LineSet" || t == "DirectionalLight" || t == "PerspectiveCamera" || t == "OrthographicCamera" ||
+         t == "Fog" || t == "Text" || t == "Node";
 }
 
 }  // namespace
@@ -75,8 +96,8 @@ void ElementReader::read_elements(const yaml::NodeRef& elements, const ElementFr
       }
       if (const yaml::MapEntry* inner = e->value->find("type"); inner && inner->value->scalar != e->key) {
         ctx_.report("load-type-mismatch", inner->value,
-                   "the node type \"" + inner->value->scalar + "\" is different from the type \"" +
-                       e->key + "\" specified in the parent node");
+                    "the node type \"" + inner->value->scalar + "\" is different from the type \"" + e->key +
+                        "\" specified in the parent node");
         continue;
       }
       read_node(elements.child(e->value), e->key, frame);
@@ -99,7 +120,7 @@ std::optional<ElementFrame> ElementReader::enter(MappingReader& r, const Element
       if (!s->is_sequence()) {
         // body-format-spec §4.4: a scalar scale is silently ignored by Choreonoid.
         ctx_.report("load-ignored-value", s, "scale must be a 3-element sequence; Choreonoid ignores a scalar",
-                     "write [sx, sy, sz]");
+                    "write [sx, sy, sz]");
       } else if (auto v = read_vec3(ctx_, s)) {
         X.linear() = X.linear() * v->asDiagonal();
       }
@@ -130,19 +151,18 @@ void ElementReader::read_node(const yaml::NodeRef& node, const std::string& type
     if (type == "Transform") {
       inner = *enter(r, frame);
       // body-format-spec §6.4 rule 5: mass keys on a Transform are ignored by Choreonoid.
-      for (KeyNames names : {KeyNames{"mass"}, KeyNames{"center_of_mass", "centerOfMass", "centerofMass"},
-                             KeyNames{"inertia"}}) {
+      for (KeyNames names :
+           {KeyNames{"mass"}, KeyNames{"center_of_mass", "centerOfMass", "centerofMass"}, KeyNames{"inertia"}}) {
         if (auto ignored = r.take(names)) {
-          ctx_.report("load-mass-ignored", ignored,
-                       "mass properties on a Transform node are ignored by Choreonoid",
-                       "move them into a RigidBody node");
+          ctx_.report("load-mass-ignored", ignored, "mass properties on a Transform node are ignored by Choreonoid",
+                      "move them into a RigidBody node");
         }
       }
     } else if (type == "Group" && r.has({"translation", "rotation", "scale"})) {
       for (const char* k : {"translation", "rotation", "scale"}) {
         if (auto ignored = r.take({k}))
           ctx_.report("load-ignored-key", ignored, std::string("a Group has no ") + k + "; it is ignored",
-                       "use a Transform node");
+                      "use a Transform node");
       }
     }
     read_elements(r.take({"elements"}), inner);
@@ -186,9 +206,8 @@ void ElementReader::read_part(const yaml::NodeRef& node, ModelPart part, const E
   r.take({"name"});
   if (frame.part != ModelPart::kBoth && frame.part != part) {
     ctx_.report("load-visual-collision-conflict", node,
-               std::string("this ") + name + " node is inside a " +
-                   (part == ModelPart::kVisual ? "Collision" : "Visual") +
-                   " node defined at a higher level");
+                std::string("this ") + name + " node is inside a " +
+                    (part == ModelPart::kVisual ? "Collision" : "Visual") + " node defined at a higher level");
     return;
   }
   ElementFrame inner = *enter(r, frame);
@@ -196,8 +215,10 @@ void ElementReader::read_part(const yaml::NodeRef& node, ModelPart part, const E
   inner.part_source = node.use_site();
   // Inline shortcuts come before `elements` (body-format-spec §8.4).
   if (auto resource = r.take({"resource"})) {
-    if (resources_ && resource->is_mapping()) resources_->read_resource(*this, resource, inner);
-    else if (!resource->is_mapping()) ctx_.report("load-type", resource, "resource must be a mapping");
+    if (resources_ && resource->is_mapping())
+      resources_->read_resource(*this, resource, inner);
+    else if (!resource->is_mapping())
+      ctx_.report("load-type", resource, "resource must be a mapping");
   }
   if (auto shape = r.take({"shape"})) read_shape(shape, inner);
   read_elements(r.take({"elements"}), inner);
@@ -256,8 +277,8 @@ void ElementReader::read_shape(const yaml::NodeRef& node, const ElementFrame& fr
   }
   if (auto appearance = r.take({"appearance"})) shape.appearance = read_appearance(ctx_, appearance);
   if (auto material = r.take({"material"})) {
-    ctx_.report("load-ignored-key", material,
-                 "\"material\" directly on a Shape is ignored by Choreonoid", "move it under appearance");
+    ctx_.report("load-ignored-key", material, "\"material\" directly on a Shape is ignored by Choreonoid",
+                "move it under appearance");
   }
   r.take({"is_meta_scene"});
   r.report_unknown(with(kTransformKeys, {"geometry", "appearance", "is_meta_scene"}));
@@ -301,8 +322,9 @@ void ElementReader::read_device(const yaml::NodeRef& node, const std::string& ty
     for (const yaml::MapEntry& e : node->entries) r.ignore(e.key);
     if (ctx_.reported_once.insert("plugin:" + type).second) {
       ctx_.report("load-plugin-node", node,
-                   "\"" + type + "\" is a plugin node type: Choreonoid loads it only with its plugin; "
-                   "it is kept as an opaque device");
+                  "\"" + type +
+                      "\" is a plugin node type: Choreonoid loads it only with its plugin; "
+                      "it is kept as an opaque device");
     }
     model_.devices.push_back(std::move(d));
     read_elements(elements, inner);

@@ -16,7 +16,7 @@ enum class ModelPart { kBoth, kVisual, kCollision };
 
 struct ElementFrame {
   Eigen::Affine3d X_LF = Eigen::Affine3d::Identity();  ///< accumulated transform, may scale
-  int frame = -1;  ///< Link::frames index of the innermost transform node
+  int frame = -1;                                      ///< Link::frames index of the innermost transform node
   ModelPart part = ModelPart::kBoth;
   SourceLocation part_source;  ///< the Visual/Collision node that set `part`
 };
@@ -26,8 +26,7 @@ struct ElementFrame {
 class ElementReader;
 struct ResourceHandler {
   virtual ~ResourceHandler() = default;
-  virtual void read_resource(ElementReader& reader, const yaml::NodeRef& node,
-                             const ElementFrame& frame) = 0;
+  virtual void read_resource(ElementReader& reader, const yaml::NodeRef& node, const ElementFrame& frame) = 0;
 };
 
 class ElementReader {

@@ -47,7 +47,7 @@ std::vector<double> numbers_or_empty(LoadContext& ctx, const yaml::NodeRef& ref)
 void check_positive(LoadContext& ctx, MappingReader& r, const char* key, double value) {
   if (value <= 0) {
     ctx.report("geometry-invalid-size", r.node()->find(key) ? r.node()->find(key)->value : r.node(),
-              std::string(key) + " must be positive, found " + std::to_string(value));
+               std::string(key) + " must be positive, found " + std::to_string(value));
   }
 }
 
@@ -55,8 +55,7 @@ Geometry read_box(LoadContext& ctx, MappingReader& r) {
   Box box;
   if (yaml::NodeRef size = r.take({"size"})) assign_if(box.size, read_optional_vec3(ctx, size));
   if ((box.size.array() < 0).any())
-    ctx.report("geometry-invalid-size", r.node()->find("size")->value,
-              "a box cannot have a negative size");
+    ctx.report("geometry-invalid-size", r.node()->find("size")->value, "a box cannot have a negative size");
   r.report_unknown({"size", "type", "division_number", "extra_division_mode"});
   return box;
 }
@@ -98,8 +97,7 @@ Geometry read_capsule(LoadContext& ctx, MappingReader& r) {
   assign_if(c.height, take_optional_double(r, {"height"}));
   check_positive(ctx, r, "radius", c.radius);
   if (c.height < 0)  // height 0 is a sphere, which Choreonoid allows
-    ctx.report("geometry-invalid-size", r.node()->find("height")->value,
-              "capsule height must not be negative");
+    ctx.report("geometry-invalid-size", r.node()->find("height")->value, "capsule height must not be negative");
   r.report_unknown({"radius", "height", "type", "division_number"});
   return c;
 }
@@ -112,8 +110,7 @@ Geometry read_extrusion(LoadContext& ctx, MappingReader& r) {
   for (std::size_t i = 0; i + 3 < orientation.size(); i += 4) {
     Eigen::Vector3d axis(orientation[i], orientation[i + 1], orientation[i + 2]);
     double angle = ctx.angle(orientation[i + 3]);
-    e.orientation.emplace_back(angle, axis.norm() > 0 ? Eigen::Vector3d(axis.normalized())
-                                                      : Eigen::Vector3d::UnitZ());
+    e.orientation.emplace_back(angle, axis.norm() > 0 ? Eigen::Vector3d(axis.normalized()) : Eigen::Vector3d::UnitZ());
   }
   e.scale = pairs(numbers_or_empty(ctx, r.take({"scale"})));
   if (auto crease = take_optional_double(r, {"crease_angle", "creaseAngle"})) e.crease_angle = ctx.angle(*crease);
@@ -124,7 +121,7 @@ Geometry read_extrusion(LoadContext& ctx, MappingReader& r) {
   const yaml::NodeRef where = r.node();
   if (r.has({"begin_cap"})) {
     ctx.report("load-ignored-key", r.node()->find("begin_cap")->value,
-                "Choreonoid does not read \"begin_cap\"; only \"beginCap\" works", "rename it to beginCap");
+               "Choreonoid does not read \"begin_cap\"; only \"beginCap\" works", "rename it to beginCap");
     r.ignore("begin_cap");
   }
   // Fewer than two points crash Choreonoid (null mesh), §9.
@@ -134,20 +131,22 @@ Geometry read_extrusion(LoadContext& ctx, MappingReader& r) {
   auto check_count = [&](std::size_t n, const char* key) {
     if (n > 1 && n != e.spine.size())
       ctx.report("geometry-degenerate", where,
-                std::string(key) + " must have 1 entry or one per spine point (" +
-                    std::to_string(e.spine.size()) + "), found " + std::to_string(n));
+                 std::string(key) + " must have 1 entry or one per spine point (" + std::to_string(e.spine.size()) +
+                     "), found " + std::to_string(n));
   };
   check_count(e.orientation.size(), "orientation");
   check_count(e.scale.size(), "scale");
-  r.report_unknown({"cross_section", "spine", "orientation", "scale", "crease_angle", "beginCap",
-                    "end_cap", "solid", "type"});
+  r.report_unknown(
+      {"cross_section", "spine", "orientation", "scale", "crease_angle", "beginCap", "end_cap", "solid", "type"});
   return e;
 }
 
 Geometry read_elevation_grid(LoadContext& ctx, MappingReader& r) {
   ElevationGrid g;
-  if (auto v = r.take({"x_dimension", "xDimension"})) assign_if(g.x_dimension, std::optional<int>(optional_int(ctx, v).value_or(0)));
-  if (auto v = r.take({"z_dimension", "zDimension"})) assign_if(g.z_dimension, std::optional<int>(optional_int(ctx, v).value_or(0)));
+  if (auto v = r.take({"x_dimension", "xDimension"}))
+    assign_if(g.x_dimension, std::optional<int>(optional_int(ctx, v).value_or(0)));
+  if (auto v = r.take({"z_dimension", "zDimension"}))
+    assign_if(g.z_dimension, std::optional<int>(optional_int(ctx, v).value_or(0)));
   assign_if(g.x_spacing, take_optional_double(r, {"x_spacing", "xSpacing"}));
   assign_if(g.z_spacing, take_optional_double(r, {"z_spacing", "zSpacing"}));
   g.height = numbers_or_empty(ctx, r.take({"height"}));
@@ -159,11 +158,10 @@ Geometry read_elevation_grid(LoadContext& ctx, MappingReader& r) {
     ctx.report("geometry-degenerate", r.node(), "an ElevationGrid needs x_dimension and z_dimension of at least 2");
   else if (g.height.size() != static_cast<std::size_t>(g.x_dimension) * g.z_dimension)
     ctx.report("geometry-degenerate", r.node(),
-              "an ElevationGrid needs x_dimension * z_dimension = " +
-                  std::to_string(g.x_dimension * g.z_dimension) + " heights, found " +
-                  std::to_string(g.height.size()));
-  r.report_unknown({"x_dimension", "z_dimension", "x_spacing", "z_spacing", "height", "ccw",
-                    "crease_angle", "tex_coord", "solid", "type"});
+               "an ElevationGrid needs x_dimension * z_dimension = " + std::to_string(g.x_dimension * g.z_dimension) +
+                   " heights, found " + std::to_string(g.height.size()));
+  r.report_unknown({"x_dimension", "z_dimension", "x_spacing", "z_spacing", "height", "ccw", "crease_angle",
+                    "tex_coord", "solid", "type"});
   return g;
 }
 
@@ -180,15 +178,14 @@ MeshGeometry read_mesh_keys(LoadContext& ctx, MappingReader& r) {
   const int n = static_cast<int>(m.vertices.size());
   for (int index : m.faces) {
     if (index >= n || index < -1) {
-      ctx.report("geometry-index-out-of-range", r.node()->find("faces") ? r.node()->find("faces")->value
-                                                                      : r.node()->find("coordIndex")->value,
-                "vertex index " + std::to_string(index) + " is out of range (" + std::to_string(n) +
-                    " vertices)");
+      ctx.report("geometry-index-out-of-range",
+                 r.node()->find("faces") ? r.node()->find("faces")->value : r.node()->find("coordIndex")->value,
+                 "vertex index " + std::to_string(index) + " is out of range (" + std::to_string(n) + " vertices)");
       break;
     }
   }
-  r.report_unknown({"vertices", "faces", "tex_coords", "tex_coord_indices", "crease_angle",
-                    "normals", "normal_indices", "solid", "remove_redundant_vertices", "type"});
+  r.report_unknown({"vertices", "faces", "tex_coords", "tex_coord_indices", "crease_angle", "normals", "normal_indices",
+                    "solid", "remove_redundant_vertices", "type"});
   return m;
 }
 
@@ -212,8 +209,8 @@ Geometry read_indexed_face_set(LoadContext& ctx, MappingReader& r) {
     const yaml::MapEntry* faces = r.node()->find("faces");
     if (!faces) faces = r.node()->find("coordIndex");
     ctx.report("geometry-unterminated-polygon", faces ? faces->value : r.node(),
-                "the last polygon of this IndexedFaceSet is not terminated by -1; Choreonoid drops it",
-                "append -1 to faces");
+               "the last polygon of this IndexedFaceSet is not terminated by -1; Choreonoid drops it",
+               "append -1 to faces");
   }
   return m;
 }
@@ -246,8 +243,7 @@ Geometry read_resource_geometry(LoadContext& ctx, MappingReader& r) {
 
 }  // namespace
 
-std::optional<Geometry> read_geometry(LoadContext& ctx, const yaml::NodeRef& geometry,
-                                      int& division_number) {
+std::optional<Geometry> read_geometry(LoadContext& ctx, const yaml::NodeRef& geometry, int& division_number) {
   if (!geometry->is_mapping()) {
     ctx.report("load-type", geometry, "geometry must be a mapping");
     return std::nullopt;
@@ -263,8 +259,8 @@ std::optional<Geometry> read_geometry(LoadContext& ctx, const yaml::NodeRef& geo
       division_number = *n < 4 ? 20 : static_cast<int>(std::min<long>(*n, kMaxDivisionNumber));
       if (*n > kMaxDivisionNumber)
         ctx.report("geometry-division-clamped", division,
-                    "division_number " + std::to_string(*n) + " is clamped to " + std::to_string(kMaxDivisionNumber),
-                    "a sphere has about n^2/2 vertices; use a smaller division_number");
+                   "division_number " + std::to_string(*n) + " is clamped to " + std::to_string(kMaxDivisionNumber),
+                   "a sphere has about n^2/2 vertices; use a smaller division_number");
     }
   }
   r.take({"extra_division_number"});
@@ -280,12 +276,12 @@ std::optional<Geometry> read_geometry(LoadContext& ctx, const yaml::NodeRef& geo
   if (t == "IndexedFaceSet") return read_indexed_face_set(ctx, r);
   if (t == "TriangleMesh") return read_triangle_mesh(ctx, r);
   if (t == "Resource") return read_resource_geometry(ctx, r);
-  static const std::vector<std::string_view> kTypes = {
-      "Box", "Sphere", "Cylinder", "Cone", "Capsule", "Extrusion", "ElevationGrid",
-      "IndexedFaceSet", "TriangleMesh", "Resource"};
+  static const std::vector<std::string_view> kTypes = {"Box",          "Sphere",    "Cylinder",      "Cone",
+                                                       "Capsule",      "Extrusion", "ElevationGrid", "IndexedFaceSet",
+                                                       "TriangleMesh", "Resource"};
   std::string_view guess = text::suggest(t, kTypes);
   ctx.report("geometry-unknown-type", type, "unknown geometry \"" + t + "\"",
-            guess.empty() ? std::string() : "did you mean " + std::string(guess) + "?");
+             guess.empty() ? std::string() : "did you mean " + std::string(guess) + "?");
   return std::nullopt;
 }
 

@@ -11,7 +11,6 @@
 namespace bodyfmt::detail {
 
 /// Reads a `geometry` mapping. `division_number` is set when the node gives one.
-std::optional<Geometry> read_geometry(LoadContext& ctx, const yaml::NodeRef& geometry,
-                                      int& division_number);
+std::optional<Geometry> read_geometry(LoadContext& ctx, const yaml::NodeRef& geometry, int& division_number);
 
 }  // namespace bodyfmt::detail

@@ -7,12 +7,31 @@
 namespace bodyfmt::detail {
 namespace {
 
-const std::vector<std::string_view> kLinkKeys = {
-    "type",        "name",           "parent",           "joint_name",        "translation",
-    "rotation",    "joint_type",     "joint_axis",       "joint_id",          "actuation_mode",
-    "joint_angle", "joint_displacement", "joint_range",  "max_joint_velocity", "joint_velocity_range",
-    "max_joint_effort", "joint_axis_inertia", "rotor_inertia", "gear_ratio", "center_of_mass",
-    "mass",        "inertia",        "material",         "elements",          "import"};
+const std::vector<std::string_view> kLinkKeys = {"type",
+                                                 "name",
+                                                 "parent",
+                                                 "joint_name",
+                                                 "translation",
+                                                 "rotation",
+                                                 "joint_type",
+                                                 "joint_axis",
+                                                 "joint_id",
+                                                 "actuation_mode",
+                                                 "joint_angle",
+                                                 "joint_displacement",
+                                                 "joint_range",
+                                                 "max_joint_velocity",
+                                                 "joint_velocity_range",
+                                                 "max_joint_effort",
+                                                 "joint_axis_inertia",
+                                                 "rotor_inertia",
+                                                 "gear_ratio",
+                                                 "center_of_mass",
+                                                 "mass",
+                                                 "inertia",
+                                                 "material",
+                                                 "elements",
+                                                 "import"};
 
 std::optional<JointType> parse_joint_type(const std::string& s) {
   if (s == "fixed") return JointType::kFixed;
@@ -30,7 +49,7 @@ void read_joint(LoadContext& ctx, MappingReader& r, Link& link) {
       link.joint_type = *type;
       if (t->scalar == "slide" || t->scalar == "pseudoContinuousTrack")
         ctx.report("load-legacy-key", t, "legacy joint type \"" + t->scalar + "\"",
-                    std::string("write ") + std::string(joint_type_name(*type)));
+                   std::string("write ") + std::string(joint_type_name(*type)));
     } else {
       std::string hint;
       if (t->scalar == "continuous" || t->scalar == "hinge")
@@ -39,16 +58,16 @@ void read_joint(LoadContext& ctx, MappingReader& r, Link& link) {
     }
   }
   if (auto mode = r.take({"actuation_mode", "actuationMode"})) {
-    static const std::vector<std::string_view> kModes = {
-        "joint_effort", "jointEffort", "jointTorque", "jointForce", "joint_displacement",
-        "jointDisplacement", "jointAngle", "joint_velocity", "jointVelocity", "link_position",
-        "linkPosition", "jointSurfaceVelocity"};
+    static const std::vector<std::string_view> kModes = {"joint_effort",  "jointEffort",        "jointTorque",
+                                                         "jointForce",    "joint_displacement", "jointDisplacement",
+                                                         "jointAngle",    "joint_velocity",     "jointVelocity",
+                                                         "link_position", "linkPosition",       "jointSurfaceVelocity"};
     link.actuation_mode = mode->scalar;
     if (mode->scalar == "jointSurfaceVelocity") {
       // body-format-spec §6.3: the deprecated mode turns the joint into a pseudo track.
       link.joint_type = JointType::kPseudoContinuousTrack;
       ctx.report("load-legacy-key", mode, "actuation mode \"jointSurfaceVelocity\" is deprecated",
-                  "write joint_type: pseudo_continuous_track");
+                 "write joint_type: pseudo_continuous_track");
     } else if (std::find(kModes.begin(), kModes.end(), mode->scalar) == kModes.end()) {
       ctx.report("load-actuation-mode", mode, "illegal actuation mode \"" + mode->scalar + "\"");
     }
@@ -72,8 +91,8 @@ void read_joint(LoadContext& ctx, MappingReader& r, Link& link) {
       link.initial_displacement = ctx.angle(*v);
       if (link.joint_type == JointType::kPrismatic && ctx.degrees)
         ctx.report("load-angle-on-prismatic", angle,
-                    "joint_angle on a prismatic joint is converted from degrees by Choreonoid",
-                    "use joint_displacement for a prismatic joint");
+                   "joint_angle on a prismatic joint is converted from degrees by Choreonoid",
+                   "use joint_displacement for a prismatic joint");
     }
   }
   if (auto range = r.take({"joint_range", "jointRange"})) {
@@ -88,7 +107,7 @@ void read_joint(LoadContext& ctx, MappingReader& r, Link& link) {
       std::tie(link.velocity_lower, link.velocity_upper) = *v;
     if (velocity_range)
       ctx.report("load-ignored-key", velocity_range,
-                  "joint_velocity_range is ignored by Choreonoid when max_joint_velocity is given");
+                 "joint_velocity_range is ignored by Choreonoid when max_joint_velocity is given");
   } else if (velocity_range) {
     link.sources.joint_velocity = velocity_range.use_site();
     if (auto v = read_velocity_range(ctx, velocity_range, revolute))
@@ -137,8 +156,7 @@ void read_link_mass(LoadContext& ctx, MappingReader& r, Link& link, bool has_rig
     if (inertia->is_sequence()) {
       if (auto v = read_inertia(ctx, inertia)) c.inertia = *v;
     } else {
-      ctx.report("load-ignored-value", inertia,
-                  "a link-level inertia that is not a sequence is ignored by Choreonoid");
+      ctx.report("load-ignored-value", inertia, "a link-level inertia that is not a sequence is ignored by Choreonoid");
     }
   }
   c.source = (mass ? mass : (inertia ? inertia : com)).use_site();
@@ -188,8 +206,9 @@ LinkEntry read_link(LoadContext& ctx, const yaml::NodeRef& node, Model& model, R
   read_link_mass(ctx, r, link(), elements.has_rigid_body());
   if (link().mass_contributions.empty()) {
     // body-format-spec §6.4 rule 4: Choreonoid simulates these defaults; other engines differ.
-    ctx.report("load-default-mass", node, "link \"" + link().name + "\" has no mass data; Choreonoid uses 1 kg with identity inertia",
-             "add mass, center_of_mass and inertia");
+    ctx.report("load-default-mass", node,
+               "link \"" + link().name + "\" has no mass data; Choreonoid uses 1 kg with identity inertia",
+               "add mass, center_of_mass and inertia");
   }
   r.report_unknown(kLinkKeys);
   return entry;

@@ -19,8 +19,8 @@ std::optional<Model> load_body(const std::string& path, const LoadOptions& optio
   return load_body_string(text.str(), path, options, sink);
 }
 
-std::optional<Model> load_body_string(const std::string& text, const std::string& file_name,
-                                      const LoadOptions& options, DiagnosticSink& sink) {
+std::optional<Model> load_body_string(const std::string& text, const std::string& file_name, const LoadOptions& options,
+                                      DiagnosticSink& sink) {
   try {
     detail::LoadSession session;
     detail::BodyReader reader(options, sink, session);

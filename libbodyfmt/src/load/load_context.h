@@ -9,8 +9,8 @@
 #include <optional>
 #include <set>
 #include <string>
-#include <tuple>
 #include <string_view>
+#include <tuple>
 #include <vector>
 
 namespace bodyfmt::detail {
@@ -37,8 +37,8 @@ struct LoadContext {
   double angle(double value) const;
 
  private:
-  void emit(std::string_view rule, const SourceLocation& at, std::optional<SourceLocation> via,
-            std::string message, std::string hint);
+  void emit(std::string_view rule, const SourceLocation& at, std::optional<SourceLocation> via, std::string message,
+            std::string hint);
 };
 
 }  // namespace bodyfmt::detail

@@ -22,10 +22,10 @@ yaml::NodeRef MappingReader::take(KeyNames names) {
       consumed_.emplace(name);
       if (!modern) {
         // Located at the key: that is the text to change.
-        ctx_.report("load-legacy-key", entry->key_location,
-                    "legacy key \"" + std::string(name) + "\"; the modern spelling is \"" +
-                        std::string(*names.begin()) + "\"",
-                    "rename it to " + std::string(*names.begin()));
+        ctx_.report(
+            "load-legacy-key", entry->key_location,
+            "legacy key \"" + std::string(name) + "\"; the modern spelling is \"" + std::string(*names.begin()) + "\"",
+            "rename it to " + std::string(*names.begin()));
       }
       return mapping_.child(entry->value);
     }
@@ -36,8 +36,7 @@ yaml::NodeRef MappingReader::take(KeyNames names) {
 
 bool MappingReader::has(KeyNames names) const {
   if (!mapping_ || !mapping_->is_mapping()) return false;
-  return std::any_of(names.begin(), names.end(),
-                     [&](std::string_view n) { return mapping_->find(n) != nullptr; });
+  return std::any_of(names.begin(), names.end(), [&](std::string_view n) { return mapping_->find(n) != nullptr; });
 }
 
 void MappingReader::ignore(std::string_view name) { consumed_.emplace(name); }
@@ -54,13 +53,11 @@ void MappingReader::report_unknown(const std::vector<std::string_view>& known) {
     if (auto it = legacy_.find(guess); it != legacy_.end()) guess = it->second;
     if (!guess.empty()) {
       ctx_.report("load-unknown-key", entry.key_location,
-                  "unknown key \"" + entry.key + "\" in " + what_ + "; did you mean \"" +
-                      std::string(guess) + "\"?",
+                  "unknown key \"" + entry.key + "\" in " + what_ + "; did you mean \"" + std::string(guess) + "\"?",
                   "Choreonoid ignores it; rename it to " + std::string(guess));
     } else {
       ctx_.report("load-info-key", entry.key_location,
-                  "key \"" + entry.key + "\" is not part of the " + what_ +
-                      " format; it is kept as info");
+                  "key \"" + entry.key + "\" is not part of the " + what_ + " format; it is kept as info");
     }
   }
 }

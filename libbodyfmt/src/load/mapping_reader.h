@@ -5,8 +5,8 @@
 #include "load/load_context.h"
 
 #include <initializer_list>
-#include <optional>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <string_view>

@@ -2,10 +2,10 @@
 
 #include "load/body_reader.h"
 #include "load/geometry.h"
-#include "load/uri.h"
 #include "load/link_reader.h"
 #include "load/mapping_reader.h"
 #include "load/scalar.h"
+#include "load/uri.h"
 #include "load/values.h"
 
 #include <algorithm>
@@ -49,8 +49,8 @@ class Resources final : public ResourceReader {
         if (auto v = read_vec3(ctx_, s)) X.linear() = X.linear() * v->asDiagonal();
     inner = reader.push_frame(frame, X);
     r.take({"crease_angle", "creaseAngle"});
-    r.report_unknown({"type", "name", "uri", "node", "fragment", "metadata", "translation", "rotation", "scale",
-                      "crease_angle"});
+    r.report_unknown(
+        {"type", "name", "uri", "node", "fragment", "metadata", "translation", "rotation", "scale", "crease_angle"});
     if (!uri) {
       ctx_.report("load-missing-key", node, "key \"uri\" is not found in a Resource node");
       return;
@@ -75,8 +75,10 @@ class Resources final : public ResourceReader {
   }
 
   void read_link_node(const yaml::NodeRef& node, const std::string& type, std::vector<LinkEntry>& entries) override {
-    if (type == "SubBody") read_subbody(node, entries);
-    else read_continuous_track(node, entries);
+    if (type == "SubBody")
+      read_subbody(node, entries);
+    else
+      read_continuous_track(node, entries);
   }
 
  private:
@@ -112,7 +114,8 @@ class Resources final : public ResourceReader {
     }
     const std::string& name = fragment->scalar;
     const yaml::Node* target = nullptr;
-    if (auto it = doc->anchors.find(name); it != doc->anchors.end()) target = it->second;
+    if (auto it = doc->anchors.find(name); it != doc->anchors.end())
+      target = it->second;
     else if (main_) {
       if (auto m = main_->anchors.find(name); m != main_->anchors.end()) target = m->second;
     }
@@ -146,8 +149,10 @@ class Resources final : public ResourceReader {
       std::ostringstream text;
       text << in.rdbuf();
       BodyReader reader(options_, ctx_.sink, session_);
-      if (auto model = reader.read(text.str(), path, false)) result = std::make_shared<const Model>(std::move(*model));
-      else ctx_.report("subbody-load", uri, "the sub-body \"" + uri->scalar + "\" cannot be loaded");
+      if (auto model = reader.read(text.str(), path, false))
+        result = std::make_shared<const Model>(std::move(*model));
+      else
+        ctx_.report("subbody-load", uri, "the sub-body \"" + uri->scalar + "\" cannot be loaded");
     }
     session_.subbodies[canonical] = result;
     return result;
@@ -173,7 +178,8 @@ class Resources final : public ResourceReader {
     const std::string suffix = text({"suffix"}).value_or("");
     const std::string device_prefix = text({"device_prefix", "devicePrefix"}).value_or(prefix);
     int id_offset = 0;
-    if (auto v = r.take({"joint_id_offset", "jointIdOffset"})) id_offset = static_cast<int>(required_int(ctx_, v).value_or(0));
+    if (auto v = r.take({"joint_id_offset", "jointIdOffset"}))
+      id_offset = static_cast<int>(required_int(ctx_, v).value_or(0));
     yaml::NodeRef parent = r.take({"parent"});
     r.take({"name"});
 
@@ -240,7 +246,8 @@ class Resources final : public ResourceReader {
     std::vector<double> initial;
     if (angles) initial = read_numbers(ctx_, angles->value).value_or(std::vector<double>{});
 
-    LinkEntry first = read_link(ctx_, node, model_, this, {"numJoints", "joint_offset", "jointOffset", "initialJointAngles"});
+    LinkEntry first =
+        read_link(ctx_, node, model_, this, {"numJoints", "joint_offset", "jointOffset", "initialJointAngles"});
     const LinkIndex t = static_cast<LinkIndex>(model_.links.size()) - 1;
     const Link templ = model_.links[static_cast<std::size_t>(t)];
     const std::string base = templ.name;

@@ -17,13 +17,11 @@ class ResourceReader : public ResourceHandler {
  public:
   /// Reads a SubBody or ContinuousTrack node of `links`, appending links (and one LinkEntry
   /// per link) exactly as read_link does.
-  virtual void read_link_node(const yaml::NodeRef& node, const std::string& type,
-                              std::vector<LinkEntry>& entries) = 0;
+  virtual void read_link_node(const yaml::NodeRef& node, const std::string& type, std::vector<LinkEntry>& entries) = 0;
 };
 
 struct LoadSession;
-std::unique_ptr<ResourceReader> make_resource_handler(const LoadOptions& options, LoadContext& ctx,
-                                                      Model& model, const yaml::Document* main_document,
-                                                      LoadSession& session);
+std::unique_ptr<ResourceReader> make_resource_handler(const LoadOptions& options, LoadContext& ctx, Model& model,
+                                                      const yaml::Document* main_document, LoadSession& session);
 
 }  // namespace bodyfmt::detail

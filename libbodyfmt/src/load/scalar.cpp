@@ -11,8 +11,8 @@ namespace {
 
 bool is_scalar(LoadContext& ctx, const yaml::NodeRef& ref, const char* what) {
   if (ref && ref->is_scalar()) return true;
-  ctx.report("load-type", ref, std::string("expected ") + what + ", found a " +
-                                  (ref && ref->is_mapping() ? "mapping" : "sequence"));
+  ctx.report("load-type", ref,
+             std::string("expected ") + what + ", found a " + (ref && ref->is_mapping() ? "mapping" : "sequence"));
   return false;
 }
 
@@ -47,9 +47,9 @@ std::optional<double> required_double(LoadContext& ctx, const yaml::NodeRef& ref
     // value and warn, since the text is almost certainly a typo.
     const std::string prefix(begin, static_cast<std::size_t>(end - begin));
     ctx.report("load-lenient-number", ref,
-                "\"" + text + "\" is not a number; Choreonoid reads its prefix " + prefix +
-                    " and ignores \"" + std::string(end) + "\"",
-                "write the number in full, e.g. " + prefix);
+               "\"" + text + "\" is not a number; Choreonoid reads its prefix " + prefix + " and ignores \"" +
+                   std::string(end) + "\"",
+               "write the number in full, e.g. " + prefix);
   }
   if (std::isnan(value)) ctx.report("load-lenient-number", ref, "the value \"" + text + "\" is not a number (NaN)");
   return value;
@@ -68,8 +68,8 @@ std::optional<long> required_int(LoadContext& ctx, const yaml::NodeRef& ref) {
   }
   if (!only_trailing_space(end)) {
     ctx.report("load-lenient-number", ref,
-                "\"" + text + "\" is not an integer; Choreonoid reads it as " + std::to_string(value),
-                "write " + std::to_string(value));
+               "\"" + text + "\" is not an integer; Choreonoid reads it as " + std::to_string(value),
+               "write " + std::to_string(value));
   }
   return value;
 }
@@ -90,8 +90,7 @@ std::optional<double> optional_double(LoadContext& ctx, const yaml::NodeRef& ref
   if (ref && ref->is_scalar()) {
     if (auto value = parse_double_exact(ref->scalar)) return value;
   }
-  ctx.report("load-ignored-value", ref,
-              "this value is not a number; Choreonoid ignores it and uses the default");
+  ctx.report("load-ignored-value", ref, "this value is not a number; Choreonoid ignores it and uses the default");
   return std::nullopt;
 }
 
@@ -102,8 +101,7 @@ std::optional<long> optional_int(LoadContext& ctx, const yaml::NodeRef& ref) {
     long value = std::strtol(text.c_str(), &end, 10);
     if (end != text.c_str() && only_trailing_space(end)) return value;
   }
-  ctx.report("load-ignored-value", ref,
-              "this value is not an integer; Choreonoid ignores it and uses the default");
+  ctx.report("load-ignored-value", ref, "this value is not an integer; Choreonoid ignores it and uses the default");
   return std::nullopt;
 }
 
@@ -111,8 +109,7 @@ std::optional<bool> optional_bool(LoadContext& ctx, const yaml::NodeRef& ref) {
   if (ref && ref->is_scalar()) {
     if (auto value = text::parse_bool_word(ref->scalar)) return value;
   }
-  ctx.report("load-ignored-value", ref,
-              "this value is not a boolean; Choreonoid ignores it and uses the default");
+  ctx.report("load-ignored-value", ref, "this value is not a boolean; Choreonoid ignores it and uses the default");
   return std::nullopt;
 }
 

@@ -41,7 +41,7 @@ std::string resolve_uri(LoadContext& ctx, const yaml::NodeRef& at, const std::st
       }
     }
     ctx.report("load-uri", at, "package \"" + package + "\" of URI \"" + uri + "\" is not found",
-              "add its parent folder to ROS_PACKAGE_PATH or pass it as a package path");
+               "add its parent folder to ROS_PACKAGE_PATH or pass it as a package path");
     return {};
   }
   if (path.rfind("${", 0) == 0) {
@@ -61,10 +61,14 @@ std::string resolve_uri(LoadContext& ctx, const yaml::NodeRef& at, const std::st
 
 void read_mesh_metadata(LoadContext& ctx, const yaml::NodeRef& metadata, MeshResource& mesh) {
   auto apply_unit = [&](const std::string& unit, const yaml::NodeRef& at) {
-    if (unit == "millimeter") mesh.length_scale = 0.001;
-    else if (unit == "inch") mesh.length_scale = 0.0254;
-    else if (unit == "meter") mesh.length_scale = 1.0;
-    else ctx.report("load-ignored-value", at, "unknown length unit \"" + unit + "\"");
+    if (unit == "millimeter")
+      mesh.length_scale = 0.001;
+    else if (unit == "inch")
+      mesh.length_scale = 0.0254;
+    else if (unit == "meter")
+      mesh.length_scale = 1.0;
+    else
+      ctx.report("load-ignored-value", at, "unknown length unit \"" + unit + "\"");
   };
   if (metadata->is_scalar()) {
     // Legacy form: space-separated words (body-format-spec §9.4).
@@ -73,8 +77,10 @@ void read_mesh_metadata(LoadContext& ctx, const yaml::NodeRef& metadata, MeshRes
     while (start < words.size()) {
       std::size_t end = words.find(' ', start);
       std::string word = words.substr(start, end - start);
-      if (word == "y_upper") mesh.y_up = true;
-      else if (!word.empty()) apply_unit(word, metadata);
+      if (word == "y_upper")
+        mesh.y_up = true;
+      else if (!word.empty())
+        apply_unit(word, metadata);
       if (end == std::string::npos) break;
       start = end + 1;
     }
@@ -83,8 +89,10 @@ void read_mesh_metadata(LoadContext& ctx, const yaml::NodeRef& metadata, MeshRes
   MappingReader r(ctx, metadata, "metadata");
   if (auto unit = r.take({"length_unit"})) apply_unit(unit->scalar, unit);
   if (auto axis = r.take({"upper_axis"})) {
-    if (axis->scalar == "Y") mesh.y_up = true;
-    else if (axis->scalar != "Z") ctx.report("load-ignored-value", axis, "upper_axis must be Y or Z");
+    if (axis->scalar == "Y")
+      mesh.y_up = true;
+    else if (axis->scalar != "Z")
+      ctx.report("load-ignored-value", axis, "upper_axis must be Y or Z");
   }
   r.report_unknown({"length_unit", "upper_axis"});
 }

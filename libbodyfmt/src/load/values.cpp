@@ -26,8 +26,8 @@ std::optional<Eigen::VectorXd> read_vector(LoadContext& ctx, const yaml::NodeRef
   if (!expect_sequence(ctx, ref, "this value")) return std::nullopt;
   if (static_cast<int>(ref->items.size()) != size) {
     ctx.report("load-vector-size", ref,
-              "a " + std::to_string(size) + "-element vector is expected, found " +
-                  std::to_string(ref->items.size()) + " elements");
+               "a " + std::to_string(size) + "-element vector is expected, found " + std::to_string(ref->items.size()) +
+                   " elements");
     return std::nullopt;
   }
   Eigen::VectorXd v(size);
@@ -49,8 +49,8 @@ std::optional<Eigen::Vector3d> read_optional_vec3(LoadContext& ctx, const yaml::
   if (ref && !ref->is_sequence()) {
     // body-format-spec §1.2: `size: 1` is silently treated as absent by Choreonoid.
     ctx.report("load-ignored-value", ref,
-                "this value must be a 3-element sequence; Choreonoid ignores it and uses the default",
-                "write [x, y, z]");
+               "this value must be a 3-element sequence; Choreonoid ignores it and uses the default",
+               "write [x, y, z]");
     return std::nullopt;
   }
   return read_vec3(ctx, ref);
@@ -117,8 +117,7 @@ std::optional<Eigen::Matrix3d> read_inertia(LoadContext& ctx, const yaml::NodeRe
   std::size_t n = ref->items.size();
   if (n != 6 && n != 9) {
     ctx.report("load-inertia-size", ref,
-              "the number of elements of an inertia value must be six or nine, found " +
-                  std::to_string(n));
+               "the number of elements of an inertia value must be six or nine, found " + std::to_string(n));
     return std::nullopt;
   }
   auto values = read_numbers(ctx, ref);
@@ -145,8 +144,7 @@ std::optional<Eigen::Vector3d> read_joint_axis(LoadContext& ctx, const yaml::Nod
     if (s == "X") return Eigen::Vector3d(sign, 0, 0);
     if (s == "Y") return Eigen::Vector3d(0, sign, 0);
     if (s == "Z") return Eigen::Vector3d(0, 0, sign);
-    ctx.report("load-axis", ref, "illegal axis value \"" + ref->scalar + "\"",
-              "use X, Y, Z, -X, -Y, -Z or [x, y, z]");
+    ctx.report("load-axis", ref, "illegal axis value \"" + ref->scalar + "\"", "use X, Y, Z, -X, -Y, -Z or [x, y, z]");
     return std::nullopt;
   }
   return read_vec3(ctx, ref);
@@ -169,7 +167,7 @@ std::optional<double> limit_value(LoadContext& ctx, const yaml::NodeRef& ref, bo
     std::strtod(b, &e);
     if (e == b) {
       ctx.report("load-range", ref, "unknown symbol \"" + ref->scalar + "\" is used as a range value",
-                "use a number or unlimited");
+                 "use a number or unlimited");
       return std::nullopt;
     }
   }
@@ -180,8 +178,7 @@ std::optional<double> limit_value(LoadContext& ctx, const yaml::NodeRef& ref, bo
 
 }  // namespace
 
-std::optional<std::pair<double, double>> read_range(LoadContext& ctx, const yaml::NodeRef& ref,
-                                                    bool convert_angle) {
+std::optional<std::pair<double, double>> read_range(LoadContext& ctx, const yaml::NodeRef& ref, bool convert_angle) {
   if (!ref) return std::nullopt;
   if (ref->is_scalar()) {
     auto v = limit_value(ctx, ref, convert_angle, kUnlimited);
@@ -193,8 +190,7 @@ std::optional<std::pair<double, double>> read_range(LoadContext& ctx, const yaml
     return std::nullopt;
   }
   if (ref->items.size() != 2) {
-    ctx.report("load-range", ref, "a joint range must have two elements, found " +
-                                     std::to_string(ref->items.size()));
+    ctx.report("load-range", ref, "a joint range must have two elements, found " + std::to_string(ref->items.size()));
     return std::nullopt;
   }
   auto lower = limit_value(ctx, ref->items[0], convert_angle, -kUnlimited);
@@ -203,8 +199,7 @@ std::optional<std::pair<double, double>> read_range(LoadContext& ctx, const yaml
   return std::make_pair(*lower, *upper);
 }
 
-std::optional<std::pair<double, double>> read_symmetric_limit(LoadContext& ctx,
-                                                              const yaml::NodeRef& ref,
+std::optional<std::pair<double, double>> read_symmetric_limit(LoadContext& ctx, const yaml::NodeRef& ref,
                                                               bool convert_angle) {
   if (!ref) return std::nullopt;
   if (!ref->is_scalar()) {
@@ -216,8 +211,7 @@ std::optional<std::pair<double, double>> read_symmetric_limit(LoadContext& ctx,
   return std::make_pair(-*v, *v);
 }
 
-std::optional<std::pair<double, double>> read_velocity_range(LoadContext& ctx,
-                                                             const yaml::NodeRef& ref,
+std::optional<std::pair<double, double>> read_velocity_range(LoadContext& ctx, const yaml::NodeRef& ref,
                                                              bool convert_angle) {
   if (!ref) return std::nullopt;
   if (!ref->is_sequence() || ref->items.size() != 2) {

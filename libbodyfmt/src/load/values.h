@@ -33,15 +33,12 @@ std::optional<Eigen::Vector3d> read_joint_axis(LoadContext& ctx, const yaml::Nod
 
 /// `joint_range`: scalar v -> [-v, v], `unlimited`, or [lower, upper] with `unlimited`
 /// allowed per element. `convert_angle` applies the file's angle unit.
-std::optional<std::pair<double, double>> read_range(LoadContext& ctx, const yaml::NodeRef& ref,
-                                                    bool convert_angle);
+std::optional<std::pair<double, double>> read_range(LoadContext& ctx, const yaml::NodeRef& ref, bool convert_angle);
 /// `max_joint_velocity` / `max_joint_effort`: scalar v (or `unlimited`) -> [-v, v].
-std::optional<std::pair<double, double>> read_symmetric_limit(LoadContext& ctx,
-                                                              const yaml::NodeRef& ref,
+std::optional<std::pair<double, double>> read_symmetric_limit(LoadContext& ctx, const yaml::NodeRef& ref,
                                                               bool convert_angle);
 /// `joint_velocity_range`: exactly two elements.
-std::optional<std::pair<double, double>> read_velocity_range(LoadContext& ctx,
-                                                             const yaml::NodeRef& ref,
+std::optional<std::pair<double, double>> read_velocity_range(LoadContext& ctx, const yaml::NodeRef& ref,
                                                              bool convert_angle);
 
 }  // namespace bodyfmt::detail

@@ -68,10 +68,10 @@ const Module& module() {
 SceneTree import_with_assimp(const std::string& path, DiagnosticSink& sink, const SourceLocation& where) {
   const Module& m = module();
   if (!m.read) {
-    report_rule(sink, "mesh-importer-unavailable", where,
-                "cannot import \"" + path + "\": the mesh importer module \"" + m.path +
-                    "\" could not be loaded: " + m.error,
-                std::string("install ") + kModuleName + " next to libbodyfmt (it is part of the bodyfmt build)");
+    report_rule(
+        sink, "mesh-importer-unavailable", where,
+        "cannot import \"" + path + "\": the mesh importer module \"" + m.path + "\" could not be loaded: " + m.error,
+        std::string("install ") + kModuleName + " next to libbodyfmt (it is part of the bodyfmt build)");
     return nullptr;
   }
   SceneTree tree;

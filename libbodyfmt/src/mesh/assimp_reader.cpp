@@ -3,10 +3,10 @@
 #include <bodyfmt/rules.h>
 #include "mesh/vrml_reader.h"  // resolve_relative
 
-#include <assimp/Importer.hpp>
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <assimp/Importer.hpp>
 
 #include <algorithm>
 #include <cstring>
@@ -51,8 +51,8 @@ std::optional<Material> convert_material(const aiMaterial& src) {
 
 std::optional<Texture> convert_texture(const aiMaterial& src, const std::string& path) {
   aiString uri;
-  if (src.GetTextureCount(aiTextureType_DIFFUSE) == 0 ||
-      src.GetTexture(aiTextureType_DIFFUSE, 0, &uri) != AI_SUCCESS || uri.length == 0) {
+  if (src.GetTextureCount(aiTextureType_DIFFUSE) == 0 || src.GetTexture(aiTextureType_DIFFUSE, 0, &uri) != AI_SUCCESS ||
+      uri.length == 0) {
     return std::nullopt;
   }
   Texture texture;
@@ -84,14 +84,13 @@ MeshPart convert_mesh(const aiMesh& src) {
   for (unsigned f = 0; f < src.mNumFaces; ++f) {
     const aiFace& face = src.mFaces[f];
     if (face.mNumIndices != 3) continue;  // points and lines have no surface
-    mesh.triangles.push_back({static_cast<int>(face.mIndices[0]), static_cast<int>(face.mIndices[1]),
-                              static_cast<int>(face.mIndices[2])});
+    mesh.triangles.push_back(
+        {static_cast<int>(face.mIndices[0]), static_cast<int>(face.mIndices[1]), static_cast<int>(face.mIndices[2])});
   }
   return part;
 }
 
-std::shared_ptr<SceneNode> convert_node(const aiScene& scene, const aiNode& src,
-                                        const std::vector<MeshPart>& meshes) {
+std::shared_ptr<SceneNode> convert_node(const aiScene& scene, const aiNode& src, const std::vector<MeshPart>& meshes) {
   auto node = std::make_shared<SceneNode>();
   node->name = src.mName.C_Str();
   node->transform = to_eigen(src.mTransformation);
@@ -116,12 +115,10 @@ SceneTree read_with_assimp(const std::string& path, DiagnosticSink& sink, const 
   importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
   // Points and lines are dropped; no ValidateDataStructure: it rejects a corpus DAE with
   // duplicate camera names (toolchain.md, assimp).
-  const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                         aiProcess_SortByPType;
+  const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType;
   const aiScene* scene = importer.ReadFile(path, flags);
   if (!scene || !scene->mRootNode || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE)) {
-    report_rule(sink, "mesh-parse", where,
-                "cannot read mesh file \"" + path + "\": " + importer.GetErrorString());
+    report_rule(sink, "mesh-parse", where, "cannot read mesh file \"" + path + "\": " + importer.GetErrorString());
     return nullptr;
   }
   std::vector<MeshPart> meshes;
@@ -141,7 +138,6 @@ SceneTree read_with_assimp(const std::string& path, DiagnosticSink& sink, const 
 }  // namespace bodyfmt::mesh
 
 extern "C" void bodyfmt_assimp_read_v1(const char* path, bodyfmt::DiagnosticSink* sink,
-                                       const bodyfmt::SourceLocation* where,
-                                       bodyfmt::mesh::SceneTree* out) {
+                                       const bodyfmt::SourceLocation* where, bodyfmt::mesh::SceneTree* out) {
   *out = bodyfmt::mesh::read_with_assimp(path, *sink, *where);
 }

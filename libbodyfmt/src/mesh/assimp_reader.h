@@ -25,5 +25,4 @@ SceneTree read_with_assimp(const std::string& path, DiagnosticSink& sink, const 
 /// C++ types cross the boundary because the module and libbodyfmt are always built together
 /// with the same compiler and standard library. The "_v1" suffix changes if the signature does.
 extern "C" void bodyfmt_assimp_read_v1(const char* path, bodyfmt::DiagnosticSink* sink,
-                                       const bodyfmt::SourceLocation* where,
-                                       bodyfmt::mesh::SceneTree* out);
+                                       const bodyfmt::SourceLocation* where, bodyfmt::mesh::SceneTree* out);

@@ -53,12 +53,10 @@ void append_mesh(TriangleMesh& mesh, const TriangleMesh& other, const Eigen::Aff
 
   // Per-vertex attributes stay only if both sides have them (TriangleMesh requires them to be
   // either complete or absent); an empty target adopts whatever `other` has.
-  const bool keep_normals =
-      (mesh_was_empty || mesh.normals.size() == mesh.vertices.size()) &&
-      !other.normals.empty() && other.normals.size() == other.vertices.size();
-  const bool keep_tex_coords =
-      (mesh_was_empty || mesh.tex_coords.size() == mesh.vertices.size()) &&
-      !other.tex_coords.empty() && other.tex_coords.size() == other.vertices.size();
+  const bool keep_normals = (mesh_was_empty || mesh.normals.size() == mesh.vertices.size()) && !other.normals.empty() &&
+                            other.normals.size() == other.vertices.size();
+  const bool keep_tex_coords = (mesh_was_empty || mesh.tex_coords.size() == mesh.vertices.size()) &&
+                               !other.tex_coords.empty() && other.tex_coords.size() == other.vertices.size();
 
   mesh.vertices.reserve(mesh.vertices.size() + other.vertices.size());
   for (const Eigen::Vector3d& v : other.vertices) mesh.vertices.push_back(transform * v);
@@ -90,8 +88,7 @@ void append_mesh(TriangleMesh& mesh, const TriangleMesh& other, const Eigen::Aff
   }
 
   if (keep_tex_coords) {
-    mesh.tex_coords.insert(mesh.tex_coords.end(), other.tex_coords.begin(),
-                           other.tex_coords.end());
+    mesh.tex_coords.insert(mesh.tex_coords.end(), other.tex_coords.begin(), other.tex_coords.end());
   } else {
     mesh.tex_coords.clear();
   }

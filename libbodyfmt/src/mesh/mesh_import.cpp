@@ -122,25 +122,24 @@ std::shared_ptr<const MeshAsset> MeshCache::get(const std::string& path, const M
   auto asset = std::make_shared<MeshAsset>();
   asset->path = normal;
   asset->node = options.node;
-  if (!mesh::extract_parts(*tree, options.node, options.length_scale, options.y_up, asset->parts,
-                           detached, &asset->scene_bounds)) {
-    report(sink, "mesh-node-not-found", where,
-           "node \"" + options.node + "\" is not found in \"" + normal + "\"",
+  if (!mesh::extract_parts(*tree, options.node, options.length_scale, options.y_up, asset->parts, detached,
+                           &asset->scene_bounds)) {
+    report(sink, "mesh-node-not-found", where, "node \"" + options.node + "\" is not found in \"" + normal + "\"",
            "the name must be a VRML DEF name or a node name of the mesh file (first match in depth-first order)");
     impl_->failed_assets.insert(key);
     return nullptr;
   }
   if (asset->parts.empty() && !known_file) {
     report(sink, "mesh-empty", where,
-           "mesh file \"" + normal + "\"" +
-               (options.node.empty() ? std::string() : " node \"" + options.node + "\"") + " contains no triangles");
+           "mesh file \"" + normal + "\"" + (options.node.empty() ? std::string() : " node \"" + options.node + "\"") +
+               " contains no triangles");
   }
   impl_->assets[key] = asset;
   return asset;
 }
 
-std::optional<MeshAsset> import_mesh(const std::string& path, const MeshImportOptions& options,
-                                     DiagnosticSink& sink, const SourceLocation& where) {
+std::optional<MeshAsset> import_mesh(const std::string& path, const MeshImportOptions& options, DiagnosticSink& sink,
+                                     const SourceLocation& where) {
   MeshCache cache;
   auto asset = cache.get(path, options, sink, where);
   if (!asset) return std::nullopt;

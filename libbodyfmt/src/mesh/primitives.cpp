@@ -7,8 +7,7 @@
 
 namespace bodyfmt::mesh {
 
-TriangleMesh tessellate_vrml_primitive(const VrmlPrimitive& p, DiagnosticSink& sink,
-                                       const SourceLocation& where) {
+TriangleMesh tessellate_vrml_primitive(const VrmlPrimitive& p, DiagnosticSink& sink, const SourceLocation& where) {
   Geometry geometry;
   if (p.type == "Box") {
     geometry = Box{p.size};
@@ -24,13 +23,12 @@ TriangleMesh tessellate_vrml_primitive(const VrmlPrimitive& p, DiagnosticSink& s
     // Cap triangles lie in one plane y = +-h/2; side triangles span both heights (the cone's
     // reach the apex).
     const auto& v = mesh.vertices;
-    mesh.triangles.erase(
-        std::remove_if(mesh.triangles.begin(), mesh.triangles.end(),
-                       [&](const std::array<int, 3>& t) {
-                         const auto y = [&](int i) { return v[static_cast<std::size_t>(i)].y(); };
-                         return !(y(t[0]) == y(t[1]) && y(t[1]) == y(t[2]));
-                       }),
-        mesh.triangles.end());
+    mesh.triangles.erase(std::remove_if(mesh.triangles.begin(), mesh.triangles.end(),
+                                        [&](const std::array<int, 3>& t) {
+                                          const auto y = [&](int i) { return v[static_cast<std::size_t>(i)].y(); };
+                                          return !(y(t[0]) == y(t[1]) && y(t[1]) == y(t[2]));
+                                        }),
+                         mesh.triangles.end());
   }
   return mesh;
 }

@@ -6,8 +6,8 @@ namespace bodyfmt::mesh {
 
 namespace {
 
-const SceneNode* find_node_rec(const SceneNode& node, const std::string& name,
-                               const Eigen::Affine3d& parent, Eigen::Affine3d* ancestors) {
+const SceneNode* find_node_rec(const SceneNode& node, const std::string& name, const Eigen::Affine3d& parent,
+                               Eigen::Affine3d* ancestors) {
   if (node.name == name) {
     if (ancestors) *ancestors = parent;
     return &node;
@@ -39,15 +39,13 @@ void transform_part(MeshPart& part, const Eigen::Affine3d& transform) {
 
 }  // namespace
 
-
-const SceneNode* find_node(const SceneNode& root, const std::string& name,
-                           Eigen::Affine3d* ancestors_transform) {
+const SceneNode* find_node(const SceneNode& root, const std::string& name, Eigen::Affine3d* ancestors_transform) {
   return find_node_rec(root, name, Eigen::Affine3d::Identity(), ancestors_transform);
 }
 
 /// The node's parts and subtree under `here`, which replaces the node's own transform.
-static void flatten_contents(const SceneNode& node, const Eigen::Affine3d& here,
-                             std::vector<MeshPart>& out, const std::set<const SceneNode*>& skip) {
+static void flatten_contents(const SceneNode& node, const Eigen::Affine3d& here, std::vector<MeshPart>& out,
+                             const std::set<const SceneNode*>& skip) {
   for (const MeshPart& part : node.parts) {
     if (part.mesh.triangles.empty()) continue;
     MeshPart copy = part;
@@ -75,8 +73,7 @@ BoundingBox transform_box(const BoundingBox& box, const Eigen::Affine3d& transfo
   if (box.empty()) return box;
   BoundingBox out;
   for (int i = 0; i < 8; ++i) {
-    const Eigen::Vector3d corner((i & 1) ? box.max.x() : box.min.x(),
-                                 (i & 2) ? box.max.y() : box.min.y(),
+    const Eigen::Vector3d corner((i & 1) ? box.max.x() : box.min.x(), (i & 2) ? box.max.y() : box.min.y(),
                                  (i & 4) ? box.max.z() : box.min.z());
     out.add(transform * corner);
   }
@@ -90,15 +87,13 @@ void flatten(const SceneNode& node, const Eigen::Affine3d& parent, std::vector<M
 Eigen::Matrix3d y_up_rotation() {
   Eigen::Matrix3d r;
   // Columns are the images of mesh X, Y, Z: X -> +Y, Y -> +Z, Z -> +X (body-format-spec §9.4).
-  r << 0, 0, 1,
-       1, 0, 0,
-       0, 1, 0;
+  r << 0, 0, 1, 1, 0, 0, 0, 1, 0;
   return r;
 }
 
-bool extract_parts(const SceneNode& root, const std::string& node_name, double length_scale,
-                   bool y_up, std::vector<MeshPart>& out,
-                   const std::vector<std::string>& detached_nodes, BoundingBox* scene_bounds) {
+bool extract_parts(const SceneNode& root, const std::string& node_name, double length_scale, bool y_up,
+                   std::vector<MeshPart>& out, const std::vector<std::string>& detached_nodes,
+                   BoundingBox* scene_bounds) {
   Eigen::Affine3d start = Eigen::Affine3d::Identity();
   const SceneNode* node = &root;
   if (!node_name.empty()) {

@@ -18,7 +18,7 @@ namespace bodyfmt::mesh {
 struct SceneNode {
   std::string name;
   Eigen::Affine3d transform = Eigen::Affine3d::Identity();  ///< may contain scale/shear
-  std::vector<MeshPart> parts;                             ///< in this node's frame
+  std::vector<MeshPart> parts;                              ///< in this node's frame
   std::vector<std::shared_ptr<const SceneNode>> children;
 };
 
@@ -26,8 +26,7 @@ using SceneTree = std::shared_ptr<const SceneNode>;
 
 /// The first node named `name` in depth-first pre-order, with the accumulated transform of
 /// its ancestors (excluding its own); nullptr when there is none.
-const SceneNode* find_node(const SceneNode& root, const std::string& name,
-                           Eigen::Affine3d* ancestors_transform);
+const SceneNode* find_node(const SceneNode& root, const std::string& name, Eigen::Affine3d* ancestors_transform);
 
 /// Flattens `node` (its own transform is applied after `parent`) into parts, applying the
 /// transform to positions and normals.
@@ -44,9 +43,8 @@ void flatten(const SceneNode& node, const Eigen::Affine3d& parent, std::vector<M
 /// child box's 8 transformed corners. The re-centred node is one transform (the accumulated
 /// linear part) above the node's contents, as Choreonoid's StdSceneReader leaves it; the
 /// metadata is one more transform on top.
-bool extract_parts(const SceneNode& root, const std::string& node_name, double length_scale,
-                   bool y_up, std::vector<MeshPart>& out,
-                   const std::vector<std::string>& detached_nodes = {},
+bool extract_parts(const SceneNode& root, const std::string& node_name, double length_scale, bool y_up,
+                   std::vector<MeshPart>& out, const std::vector<std::string>& detached_nodes = {},
                    BoundingBox* scene_bounds = nullptr);
 
 /// The axis-aligned box of the 8 transformed corners of `box` (Choreonoid's

@@ -9,8 +9,17 @@
 
 namespace bodyfmt::mesh {
 
-enum class TokenKind { kEnd, kIdentifier, kNumber, kString, kOpenBrace, kCloseBrace,
-                       kOpenBracket, kCloseBracket, kError };
+enum class TokenKind {
+  kEnd,
+  kIdentifier,
+  kNumber,
+  kString,
+  kOpenBrace,
+  kCloseBrace,
+  kOpenBracket,
+  kCloseBracket,
+  kError
+};
 
 struct Token {
   TokenKind kind = TokenKind::kEnd;

@@ -18,8 +18,7 @@ namespace {
 
 constexpr int kMaxDepth = 200;  // nesting guard: malformed input must not overflow the stack
 
-enum class NodeKind { kNone, kScene, kAppearance, kMaterial, kTexture, kGeometry,
-                      kCoordinate, kTextureCoordinate };
+enum class NodeKind { kNone, kScene, kAppearance, kMaterial, kTexture, kGeometry, kCoordinate, kTextureCoordinate };
 
 /// One parsed VRML node, reduced to what the geometry needs.
 struct VrmlNode {
@@ -36,8 +35,7 @@ using NodePtr = std::shared_ptr<const VrmlNode>;
 
 class Parser {
  public:
-  Parser(std::string_view text, const std::string& path, DiagnosticSink& sink,
-         const InlineLoader& load_inline)
+  Parser(std::string_view text, const std::string& path, DiagnosticSink& sink, const InlineLoader& load_inline)
       : lexer_(text), path_(path), sink_(sink), load_inline_(load_inline) {}
 
   SceneTree parse_file() {
@@ -93,7 +91,7 @@ class Parser {
       lexer_.next();
       lexer_.next();  // name
       skip_group(TokenKind::kOpenBracket, TokenKind::kCloseBracket, "\"[\" of the EXTERNPROTO interface");
-      skip_value();   // url(s)
+      skip_value();  // url(s)
       return true;
     }
     if (t.text == "ROUTE") {  // ROUTE a.b TO c.d
@@ -131,9 +129,7 @@ class Parser {
   void skip_value() {
     const Token& t = lexer_.peek();
     switch (t.kind) {
-      case TokenKind::kOpenBracket:
-        skip_group(TokenKind::kOpenBracket, TokenKind::kCloseBracket, "\"[\"");
-        return;
+      case TokenKind::kOpenBracket: skip_group(TokenKind::kOpenBracket, TokenKind::kCloseBracket, "\"[\""); return;
       case TokenKind::kNumber:
       case TokenKind::kString:
         while (lexer_.peek().kind == TokenKind::kNumber || lexer_.peek().kind == TokenKind::kString) {
@@ -329,8 +325,7 @@ class Parser {
   NodePtr parse_body(const Token& type, const std::string& def_name) {
     const std::string_view t = type.text;
     if (t == "Transform") return parse_grouping(type, def_name, true);
-    if (t == "Group" || t == "Anchor" || t == "Billboard" || t == "Collision" || t == "Switch" ||
-        t == "LOD") {
+    if (t == "Group" || t == "Anchor" || t == "Billboard" || t == "Collision" || t == "Switch" || t == "LOD") {
       return parse_grouping(type, def_name, false);
     }
     if (t == "Shape") return parse_shape(def_name);
@@ -395,8 +390,13 @@ class Parser {
     if (is_transform) {
       // VRML97 §6.52: P' = T C R SR S -SR -C P.
       Eigen::Affine3d m = Eigen::Affine3d::Identity();
-      m.translate(translation).translate(center).rotate(rotation).rotate(scale_orientation)
-          .scale(scale).rotate(scale_orientation.inverse()).translate(-center);
+      m.translate(translation)
+          .translate(center)
+          .rotate(rotation)
+          .rotate(scale_orientation)
+          .scale(scale)
+          .rotate(scale_orientation.inverse())
+          .translate(-center);
       scene->transform = m;
     }
     for (const NodePtr& child : children) {
@@ -411,9 +411,12 @@ class Parser {
   NodePtr parse_shape(const std::string& def_name) {
     NodePtr appearance, geometry;
     read_fields([&](const Token& f) {
-      if (f.text == "appearance") appearance = parse_node();
-      else if (f.text == "geometry") geometry = parse_node();
-      else return false;
+      if (f.text == "appearance")
+        appearance = parse_node();
+      else if (f.text == "geometry")
+        geometry = parse_node();
+      else
+        return false;
       return true;
     });
     if (failed_) return nullptr;
@@ -458,13 +461,20 @@ class Parser {
     double shininess = 0.2;
     read_fields([&](const Token& f) {
       const std::string_view n = f.text;
-      if (n == "diffuseColor") m.diffuse_color = read_vec3();
-      else if (n == "ambientIntensity") m.ambient_intensity = read_number();
-      else if (n == "emissiveColor") m.emissive_color = read_vec3();
-      else if (n == "specularColor") m.specular_color = read_vec3();
-      else if (n == "shininess") shininess = read_number();
-      else if (n == "transparency") m.transparency = read_number();
-      else return false;
+      if (n == "diffuseColor")
+        m.diffuse_color = read_vec3();
+      else if (n == "ambientIntensity")
+        m.ambient_intensity = read_number();
+      else if (n == "emissiveColor")
+        m.emissive_color = read_vec3();
+      else if (n == "specularColor")
+        m.specular_color = read_vec3();
+      else if (n == "shininess")
+        shininess = read_number();
+      else if (n == "transparency")
+        m.transparency = read_number();
+      else
+        return false;
       return true;
     });
     m.specular_exponent = 127.0 * std::clamp(shininess, 0.0, 1.0) + 1.0;
@@ -509,7 +519,8 @@ class Parser {
     if (three_d) {
       auto points = std::make_shared<std::vector<Eigen::Vector3d>>();
       points->reserve(values.size() / 3);
-      for (std::size_t i = 0; i + 2 < values.size(); i += 3) points->emplace_back(values[i], values[i + 1], values[i + 2]);
+      for (std::size_t i = 0; i + 2 < values.size(); i += 3)
+        points->emplace_back(values[i], values[i + 1], values[i + 2]);
       node->kind = NodeKind::kCoordinate;
       node->points = points;
     } else {
@@ -527,12 +538,18 @@ class Parser {
     bool ccw = true;
     read_fields([&](const Token& f) {
       const std::string_view n = f.text;
-      if (n == "coord") coord = parse_node();
-      else if (n == "coordIndex") coord_index = read_ints();
-      else if (n == "texCoord") tex_coord = parse_node();
-      else if (n == "texCoordIndex") tex_coord_index = read_ints();
-      else if (n == "ccw") ccw = read_bool();
-      else return false;  // solid, creaseAngle, normal, color...: not needed for the surface
+      if (n == "coord")
+        coord = parse_node();
+      else if (n == "coordIndex")
+        coord_index = read_ints();
+      else if (n == "texCoord")
+        tex_coord = parse_node();
+      else if (n == "texCoordIndex")
+        tex_coord_index = read_ints();
+      else if (n == "ccw")
+        ccw = read_bool();
+      else
+        return false;  // solid, creaseAngle, normal, color...: not needed for the surface
       return true;
     });
     if (failed_) return nullptr;
@@ -557,7 +574,8 @@ class Parser {
       auto [it, inserted] = corner_vertex.emplace(std::make_pair(p, t), static_cast<int>(mesh->vertices.size()));
       if (inserted) {
         mesh->vertices.push_back(points[static_cast<std::size_t>(p)]);
-        mesh->tex_coords.push_back(t >= 0 ? (*tex_coord->points2)[static_cast<std::size_t>(t)] : Eigen::Vector2d::Zero());
+        mesh->tex_coords.push_back(t >= 0 ? (*tex_coord->points2)[static_cast<std::size_t>(t)]
+                                          : Eigen::Vector2d::Zero());
       }
       return it->second;
     };
@@ -588,9 +606,8 @@ class Parser {
     }
     if (bad_index >= 0) {
       report("mesh-invalid-geometry", type,
-             "IndexedFaceSet: vertex index " + std::to_string(bad_index) +
-                 " is over the number of vertices (" + std::to_string(n_points) +
-                 "); polygons using it were dropped");
+             "IndexedFaceSet: vertex index " + std::to_string(bad_index) + " is over the number of vertices (" +
+                 std::to_string(n_points) + "); polygons using it were dropped");
     }
     auto node = std::make_shared<VrmlNode>();
     node->kind = NodeKind::kGeometry;
@@ -604,20 +621,27 @@ class Parser {
     primitive.type = t;
     read_fields([&](const Token& f) {
       const std::string_view n = f.text;
-      if (t == "Box" && n == "size") primitive.size = read_vec3();
-      else if (n == "radius" || n == "bottomRadius") primitive.radius = read_number();
-      else if (n == "height") primitive.height = read_number();
-      else if (n == "bottom") primitive.bottom = read_bool();
-      else if (n == "side") primitive.side = read_bool();
-      else if (n == "top") primitive.top = read_bool();
-      else return false;
+      if (t == "Box" && n == "size")
+        primitive.size = read_vec3();
+      else if (n == "radius" || n == "bottomRadius")
+        primitive.radius = read_number();
+      else if (n == "height")
+        primitive.height = read_number();
+      else if (n == "bottom")
+        primitive.bottom = read_bool();
+      else if (n == "side")
+        primitive.side = read_bool();
+      else if (n == "top")
+        primitive.top = read_bool();
+      else
+        return false;
       return true;
     });
     if (failed_) return nullptr;
     auto node = std::make_shared<VrmlNode>();
     node->kind = NodeKind::kGeometry;
-    node->geometry = std::make_shared<TriangleMesh>(
-        tessellate_vrml_primitive(primitive, sink_, {path_, type.line, type.column}));
+    node->geometry =
+        std::make_shared<TriangleMesh>(tessellate_vrml_primitive(primitive, sink_, {path_, type.line, type.column}));
     return node;
   }
 

@@ -15,8 +15,7 @@ namespace bodyfmt::mesh {
 
 /// Loads an Inline'd file (already resolved to a path). Returns nullptr after reporting when
 /// it cannot be read. Lets the mesh cache parse each file once and detect Inline cycles.
-using InlineLoader =
-    std::function<SceneTree(const std::string& resolved_path, const SourceLocation& where)>;
+using InlineLoader = std::function<SceneTree(const std::string& resolved_path, const SourceLocation& where)>;
 
 /// Parses VRML97 `text`; `path` is used for diagnostics and for resolving relative `url`s
 /// (Inline, ImageTexture). On a syntax error, reports `mesh-parse` at file:line:col and

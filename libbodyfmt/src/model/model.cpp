@@ -16,10 +16,9 @@ std::string_view joint_type_name(JointType type) {
 }
 
 std::string_view geometry_type_name(const Geometry& geometry) {
-  static constexpr std::string_view kNames[] = {"Box",           "Sphere",         "Cylinder",
-                                                "Cone",          "Capsule",        "Extrusion",
-                                                "ElevationGrid", "IndexedFaceSet", "TriangleMesh",
-                                                "Resource"};
+  static constexpr std::string_view kNames[] = {"Box",          "Sphere",    "Cylinder",      "Cone",
+                                                "Capsule",      "Extrusion", "ElevationGrid", "IndexedFaceSet",
+                                                "TriangleMesh", "Resource"};
   return kNames[geometry.index()];
 }
 

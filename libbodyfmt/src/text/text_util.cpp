@@ -43,9 +43,9 @@ std::string_view suggest(std::string_view word, const std::vector<std::string_vi
 }
 
 std::optional<bool> parse_bool_word(std::string_view word) {
-  static constexpr std::array<std::string_view, 11> kTrue = {"y", "Y", "yes", "Yes", "YES", "true",
-                                                             "True", "TRUE", "on", "On", "ON"};
-  static constexpr std::array<std::string_view, 11> kFalse = {"n", "N", "no", "No", "NO", "false",
+  static constexpr std::array<std::string_view, 11> kTrue = {"y",    "Y",    "yes", "Yes", "YES", "true",
+                                                             "True", "TRUE", "on",  "On",  "ON"};
+  static constexpr std::array<std::string_view, 11> kFalse = {"n",     "N",     "no",  "No",  "NO", "false",
                                                               "False", "FALSE", "off", "Off", "OFF"};
   if (std::find(kTrue.begin(), kTrue.end(), word) != kTrue.end()) return true;
   if (std::find(kFalse.begin(), kFalse.end(), word) != kFalse.end()) return false;
@@ -75,10 +75,14 @@ std::size_t utf8_sequence(std::string_view s, std::size_t i) {
   unsigned min = 0;
   unsigned value = 0;
   if (c < 0x80) return 1;
-  if ((c & 0xE0) == 0xC0) n = 2, min = 0x80, value = c & 0x1F;
-  else if ((c & 0xF0) == 0xE0) n = 3, min = 0x800, value = c & 0x0F;
-  else if ((c & 0xF8) == 0xF0) n = 4, min = 0x10000, value = c & 0x07;
-  else return 0;
+  if ((c & 0xE0) == 0xC0)
+    n = 2, min = 0x80, value = c & 0x1F;
+  else if ((c & 0xF0) == 0xE0)
+    n = 3, min = 0x800, value = c & 0x0F;
+  else if ((c & 0xF8) == 0xF0)
+    n = 4, min = 0x10000, value = c & 0x07;
+  else
+    return 0;
   if (i + n > s.size()) return 0;
   for (std::size_t k = 1; k < n; ++k) {
     const unsigned char cc = static_cast<unsigned char>(s[i + k]);

@@ -2,15 +2,12 @@
 
 namespace bodyfmt::yaml {
 
-const SourceLocation& NodeRef::use_site() const {
-  return alias_site ? *alias_site : node->location;
-}
+const SourceLocation& NodeRef::use_site() const { return alias_site ? *alias_site : node->location; }
 
 bool Node::is_null() const {
   // The YAML core-schema null spellings; only plain scalars, so `""` and `'null'` stay strings.
   if (kind != NodeKind::kScalar || !plain) return false;
-  return scalar.empty() || scalar == "~" || scalar == "null" || scalar == "Null" ||
-         scalar == "NULL";
+  return scalar.empty() || scalar == "~" || scalar == "null" || scalar == "Null" || scalar == "NULL";
 }
 
 const MapEntry* Node::find(std::string_view key) const {

@@ -107,7 +107,7 @@ class Document {
 /// undefined alias, a redefined anchor, or a budget exceeded. Warnings (duplicate keys)
 /// leave the document usable. A text without any document (empty, only comments) gives a
 /// Document whose root is a plain empty scalar (`is_null()`) at 1:1, so callers need no null check.
-std::unique_ptr<Document> parse_yaml(std::string_view text, const std::string& file_name,
-                                     const ParseOptions& options, DiagnosticSink& sink);
+std::unique_ptr<Document> parse_yaml(std::string_view text, const std::string& file_name, const ParseOptions& options,
+                                     DiagnosticSink& sink);
 
 }  // namespace bodyfmt::yaml

@@ -37,8 +37,7 @@ std::size_t name_end(std::string_view text, std::size_t pos) {
 }
 
 std::size_t saturating_add(std::size_t a, std::size_t b) {
-  return a > std::numeric_limits<std::size_t>::max() - b ? std::numeric_limits<std::size_t>::max()
-                                                         : a + b;
+  return a > std::numeric_limits<std::size_t>::max() - b ? std::numeric_limits<std::size_t>::max() : a + b;
 }
 
 // A node's properties as written: its mark points at its first property (`&a`, `!tag`).
@@ -92,8 +91,7 @@ struct Parser {
 
 class TreeBuilder {
  public:
-  TreeBuilder(std::string_view text, const std::string& file, const ParseOptions& options,
-              Document& document)
+  TreeBuilder(std::string_view text, const std::string& file, const ParseOptions& options, Document& document)
       : text_(text), file_(file), options_(options), document_(document) {
     // libyaml skips a UTF-8 byte order mark without counting it in its marks.
     bom_size_ = text_.rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0;
@@ -110,8 +108,7 @@ class TreeBuilder {
     Parser parser;
     if (yaml_parser_initialize(&parser.parser) == 0) throw std::bad_alloc();
     parser.initialized = true;
-    yaml_parser_set_input_string(&parser.parser,
-                                 reinterpret_cast<const unsigned char*>(text_.data()), text_.size());
+    yaml_parser_set_input_string(&parser.parser, reinterpret_cast<const unsigned char*>(text_.data()), text_.size());
     for (;;) {
       Event event;
       if (yaml_parser_parse(&parser.parser, &event.event) == 0) syntax_error(parser.parser);
@@ -123,12 +120,12 @@ class TreeBuilder {
         case YAML_SCALAR_EVENT: on_scalar(e); break;
         case YAML_ALIAS_EVENT: on_alias(e); break;
         case YAML_SEQUENCE_START_EVENT:
-          begin_collection(begin_node(NodeKind::kSequence, e.start_mark,
-                                      e.data.sequence_start.anchor, e.data.sequence_start.tag));
+          begin_collection(
+              begin_node(NodeKind::kSequence, e.start_mark, e.data.sequence_start.anchor, e.data.sequence_start.tag));
           break;
         case YAML_MAPPING_START_EVENT:
-          begin_collection(begin_node(NodeKind::kMapping, e.start_mark,
-                                      e.data.mapping_start.anchor, e.data.mapping_start.tag));
+          begin_collection(
+              begin_node(NodeKind::kMapping, e.start_mark, e.data.mapping_start.anchor, e.data.mapping_start.tag));
           break;
         case YAML_SEQUENCE_END_EVENT:
         case YAML_MAPPING_END_EVENT: end_collection(); break;
@@ -203,8 +200,8 @@ class TreeBuilder {
       where = location(parser.problem_mark);
       if (parser.context != nullptr) {
         SourceLocation context = location(parser.context_mark);
-        message += " (" + std::string(parser.context) + " at line " +
-                   std::to_string(context.line) + ", column " + std::to_string(context.column) + ")";
+        message += " (" + std::string(parser.context) + " at line " + std::to_string(context.line) + ", column " +
+                   std::to_string(context.column) + ")";
       }
     }
     report("yaml-syntax", std::move(where), std::move(message));
@@ -218,8 +215,8 @@ class TreeBuilder {
     node->plain = scalar.style == YAML_PLAIN_SCALAR_STYLE;
     // `key:` with nothing after it: the empty value has no text of its own; it is reported at
     // its key rather than at wherever libyaml's scanner stood.
-    if (node->plain && node->scalar.empty() && scalar.anchor == nullptr && scalar.tag == nullptr &&
-        !frames_.empty() && frames_.back().node->is_mapping() && !frames_.back().expecting_key) {
+    if (node->plain && node->scalar.empty() && scalar.anchor == nullptr && scalar.tag == nullptr && !frames_.empty() &&
+        frames_.back().node->is_mapping() && !frames_.back().expecting_key) {
       node->location = frames_.back().key_location;
     }
     finish_scalar(node);
@@ -253,8 +250,7 @@ class TreeBuilder {
     return !frames_.empty() && frames_.back().node->is_mapping() && frames_.back().expecting_key;
   }
 
-  Node* begin_node(NodeKind kind, const yaml_mark_t& mark, const yaml_char_t* anchor,
-                   const yaml_char_t* tag) {
+  Node* begin_node(NodeKind kind, const yaml_mark_t& mark, const yaml_char_t* anchor, const yaml_char_t* tag) {
     Node* node = document_.make_node();
     node->kind = kind;
     node->location = location(mark);
@@ -273,8 +269,7 @@ class TreeBuilder {
     if (!inserted) {
       // body-format-spec §1.4: Choreonoid rejects a duplicated anchor, stricter than YAML 1.2.
       report("yaml-anchor-redefined", node->location,
-             "anchor \"" + node->anchor + "\" is already defined at line " +
-                 std::to_string(it->second->location.line),
+             "anchor \"" + node->anchor + "\" is already defined at line " + std::to_string(it->second->location.line),
              "give each anchor a unique name");
       failed_ = true;
     }
@@ -285,9 +280,9 @@ class TreeBuilder {
     if (expanded_count_ <= options_.max_expanded_nodes) return;
     std::string limit = std::to_string(options_.max_expanded_nodes);
     report("yaml-alias-expansion", where,
-           via_alias ? "expanding this alias makes the document larger than the limit of " + limit +
-                           " nodes (alias bomb?)"
-                     : "the document has more than the limit of " + limit + " nodes",
+           via_alias
+               ? "expanding this alias makes the document larger than the limit of " + limit + " nodes (alias bomb?)"
+               : "the document has more than the limit of " + limit + " nodes",
            "if the file is legitimate, raise the limit (--max-yaml-nodes, LoadOptions::max_expanded_yaml_nodes)");
     throw ParseAborted{};
   }
@@ -330,8 +325,7 @@ class TreeBuilder {
     check_depth(static_cast<int>(frames_.size()), node->location);
     if (frames_.size() > kNestingCeiling) {
       report("yaml-depth", node->location,
-             "nesting is deeper than the parser's limit of " + std::to_string(kNestingCeiling) +
-                 " levels");
+             "nesting is deeper than the parser's limit of " + std::to_string(kNestingCeiling) + " levels");
       throw ParseAborted{};
     }
   }
@@ -379,8 +373,7 @@ class TreeBuilder {
     frame.key_location = ref.use_site();
     if (!ref->is_scalar()) {
       report("yaml-complex-key", frame.key_location,
-             "a mapping key must be a scalar, not a " +
-                 std::string(ref->is_mapping() ? "mapping" : "sequence"));
+             "a mapping key must be a scalar, not a " + std::string(ref->is_mapping() ? "mapping" : "sequence"));
       frame.key_state = KeyState::kSkip;
     } else if (ref->scalar.empty()) {
       // body-format-spec §1.8: Choreonoid reports "empty key".
@@ -400,16 +393,16 @@ class TreeBuilder {
       return;
     }
     std::vector<MapEntry>& entries = frame.node->entries;
-    auto [it, inserted] = frame.local_keys.try_emplace(
-        frame.key, std::make_pair(entries.size(), frame.key_location.line));
+    auto [it, inserted] =
+        frame.local_keys.try_emplace(frame.key, std::make_pair(entries.size(), frame.key_location.line));
     if (inserted) {
       entries.push_back(MapEntry{frame.key, frame.key_location, std::move(value), false});
       return;
     }
     // body-format-spec §1.6: the last one wins (WAREC1's `type: Collision` then `type: Group`).
     report("yaml-duplicate-key", frame.key_location,
-           "duplicate key \"" + frame.key + "\" (first at line " +
-               std::to_string(it->second.second) + "); the last value wins",
+           "duplicate key \"" + frame.key + "\" (first at line " + std::to_string(it->second.second) +
+               "); the last value wins",
            "remove one of the two entries");
     MapEntry& entry = entries[it->second.first];
     entry.key_location = frame.key_location;
@@ -427,8 +420,7 @@ class TreeBuilder {
         if (item->is_mapping()) {
           slot.sources.push_back(item);
         } else {
-          report("yaml-merge-invalid", item.use_site(),
-                 "an element to merge by the \"<<\" key must be a mapping");
+          report("yaml-merge-invalid", item.use_site(), "an element to merge by the \"<<\" key must be a mapping");
         }
       }
     } else {
@@ -479,8 +471,8 @@ class TreeBuilder {
 
 }  // namespace
 
-std::unique_ptr<Document> parse_yaml(std::string_view text, const std::string& file_name,
-                                     const ParseOptions& options, DiagnosticSink& sink) {
+std::unique_ptr<Document> parse_yaml(std::string_view text, const std::string& file_name, const ParseOptions& options,
+                                     DiagnosticSink& sink) {
   auto document = std::make_unique<Document>();
   document->file = file_name;
   std::vector<Diagnostic> diagnostics;

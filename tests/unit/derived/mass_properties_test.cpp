@@ -30,8 +30,7 @@ TEST_CASE("derived: two bodies combine by the parallel-axis theorem about their 
   // 2 kg at x = +1 and 2 kg at x = -1, each diag(0.1, 0.2, 0.3): the CoM is the origin and each
   // adds m (|d|² I - d dᵀ) = 2 diag(0, 1, 1), so I = diag(0.2, 4.4, 4.6).
   Link link;
-  link.mass_contributions = {contribution(2, {1, 0, 0}, {0.1, 0.2, 0.3}),
-                             contribution(2, {-1, 0, 0}, {0.1, 0.2, 0.3})};
+  link.mass_contributions = {contribution(2, {1, 0, 0}, {0.1, 0.2, 0.3}), contribution(2, {-1, 0, 0}, {0.1, 0.2, 0.3})};
   const MassProperties mp = compute_mass_properties(link);
   CHECK(mp.mass == 4.0);
   CHECK(mp.center_of_mass.isZero(1e-15));

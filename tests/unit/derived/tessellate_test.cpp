@@ -37,8 +37,7 @@ bool closed_and_consistent(const TriangleMesh& mesh) {
   return !mesh.triangles.empty();
 }
 
-void check_box(const TriangleMesh& mesh, const Vector3d& min, const Vector3d& max,
-               double tolerance = 1e-12) {
+void check_box(const TriangleMesh& mesh, const Vector3d& min, const Vector3d& max, double tolerance = 1e-12) {
   const BoundingBox box = bounding_box(mesh);
   REQUIRE_FALSE(box.empty());
   INFO("min = " << box.min.transpose() << ", max = " << box.max.transpose());
@@ -74,9 +73,7 @@ double inscribed_sphere_volume(double r, int bands, int n) {
   return volume;
 }
 
-double relative_error(double value, double reference) {
-  return std::abs(value - reference) / std::abs(reference);
-}
+double relative_error(double value, double reference) { return std::abs(value - reference) / std::abs(reference); }
 
 Extrusion simple_tank_track() {
   Extrusion e;
@@ -302,9 +299,8 @@ TEST_CASE("tessellate: extrusion spine along other directions turns the cross-se
     CHECK(signed_volume(m) == doctest::Approx(0.5 * std::sqrt(2.0)).epsilon(1e-12));
     for (int k = 0; k < 4; ++k) {
       // Each cap edge keeps its length: the SCP is a rotation.
-      const double edge = (m.vertices[static_cast<std::size_t>(k)] -
-                           m.vertices[static_cast<std::size_t>((k + 1) % 4)])
-                              .norm();
+      const double edge =
+          (m.vertices[static_cast<std::size_t>(k)] - m.vertices[static_cast<std::size_t>((k + 1) % 4)]).norm();
       CHECK(edge == doctest::Approx(k % 2 == 0 ? 1.0 : 0.5));
     }
   }
@@ -405,8 +401,7 @@ TEST_CASE("tessellate: elevation grid vertices, orientation and volume under the
   for (const auto& t : m.triangles) {
     const Vector3d n2 = triangle_normal2(m, t);
     CHECK(n2.y() > 0);  // ccw: the top faces +Y
-    volume += n2.y() / 2 *
-              (m.vertices[t[0]].y() + m.vertices[t[1]].y() + m.vertices[t[2]].y()) / 3;
+    volume += n2.y() / 2 * (m.vertices[t[0]].y() + m.vertices[t[1]].y() + m.vertices[t[2]].y()) / 3;
   }
   CHECK(volume == doctest::Approx(5.7).epsilon(1e-12));
 
@@ -422,14 +417,12 @@ namespace {
 
 // A U shape (area 3 x 2 - 1 x 1 = 5). A fan from vertex 0 would produce the clockwise
 // triangle (0,0) (2,2) (2,1), so only a real triangulation gets every triangle right.
-const std::vector<Vector2d> kUShape = {{0, 0}, {3, 0}, {3, 2}, {2, 2},
-                                       {2, 1}, {1, 1}, {1, 2}, {0, 2}};
+const std::vector<Vector2d> kUShape = {{0, 0}, {3, 0}, {3, 2}, {2, 2}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
 
 }  // namespace
 
 TEST_CASE("tessellate: indexed face set triangulates a concave polygon in any plane") {
-  const Eigen::Matrix3d rotation =
-      Eigen::AngleAxisd(0.7, Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const Eigen::Matrix3d rotation = Eigen::AngleAxisd(0.7, Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   for (const Eigen::Matrix3d& r : {Eigen::Matrix3d(Eigen::Matrix3d::Identity()), rotation}) {
     IndexedFaceSet f;
     for (const Vector2d& p : kUShape) f.vertices.push_back(r * Vector3d(p.x(), p.y(), 0.3));
@@ -453,8 +446,7 @@ TEST_CASE("tessellate: indexed face set triangulates a concave polygon in any pl
 TEST_CASE("tessellate: indexed face set cube of quads; a last polygon without -1 is dropped") {
   IndexedFaceSet f;
   for (int k = 0; k < 8; ++k) f.vertices.emplace_back(k & 1, (k >> 1) & 1, (k >> 2) & 1);
-  f.faces = {0, 2, 3, 1, -1, 4, 5, 7, 6, -1, 0, 1, 5, 4, -1,
-             2, 6, 7, 3, -1, 0, 4, 6, 2, -1, 1, 3, 7, 5, -1};
+  f.faces = {0, 2, 3, 1, -1, 4, 5, 7, 6, -1, 0, 1, 5, 4, -1, 2, 6, 7, 3, -1, 0, 4, 6, 2, -1, 1, 3, 7, 5, -1};
   CollectingSink sink;
   const TriangleMesh m = run(f, 20, sink);
   CHECK(sink.diagnostics().empty());

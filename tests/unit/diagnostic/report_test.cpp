@@ -2,7 +2,6 @@
 #include <bodyfmt/report.h>
 #include <bodyfmt/rules.h>
 
-
 #include <doctest/doctest.h>
 
 #include <cstdio>
@@ -115,10 +114,14 @@ TEST_CASE("report: JSON document structure") {
   for (std::size_t i = 0; i < json.size(); ++i) {
     const char c = json[i];
     if (in_string) {
-      if (c == '\\') ++i;
-      else if (c == '"') in_string = false;
-    } else if (c == '"') in_string = true;
-    else if (c == '{' || c == '[') ++depth;
+      if (c == '\\')
+        ++i;
+      else if (c == '"')
+        in_string = false;
+    } else if (c == '"')
+      in_string = true;
+    else if (c == '{' || c == '[')
+      ++depth;
     else if (c == '}' || c == ']') {
       --depth;
       CHECK(depth >= 0);
@@ -153,8 +156,9 @@ TEST_CASE("report: SARIF structure") {
   while (rules[dup].id != "yaml-duplicate-key") ++dup;
   CHECK(sarif.find("{\"id\": \"yaml-duplicate-key\", \"name\": \"YamlDuplicateKey\", \"shortDescription\": {\"text\": "
                    "\"A mapping repeats a key; the last one wins.\"}") != std::string::npos);
-  CHECK(sarif.find("\"ruleId\": \"yaml-duplicate-key\", \"ruleIndex\": " + std::to_string(dup) +
-                   ", \"level\": \"warning\", \"message\": {\"text\": \"Duplicate key \\\"mass\\\". Fix: Remove one.\"}") !=
+  CHECK(sarif.find(
+            "\"ruleId\": \"yaml-duplicate-key\", \"ruleIndex\": " + std::to_string(dup) +
+            ", \"level\": \"warning\", \"message\": {\"text\": \"Duplicate key \\\"mass\\\". Fix: Remove one.\"}") !=
         std::string::npos);
   // Relative, percent-encoded URIs under %SRCROOT%, with regions and artifact indices.
   CHECK(sarif.find("\"artifactLocation\": {\"uri\": \"dir/a%20file.body\", \"uriBaseId\": \"%SRCROOT%\", "

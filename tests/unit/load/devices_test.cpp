@@ -205,8 +205,8 @@ links:
 
 TEST_CASE("load: SimpleTank devices match the reference numbers") {
   CollectingSink sink;
-  auto model = load_body(std::string(BODYFMT_SHARED_DIR) + "/corpus/choreonoid/Tank/SimpleTank.body",
-                         LoadOptions{}, sink);
+  auto model =
+      load_body(std::string(BODYFMT_SHARED_DIR) + "/corpus/choreonoid/Tank/SimpleTank.body", LoadOptions{}, sink);
   REQUIRE(model.has_value());
   CHECK(sink.error_count() == 0);
   REQUIRE(model->devices.size() == 2);
@@ -225,8 +225,7 @@ TEST_CASE("load: SimpleTank devices match the reference numbers") {
   CHECK(near(camera.X_LD.translation(), Eigen::Vector3d(0.1, 0, 0.05)));
   // SimpleTank.ref.yaml rotation, row-major, = Rx(90) * Ry(-90).
   Eigen::Matrix3d ref;
-  ref << 6.12323399574e-17, 0, -1, -1, 6.12323399574e-17, -6.12323399574e-17, 6.12323399574e-17, 1,
-      3.74939945665e-33;
+  ref << 6.12323399574e-17, 0, -1, -1, 6.12323399574e-17, -6.12323399574e-17, 6.12323399574e-17, 1, 3.74939945665e-33;
   CHECK(near(camera.X_LD.linear(), ref, 1e-11));
   const auto& c = std::get<CameraParams>(camera.params);
   CHECK(c.field_of_view == doctest::Approx(1.1344640138).epsilon(1e-9));

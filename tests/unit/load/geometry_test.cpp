@@ -320,7 +320,7 @@ links:
   CHECK(s[0].appearance.material->specular_exponent == 64.5);  // 127 * 0.5 + 1
   CHECK(s[1].appearance.material->specular_exponent == 128);   // clamped to 1
   CHECK(s[2].appearance.material->specular_exponent == 1);     // clamped to 0
-  r.expect_clean();  // the shininess notes are informational
+  r.expect_clean();                                            // the shininess notes are informational
 }
 
 TEST_CASE("load: shininess next to specular_exponent is ignored with load-ignored-key") {

@@ -89,7 +89,8 @@ format_version: 2.0
 links:
   - name: A
     joint_axis: W
-)", "dir/robot.body");
+)",
+                "dir/robot.body");
   auto d = r.take("load-axis");
   CHECK(d.location.file == "dir/robot.body");
   CHECK(r.m().name == "robot");

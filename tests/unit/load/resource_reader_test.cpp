@@ -205,9 +205,8 @@ links:
 
 // The mesh-heavy models: every mesh reference must resolve to an imported asset.
 TEST_CASE("load: mesh-heavy corpus models resolve every mesh") {
-  for (const char* model : {"GR001/GR001.body", "JACO2/JACO2.body", "UniversalRobots/UR5.body",
-                            "Robotiq/2F-85.body", "Tank/Tank.body", "PA10/PA10.body",
-                            "AizuSpider/AizuSpiderNS.body"}) {
+  for (const char* model : {"GR001/GR001.body", "JACO2/JACO2.body", "UniversalRobots/UR5.body", "Robotiq/2F-85.body",
+                            "Tank/Tank.body", "PA10/PA10.body", "AizuSpider/AizuSpiderNS.body"}) {
     CAPTURE(model);
     auto r = load_file(kCorpus + model);
     int meshes = 0;

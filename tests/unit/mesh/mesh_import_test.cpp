@@ -42,21 +42,20 @@ void check_against_reference(const char* ref_file, const std::vector<LinkMesh>& 
 }  // namespace
 
 TEST_CASE("mesh import: UR5 COLLADA parts are in metres, Z-up, like Choreonoid") {
-  check_against_reference("UniversalRobots/UR5.ref.yaml",
-                          {{"BASE", "UniversalRobots/UR5/base.dae", ""},
-                           {"SHOULDER", "UniversalRobots/UR5/shoulder.dae", ""},
-                           {"UPPER_ARM", "UniversalRobots/UR5/upperarm.dae", ""},
-                           {"FOREARM", "UniversalRobots/UR5/forearm.dae", ""},
-                           {"WRIST1", "UniversalRobots/UR5/wrist1.dae", ""},
-                           {"WRIST2", "UniversalRobots/UR5/wrist2.dae", ""}});
+  check_against_reference("UniversalRobots/UR5.ref.yaml", {{"BASE", "UniversalRobots/UR5/base.dae", ""},
+                                                           {"SHOULDER", "UniversalRobots/UR5/shoulder.dae", ""},
+                                                           {"UPPER_ARM", "UniversalRobots/UR5/upperarm.dae", ""},
+                                                           {"FOREARM", "UniversalRobots/UR5/forearm.dae", ""},
+                                                           {"WRIST1", "UniversalRobots/UR5/wrist1.dae", ""},
+                                                           {"WRIST2", "UniversalRobots/UR5/wrist2.dae", ""}});
 }
 
 TEST_CASE("mesh import: GR001 STL parts match the reference visual_bbox") {
   std::vector<LinkMesh> links;
-  static const char* names[] = {"WAIST", "R_HIP_Y", "R_HIP_R", "R_HIP_P", "R_KNEE_P", "R_ANKLE_P",
-                                "R_ANKLE_R", "L_HIP_Y", "L_HIP_R", "L_HIP_P", "L_KNEE_P", "L_ANKLE_P",
-                                "L_ANKLE_R", "CHEST_P", "NECK_Y", "R_SHOULDER_P", "R_SHOULDER_R",
-                                "R_ELBOW_P", "L_SHOULDER_P", "L_SHOULDER_R", "L_ELBOW_P"};
+  static const char* names[] = {"WAIST",        "R_HIP_Y",      "R_HIP_R",  "R_HIP_P",      "R_KNEE_P",     "R_ANKLE_P",
+                                "R_ANKLE_R",    "L_HIP_Y",      "L_HIP_R",  "L_HIP_P",      "L_KNEE_P",     "L_ANKLE_P",
+                                "L_ANKLE_R",    "CHEST_P",      "NECK_Y",   "R_SHOULDER_P", "R_SHOULDER_R", "R_ELBOW_P",
+                                "L_SHOULDER_P", "L_SHOULDER_R", "L_ELBOW_P"};
   static std::vector<std::string> files;
   files.clear();
   for (const char* n : names) files.push_back(std::string("GR001/parts/") + n + ".stl");
@@ -65,17 +64,16 @@ TEST_CASE("mesh import: GR001 STL parts match the reference visual_bbox") {
 }
 
 TEST_CASE("mesh import: PA10 VRML parts (no #VRML header) match the reference visual_bbox") {
-  check_against_reference("PA10/PA10.ref.yaml",
-                          {{"BASE", "PA10/parts/BASE.wrl", ""},
-                           {"J1", "PA10/parts/J1.wrl", ""},
-                           {"J2", "PA10/parts/J2.wrl", ""},
-                           {"J3", "PA10/parts/J3.wrl", ""},
-                           {"J4", "PA10/parts/J4.wrl", ""},
-                           {"J5", "PA10/parts/J5.wrl", ""},
-                           {"J6", "PA10/parts/J6.wrl", ""},
-                           {"J7", "PA10/parts/J7.wrl", ""},
-                           {"HAND_L", "PA10/parts/HAND_L.wrl", ""},
-                           {"HAND_R", "PA10/parts/HAND_R.wrl", ""}});
+  check_against_reference("PA10/PA10.ref.yaml", {{"BASE", "PA10/parts/BASE.wrl", ""},
+                                                 {"J1", "PA10/parts/J1.wrl", ""},
+                                                 {"J2", "PA10/parts/J2.wrl", ""},
+                                                 {"J3", "PA10/parts/J3.wrl", ""},
+                                                 {"J4", "PA10/parts/J4.wrl", ""},
+                                                 {"J5", "PA10/parts/J5.wrl", ""},
+                                                 {"J6", "PA10/parts/J6.wrl", ""},
+                                                 {"J7", "PA10/parts/J7.wrl", ""},
+                                                 {"HAND_L", "PA10/parts/HAND_L.wrl", ""},
+                                                 {"HAND_R", "PA10/parts/HAND_R.wrl", ""}});
 }
 
 TEST_CASE("mesh import: tank.wrl fragments are re-centred (spec 9.4)") {

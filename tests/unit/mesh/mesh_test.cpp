@@ -18,8 +18,7 @@ TriangleMesh corner_box(double sx, double sy, double sz) {
   for (int k = 0; k < 8; ++k) {
     m.vertices.emplace_back((k & 1) ? sx : 0, (k & 2) ? sy : 0, (k & 4) ? sz : 0);
   }
-  const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
-                           {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
   for (const auto& q : quads) {
     m.triangles.push_back({q[0], q[1], q[2]});
     m.triangles.push_back({q[0], q[2], q[3]});
@@ -42,8 +41,7 @@ TEST_CASE("mesh: bounding box with and without a transform") {
   CHECK(local.max.isApprox(Vector3d(1, 2, 3)));
 
   // 90 degrees about Z maps (x, y, z) -> (-y, x, z); then translate by (10, 0, 0).
-  Eigen::Affine3d t = Eigen::Translation3d(10, 0, 0) *
-                      Eigen::AngleAxisd(kPi / 2, Vector3d::UnitZ());
+  Eigen::Affine3d t = Eigen::Translation3d(10, 0, 0) * Eigen::AngleAxisd(kPi / 2, Vector3d::UnitZ());
   const BoundingBox moved = bodyfmt::bounding_box(m, t);
   CHECK((moved.min - Vector3d(8, 0, 0)).norm() < 1e-12);
   CHECK((moved.max - Vector3d(10, 1, 3)).norm() < 1e-12);
@@ -58,8 +56,7 @@ TEST_CASE("mesh: signed volume of a box is exact, sign follows the winding") {
 
 TEST_CASE("mesh: signed volume of a closed mesh does not depend on its position") {
   TriangleMesh moved;
-  bodyfmt::append_mesh(moved, corner_box(1, 1, 1),
-                       Eigen::Affine3d(Eigen::Translation3d(-5, 7, 100)));
+  bodyfmt::append_mesh(moved, corner_box(1, 1, 1), Eigen::Affine3d(Eigen::Translation3d(-5, 7, 100)));
   CHECK(bodyfmt::signed_volume(moved) == doctest::Approx(1.0).epsilon(1e-12));
 }
 

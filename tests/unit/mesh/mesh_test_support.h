@@ -30,8 +30,7 @@ inline std::size_t triangle_count(const bodyfmt::MeshAsset& asset) {
 }
 
 /// `visual_bbox` of link `link` in a reference file (min xyz, max xyz), if present.
-inline std::optional<bodyfmt::BoundingBox> reference_visual_bbox(const std::string& ref_file,
-                                                                 const std::string& link) {
+inline std::optional<bodyfmt::BoundingBox> reference_visual_bbox(const std::string& ref_file, const std::string& link) {
   std::ifstream in(kReference + ref_file);
   std::string line;
   bool in_link = false;
@@ -40,7 +39,8 @@ inline std::optional<bodyfmt::BoundingBox> reference_visual_bbox(const std::stri
     const auto pos = line.find("visual_bbox: [");
     if (in_link && pos != std::string::npos) {
       std::string values = line.substr(pos + 14);
-      for (char& c : values) if (c == ',' || c == ']') c = ' ';
+      for (char& c : values)
+        if (c == ',' || c == ']') c = ' ';
       std::istringstream s(values);
       bodyfmt::BoundingBox box;
       s >> box.min.x() >> box.min.y() >> box.min.z() >> box.max.x() >> box.max.y() >> box.max.z();

@@ -34,8 +34,8 @@ Eigen::Affine3d pose(const Eigen::Vector3d& translation, const Eigen::Matrix3d& 
 
 /// Scene bounds of a VRML text (whole file or one node), with parts flattened alongside.
 BoundingBox scene_bounds_of(const std::string& text, const std::string& node = "",
-                            const std::vector<std::string>& detached = {},
-                            double length_scale = 1.0, bool y_up = false) {
+                            const std::vector<std::string>& detached = {}, double length_scale = 1.0,
+                            bool y_up = false) {
   CollectingSink sink;
   auto tree = mesh::read_vrml(text, "test.wrl", sink, {});
   REQUIRE(tree);
@@ -81,11 +81,9 @@ Outcome compare(MeshCache& cache, const Case& c, std::ostringstream& log) {
   const auto error = [&](const BoundingBox& b) {
     return std::max((b.min - ref->min).cwiseAbs().maxCoeff(), (b.max - ref->max).cwiseAbs().maxCoeff());
   };
-  log << c.ref_file << " " << c.link << ": tight " << (out.tight ? "match" : "MISMATCH") << " ("
-      << error(tight) * 1000 << " mm), scene_bounds " << (out.scene ? "match" : "MISMATCH") << " ("
-      << error(scene) * 1000 << " mm)\n";
-  INFO("scene_bounds " << to_string(scene) << " tight " << to_string(tight) << " reference "
-                       << to_string(*ref));
+  log << c.ref_file << " " << c.link << ": tight " << (out.tight ? "match" : "MISMATCH") << " (" << error(tight) * 1000
+      << " mm), scene_bounds " << (out.scene ? "match" : "MISMATCH") << " (" << error(scene) * 1000 << " mm)\n";
+  INFO("scene_bounds " << to_string(scene) << " tight " << to_string(tight) << " reference " << to_string(*ref));
   CHECK(out.scene);
   // Far inside the corpus tolerance: Choreonoid's boxes differ only by its float vertices.
   CHECK(error(scene) < 1e-5);
@@ -102,8 +100,8 @@ Outcome compare(MeshCache& cache, const Case& c, std::ostringstream& log) {
 TEST_CASE("mesh import: scene_bounds of a mesh leaf is its tight box; rotations inflate it") {
   // A 2 x 2 x 2 box (VRML default) rotated 45 degrees about Z: the tight box of the rotated
   // vertices is sqrt(2) wide, and so is the box of the 8 rotated corners (same 8 points).
-  const BoundingBox one = scene_bounds_of(
-      "Transform { rotation 0 0 1 0.785398163397 children Shape { geometry Box { } } }");
+  const BoundingBox one =
+      scene_bounds_of("Transform { rotation 0 0 1 0.785398163397 children Shape { geometry Box { } } }");
   CHECK(near(one.max, Eigen::Vector3d(std::sqrt(2.0), std::sqrt(2.0), 1)));
   // Twice: rotated back by the outer Transform the tight box is 2 x 2 again, but the
   // hierarchical box rotates the already inflated inner box: 2 sqrt(2) / sqrt(2) * ... = 2.
@@ -142,8 +140,7 @@ TEST_CASE("mesh import: scene_bounds of a selected node keeps one transform abov
   const BoundingBox without_other = scene_bounds_of(text, "", {"OTHER"});
   CHECK(without_other.max.x() < 20);
   // Metadata is one more transform on top: millimetres and Y-up (mesh +Y becomes +Z).
-  const BoundingBox mm = scene_bounds_of("Shape { geometry Box { size 1000 2000 3000 } }", "", {},
-                                         0.001, true);
+  const BoundingBox mm = scene_bounds_of("Shape { geometry Box { size 1000 2000 3000 } }", "", {}, 0.001, true);
   CHECK(near(mm.max, Eigen::Vector3d(1.5, 0.5, 1)));
 }
 
@@ -162,30 +159,40 @@ TEST_CASE("mesh import: scene_bounds match Choreonoid's reference visual_bbox") 
       {"Labo1/Labo1v2.ref.yaml", "Rack2", "Labo1/resource/rack2.wrl", "", ground, {}},
       {"Labo1/Labo1v2.ref.yaml", "Rack3", "Labo1/resource/rack3.wrl", "", ground, {}},
       // 2F-85.body: the Coupler's resource sits in a Transform rotated -90 degrees about Z.
-      {"Robotiq/2F-85.ref.yaml", "Coupler", "Robotiq/parts/kinova_robotiq_coupler.dae", "",
-       pose({0, 0, 0}, rot(0, 0, 1, -90)), {}},
+      {"Robotiq/2F-85.ref.yaml",
+       "Coupler",
+       "Robotiq/parts/kinova_robotiq_coupler.dae",
+       "",
+       pose({0, 0, 0}, rot(0, 0, 1, -90)),
+       {}},
       {"UniversalRobots/UR5.ref.yaml", "BASE", "UniversalRobots/UR5/base.dae", "", I, {}},
       {"UniversalRobots/UR5.ref.yaml", "SHOULDER", "UniversalRobots/UR5/shoulder.dae", "", I, {}},
       {"UniversalRobots/UR5.ref.yaml", "UPPER_ARM", "UniversalRobots/UR5/upperarm.dae", "", I, {}},
       {"UniversalRobots/UR5.ref.yaml", "FOREARM", "UniversalRobots/UR5/forearm.dae", "", I, {}},
       {"UniversalRobots/UR5.ref.yaml", "WRIST1", "UniversalRobots/UR5/wrist1.dae", "", I, {}},
       {"UniversalRobots/UR5.ref.yaml", "WRIST2", "UniversalRobots/UR5/wrist2.dae", "", I, {}},
-      {"UniversalRobots/UR5.ref.yaml", "FLANGE", "UniversalRobots/UR5/wrist3.dae", "",
-       pose({0, 0, -0.082}, rot(1, 0, 0, 90) * rot(0, 1, 0, 90)), {}},
+      {"UniversalRobots/UR5.ref.yaml",
+       "FLANGE",
+       "UniversalRobots/UR5/wrist3.dae",
+       "",
+       pose({0, 0, -0.082}, rot(1, 0, 0, 90) * rot(0, 1, 0, 90)),
+       {}},
   };
   for (const char* side : {"1", "2"}) {
     for (const char* part : {"knuckle", "finger", "inner_knuckle", "finger_tip"}) {
-      cases.push_back({"Robotiq/2F-85.ref.yaml", std::string("Finger") + side + "_" + part,
-                       std::string("Robotiq/parts/robotiq_85_") + part + "_link.dae", "", I, {}});
+      cases.push_back({"Robotiq/2F-85.ref.yaml",
+                       std::string("Finger") + side + "_" + part,
+                       std::string("Robotiq/parts/robotiq_85_") + part + "_link.dae",
+                       "",
+                       I,
+                       {}});
     }
   }
-  cases.push_back({"Robotiq/2F-85.ref.yaml", "Gripper_Base", "Robotiq/parts/robotiq_85_base_link.dae",
-                   "", I, {}});
-  static const char* gr001[] = {"WAIST", "R_HIP_Y", "R_HIP_R", "R_HIP_P", "R_KNEE_P", "R_ANKLE_P",
-                                "R_ANKLE_R", "L_HIP_Y", "L_HIP_R", "L_HIP_P", "L_KNEE_P",
-                                "L_ANKLE_P", "L_ANKLE_R", "CHEST_P", "NECK_Y", "R_SHOULDER_P",
-                                "R_SHOULDER_R", "R_ELBOW_P", "L_SHOULDER_P", "L_SHOULDER_R",
-                                "L_ELBOW_P"};
+  cases.push_back({"Robotiq/2F-85.ref.yaml", "Gripper_Base", "Robotiq/parts/robotiq_85_base_link.dae", "", I, {}});
+  static const char* gr001[] = {"WAIST",        "R_HIP_Y",      "R_HIP_R",  "R_HIP_P",      "R_KNEE_P",     "R_ANKLE_P",
+                                "R_ANKLE_R",    "L_HIP_Y",      "L_HIP_R",  "L_HIP_P",      "L_KNEE_P",     "L_ANKLE_P",
+                                "L_ANKLE_R",    "CHEST_P",      "NECK_Y",   "R_SHOULDER_P", "R_SHOULDER_R", "R_ELBOW_P",
+                                "L_SHOULDER_P", "L_SHOULDER_R", "L_ELBOW_P"};
   for (const char* n : gr001) {
     cases.push_back({"GR001/GR001.ref.yaml", n, std::string("GR001/parts/") + n + ".stl", "", I, {}});
   }

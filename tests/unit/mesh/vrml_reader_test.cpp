@@ -103,7 +103,8 @@ TEST_CASE("vrml: a selected node is re-centred: translations dropped, rotation a
 }
 
 TEST_CASE("vrml: lenient `DEF Transform {` reads an unnamed Transform") {
-  auto parts = parts_of(R"(DEF Transform { translation 0 0 1 children [ DEF S Shape { geometry Sphere { radius 0.5 } } ] })");
+  auto parts =
+      parts_of(R"(DEF Transform { translation 0 0 1 children [ DEF S Shape { geometry Sphere { radius 0.5 } } ] })");
   REQUIRE(parts.size() == 1);
   const BoundingBox box = box_of_parts(parts);
   CHECK(box.max.z() == doctest::Approx(1.5));
@@ -150,13 +151,13 @@ TEST_CASE("vrml: malformed input gives a located mesh-parse error and no scene")
     int column;
   };
   const Case cases[] = {
-      {"Shape {\n  geometry Box { size 1 x 1 }\n}", 2, 25},                  // not a number
-      {"Transform {\n  children [ Shape { }\n", 3, 1},                        // end of file
-      {"Transform { translation 0 0 0 } }", 1, 33},                           // stray brace
-      {"Shape { geometry USE NOPE }", 1, 22},                                 // undefined USE
-      {"Group { children [ Shape { appearance \"x\" } ] }", 1, 39},            // string as a node
-      {"Viewpoint { description \"unterminated }", 1, 25},                    // unterminated string
-      {"Group { children [ Foo { a [ 1 2 } ] }", 1, 34},                      // unbalanced skip
+      {"Shape {\n  geometry Box { size 1 x 1 }\n}", 2, 25},          // not a number
+      {"Transform {\n  children [ Shape { }\n", 3, 1},               // end of file
+      {"Transform { translation 0 0 0 } }", 1, 33},                  // stray brace
+      {"Shape { geometry USE NOPE }", 1, 22},                        // undefined USE
+      {"Group { children [ Shape { appearance \"x\" } ] }", 1, 39},  // string as a node
+      {"Viewpoint { description \"unterminated }", 1, 25},           // unterminated string
+      {"Group { children [ Foo { a [ 1 2 } ] }", 1, 34},             // unbalanced skip
   };
   for (const Case& c : cases) {
     CAPTURE(std::string(c.text));
@@ -222,8 +223,7 @@ TEST_CASE("vrml: primitives use the shared tessellator with VRML97 defaults") {
   CollectingSink sink;
   // VRML97 defaults: Box 2 2 2, Sphere radius 1, Cylinder radius 1 height 2, Cone
   // bottomRadius 1 height 2; the same meshes as bodyfmt::tessellate() of those geometries.
-  const Geometry expected[] = {Box{Eigen::Vector3d(2, 2, 2)}, Sphere{1}, Cylinder{1, 2, true, true},
-                               Cone{1, 2, true}};
+  const Geometry expected[] = {Box{Eigen::Vector3d(2, 2, 2)}, Sphere{1}, Cylinder{1, 2, true, true}, Cone{1, 2, true}};
   for (int i = 0; i < 4; ++i) {
     CAPTURE(i);
     const TriangleMesh mesh = tessellate(expected[i], kDefaultDivisionNumber, sink, {});

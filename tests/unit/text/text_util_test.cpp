@@ -24,8 +24,10 @@ TEST_CASE("text: suggest allows 1 edit from 4 characters and 2 from 8, nothing b
 }
 
 TEST_CASE("text: the boolean words are exactly YAML 1.1's, in three cases") {
-  for (const char* word : {"y", "Y", "yes", "Yes", "YES", "true", "True", "TRUE", "on", "On", "ON"}) CHECK(parse_bool_word(word) == true);
-  for (const char* word : {"n", "N", "no", "No", "NO", "false", "False", "FALSE", "off", "Off", "OFF"}) CHECK(parse_bool_word(word) == false);
+  for (const char* word : {"y", "Y", "yes", "Yes", "YES", "true", "True", "TRUE", "on", "On", "ON"})
+    CHECK(parse_bool_word(word) == true);
+  for (const char* word : {"n", "N", "no", "No", "NO", "false", "False", "FALSE", "off", "Off", "OFF"})
+    CHECK(parse_bool_word(word) == false);
   for (const char* word : {"yEs", "1", "0", "", "true ", "tRUE"}) CHECK_FALSE(parse_bool_word(word).has_value());
 }
 
@@ -40,6 +42,6 @@ TEST_CASE("text: JSON quoting escapes control characters and keeps valid UTF-8")
   CHECK(json_quote("plain") == "\"plain\"");
   CHECK(json_quote("a\"b\\c\nd\te\x01") == "\"a\\\"b\\\\c\\nd\\te\\u0001\"");
   CHECK(json_quote("\xC3\xA9\xE2\x80\xA2") == "\"\xC3\xA9\xE2\x80\xA2\"");  // valid UTF-8 kept
-  CHECK(json_quote("x\xFFy") == "\"x\\ufffdy\"");                         // invalid byte replaced
-  CHECK(json_quote("\xC3") == "\"\\ufffd\"");                              // truncated sequence
+  CHECK(json_quote("x\xFFy") == "\"x\\ufffdy\"");                           // invalid byte replaced
+  CHECK(json_quote("\xC3") == "\"\\ufffd\"");                               // truncated sequence
 }

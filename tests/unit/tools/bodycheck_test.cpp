@@ -16,8 +16,8 @@ struct Run {
 };
 
 Run bodycheck(const std::string& args, bool merge = true) {
-  const std::string command = std::string("cd '") + BODYFMT_TEST_DATA_DIR + "/bodycheck' && '" +
-                              BODYFMT_BODYCHECK + "' " + args + (merge ? " 2>&1" : " 2>/dev/null");
+  const std::string command = std::string("cd '") + BODYFMT_TEST_DATA_DIR + "/bodycheck' && '" + BODYFMT_BODYCHECK +
+                              "' " + args + (merge ? " 2>&1" : " 2>/dev/null");
   Run run;
   FILE* pipe = popen(command.c_str(), "r");
   REQUIRE(pipe != nullptr);
@@ -98,8 +98,9 @@ TEST_CASE("bodycheck: configs are found per file and the nearest wins") {
   CHECK(bodycheck("--no-config configured/warning.body --fail-on warning").status == 1);
   Run bad = bodycheck("bad_config/clean.body");
   CHECK(bad.status == 2);
-  CHECK(contains(bad.output, "bad_config/.bodycheck.yaml:2:11: error: unknown rule id 'yaml-duplicat-key'; did "
-                             "you mean 'yaml-duplicate-key'? [config-invalid]"));
+  CHECK(contains(bad.output,
+                 "bad_config/.bodycheck.yaml:2:11: error: unknown rule id 'yaml-duplicat-key'; did "
+                 "you mean 'yaml-duplicate-key'? [config-invalid]"));
 }
 
 TEST_CASE("bodycheck: directories, order and formats") {
@@ -112,8 +113,9 @@ TEST_CASE("bodycheck: directories, order and formats") {
   Run json = bodycheck("--format json defective.body warning.body", false);
   CHECK(json.status == 1);
   CHECK(contains(json.output, "\"version\": 1,"));
-  CHECK(contains(json.output, "\"file\": \"defective.body\", \"line\": 16, \"column\": 17, \"severity\": \"error\", "
-                              "\"rule\": \"load-joint-type\""));
+  CHECK(contains(json.output,
+                 "\"file\": \"defective.body\", \"line\": 16, \"column\": 17, \"severity\": \"error\", "
+                 "\"rule\": \"load-joint-type\""));
   CHECK(contains(json.output, "\"summary\": {\"files\": 2,"));
 
   Run sarif = bodycheck("--format sarif defective.body", false);

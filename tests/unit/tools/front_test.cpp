@@ -61,9 +61,10 @@ std::string invoke(const Tool& tool, const std::string& args) {
 bool contains(const std::string& text, const std::string& what) { return text.find(what) != std::string::npos; }
 
 // warning.body: a duplicate key on line 11, column 5, and nothing else.
-const std::string kWarning = "warning: duplicate key \"mass\" (first at line 10); the last value wins [yaml-duplicate-key]\n"
-                             "    mass: 1.2\n"
-                             "    ^\n";
+const std::string kWarning =
+    "warning: duplicate key \"mass\" (first at line 10); the last value wins [yaml-duplicate-key]\n"
+    "    mass: 1.2\n"
+    "    ^\n";
 
 }  // namespace
 
@@ -73,9 +74,9 @@ TEST_CASE("front: --help exits 0 and shows the shared option groups, in every to
     const Run r = run("'" + tool.binary + "' --help");
     CHECK(r.status == 0);
     CHECK(contains(r.output, std::string("Usage: ") + tool.name));
-    for (const char* option : {"--version", "--stdin-filename", "--package-path", "--no-meshes", "--max-yaml-nodes",
-                               "--max-yaml-depth", "--enable", "--disable", "--fail-on", "--werror", "--no-config",
-                               "--quiet", "--color"})
+    for (const char* option :
+         {"--version", "--stdin-filename", "--package-path", "--no-meshes", "--max-yaml-nodes", "--max-yaml-depth",
+          "--enable", "--disable", "--fail-on", "--werror", "--no-config", "--quiet", "--color"})
       CHECK(contains(r.output, option));
   }
 }
@@ -135,9 +136,10 @@ TEST_CASE("front: a defective model gives the located error with its caret and e
     CAPTURE(tool.name);
     const Run r = run(invoke(tool, "defective.body"));
     CHECK(r.status == 1);
-    CHECK(contains(r.output, "defective.body:16:17: error: illegal joint type \"hinge\" [load-joint-type]\n"
-                             "    joint_type: hinge\n"
-                             "                ^\n"));
+    CHECK(contains(r.output,
+                   "defective.body:16:17: error: illegal joint type \"hinge\" [load-joint-type]\n"
+                   "    joint_type: hinge\n"
+                   "                ^\n"));
   }
 }
 
@@ -150,7 +152,8 @@ TEST_CASE("front: --color always paints like GCC; never, and NO_COLOR with auto,
     CHECK(!contains(run(invoke(tool, "--color never warning.body")).output, "\x1b["));
     // `script` gives the tool a terminal: auto colours it, unless NO_COLOR is set.
     CHECK(contains(run("script -qec \"" + invoke(tool, "warning.body") + "\" /dev/null").output, "\x1b[1;35m"));
-    CHECK(!contains(run("NO_COLOR=1 script -qec \"" + invoke(tool, "warning.body") + "\" /dev/null").output, "\x1b[1;35m"));
+    CHECK(!contains(run("NO_COLOR=1 script -qec \"" + invoke(tool, "warning.body") + "\" /dev/null").output,
+                    "\x1b[1;35m"));
   }
 }
 

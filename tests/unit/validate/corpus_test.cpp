@@ -2,8 +2,8 @@
 // warning and error must equal tests/corpus/bodycheck_expected.txt, so a finding that appears
 // or disappears fails. Set BODYFMT_WRITE_BODYCHECK_EXPECTED=<path> to write the actual table.
 
-#include "unit/validate/validate_support.h"
 #include "support/load_helpers.h"
+#include "unit/validate/validate_support.h"
 
 #include <doctest/doctest.h>
 

@@ -48,7 +48,8 @@ TEST_CASE("validate: every rule of the table is documented with a summary and ra
 /// Every family prefix of the table (the text before the first '-'), as a regex alternative.
 std::string family_alternatives() {
   std::set<std::string> families;
-  for (const bodyfmt::RuleInfo& rule : bodyfmt::all_rules()) families.insert(std::string(rule.id.substr(0, rule.id.find('-'))));
+  for (const bodyfmt::RuleInfo& rule : bodyfmt::all_rules())
+    families.insert(std::string(rule.id.substr(0, rule.id.find('-'))));
   std::string alternatives;
   for (const std::string& f : families) alternatives += (alternatives.empty() ? "" : "|") + f;
   return alternatives;
@@ -93,7 +94,8 @@ TEST_CASE("validate: every rule id literal in the sources is in the rule table")
   }
   CHECK(files > 20);
   CHECK(ids > 50);
-  for (const std::string& u : unknown) FAIL_CHECK("rule id not in the rule table (libbodyfmt/src/diagnostic/rules.cpp): " << u);
+  for (const std::string& u : unknown)
+    FAIL_CHECK("rule id not in the rule table (libbodyfmt/src/diagnostic/rules.cpp): " << u);
 }
 
 TEST_CASE("validate: diagnostics are made in one place, with the rule table's severity") {
@@ -110,7 +112,8 @@ TEST_CASE("validate: diagnostics are made in one place, with the rule table's se
       if (!entry.is_regular_file() || (ext != ".cpp" && ext != ".h")) continue;
       if (name == "rules.cpp" || name == "diagnostic_policy.cpp") continue;
       const std::string text = read(entry.path());
-      if (std::regex_search(text, sets_severity)) offenders.insert(entry.path().lexically_relative(kSourceDir).string());
+      if (std::regex_search(text, sets_severity))
+        offenders.insert(entry.path().lexically_relative(kSourceDir).string());
     }
   }
   for (const std::string& o : offenders) FAIL_CHECK("builds a Diagnostic by hand instead of make_diagnostic: " << o);

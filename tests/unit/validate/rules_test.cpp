@@ -3,8 +3,8 @@
 // rules that issue 4 lists have a file here too, so that every rule of the issue has one.
 // Any other warning or error must be listed as an allowed companion.
 
-#include "unit/validate/validate_support.h"
 #include "support/load_helpers.h"
+#include "unit/validate/validate_support.h"
 
 #include <doctest/doctest.h>
 
@@ -40,8 +40,8 @@ void expect_finding(const std::string& file, const std::string& rule_id, Pos at,
 }
 
 const Diagnostic* find(const std::vector<Diagnostic>& diagnostics, const std::string& rule_id) {
-  auto it = std::find_if(diagnostics.begin(), diagnostics.end(),
-                         [&](const Diagnostic& d) { return d.rule_id == rule_id; });
+  auto it =
+      std::find_if(diagnostics.begin(), diagnostics.end(), [&](const Diagnostic& d) { return d.rule_id == rule_id; });
   return it == diagnostics.end() ? nullptr : &*it;
 }
 
@@ -105,7 +105,9 @@ TEST_CASE("validate: inertia-nonpositive-mass") {
 
 TEST_CASE("validate: inertia-tiny") { expect_finding("inertia-tiny.body", "inertia-tiny", {20, 14}); }
 
-TEST_CASE("validate: inertia-com-outside") { expect_finding("inertia-com-outside.body", "inertia-com-outside", {10, 21}); }
+TEST_CASE("validate: inertia-com-outside") {
+  expect_finding("inertia-com-outside.body", "inertia-com-outside", {10, 21});
+}
 
 TEST_CASE("validate: inertia-implausible") {
   expect_finding("inertia-implausible.body", "inertia-implausible", {10, 14});
@@ -129,8 +131,12 @@ TEST_CASE("validate: joint-id-gap") {
 
 TEST_CASE("validate: joint-id-on-fixed") { expect_finding("joint-id-on-fixed.body", "joint-id-on-fixed", {18, 15}); }
 TEST_CASE("validate: joint-axis-zero") { expect_finding("joint-axis-zero.body", "joint-axis-zero", {18, 17}); }
-TEST_CASE("validate: joint-axis-not-unit") { expect_finding("joint-axis-not-unit.body", "joint-axis-not-unit", {18, 17}); }
-TEST_CASE("validate: joint-range-reversed") { expect_finding("joint-range-reversed.body", "joint-range-reversed", {20, 18}); }
+TEST_CASE("validate: joint-axis-not-unit") {
+  expect_finding("joint-axis-not-unit.body", "joint-axis-not-unit", {18, 17});
+}
+TEST_CASE("validate: joint-range-reversed") {
+  expect_finding("joint-range-reversed.body", "joint-range-reversed", {20, 18});
+}
 TEST_CASE("validate: joint-range-zero-width") {
   expect_finding("joint-range-zero-width.body", "joint-range-zero-width", {20, 18});
 }
@@ -207,11 +213,15 @@ TEST_CASE("validate: load-unknown-key with a did-you-mean hint (loader)") {
   CHECK(find(result.diagnostics, "load-unknown-key")->message.find("joint_range") != std::string::npos);
 }
 TEST_CASE("validate: load-legacy-key (loader)") { expect_finding("load-legacy-key.body", "load-legacy-key", {11, 5}); }
-TEST_CASE("validate: yaml-duplicate-key (loader)") { expect_finding("yaml-duplicate-key.body", "yaml-duplicate-key", {9, 5}); }
+TEST_CASE("validate: yaml-duplicate-key (loader)") {
+  expect_finding("yaml-duplicate-key.body", "yaml-duplicate-key", {9, 5});
+}
 TEST_CASE("validate: load-unknown-node-type (loader)") {
   expect_finding("load-unknown-node-type.body", "load-unknown-node-type", {10, 15});
 }
-TEST_CASE("validate: load-plugin-node (loader)") { expect_finding("load-plugin-node.body", "load-plugin-node", {10, 9}); }
+TEST_CASE("validate: load-plugin-node (loader)") {
+  expect_finding("load-plugin-node.body", "load-plugin-node", {10, 9});
+}
 TEST_CASE("validate: yaml-undefined-alias (loader)") {
   expect_finding("yaml-undefined-alias.body", "yaml-undefined-alias", {9, 21});
 }
@@ -241,7 +251,9 @@ TEST_CASE("validate: geometry-unknown-type (loader)") {
 
 // ---- Resources
 
-TEST_CASE("validate: mesh-file-missing (loader)") { expect_finding("mesh-file-missing.body", "mesh-file-missing", {10, 9}); }
+TEST_CASE("validate: mesh-file-missing (loader)") {
+  expect_finding("mesh-file-missing.body", "mesh-file-missing", {10, 9});
+}
 TEST_CASE("validate: resource-absolute-path") {
   expect_finding("resource-absolute-path.body", "resource-absolute-path", {14, 9}, {"mesh-file-missing"});
 }

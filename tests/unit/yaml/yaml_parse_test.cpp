@@ -15,8 +15,7 @@ using namespace bodyfmt::yaml;
 
 namespace {
 
-std::unique_ptr<Document> parse(std::string_view text, CollectingSink& sink,
-                                const ParseOptions& options = {}) {
+std::unique_ptr<Document> parse(std::string_view text, CollectingSink& sink, const ParseOptions& options = {}) {
   return parse_yaml(text, "t.yaml", options, sink);
 }
 
@@ -100,7 +99,10 @@ TEST_CASE("yaml: positions of scalars, sequences, mappings and keys are 1-based"
 
 TEST_CASE("yaml: CRLF line ends and a byte order mark do not shift positions") {
   CollectingSink sink;
-  auto doc = parse("\xEF\xBB\xBF" "a: 1\r\nb:\r\n  - &x ~\r\n  - *x\r\n", sink);
+  auto doc = parse(
+      "\xEF\xBB\xBF"
+      "a: 1\r\nb:\r\n  - &x ~\r\n  - *x\r\n",
+      sink);
   REQUIRE(doc);
   CHECK(sink.diagnostics().empty());
   CHECK(value_of(*doc->root, "a")->location == at(1, 4));
@@ -332,8 +334,7 @@ TEST_CASE("yaml: a recursive alias is rejected") {
 
 TEST_CASE("yaml: imported anchors are visible to aliases; local anchors take priority") {
   CollectingSink library_sink;
-  auto library = parse("RED: &RED {diffuse: [1, 0, 0]}\nBLUE: &BLUE {diffuse: [0, 0, 1]}\n",
-                       library_sink);
+  auto library = parse("RED: &RED {diffuse: [1, 0, 0]}\nBLUE: &BLUE {diffuse: [0, 0, 1]}\n", library_sink);
   REQUIRE(library);
   ParseOptions options;
   options.imported_anchors = &library->anchors;

@@ -21,8 +21,7 @@ struct CheckOptions {
 
 /// Runs every rule family and reports `inertia-*`, `joint-*`, `units-*`, `structure-*`,
 /// `geometry-*`, `resource-*` and `device-*` findings with their default severities.
-void check_model(const Model& model, const Derived& derived, const CheckOptions& options,
-                 DiagnosticSink& sink);
+void check_model(const Model& model, const Derived& derived, const CheckOptions& options, DiagnosticSink& sink);
 
 /// Every rule of the rule table (loader and validator) as the Markdown of docs/rules.md:
 /// id, default severity, summary, rationale and tolerance, grouped by family.

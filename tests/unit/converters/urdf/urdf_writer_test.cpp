@@ -86,7 +86,8 @@ std::string quote(const fs::path& p) { return "'" + p.string() + "'"; }
 Eigen::Isometry3d iso(const ::urdf::Pose& pose) {
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
   X.translation() = Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z);
-  X.linear() = Eigen::Quaterniond(pose.rotation.w, pose.rotation.x, pose.rotation.y, pose.rotation.z).toRotationMatrix();
+  X.linear() =
+      Eigen::Quaterniond(pose.rotation.w, pose.rotation.x, pose.rotation.y, pose.rotation.z).toRotationMatrix();
   return X;
 }
 
@@ -126,13 +127,18 @@ std::string round_trip_problem(const Model& model, const Derived& derived, const
     if (i == 0) continue;
     auto uj = ul->parent_joint;
     if (!uj) return "link " + link.name + ": no joint";
-    if (uj->parent_link_name != model.links[static_cast<std::size_t>(link.parent)].name) return "joint parent of " + link.name;
-    if (max_abs_diff(iso(uj->parent_to_joint_origin_transform), link.X_PL) > 1e-9) return "joint origin of " + link.name;
+    if (uj->parent_link_name != model.links[static_cast<std::size_t>(link.parent)].name)
+      return "joint parent of " + link.name;
+    if (max_abs_diff(iso(uj->parent_to_joint_origin_transform), link.X_PL) > 1e-9)
+      return "joint origin of " + link.name;
     const bool revolute = link.joint_type == JointType::kRevolute, prismatic = link.joint_type == JointType::kPrismatic;
     if (revolute || prismatic) {
-      if ((vec(uj->axis) - link.joint_axis.normalized()).cwiseAbs().maxCoeff() > 1e-9) return "joint axis of " + link.name;
+      if ((vec(uj->axis) - link.joint_axis.normalized()).cwiseAbs().maxCoeff() > 1e-9)
+        return "joint axis of " + link.name;
       const bool continuous = revolute && link.joint_range_lower <= -kUnlimited && link.joint_range_upper >= kUnlimited;
-      const int type = continuous ? ::urdf::Joint::CONTINUOUS : revolute ? ::urdf::Joint::REVOLUTE : ::urdf::Joint::PRISMATIC;
+      const int type = continuous ? ::urdf::Joint::CONTINUOUS
+                       : revolute ? ::urdf::Joint::REVOLUTE
+                                  : ::urdf::Joint::PRISMATIC;
       if (uj->type != type) return "joint type of " + link.name;
       if (!continuous) {
         if (!uj->limits) return "joint limits of " + link.name;
@@ -232,18 +238,24 @@ TEST_CASE("urdf: every loadable corpus model exports, urdfdom parses it and chec
     REQUIRE(e.ok);
     OutputSet output(out);
     for (auto& [path, bytes] : e.files) {
-      if (path == "model.urdf") output.set_main(bytes);
-      else output.add(path, bytes);
+      if (path == "model.urdf")
+        output.set_main(bytes);
+      else
+        output.add(path, bytes);
     }
     CollectingSink sink;
     REQUIRE(output.commit(sink));
-    if (::urdf::parseURDF(e.urdf)) ++parsed;
-    else FAIL_CHECK("urdfdom cannot parse the export");
-    if (run("check_urdf " + quote(out) + " > /dev/null 2>&1") == 0) ++checked;
-    else FAIL_CHECK("check_urdf rejects the export");
+    if (::urdf::parseURDF(e.urdf))
+      ++parsed;
+    else
+      FAIL_CHECK("urdfdom cannot parse the export");
+    if (run("check_urdf " + quote(out) + " > /dev/null 2>&1") == 0)
+      ++checked;
+    else
+      FAIL_CHECK("check_urdf rejects the export");
   }
-  MESSAGE("corpus: " << bodies.size() << " bodies, " << loaded << " loaded, " << parsed
-                     << " parsed by urdfdom, " << checked << " accepted by check_urdf");
+  MESSAGE("corpus: " << bodies.size() << " bodies, " << loaded << " loaded, " << parsed << " parsed by urdfdom, "
+                     << checked << " accepted by check_urdf");
   CHECK(loaded >= 48);
   CHECK(parsed == loaded);
   CHECK(checked == loaded);
@@ -367,7 +379,8 @@ TEST_CASE("urdf: output is deterministic (STL and DAE)") {
   for (auto format : {converters::MeshFormat::kStl, converters::MeshFormat::kDae}) {
     UrdfOptions options;
     options.mesh_format = format;
-    for (const fs::path& body : {kCorpus / "Tank" / "SimpleTank.body", kCorpus / "SR1" / "SR1.body", kData / "clean.body"}) {
+    for (const fs::path& body :
+         {kCorpus / "Tank" / "SimpleTank.body", kCorpus / "SR1" / "SR1.body", kData / "clean.body"}) {
       CAPTURE(body.string());
       Export a = export_file(body, options);
       Export b = export_file(body, options);
@@ -393,7 +406,8 @@ TEST_CASE("urdf: body2urdf exit codes, byte-identical runs and atomic output") {
   CHECK(fs::exists(lossy));
   // 2 with --strict: nothing written, the existing file kept.
   { std::ofstream(lossy) << "old"; }
-  CHECK(run(tool + " " + quote(kData / "pseudo_continuous_track.body") + " -o " + quote(lossy) + " --strict 2> /dev/null") == 2);
+  CHECK(run(tool + " " + quote(kData / "pseudo_continuous_track.body") + " -o " + quote(lossy) +
+            " --strict 2> /dev/null") == 2);
   CHECK(read(lossy) == "old");
   // 2 when writing fails (a file where the mesh folder goes): the existing URDF is kept and
   // no temporary file is left behind.
@@ -475,7 +489,7 @@ TEST_CASE("urdf: SR1 export against the hand-written SR1.urdf") {
     REQUIRE(hj->limits);
     CHECK(std::abs(oj->limits->lower - hj->limits->lower) < 2e-3);  // 1.57 / 3.14 in the hand file
     CHECK(std::abs(oj->limits->upper - hj->limits->upper) < 2e-3);
-    CHECK(oj->limits->effort == bodyfmt::urdf::kUnlimitedStandIn);  // hand file: 500
+    CHECK(oj->limits->effort == bodyfmt::urdf::kUnlimitedStandIn);    // hand file: 500
     CHECK(oj->limits->velocity == bodyfmt::urdf::kUnlimitedStandIn);  // hand file: 10 (0 on RARM_ELBOW)
     CHECK(hj->limits->effort == 500);
   }

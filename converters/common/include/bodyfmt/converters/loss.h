@@ -10,7 +10,7 @@ namespace bodyfmt::converters {
 
 /// Reports `export-loss` at `location` (the element's source line):
 /// "<target> cannot express <what>", with `hint` as the fix hint.
-void report_loss(DiagnosticSink& sink, const SourceLocation& location, std::string_view target,
-                 std::string_view what, std::string_view hint = {});
+void report_loss(DiagnosticSink& sink, const SourceLocation& location, std::string_view target, std::string_view what,
+                 std::string_view hint = {});
 
 }  // namespace bodyfmt::converters

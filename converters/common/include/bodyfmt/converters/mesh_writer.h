@@ -26,7 +26,7 @@ std::optional<std::string> write_dae(const TriangleMesh& mesh, const std::option
 
 /// write_stl or write_dae.
 std::optional<std::string> write_mesh(MeshFormat format, const TriangleMesh& mesh,
-                                      const std::optional<Material>& material,
-                                      std::string_view name, std::string& error);
+                                      const std::optional<Material>& material, std::string_view name,
+                                      std::string& error);
 
 }  // namespace bodyfmt::converters
