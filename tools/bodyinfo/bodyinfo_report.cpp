@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include <cmath>
 
 namespace bodyfmt::tools {
@@ -60,6 +62,11 @@ std::string range_text(const Link& link) {
   return "[" + end(link.joint_range_lower) + ", " + end(link.joint_range_upper) + "]";
 }
 
+// Links are stored in depth-first pre-order (model.h), so one pass in order prints the tree;
+// nothing recurses per level, and a deep chain (a cable, a snake robot) indents at most
+// kMaxIndent levels and shows its depth instead of growing the output quadratically.
+constexpr int kMaxIndent = 32;
+
 void summary_link(std::string& out, const Model& model, const Derived& derived, LinkIndex i, int depth) {
   const Link& link = model.links[static_cast<std::size_t>(i)];
   const MassProperties& m = derived.mass[static_cast<std::size_t>(i)];
@@ -70,8 +77,18 @@ void summary_link(std::string& out, const Model& model, const Derived& derived, 
     joint += " axis " + list(link.joint_axis);
   std::string range = range_text(link);
   if (!range.empty()) joint += " range " + range;
-  out += fmt::format("{:{}}{}  ({})  {:.6g} kg\n", "", depth * 2, link.name, joint, m.mass);
-  for (LinkIndex c : link.children) summary_link(out, model, derived, c, depth + 1);
+  const std::string deep = depth > kMaxIndent ? fmt::format("[depth {}] ", depth) : std::string();
+  out +=
+      fmt::format("{:{}}{}{}  ({})  {:.6g} kg\n", "", std::min(depth, kMaxIndent) * 2, deep, link.name, joint, m.mass);
+}
+
+void summary_links(std::string& out, const Model& model, const Derived& derived) {
+  std::vector<int> depth(model.links.size(), 1);
+  for (LinkIndex i = 0; i < static_cast<LinkIndex>(model.links.size()); ++i) {
+    const LinkIndex parent = model.links[static_cast<std::size_t>(i)].parent;
+    if (parent >= 0) depth[static_cast<std::size_t>(i)] = depth[static_cast<std::size_t>(parent)] + 1;
+    summary_link(out, model, derived, i, depth[static_cast<std::size_t>(i)]);
+  }
 }
 
 }  // namespace
@@ -82,7 +99,7 @@ std::string format_summary(const Model& model, const Derived& derived) {
                      model.num_joints(), model.devices.size(), derived.total_mass, model.format_version,
                      model.angles_in_degrees ? "degrees" : "radians");
   out += "links:\n";
-  if (!model.links.empty()) summary_link(out, model, derived, 0, 1);
+  summary_links(out, model, derived);
   if (!model.devices.empty()) {
     out += "devices:\n";
     for (const Device& d : model.devices)
