@@ -47,10 +47,15 @@ SourceLocation mass_location(const Link& link) {
   return first_known({&link.sources.mass, rigid_body ? rigid_body : &none, &link.sources.inertia, &link.source});
 }
 
-bool welded_to_world(const Model& model, LinkIndex index) {
-  for (LinkIndex i = index; i >= 0; i = model.links[i].parent)
-    if (is_moving(model.links[i])) return false;
-  return true;
+/// Per link: welded to the world (a fixed root and its fixed descendants, e.g. floors). One
+/// pass in depth-first order, parents before children, instead of a walk to the root per link.
+std::vector<bool> welded_to_world(const Model& model) {
+  std::vector<bool> welded(model.links.size(), false);
+  for (std::size_t i = 0; i < model.links.size(); ++i) {
+    const Link& link = model.links[i];
+    welded[i] = !is_moving(link) && (link.parent < 0 || welded[static_cast<std::size_t>(link.parent)]);
+  }
+  return welded;
 }
 
 void check_symmetry(const RuleContext& ctx, const Link& link) {
@@ -78,7 +83,7 @@ void check_symmetry(const RuleContext& ctx, const Link& link) {
 // Moments and mass that MuJoCo accepts for a moving body (mjCBody::Compile).
 bool mujoco_valid(double mass, const PrincipalInertia& p) { return mass >= kMjMinVal && p.moments[0] >= kMjMinVal; }
 
-void check_link(const RuleContext& ctx, LinkIndex index) {
+void check_link(const RuleContext& ctx, LinkIndex index, bool welded) {
   const Link& link = ctx.model.links[index];
   check_symmetry(ctx, link);
   if (link.mass_contributions.empty()) return;  // Choreonoid's defaults (load-default-mass)
@@ -122,7 +127,7 @@ void check_link(const RuleContext& ctx, LinkIndex index) {
   // The two plausibility warnings only for links that can move: the mass data of a link welded
   // to the world (a fixed root and its fixed descendants, e.g. floors) is never simulated.
   const BoundingBox box = geometry_bounds(ctx.derived, index);
-  if (mp.mass > 0 && !box.empty() && !welded_to_world(ctx.model, index)) {
+  if (mp.mass > 0 && !box.empty() && !welded) {
     // CoM outside the geometry box, enlarged by 1% of its diagonal (and 1 mm) for rounding.
     const double slack = 0.01 * (box.max - box.min).norm() + 1e-3;
     const Eigen::Vector3d& c = mp.center_of_mass;
@@ -151,23 +156,26 @@ void check_link(const RuleContext& ctx, LinkIndex index) {
 
 // MuJoCo refuses a moving body whose mass or a principal moment is below mjMINVAL unless a
 // static (welded) descendant has valid ones; massless moving links need that descendant too.
-bool welded_descendant_valid(const Model& model, const Derived& derived, LinkIndex index) {
-  for (LinkIndex child : model.links[index].children) {
-    const Link& c = model.links[child];
-    if (is_moving(c)) continue;
-    if (mujoco_valid(derived.mass[child].mass, principal_inertia(derived.mass[child].inertia))) return true;
-    if (welded_descendant_valid(model, derived, child)) return true;
+/// Per link: a static (welded) descendant with mass and moments MuJoCo accepts. One pass in
+/// reverse depth-first order, children before parents, without recursion.
+std::vector<bool> valid_welded_descendant(const Model& model, const Derived& derived) {
+  std::vector<bool> found(model.links.size(), false);
+  for (std::size_t k = model.links.size(); k-- > 0;) {
+    const Link& c = model.links[k];
+    if (c.parent < 0 || is_moving(c)) continue;
+    if (found[k] || mujoco_valid(derived.mass[k].mass, principal_inertia(derived.mass[k].inertia)))
+      found[static_cast<std::size_t>(c.parent)] = true;
   }
-  return false;
+  return found;
 }
 
-void check_moving(const RuleContext& ctx, LinkIndex index) {
+void check_moving(const RuleContext& ctx, LinkIndex index, bool has_valid_welded_descendant) {
   const Link& link = ctx.model.links[index];
   if (!is_moving(link)) return;
   const MassProperties& mp = ctx.derived.mass[index];
   if (mp.mass < 0) return;  // reported above
   const PrincipalInertia p = principal_inertia(mp.inertia);
-  if (mujoco_valid(mp.mass, p) || welded_descendant_valid(ctx.model, ctx.derived, index)) return;
+  if (mujoco_valid(mp.mass, p) || has_valid_welded_descendant) return;
   const std::string joint = index == 0 ? "the free root" : fmt::format("a {} joint", joint_type_name(link.joint_type));
   if (mp.mass == 0) {
     ctx.report(
@@ -188,9 +196,11 @@ void check_moving(const RuleContext& ctx, LinkIndex index) {
 
 void check_inertia(const RuleContext& ctx) {
   if (ctx.derived.mass.size() != ctx.model.links.size()) return;
+  const std::vector<bool> welded = welded_to_world(ctx.model);
+  const std::vector<bool> valid_descendant = valid_welded_descendant(ctx.model, ctx.derived);
   for (LinkIndex i = 0; i < static_cast<LinkIndex>(ctx.model.links.size()); ++i) {
-    check_link(ctx, i);
-    check_moving(ctx, i);
+    check_link(ctx, i, welded[static_cast<std::size_t>(i)]);
+    check_moving(ctx, i, valid_descendant[static_cast<std::size_t>(i)]);
   }
 }
 
