@@ -376,6 +376,18 @@ void BodyReader::reorder_links(Model& model, const std::vector<LinkIndex>& order
   }
   std::stable_sort(devices.begin(), devices.end(), [](const Device& a, const Device& b) { return a.link < b.link; });
   model.devices = std::move(devices);
+  // Extra joints carried over from SubBodies follow their links too, and go with them when a
+  // link is dropped (already reported as structure-unreachable).
+  std::vector<ExtraJoint> extra_joints;
+  for (ExtraJoint& j : model.extra_joints) {
+    const LinkIndex l1 = j.link1 >= 0 ? new_index[at(j.link1)] : -1;
+    const LinkIndex l2 = j.link2 >= 0 ? new_index[at(j.link2)] : -1;
+    if (l1 < 0 || l2 < 0) continue;
+    j.link1 = l1;
+    j.link2 = l2;
+    extra_joints.push_back(std::move(j));
+  }
+  model.extra_joints = std::move(extra_joints);
 }
 
 bool BodyReader::build_tree(Model& model, const std::vector<LinkEntry>& entries, const yaml::NodeRef& root_link) {

@@ -445,3 +445,14 @@ extra_joints:
   CHECK(r.m().extra_joints.empty());
   r.expect_clean();
 }
+
+TEST_CASE("load: a SubBody without a parent drops its links and the extra joints between them") {
+  const std::string main = std::string(BODYFMT_TEST_DATA_DIR) + "/hostile/subbody_without_parent/main.body";
+  CollectingSink sink;
+  const std::optional<Model> model = load_body(main, {}, sink);
+  REQUIRE(model);
+  CHECK(model->links.size() == 1);
+  CHECK(model->extra_joints.empty());
+  CHECK(sink.has("structure-no-parent"));
+  CHECK(sink.has("structure-unreachable"));
+}
