@@ -37,19 +37,18 @@ int main(int argc, char** argv) {
   bool written = false;
   if (auto input = front.open_input(path, sink)) {
     auto model = front.load(*input, sink);
-    if (model && collected.count(Severity::kFatal) == 0) {
+    if (model && front.may_write(collected.diagnostics())) {
       const Derived derived = compute_derived(*model, sink);
       converters::OutputSet out(output);
-      const bool ok = urdf::write_urdf(*model, derived, options, out, sink);
-      // Export errors (--strict losses) stop the write; loader errors are listed, and the
-      // model that did load is still exported, as bodyinfo describes it.
-      const bool export_errors = std::any_of(
-          collected.diagnostics().begin(), collected.diagnostics().end(),
-          [](const Diagnostic& d) { return d.severity >= Severity::kError && d.rule_id.rfind("export-", 0) == 0; });
-      if (ok && !export_errors) written = out.commit(sink);
+      // --strict losses and export errors stop the write, as loader errors did above.
+      if (urdf::write_urdf(*model, derived, options, out, sink) && front.may_write(collected.diagnostics()))
+        written = out.commit(sink);
     }
   }
   front.print(collected.diagnostics());
-  if (!written) front.print_error(output + " was not written");
+  if (!written)
+    front.print_error(
+        output + " was not written" +
+        (front.may_write(collected.diagnostics()) ? "" : ": the model has errors (--best-effort writes it anyway)"));
   return tools::exit_code(collected.diagnostics(), policy->exit, !written);
 }

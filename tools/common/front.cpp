@@ -106,6 +106,9 @@ Front::Front(std::string tool_name, std::string description, Features features)
   app_.add_flag("--no-config", no_config_, "ignore .bodycheck.yaml files")->group(policy);
   if (features_.exporter) {
     app_.add_flag("--strict", strict_, "treat every export loss as an error: nothing is written")->group(policy);
+    app_.add_flag("--best-effort", best_effort_,
+                  "write the output even when the model has errors (the exit code stays 1)")
+        ->group(policy);
   }
   app_.add_flag("-q,--quiet", quiet_, "print no note diagnostics")->group(policy);
   app_.add_option("--color", color_, "colour the diagnostics: auto (a terminal, unless NO_COLOR is set), always, never")
@@ -212,6 +215,14 @@ void Front::print(std::vector<Diagnostic> diagnostics) {
     text += format_text_diagnostic(d, sources_, options);
   }
   std::cerr << text << std::flush;
+}
+
+bool Front::may_write(const std::vector<Diagnostic>& diagnostics) const {
+  for (const Diagnostic& d : diagnostics) {
+    if (d.severity == Severity::kFatal) return false;
+    if (d.severity == Severity::kError && !best_effort_) return false;
+  }
+  return true;
 }
 
 void Front::print_error(const std::string& message) const { std::cerr << name_ << ": error: " << message << '\n'; }

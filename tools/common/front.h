@@ -54,7 +54,7 @@ class Front {
  public:
   struct Features {
     bool many_inputs = false;  ///< files and directories (bodycheck); otherwise one model
-    bool exporter = false;     ///< --strict, and `export-*` warnings fail the run
+    bool exporter = false;     ///< --strict and --best-effort, and `export-*` warnings fail the run
   };
 
   Front(std::string tool_name, std::string description, Features features);
@@ -70,6 +70,9 @@ class Front {
   const LoadOptions& load_options() const { return load_options_; }
   bool quiet() const { return quiet_; }
   bool strict() const { return strict_; }
+  /// Exporters: whether an output may be written after these diagnostics. Not when any is an
+  /// error (a model with errors is not exported), unless --best-effort asks for it.
+  bool may_write(const std::vector<Diagnostic>& diagnostics) const;
   bool no_config() const { return no_config_; }
 
   /// Reads the input `path` ("-": standard input, which can be read once). Regular files are
@@ -115,6 +118,7 @@ class Front {
   bool quiet_ = false;
   bool no_config_ = false;
   bool strict_ = false;
+  bool best_effort_ = false;
   std::string color_ = "auto";
   CLI::Option* fail_on_option_ = nullptr;
   CLI::Option* werror_option_ = nullptr;

@@ -33,23 +33,27 @@ void check_ids(const RuleContext& ctx) {
   }
   if (first.empty()) return;
   // Choreonoid warns "Joint ID n is not specified" for every unused id below the largest.
-  std::vector<int> missing;
+  // Counted, not listed: an id of 2^31 - 1 must not make a list of two billion numbers.
+  constexpr std::size_t kShown = 20;
+  std::vector<long long> shown;
+  long long missing = 0;
   LinkIndex after_gap = -1;
-  int expected = 0;
+  long long expected = 0;
   for (const auto& [id, index] : first) {
     if (id > expected && after_gap < 0) after_gap = index;
-    for (; expected < id; ++expected) missing.push_back(expected);
-    expected = id + 1;
+    if (id > expected) {
+      for (long long k = expected; k < id && shown.size() < kShown; ++k) shown.push_back(k);
+      missing += id - expected;
+    }
+    expected = static_cast<long long>(id) + 1;
   }
-  if (missing.empty()) return;
+  if (missing == 0) return;
   const Link& link = ctx.model.links[after_gap];
-  const std::size_t shown = std::min<std::size_t>(missing.size(), 20);
-  std::string list =
-      fmt::format("{}", fmt::join(missing.begin(), missing.begin() + static_cast<std::ptrdiff_t>(shown), ", "));
-  if (shown < missing.size()) list += fmt::format(", ... ({} in all)", missing.size());
+  std::string list = fmt::format("{}", fmt::join(shown, ", "));
+  if (static_cast<long long>(shown.size()) < missing) list += fmt::format(", ... ({} in all)", missing);
   ctx.report("joint-id-gap", first_known({&link.sources.joint_id, &link.source}),
              fmt::format("joint ids are not contiguous: {} {} missing below the largest id {}", list,
-                         missing.size() == 1 ? "is" : "are", first.rbegin()->first),
+                         missing == 1 ? "is" : "are", first.rbegin()->first),
              "number the joints 0..n-1; Choreonoid reserves a joint slot for every missing id");
 }
 

@@ -18,6 +18,9 @@ struct Tool {
   const char* name;
   std::string binary;
   std::string extra;  // arguments every run of this tool needs (an exporter's output)
+  bool exporter() const { return !extra.empty(); }
+  /// The exit code for a model with errors: 1, or 2 for an exporter, which writes nothing.
+  int error_exit() const { return exporter() ? 2 : 1; }
 };
 
 std::vector<Tool> tools() {
@@ -123,7 +126,7 @@ TEST_CASE("front: the same --disable, --fail-on and --werror work in every tool"
     CHECK(!contains(disabled.output, "yaml-duplicate-key"));
     CHECK(run(invoke(tool, "--fail-on warning warning.body")).status == 1);
     const Run werror = run(invoke(tool, "--werror warning.body"));
-    CHECK(werror.status == 1);
+    CHECK(werror.status == tool.error_exit());
     CHECK(contains(werror.output, "warning.body:11:5: error: duplicate key"));
     const Run unknown = run(invoke(tool, "--disable yaml-duplicat-key warning.body"));
     CHECK(unknown.status == 2);
@@ -135,11 +138,27 @@ TEST_CASE("front: a defective model gives the located error with its caret and e
   for (const Tool& tool : tools()) {
     CAPTURE(tool.name);
     const Run r = run(invoke(tool, "defective.body"));
-    CHECK(r.status == 1);
+    CHECK(r.status == tool.error_exit());
     CHECK(contains(r.output,
                    "defective.body:16:17: error: illegal joint type \"hinge\" [load-joint-type]\n"
                    "    joint_type: hinge\n"
                    "                ^\n"));
+  }
+}
+
+TEST_CASE("front: an exporter writes nothing for a model with errors, unless --best-effort (exit 1)") {
+  for (const Tool& tool : tools()) {
+    if (!tool.exporter()) continue;
+    CAPTURE(tool.name);
+    const fs::path out = fs::temp_directory_path() / "bodyfmt_front_test" / "front.urdf";
+    fs::remove(out);
+    const Run refused = run(invoke(tool, "defective.body"));
+    CHECK(refused.status == 2);
+    CHECK(contains(refused.output, "was not written: the model has errors (--best-effort writes it anyway)"));
+    CHECK_FALSE(fs::exists(out));
+    const Run best_effort = run(invoke(tool, "--best-effort defective.body"));
+    CHECK(best_effort.status == 1);
+    CHECK(fs::exists(out));
   }
 }
 
