@@ -87,8 +87,15 @@ Front::Front(std::string tool_name, std::string description, Features features)
   app_.add_flag("--no-meshes", no_meshes_, "do not import external mesh files")->group(loading);
   app_.add_option("--max-yaml-nodes", load_options_.max_expanded_yaml_nodes,
                   "limit on YAML nodes after alias expansion")
+      ->check(CLI::PositiveNumber)
       ->group(loading);
-  app_.add_option("--max-yaml-depth", load_options_.max_yaml_depth, "limit on YAML nesting depth")->group(loading);
+  app_.add_option("--max-yaml-depth", load_options_.max_yaml_depth, "limit on YAML nesting depth")
+      ->check(CLI::PositiveNumber)
+      ->group(loading);
+  app_.add_option("--max-file-size", load_options_.max_file_bytes,
+                  "largest file read, in bytes (the model, SubBody and YAML resources, meshes; default 256 MiB)")
+      ->check(CLI::PositiveNumber)
+      ->group(loading);
 
   const std::string policy = "Diagnostics";
   app_.add_option("--enable", enable_, "enable a rule (or a family: units-*), over .bodycheck.yaml (repeatable)")
@@ -135,27 +142,29 @@ std::optional<ModelInput> Front::open_input(const std::string& path, DiagnosticS
   if (path != "-" && regular_file(path)) return input;  // the loader reads it
   // Standard input, a pipe (<(...)), or a device: read once, here, so that the text is also
   // there for the source lines of the report.
-  std::string text;
-  bool ok = false;
-  if (path == "-") {
-    text.assign(std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>());
-    ok = !std::cin.bad();
-  } else {
-    struct stat st {};
-    if (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) {
-      report_rule(sink, "io-read", SourceLocation{path, 0, 0}, "\"" + path + "\" is a directory, not a .body file");
-      return std::nullopt;
-    }
-    std::ifstream in(path, std::ios::binary);
-    if (in.is_open()) {
-      std::ostringstream buffer;
-      buffer << in.rdbuf();
-      text = buffer.str();
-      ok = !in.bad();
-    }
+  struct stat st {};
+  if (path != "-" && ::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) {
+    report_rule(sink, "io-read", SourceLocation{path, 0, 0}, "\"" + path + "\" is a directory, not a .body file");
+    return std::nullopt;
   }
-  if (!ok) {
+  std::ifstream file;
+  if (path != "-") file.open(path, std::ios::binary);
+  std::istream& in = path == "-" ? std::cin : file;
+  // At most the file-size limit, plus one byte to tell that the limit was crossed.
+  std::string text;
+  const std::uintmax_t limit = load_options_.max_file_bytes;
+  char buffer[65536];
+  while (in && text.size() <= limit) {
+    in.read(buffer, static_cast<std::streamsize>(std::min<std::uintmax_t>(sizeof buffer, limit + 1 - text.size())));
+    text.append(buffer, static_cast<std::size_t>(in.gcount()));
+  }
+  if ((path != "-" && !file.is_open()) || in.bad()) {
     report_rule(sink, "io-read", SourceLocation{input.name, 0, 0}, "cannot read \"" + path + "\"");
+    return std::nullopt;
+  }
+  if (text.size() > limit) {
+    report_rule(sink, "io-read", SourceLocation{input.name, 0, 0},
+                "\"" + path + "\" is larger than the limit of " + std::to_string(limit) + " bytes (--max-file-size)");
     return std::nullopt;
   }
   input.text = std::move(text);

@@ -5,6 +5,7 @@
 #include <bodyfmt/model.h>
 
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,6 +17,9 @@ struct LoadOptions {
   std::size_t max_expanded_yaml_nodes = 10'000'000;
   /// Nesting limit for YAML sequences and mappings, counted through aliases.
   int max_yaml_depth = 200;
+  /// Largest file the loader reads (the body file, SubBody and YAML resources, mesh files).
+  /// Only regular files are read: never a device, a FIFO or a directory.
+  std::uintmax_t max_file_bytes = 256u << 20;
   /// Import external mesh files (Resource nodes) into Model::meshes.
   bool load_meshes = true;
   /// Extra roots for `package://NAME/...` URIs, searched before ROS_PACKAGE_PATH.

@@ -8,6 +8,7 @@
 #include <bodyfmt/diagnostic.h>
 #include <bodyfmt/model.h>
 
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <optional>
@@ -32,6 +33,8 @@ struct MeshImportOptions {
   /// Pass every node name the body selects from this file; the selected node itself is
   /// never dropped. Empty = the whole subtree (what a single reference sees).
   std::vector<std::string> detached_nodes;
+  /// Largest mesh file read (LoadOptions::max_file_bytes); only regular files are read.
+  std::uintmax_t max_file_bytes = 256u << 20;
 };
 
 /// Reads a mesh file into parts in the resource frame (metres, Z-up after metadata).

@@ -55,20 +55,84 @@ std::string location_text(const SourceLocation& location) {
   return text;
 }
 
-/// Spaces (and the source's own tabs) up to byte column `column`, one per UTF-8 character.
-std::string caret_line(const std::string& source, int column) {
-  std::string pad;
-  const std::size_t limit = std::min(source.size(), static_cast<std::size_t>(column > 0 ? column - 1 : 0));
-  for (std::size_t i = 0; i < limit; ++i) {
-    const unsigned char c = static_cast<unsigned char>(source[i]);
-    if (c == '\t')
-      pad += '\t';
-    else if ((c & 0xC0) != 0x80)
-      pad += ' ';  // skip UTF-8 continuation bytes
+/// One character of a source line as printed: its bytes (or a stand-in), its columns on a
+/// terminal, and where it starts in the line.
+struct Glyph {
+  std::size_t offset = 0;
+  std::size_t size = 1;
+  int width = 1;      ///< 0 for a tab, which the caret line copies
+  bool shown = true;  ///< false: printed as '?' (control characters, invalid UTF-8)
+};
+
+/// East Asian wide and fullwidth characters take two terminal columns (UAX #11), so the
+/// caret moves two columns for each.
+bool is_wide(unsigned cp) {
+  return (cp >= 0x1100 && cp <= 0x115F) || (cp >= 0x2E80 && cp <= 0x303E) || (cp >= 0x3041 && cp <= 0x33FF) ||
+         (cp >= 0x3400 && cp <= 0x4DBF) || (cp >= 0x4E00 && cp <= 0x9FFF) || (cp >= 0xA000 && cp <= 0xA4CF) ||
+         (cp >= 0xAC00 && cp <= 0xD7A3) || (cp >= 0xF900 && cp <= 0xFAFF) || (cp >= 0xFE30 && cp <= 0xFE4F) ||
+         (cp >= 0xFF00 && cp <= 0xFF60) || (cp >= 0xFFE0 && cp <= 0xFFE6) || (cp >= 0x1F300 && cp <= 0x1F64F) ||
+         (cp >= 0x1F900 && cp <= 0x1F9FF) || (cp >= 0x20000 && cp <= 0x3FFFD);
+}
+
+Glyph glyph_at(const std::string& line, std::size_t i) {
+  Glyph g;
+  g.offset = i;
+  const unsigned char c = static_cast<unsigned char>(line[i]);
+  if (c == '\t') {
+    g.width = 0;
+    return g;
   }
+  if (c < 0x20 || c == 0x7F) {
+    g.shown = false;
+    return g;
+  }
+  if (c < 0x80) return g;
+  std::size_t n = (c & 0xE0) == 0xC0 ? 2 : (c & 0xF0) == 0xE0 ? 3 : (c & 0xF8) == 0xF0 ? 4 : 0;
+  unsigned cp = n == 2 ? (c & 0x1Fu) : n == 3 ? (c & 0x0Fu) : (c & 0x07u);
+  for (std::size_t k = 1; k < n; ++k) {
+    if (i + k >= line.size() || (static_cast<unsigned char>(line[i + k]) & 0xC0) != 0x80) n = 0;
+    if (n == 0) break;
+    cp = (cp << 6) | (static_cast<unsigned char>(line[i + k]) & 0x3Fu);
+  }
+  if (n == 0) {
+    g.shown = false;
+    return g;
+  }
+  g.size = n;
+  g.width = is_wide(cp) ? 2 : 1;
+  return g;
+}
+
+/// The source line as printed and the caret line under byte column `column`. A long line
+/// (a flow list of thousands of numbers, or a binary file read as text) shows a window of
+/// about kWindow bytes around the caret between "..." marks, so every diagnostic prints a
+/// bounded excerpt; control bytes and invalid UTF-8 print as '?'. The caret line copies the
+/// tabs and counts two columns for a wide character.
+constexpr std::size_t kWindow = 160;
+
+std::pair<std::string, std::string> excerpt(const std::string& line, int column) {
+  const std::size_t caret = static_cast<std::size_t>(column > 0 ? column - 1 : 0);
+  std::size_t begin = 0, end = line.size();
+  if (line.size() > kWindow) {
+    begin = caret > kWindow / 3 ? std::min(caret, line.size()) - kWindow / 3 : 0;
+    end = std::min(line.size(), begin + kWindow);
+  }
+  std::string text = begin > 0 ? "..." : "";
+  std::string pad = begin > 0 ? "   " : "";
+  std::size_t i = 0;
+  // Start on a character boundary at or after `begin`.
+  while (i < begin) i += glyph_at(line, i).size;
+  for (; i < end;) {
+    const Glyph g = glyph_at(line, i);
+    if (i + g.size > end) break;
+    text += g.shown ? line.substr(i, g.size) : std::string("?");
+    if (i < caret) pad += g.width == 0 ? std::string("\t") : std::string(static_cast<std::size_t>(g.width), ' ');
+    i += g.size;
+  }
+  if (i < line.size()) text += "...";
   // A column past the end (e.g. "missing key" at the end of the line) gets the caret there.
-  for (std::size_t i = limit; i + 1 < static_cast<std::size_t>(column > 0 ? column : 1); ++i) pad += ' ';
-  return pad + '^';
+  for (std::size_t k = std::max(i, line.size()); k < caret; ++k) pad += ' ';
+  return {text, pad + '^'};
 }
 
 }  // namespace
@@ -92,8 +156,9 @@ std::string format_text_diagnostic(const Diagnostic& d, SourceLines& sources, co
   text += '\n';
   if (options.source_lines && d.location.known() && !d.location.file.empty()) {
     if (const std::string* source = sources.line(d.location.file, d.location.line)) {
-      text += *source + '\n';
-      if (d.location.column > 0) text += paint("1;32", caret_line(*source, d.location.column)) + '\n';
+      const auto [shown, caret] = excerpt(*source, d.location.column);
+      text += shown + '\n';
+      if (d.location.column > 0) text += paint("1;32", caret) + '\n';
     }
   }
   const std::string note = paint(severity_code(Severity::kNote), "note:");

@@ -129,6 +129,7 @@ void BodyReader::import_meshes(Model& model) {
       import_options.node = mesh->node;
       import_options.length_scale = mesh->length_scale;
       import_options.y_up = mesh->y_up;
+      import_options.max_file_bytes = options_.max_file_bytes;
       if (auto it = selected_nodes.find(mesh->resolved_path); it != selected_nodes.end())
         import_options.detached_nodes = it->second;
       auto asset = session_.meshes.get(mesh->resolved_path, import_options, ctx_.sink, shape.source);

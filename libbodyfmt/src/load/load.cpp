@@ -1,6 +1,7 @@
 #include <bodyfmt/load.h>
 
 #include <bodyfmt/rules.h>
+#include "io/read_file.h"
 #include "load/body_reader.h"
 
 #include <fstream>
@@ -9,14 +10,13 @@
 namespace bodyfmt {
 
 std::optional<Model> load_body(const std::string& path, const LoadOptions& options, DiagnosticSink& sink) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    report_rule(sink, "io-read", SourceLocation{path, 0, 0}, "cannot open \"" + path + "\"");
+  std::string why;
+  const std::optional<std::string> text = detail::read_regular_file(path, options.max_file_bytes, why);
+  if (!text) {
+    report_rule(sink, "io-read", SourceLocation{path, 0, 0}, "cannot read \"" + path + "\": " + why);
     return std::nullopt;
   }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return load_body_string(text.str(), path, options, sink);
+  return load_body_string(*text, path, options, sink);
 }
 
 std::optional<Model> load_body_string(const std::string& text, const std::string& file_name, const LoadOptions& options,

@@ -1,5 +1,6 @@
 #include "load/resource_reader.h"
 
+#include "io/read_file.h"
 #include "load/body_reader.h"
 #include "load/geometry.h"
 #include "load/link_reader.h"
@@ -85,20 +86,19 @@ class Resources final : public ResourceReader {
   const yaml::Document* load_yaml_file(const yaml::NodeRef& at, const std::string& path) {
     auto it = yaml_files_.find(path);
     if (it != yaml_files_.end()) return it->second.get();
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-      ctx_.report("resource-missing", at, "YAML resource \"" + path + "\" cannot be read");
+    std::string why;
+    const std::optional<std::string> text = read_regular_file(path, options_.max_file_bytes, why);
+    if (!text) {
+      ctx_.report("resource-missing", at, "YAML resource \"" + path + "\" cannot be read: " + why);
       yaml_files_[path] = nullptr;
       return nullptr;
     }
-    std::ostringstream text;
-    text << in.rdbuf();
     yaml::ParseOptions po;
     po.max_expanded_nodes = options_.max_expanded_yaml_nodes;
     po.max_depth = options_.max_yaml_depth;
     // body-format-spec §9.3: the resource sees the main body file's anchors.
     if (main_) po.imported_anchors = &main_->anchors;
-    auto doc = yaml::parse_yaml(text.str(), path, po, ctx_.sink);
+    auto doc = yaml::parse_yaml(*text, path, po, ctx_.sink);
     const yaml::Document* result = doc.get();
     yaml_files_[path] = std::move(doc);
     return result;
@@ -142,14 +142,14 @@ class Resources final : public ResourceReader {
     }
     if (auto it = session_.subbodies.find(canonical); it != session_.subbodies.end()) return it->second;
     std::shared_ptr<const Model> result;
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-      ctx_.report("subbody-missing", uri, "sub-body \"" + uri->scalar + "\" cannot be read at \"" + path + "\"");
+    std::string why;
+    const std::optional<std::string> text = read_regular_file(path, options_.max_file_bytes, why);
+    if (!text) {
+      ctx_.report("subbody-missing", uri,
+                  "sub-body \"" + uri->scalar + "\" cannot be read at \"" + path + "\": " + why);
     } else {
-      std::ostringstream text;
-      text << in.rdbuf();
       BodyReader reader(options_, ctx_.sink, session_);
-      if (auto model = reader.read(text.str(), path, false))
+      if (auto model = reader.read(*text, path, false))
         result = std::make_shared<const Model>(std::move(*model));
       else
         ctx_.report("subbody-load", uri, "the sub-body \"" + uri->scalar + "\" cannot be loaded");

@@ -3,6 +3,7 @@
 #include <bodyfmt/mesh_import.h>
 #include <bodyfmt/rules.h>
 
+#include "io/read_file.h"
 #include "mesh/assimp_module.h"
 #include "mesh/scene_tree.h"
 #include "mesh/vrml_reader.h"
@@ -46,6 +47,7 @@ struct MeshCache::Impl {
   std::set<AssetKey> failed_assets;
   std::vector<std::string> inline_stack;  // VRML files being parsed, for Inline cycles
   int parsed = 0;
+  std::uintmax_t max_file_bytes = MeshImportOptions{}.max_file_bytes;  // of the import being read
 
   /// Parses `path` once; later calls return the cached tree (or nullptr after a failure).
   mesh::SceneTree load_file(const std::string& path, DiagnosticSink& sink, const SourceLocation& where) {
@@ -71,28 +73,24 @@ struct MeshCache::Impl {
       report(sink, "mesh-file-missing", where, "mesh file not found: \"" + path + "\"");
       return nullptr;
     }
-    if (!std::filesystem::is_regular_file(path, ec)) {
-      report(sink, "mesh-file-unreadable", where, "mesh path is not a regular file: \"" + path + "\"");
+    std::string why;
+    if (!detail::readable_regular_file(path, max_file_bytes, why)) {
+      report(sink, "mesh-file-unreadable", where, "cannot read mesh file \"" + path + "\": it " + why);
       return nullptr;
     }
     ++parsed;
     if (format == Format::kAssimp) return mesh::import_with_assimp(path, sink, where);
 
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream text;
-    if (!in || !(text << in.rdbuf())) {
-      // An empty file makes `text << rdbuf` fail too; that is still readable (and empty).
-      if (!in || std::filesystem::file_size(path, ec) != 0) {
-        report(sink, "mesh-file-unreadable", where, "cannot read mesh file \"" + path + "\"");
-        return nullptr;
-      }
+    const std::optional<std::string> text = detail::read_regular_file(path, max_file_bytes, why);
+    if (!text) {
+      report(sink, "mesh-file-unreadable", where, "cannot read mesh file \"" + path + "\": " + why);
+      return nullptr;
     }
     inline_stack.push_back(path);
     const mesh::InlineLoader loader = [this, &sink](const std::string& inlined, const SourceLocation& at) {
       return load_file(inlined, sink, at);
     };
-    const std::string content = text.str();
-    mesh::SceneTree tree = mesh::read_vrml(content, path, sink, loader);
+    mesh::SceneTree tree = mesh::read_vrml(*text, path, sink, loader);
     inline_stack.pop_back();
     return tree;
   }
@@ -114,6 +112,7 @@ std::shared_ptr<const MeshAsset> MeshCache::get(const std::string& path, const M
   if (impl_->failed_assets.count(key)) return nullptr;
 
   const bool known_file = impl_->files.count(normal) != 0;
+  impl_->max_file_bytes = options.max_file_bytes;
   mesh::SceneTree tree = impl_->load_file(normal, sink, where);
   if (!tree) {
     impl_->failed_assets.insert(key);

@@ -2,6 +2,8 @@
 #include <bodyfmt/report.h>
 #include <bodyfmt/rules.h>
 
+#include "text/text_util.h"
+
 #include <doctest/doctest.h>
 
 #include <cstdio>
@@ -175,4 +177,41 @@ TEST_CASE("report: SARIF structure") {
         std::string::npos);
   CHECK(sarif.find("\"region\": {\"startLine\": 2}") != std::string::npos);
   CHECK(occurrences(sarif, "\"roles\": [\"analysisTarget\"]") == 2);
+}
+
+namespace {
+std::string caret_text(const std::string& line, int column) {
+  SourceLines sources;
+  sources.add("x.body", line + "\n");
+  Diagnostic d;
+  d.severity = Severity::kError;
+  d.rule_id = "load-number";
+  d.message = "m";
+  d.location = {"x.body", 1, column};
+  return format_text_diagnostic(d, sources);
+}
+}  // namespace
+
+TEST_CASE("report: a long source line is shown as a bounded window around the caret") {
+  std::string line = "faces: [";
+  for (int i = 0; i < 10000; ++i) line += "x, ";
+  const int column = static_cast<int>(line.size()) / 2 + 1;  // an 'x' in the middle
+  const std::string text = caret_text(line, column);
+  CHECK(text.size() < 500);
+  const auto lines = bodyfmt::text::split_lines(text);
+  REQUIRE(lines.size() == 3);
+  CHECK(lines[1].rfind("...", 0) == 0);
+  CHECK(lines[1].size() >= 160);
+  CHECK(lines[1].substr(lines[1].size() - 3) == "...");
+  // The caret stands under the character the column names.
+  CHECK(lines[1][lines[2].size() - 1] == line[static_cast<std::size_t>(column - 1)]);
+}
+
+TEST_CASE("report: the caret counts two columns for wide characters; control bytes print as '?'") {
+  // "名前: X" - two CJK characters (3 bytes, 2 columns each), then ": " and the value.
+  const std::string line = "\xE5\x90\x8D\xE5\x89\x8D: X";
+  CHECK(caret_text(line, 9) == "x.body:1:9: error: m [load-number]\n" + line + "\n      ^\n");
+  CHECK(caret_text("a\x01"
+                   "b",
+                   3) == "x.body:1:3: error: m [load-number]\na?b\n  ^\n");
 }
