@@ -20,14 +20,23 @@ std::string xml_escape(std::string_view text) {
 
 namespace {
 
-// Length of the UTF-8 sequence starting at text[i], or 0 when it is malformed.
+// Length of the UTF-8 sequence starting at text[i], or 0 when it is malformed (truncated,
+// overlong, a surrogate, above U+10FFFF) or is a character XML 1.0 does not allow
+// (U+FFFE, U+FFFF; the Char production of XML 1.0 §2.2). Control characters are checked by
+// the callers.
 std::size_t utf8_length(std::string_view text, std::size_t i) {
   const auto c = static_cast<unsigned char>(text[i]);
   std::size_t n = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xE ? 3 : (c >> 3) == 0x1E ? 4 : 0;
   if (n == 0 || i + n > text.size()) return 0;
+  if (n == 1) return 1;
+  unsigned cp = n == 2 ? (c & 0x1Fu) : n == 3 ? (c & 0x0Fu) : (c & 0x07u);
   for (std::size_t k = 1; k < n; ++k) {
-    if ((static_cast<unsigned char>(text[i + k]) & 0xC0) != 0x80) return 0;
+    const auto cc = static_cast<unsigned char>(text[i + k]);
+    if ((cc & 0xC0) != 0x80) return 0;
+    cp = (cp << 6) | (cc & 0x3Fu);
   }
+  static constexpr unsigned kMin[] = {0, 0, 0x80, 0x800, 0x10000};
+  if (cp < kMin[n] || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF) || cp == 0xFFFE || cp == 0xFFFF) return 0;
   return n;
 }
 
