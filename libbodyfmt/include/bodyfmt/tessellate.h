@@ -64,8 +64,10 @@ TriangleMesh with_vertex_normals(const TriangleMesh& mesh, double crease_angle);
 /// points are ignored. The triangles keep the polygon's winding and are appended to
 /// `triangles`. Returns false, appending nothing, for a degenerate polygon: fewer than three
 /// distinct points or no area. A self-intersecting polygon still yields triangles covering it
-/// approximately. Useful for mesh importers (OBJ, VRML faces) too.
+/// approximately. Useful for mesh importers (OBJ, VRML faces) too. The work is bounded: a
+/// polygon that would take more than about 4·10⁸ point tests (a self-intersecting polygon of
+/// thousands of corners) yields nothing and sets `*over_budget`.
 bool triangulate_polygon(const std::vector<Eigen::Vector3d>& vertices, const std::vector<int>& polygon,
-                         std::vector<std::array<int, 3>>& triangles);
+                         std::vector<std::array<int, 3>>& triangles, bool* over_budget = nullptr);
 
 }  // namespace bodyfmt

@@ -279,10 +279,15 @@ TriangleMesh face_set_mesh(const IndexedFaceSet& face_set, Reporter& reporter) {
         break;
       }
     }
-    if (indices_ok && !triangulate_polygon(mesh.vertices, polygon, mesh.triangles)) {
-      reporter.report(kRuleDegenerate, fmt::format("IndexedFaceSet polygon {} ({} indices) has fewer than three "
-                                                   "distinct points or no area",
-                                                   polygon_number, polygon.size()));
+    bool over_budget = false;
+    if (indices_ok && !triangulate_polygon(mesh.vertices, polygon, mesh.triangles, &over_budget)) {
+      reporter.report(kRuleDegenerate,
+                      over_budget ? fmt::format("IndexedFaceSet polygon {} ({} indices) crosses itself too often to "
+                                                "be triangulated within the tessellation budget; it is left out",
+                                                polygon_number, polygon.size())
+                                  : fmt::format("IndexedFaceSet polygon {} ({} indices) has fewer than three "
+                                                "distinct points or no area",
+                                                polygon_number, polygon.size()));
       reported = true;
     }
     polygon.clear();

@@ -236,18 +236,23 @@ void add_sides(const Layout& l, TriangleMesh& mesh) {
 
 /// Caps: only on an open spine. A cap that collapses (scale 0 at an end, a common way to make
 /// a point) is simply omitted: it has no area to cover.
-void add_caps(const Extrusion& extrusion, const Layout& l, TriangleMesh& mesh) {
+void add_caps(const Extrusion& extrusion, const Layout& l, TriangleMesh& mesh, Reporter& reporter) {
   if (l.spine_closed) return;
   std::vector<int> polygon(static_cast<std::size_t>(l.nc));
+  bool over_budget = false;
   if (extrusion.begin_cap) {
     for (int j = 0; j < l.nc; ++j) polygon[static_cast<std::size_t>(j)] = j;
-    triangulate_polygon(mesh.vertices, polygon, mesh.triangles);
+    triangulate_polygon(mesh.vertices, polygon, mesh.triangles, &over_budget);
   }
-  if (extrusion.end_cap) {
+  if (extrusion.end_cap && !over_budget) {
     const int base = l.nc * (l.ns - 1);
     for (int j = 0; j < l.nc; ++j) polygon[static_cast<std::size_t>(j)] = base + l.nc - 1 - j;
-    triangulate_polygon(mesh.vertices, polygon, mesh.triangles);
+    triangulate_polygon(mesh.vertices, polygon, mesh.triangles, &over_budget);
   }
+  if (over_budget)
+    reporter.report(kRuleDegenerate, fmt::format("Extrusion cross_section ({} points) crosses itself too often to be "
+                                                 "triangulated within the tessellation budget; its caps are left out",
+                                                 l.nc));
 }
 
 /// Outward orientation. For a closed solid the signed volume decides, which covers every
@@ -281,7 +286,7 @@ TriangleMesh tessellate_extrusion(const Extrusion& extrusion, Reporter& reporter
   TriangleMesh mesh;
   add_vertices(extrusion, *layout, axes, mesh);
   add_sides(*layout, mesh);
-  add_caps(extrusion, *layout, mesh);
+  add_caps(extrusion, *layout, mesh, reporter);
   orient_outward(extrusion, *layout, mesh);
   return mesh;
 }

@@ -75,7 +75,8 @@ std::optional<PlanarPolygon> project_to_plane(const std::vector<Eigen::Vector3d>
 /// Ear clipping over the corners still in the polygon (positions into PlanarPolygon::p).
 class EarClipper {
  public:
-  explicit EarClipper(const PlanarPolygon& polygon) : p_(polygon.p), tolerance_(polygon.area_tolerance) {
+  explicit EarClipper(const PlanarPolygon& polygon)
+      : p_(polygon.p), tolerance_(polygon.area_tolerance), large_(polygon.p.size() > kSmallPolygon) {
     remaining_.resize(p_.size());
     for (std::size_t k = 0; k < remaining_.size(); ++k) remaining_[k] = k;
   }
@@ -88,8 +89,14 @@ class EarClipper {
     while (remaining_.size() > 3) {
       bool emit = true;
       const std::size_t clip = next_clip(emit);
+      if (work_ > kWorkBudget) {
+        over_budget_ = true;
+        return {};
+      }
       if (emit) result.push_back(corner(clip));
       remaining_.erase(remaining_.begin() + static_cast<std::ptrdiff_t>(clip));
+      // The corner before the clipped one changed: look for the next ear there.
+      start_ = clip == 0 ? 0 : clip - 1;
     }
     const std::array<std::size_t, 3> last = {remaining_[0], remaining_[1], remaining_[2]};  // = corner(1)
     if (std::abs(turn(1)) > tolerance_) result.push_back(last);
@@ -112,6 +119,7 @@ class EarClipper {
   }
   bool is_ear(std::size_t k) const {
     if (turn(k) <= tolerance_) return false;  // reflex or flat
+    work_ += remaining_.size();
     const auto [a, b, c] = corner(k);
     for (std::size_t r : remaining_) {
       if (r == a || r == b || r == c) continue;
@@ -127,8 +135,14 @@ class EarClipper {
   /// the most convex corner.
   std::size_t next_clip(bool& emit) const {
     const std::size_t m = remaining_.size();
-    for (std::size_t k = 0; k < m; ++k)
+    // A small polygon is searched from its first corner every time (the triangulation every
+    // existing export was made with); a large one from where the last ear was cut, which
+    // finds the next ear at once on convex runs and keeps the work near n² instead of n³.
+    const std::size_t start = large_ ? std::min(start_, m - 1) : 0;
+    for (std::size_t step = 0; step < m; ++step) {
+      const std::size_t k = (start + step) % m;
       if (is_ear(k)) return k;
+    }
     double best = -std::numeric_limits<double>::infinity();
     std::size_t clip = m;
     for (std::size_t k = 0; k < m; ++k) {
@@ -145,20 +159,37 @@ class EarClipper {
     return clip;
   }
 
+  static constexpr std::size_t kSmallPolygon = 64;
+  /// Point-in-triangle tests one polygon may take (a few seconds at most); a self-intersecting
+  /// polygon of thousands of corners, which has few or no ears, would otherwise take minutes.
+  static constexpr std::size_t kWorkBudget = 400'000'000;
+
   const std::vector<Eigen::Vector2d>& p_;
   double tolerance_;
+  bool large_;
   std::vector<std::size_t> remaining_;
+  std::size_t start_ = 0;
+  mutable std::size_t work_ = 0;
+
+ public:
+  bool over_budget() const { return over_budget_; }
+
+ private:
+  bool over_budget_ = false;
 };
 
 }  // namespace
 
 bool triangulate_polygon(const std::vector<Eigen::Vector3d>& vertices, const std::vector<int>& polygon,
-                         std::vector<std::array<int, 3>>& triangles) {
+                         std::vector<std::array<int, 3>>& triangles, bool* over_budget) {
+  if (over_budget) *over_budget = false;
   const std::vector<int> ids = distinct_corners(vertices, polygon);
   if (ids.size() < 3) return false;
   const std::optional<PlanarPolygon> planar = project_to_plane(vertices, ids);
   if (!planar) return false;
-  const std::vector<std::array<std::size_t, 3>> clipped = EarClipper(*planar).run();
+  EarClipper clipper(*planar);
+  const std::vector<std::array<std::size_t, 3>> clipped = clipper.run();
+  if (over_budget) *over_budget = clipper.over_budget();
   if (clipped.empty()) return false;
   for (const auto& [a, b, c] : clipped) triangles.push_back({ids[a], ids[b], ids[c]});
   return true;
