@@ -111,10 +111,10 @@ TEST_CASE("converters: XML escaping, comments and URDF names") {
   CHECK(is_xml_text("caf\xc3\xa9"));
   CHECK_FALSE(is_xml_text("bad\x01"));
   CHECK_FALSE(is_xml_text("\xff"));
-  CHECK_FALSE(is_xml_text("\xef\xbf\xbe"));      // U+FFFE, a non-character XML does not allow
-  CHECK_FALSE(is_xml_text("\xef\xbf\xbf"));      // U+FFFF
-  CHECK_FALSE(is_xml_text("\xed\xa0\x80"));      // a surrogate
-  CHECK_FALSE(is_xml_text("\xc0\xaf"));          // overlong
+  CHECK_FALSE(is_xml_text("\xef\xbf\xbe"));            // U+FFFE, a non-character XML does not allow
+  CHECK_FALSE(is_xml_text("\xef\xbf\xbf"));            // U+FFFF
+  CHECK_FALSE(is_xml_text("\xed\xa0\x80"));            // a surrogate
+  CHECK_FALSE(is_xml_text("\xc0\xaf"));                // overlong
   CHECK(is_xml_text("\xef\xbf\xbd\xf0\x9f\x98\x80"));  // U+FFFD, U+1F600
   CHECK(urdf_name_problem("RARM_WRIST_R").empty());
   CHECK(urdf_name_problem("link-1.a").empty());
