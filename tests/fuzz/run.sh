@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# The second CI build: everything with AddressSanitizer and UndefinedBehaviorSanitizer
+# (-fno-sanitize-recover=all) under clang, the whole test suite on it, then each libFuzzer
+# target for SECONDS seconds (default 60) from the seed corpora. Run from the project root
+# after README command 2 (which installs the dependencies and fills build/npm):
+#
+#   tests/fuzz/run.sh [SECONDS]
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/../.."
+seconds=${1:-60}
+build=build-sanitize
+if [ "$(id -u)" -eq 0 ]; then S=; else S=sudo; fi
+command -v clang++ >/dev/null && [ -n "$(find /usr/lib/llvm-14/lib/clang -name 'libclang_rt.fuzzer-x86_64.a' 2>/dev/null)" ] ||
+  $S env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends clang libclang-rt-14-dev
+CC=clang CXX=clang++ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBODYFMT_FUZZ=ON \
+  -DBODYFMT_NPM_PREFIX="$PWD/build/npm"
+cmake --build "$build"
+# The package test links an outside project against the installed library, which would need
+# the sanitizer runtime flags too; the first build runs it.
+export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+ctest --test-dir "$build" --output-on-failure -j2 -E '^package\.find_package$'
+
+# Seeds: every body and YAML file we have, and the small multi-file folders in tests/fuzz/seeds.
+seeds=$build/fuzz-seeds
+rm -rf "$seeds" && mkdir -p "$seeds/yaml" "$seeds/load"
+n=0
+while IFS= read -r -d '' f; do
+  n=$((n + 1))
+  cp "$f" "$seeds/yaml/$n"
+  case "$f" in *.body) cp "$f" "$seeds/load/$n" ;; esac
+done < <(find examples tests/data ../shared/corpus/choreonoid \( -name '*.body' -o -name '*.yaml' \) -size -64k -print0 | sort -z)
+cp tests/fuzz/seeds/* "$seeds/load/"
+for target in yaml load urdf; do
+  corpus=$build/fuzz-corpus/$target
+  mkdir -p "$corpus"
+  seed_dir=$seeds/load
+  [ "$target" = yaml ] && seed_dir=$seeds/yaml
+  echo "fuzz_$target: ${seconds} s"
+  "$build/tests/fuzz/fuzz_$target" -max_total_time="$seconds" -rss_limit_mb=4096 -timeout=20 -max_len=65536 \
+    -dict=tests/fuzz/body.dict -print_final_stats=1 "$corpus" "$seed_dir" 2>&1 | tail -n 12
+done
