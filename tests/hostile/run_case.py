@@ -3,8 +3,10 @@
 
     run_case.py CASE BIN_DIR
 
-CASE is a .body file (or a folder holding main.body) under tests/data/hostile. Its comment
-lines say what each tool must do:
+CASE is a .body file (or a folder holding main.body) under tests/data/hostile, or one that
+tests/hostile/generate.py wrote. Its comment lines (or, for a file that cannot hold comments,
+such as an empty or a binary one, the lines of CASE.expect beside it) say what each tool must
+do:
 
     # expect: bodycheck exit=1 rule=joint-id-gap
     # expect: bodyinfo exit=0
@@ -26,7 +28,8 @@ TIME_LIMIT = 20  # seconds; "within a few seconds" on a loaded 2-core CI machine
 def main():
     case, bin_dir = sys.argv[1], sys.argv[2]
     model = os.path.join(case, "main.body") if os.path.isdir(case) else case
-    with open(model, "rb") as f:
+    sidecar = case + ".expect"
+    with open(sidecar if os.path.exists(sidecar) else model, "rb") as f:
         head = f.read(4096).decode("utf-8", "replace")
     expectations = {}
     for tool, spec in re.findall(r"^# expect: (\S+) (.*)$", head, re.M):

@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <string_view>
 
 namespace bodyfmt::detail {
 namespace {
@@ -19,6 +20,25 @@ bool is_scalar(LoadContext& ctx, const yaml::NodeRef& ref, const char* what) {
 bool only_trailing_space(const char* p) {
   while (*p == ' ' || *p == '\t' || *p == '\r' || *p == '\n') ++p;
   return *p == '\0';
+}
+
+/// YAML 1.1's own spellings of NaN and infinity (.nan, .inf, -.Inf, ...): floats to a YAML
+/// reader, text to Choreonoid's strtod.
+bool is_yaml_special_float(std::string_view text) {
+  if (!text.empty() && (text.front() == '+' || text.front() == '-')) text.remove_prefix(1);
+  for (std::string_view word : {".nan", ".NaN", ".NAN", ".inf", ".Inf", ".INF"})
+    if (text == word) return true;
+  return false;
+}
+
+/// NaN and infinity (also from an overflowing literal such as 1e999) load in Choreonoid but
+/// break every simulator and exporter: an error, saying why.
+bool report_if_not_finite(LoadContext& ctx, const yaml::NodeRef& ref, double value) {
+  if (std::isfinite(value)) return false;
+  ctx.report("load-number", ref,
+             "the value \"" + ref->scalar + "\" is not finite (" + (std::isnan(value) ? "NaN" : "infinite") +
+                 "); masses, lengths and angles must be finite numbers");
+  return true;
 }
 
 }  // namespace
@@ -38,6 +58,13 @@ std::optional<double> required_double(LoadContext& ctx, const yaml::NodeRef& ref
   const char* begin = text.c_str();
   char* end = nullptr;
   double value = std::strtod(begin, &end);
+  if (is_yaml_special_float(text)) {
+    ctx.report("load-number", ref,
+               "the value \"" + text + "\" is not finite (YAML's " +
+                   (text.find('n') != std::string::npos || text.find('N') != std::string::npos ? "NaN" : "infinity") +
+                   "); Choreonoid cannot read it, and masses, lengths and angles must be finite numbers");
+    return std::nullopt;
+  }
   if (end == begin) {
     ctx.report("load-number", ref, "the value \"" + text + "\" must be a floating point number");
     return std::nullopt;
@@ -51,7 +78,7 @@ std::optional<double> required_double(LoadContext& ctx, const yaml::NodeRef& ref
                    std::string(end) + "\"",
                "write the number in full, e.g. " + prefix);
   }
-  if (std::isnan(value)) ctx.report("load-lenient-number", ref, "the value \"" + text + "\" is not a number (NaN)");
+  if (report_if_not_finite(ctx, ref, value)) return std::nullopt;
   return value;
 }
 
@@ -88,7 +115,16 @@ std::optional<std::string> required_string(LoadContext& ctx, const yaml::NodeRef
 
 std::optional<double> optional_double(LoadContext& ctx, const yaml::NodeRef& ref) {
   if (ref && ref->is_scalar()) {
-    if (auto value = parse_double_exact(ref->scalar)) return value;
+    if (auto value = parse_double_exact(ref->scalar)) {
+      if (report_if_not_finite(ctx, ref, *value)) return std::nullopt;
+      return value;
+    }
+    if (is_yaml_special_float(ref->scalar)) {
+      ctx.report(
+          "load-number", ref,
+          "the value \"" + ref->scalar + "\" is not finite; Choreonoid cannot read it and silently uses the default");
+      return std::nullopt;
+    }
   }
   ctx.report("load-ignored-value", ref, "this value is not a number; Choreonoid ignores it and uses the default");
   return std::nullopt;
