@@ -16,9 +16,35 @@ enum class Severity { kNote, kWarning, kError, kFatal };
 
 std::string_view severity_name(Severity severity);
 
+/// A file name as locations carry it: interned once per process, so that the millions of
+/// locations of a large model share one copy, and a copy is a pointer. Reads as the
+/// std::string it names; equal names are the same object.
+class FileName {
+ public:
+  FileName() = default;
+  FileName(const std::string& name);  // NOLINT: implicit, a location's file is set from strings
+  FileName(const char* name) : FileName(std::string(name)) {}
+  FileName(std::string_view name) : FileName(std::string(name)) {}
+
+  const std::string& str() const;
+  operator const std::string&() const { return str(); }  // NOLINT: reads as a string
+  bool empty() const { return str().empty(); }
+  const char* c_str() const { return str().c_str(); }
+
+  friend bool operator==(FileName a, FileName b) { return a.name_ == b.name_; }
+  friend bool operator!=(FileName a, FileName b) { return a.name_ != b.name_; }
+  friend bool operator<(FileName a, FileName b) { return a.str() < b.str(); }
+  friend bool operator==(FileName a, const std::string& b) { return a.str() == b; }
+  friend bool operator==(const std::string& a, FileName b) { return a == b.str(); }
+  friend bool operator==(FileName a, const char* b) { return a.str() == b; }
+
+ private:
+  const std::string* name_ = nullptr;  ///< nullptr: the empty name
+};
+
 /// A position in a source file. Line and column are 1-based; 0 means unknown.
 struct SourceLocation {
-  std::string file;
+  FileName file;
   int line = 0;
   int column = 0;
 

@@ -1,9 +1,26 @@
 #include <bodyfmt/diagnostic.h>
 
 #include <algorithm>
+#include <mutex>
 #include <tuple>
+#include <unordered_set>
 
 namespace bodyfmt {
+
+namespace {
+const std::string kEmptyName;
+}
+
+FileName::FileName(const std::string& name) {
+  if (name.empty()) return;
+  // Never freed: a process names few files, and every location may point at them.
+  static std::mutex mutex;
+  static std::unordered_set<std::string>* names = new std::unordered_set<std::string>();
+  const std::lock_guard<std::mutex> lock(mutex);
+  name_ = &*names->insert(name).first;
+}
+
+const std::string& FileName::str() const { return name_ ? *name_ : kEmptyName; }
 
 std::string_view severity_name(Severity severity) {
   switch (severity) {
@@ -33,7 +50,7 @@ void LocatingSink::report(Diagnostic diagnostic) {
 }
 
 static std::string format_location(const SourceLocation& location) {
-  std::string text = location.file.empty() ? std::string("<input>") : location.file;
+  std::string text = location.file.empty() ? std::string("<input>") : location.file.str();
   if (location.line > 0) {
     text += ':' + std::to_string(location.line);
     if (location.column > 0) text += ':' + std::to_string(location.column);

@@ -22,7 +22,7 @@ std::string_view json_severity(Severity s) {
 }
 
 std::string location_json(const SourceLocation& loc) {
-  return "{\"file\": " + json_quote(loc.file) + ", \"line\": " + std::to_string(loc.line) +
+  return "{\"file\": " + json_quote(loc.file.str()) + ", \"line\": " + std::to_string(loc.line) +
          ", \"column\": " + std::to_string(loc.column) + "}";
 }
 
@@ -42,7 +42,7 @@ std::string format_json_report(const Report& report, const ToolInfo& tool) {
   for (std::size_t i = 0; i < report.diagnostics.size(); ++i) {
     const Diagnostic& d = report.diagnostics[i];
     out += i == 0 ? "\n    {" : ",\n    {";
-    out += "\"file\": " + json_quote(d.location.file);
+    out += "\"file\": " + json_quote(d.location.file.str());
     out += ", \"line\": " + std::to_string(d.location.line);
     out += ", \"column\": " + std::to_string(d.location.column);
     out += ", \"severity\": " + json_quote(json_severity(d.severity));

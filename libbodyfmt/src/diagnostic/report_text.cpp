@@ -47,7 +47,7 @@ const std::string* SourceLines::line(const std::string& file, int line) {
 namespace {
 
 std::string location_text(const SourceLocation& location) {
-  std::string text = location.file.empty() ? std::string("<input>") : location.file;
+  std::string text = location.file.empty() ? std::string("<input>") : location.file.str();
   if (location.line > 0) {
     text += ':' + std::to_string(location.line);
     if (location.column > 0) text += ':' + std::to_string(location.column);

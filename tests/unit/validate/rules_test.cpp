@@ -30,7 +30,7 @@ void expect_finding(const std::string& file, const std::string& rule_id, Pos at,
                          [&](const Diagnostic& d) { return d.rule_id == rule_id; });
   REQUIRE(it != result.diagnostics.end());
   CHECK(bodyfmt::test::pos(*it) == at);
-  CHECK(it->location.file.find(file) != std::string::npos);
+  CHECK(it->location.file.str().find(file) != std::string::npos);
   CHECK(!it->message.empty());
   for (const Diagnostic& d : result.diagnostics) {
     if (d.severity == Severity::kNote || d.rule_id == rule_id) continue;
