@@ -18,9 +18,6 @@ const MapEntry* Node::find(std::string_view key) const {
   return nullptr;
 }
 
-Node* Document::make_node() {
-  nodes_.push_back(std::make_unique<Node>());
-  return nodes_.back().get();
-}
+Node* Document::make_node() { return &nodes_.emplace_back(); }
 
 }  // namespace bodyfmt::yaml

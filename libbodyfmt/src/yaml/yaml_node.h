@@ -4,6 +4,7 @@
 
 #include <bodyfmt/diagnostic.h>
 
+#include <deque>
 #include <map>
 #include <memory>
 #include <optional>
@@ -99,7 +100,7 @@ class Document {
   Node* make_node();
 
  private:
-  std::vector<std::unique_ptr<Node>> nodes_;
+  std::deque<Node> nodes_;  ///< chunked: stable addresses without one allocation per node
 };
 
 /// Parses the first YAML document of `text`. Reports `yaml-*` diagnostics located in
