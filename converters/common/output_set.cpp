@@ -24,7 +24,13 @@ fs::path OutputSet::directory() const {
 }
 
 void OutputSet::add(const std::string& relative, std::string contents) {
-  assert(!relative.empty() && relative.find("..") == std::string::npos);
+  const fs::path path(relative);
+  bool inside = !relative.empty() && path.is_relative();
+  for (const fs::path& part : path) inside = inside && part != "..";
+  if (!inside) {
+    if (outside_.empty()) outside_ = relative;
+    return;
+  }
   files_[relative] = std::move(contents);
 }
 
@@ -45,6 +51,10 @@ void report_write(DiagnosticSink& sink, const fs::path& path, const std::string&
 }  // namespace
 
 bool OutputSet::commit(DiagnosticSink& sink) {
+  if (!outside_.empty()) {
+    report_write(sink, directory() / outside_, "the path leaves the output folder; nothing is written");
+    failed_ = true;
+  }
   if (failed_) return false;
   const fs::path dir = directory();
   std::vector<Staged> staged;
@@ -96,18 +106,40 @@ bool OutputSet::commit(DiagnosticSink& sink) {
   std::stable_partition(staged.begin(), staged.end(), [&](const Staged& s) {
     return s.target.filename() != main_path_.filename() || s.target.parent_path() != dir;
   });
+  // Each existing target is first moved aside; if any rename fails, every target renamed so far
+  // gets its old file back, so a failed commit leaves the earlier output exactly as it was.
+  std::vector<std::pair<fs::path, fs::path>> moved_aside;  // backup, target
+  std::vector<fs::path> placed;
+  auto undo = [&] {
+    std::error_code ignored;
+    for (const fs::path& target : placed) fs::remove(target, ignored);
+    for (const auto& [backup, target] : moved_aside) fs::rename(backup, target, ignored);
+    for (const Staged& s : staged) fs::remove(s.temp, ignored);
+    failed_ = true;
+  };
   for (std::size_t i = 0; i < staged.size(); ++i) {
-    fs::rename(staged[i].temp, staged[i].target, ec);
+    const Staged& s = staged[i];
+    if (fs::is_regular_file(s.target, ec)) {
+      const fs::path backup = s.target.parent_path() / fmt::format(".{}.old-{}-{}", s.target.filename().string(),
+                                                                   static_cast<long>(::getpid()), i);
+      fs::rename(s.target, backup, ec);
+      if (ec) {
+        report_write(sink, s.target, ec.message());
+        undo();
+        return false;
+      }
+      moved_aside.emplace_back(backup, s.target);
+    }
+    fs::rename(s.temp, s.target, ec);
     if (ec) {
-      // Files renamed so far stay (a rename cannot be undone without the old contents);
-      // the rest are removed.
-      report_write(sink, staged[i].target, ec.message());
-      std::error_code ignored;
-      for (std::size_t j = i; j < staged.size(); ++j) fs::remove(staged[j].temp, ignored);
-      failed_ = true;
+      report_write(sink, s.target, ec.message());
+      undo();
       return false;
     }
+    placed.push_back(s.target);
   }
+  std::error_code ignored;
+  for (const auto& [backup, target] : moved_aside) fs::remove(backup, ignored);
   return true;
 }
 

@@ -37,7 +37,10 @@ std::optional<std::string> StagedFiles::mesh(const std::string& key, const std::
 }
 
 std::optional<std::string> StagedFiles::copy(const std::string& source_path, std::string& error) {
-  const std::string key = "copy:" + source_path;
+  // One copy per file, however its path is spelled.
+  std::error_code ec;
+  const std::filesystem::path canonical = std::filesystem::weakly_canonical(source_path, ec);
+  const std::string key = "copy:" + (ec ? source_path : canonical.string());
   if (auto it = by_key_.find(key); it != by_key_.end()) return it->second;
   std::ifstream in(source_path, std::ios::binary);
   std::ostringstream text;

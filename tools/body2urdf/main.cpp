@@ -9,6 +9,8 @@
 #include <bodyfmt/converters/output_set.h>
 #include <bodyfmt/derived.h>
 
+#include <filesystem>
+
 int main(int argc, char** argv) {
   using namespace bodyfmt;
   tools::Front front("body2urdf", "Export a Choreonoid .body model to URDF", {false, true});
@@ -21,7 +23,15 @@ int main(int argc, char** argv) {
   app.add_flag("--copy-meshes", options.copy_meshes,
                "copy external mesh files next to the URDF instead of referencing them");
   app.add_option("--package-uri", options.package_uri, "prefix mesh URIs with package://NAME/ (meshes are copied)");
-  app.add_option("--mesh-folder", options.mesh_folder, "folder for meshes, relative to the URDF");
+  app.add_option("--mesh-folder", options.mesh_folder, "folder for meshes, relative to the URDF (inside its folder)")
+      ->check(
+          [](const std::string& folder) -> std::string {
+            const std::filesystem::path path(folder);
+            bool inside = !folder.empty() && path.is_relative();
+            for (const auto& part : path) inside = inside && part != "..";
+            return inside ? std::string() : "the mesh folder must be a relative path inside the URDF's folder";
+          },
+          "FOLDER");
   app.add_flag("--floating-base", options.floating_base,
                "add a 'world' link and a floating joint at the root's initial pose");
   app.add_flag("--devices-as-frames", options.devices_as_frames, "write devices as fixed child links");

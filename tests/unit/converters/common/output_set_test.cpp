@@ -4,6 +4,7 @@
 #include <bodyfmt/converters/names.h>
 #include <bodyfmt/converters/numbers.h>
 #include <bodyfmt/converters/output_set.h>
+#include <bodyfmt/converters/staged_files.h>
 
 #include <doctest/doctest.h>
 
@@ -144,4 +145,58 @@ TEST_CASE("converters: binary STL layout and deterministic DAE") {
   REQUIRE(b);
   CHECK(*a == *b);
   CHECK(a->find("<created>2000-01-01T00:00:00</created>") != std::string::npos);
+}
+
+TEST_CASE("converters: a commit that fails partway puts every earlier file back") {
+  const fs::path dir = fresh_dir("partway");
+  { std::ofstream(dir / "robot.urdf") << "old main"; }
+  fs::create_directories(dir / "meshes" / "b.stl" / "occupied");  // a folder where b.stl should go
+  { std::ofstream(dir / "meshes" / "a.stl") << "old a"; }
+  OutputSet out(dir / "robot.urdf");
+  out.set_main("new main");
+  out.add("meshes/a.stl", "new a");  // renamed first, then b.stl fails
+  out.add("meshes/b.stl", "new b");
+  CollectingSink sink;
+  CHECK_FALSE(out.commit(sink));
+  REQUIRE(sink.diagnostics().size() == 1);
+  CHECK(sink.diagnostics()[0].rule_id == "export-write");
+  CHECK(read(dir / "robot.urdf") == "old main");
+  CHECK(read(dir / "meshes" / "a.stl") == "old a");
+  // robot.urdf, meshes/, a.stl, the folder b.stl and what is in it: no temporary or backup file.
+  CHECK(count_entries(dir) == 5);
+  for (const auto& entry : fs::recursive_directory_iterator(dir)) CHECK(entry.path().filename().string()[0] != '.');
+  fs::remove_all(dir);
+}
+
+TEST_CASE("converters: a staged path that leaves the output folder is refused at commit") {
+  const fs::path dir = fresh_dir("outside");
+  for (const char* bad : {"../escape.stl", "meshes/../../escape.stl", "/tmp/escape.stl"}) {
+    CAPTURE(bad);
+    OutputSet out(dir / "robot.urdf");
+    out.set_main("main");
+    out.add(bad, "x");
+    CollectingSink sink;
+    CHECK_FALSE(out.commit(sink));
+    CHECK(sink.has("export-write"));
+    CHECK(count_entries(dir) == 0);
+  }
+  fs::remove_all(dir);
+}
+
+TEST_CASE("converters: copied meshes land inside the output folder whatever their source path") {
+  const fs::path dir = fresh_dir("copies");
+  const fs::path source = fresh_dir("copies_source") / "deep" / "..";
+  fs::create_directories(source / "deep");
+  { std::ofstream(source / "part.stl") << "solid x\nendsolid x\n"; }
+  OutputSet out(dir / "robot.urdf");
+  StagedFiles staged(out, "meshes");
+  std::string error;
+  const auto relative = staged.copy((source / "deep" / ".." / "part.stl").string(), error);
+  REQUIRE(relative);
+  CHECK(*relative == "meshes/part.stl");
+  const auto again = staged.copy((source / "part.stl").string(), error);
+  REQUIRE(again);
+  CHECK(*again == "meshes/part.stl");  // the same file spelled another way: copied once
+  CHECK(out.files().size() == 1);
+  fs::remove_all(dir);
 }

@@ -3,9 +3,10 @@
 ///
 /// Files are staged in memory with add() and written by commit(): each goes to a temporary
 /// file in its destination folder, and only when every temporary file has been written are
-/// they all renamed over their destinations. A failure while writing removes the temporary
-/// files, so an existing output stays as it was and no partial file is left. After fail()
-/// (a fatal diagnostic during the export) commit() writes nothing.
+/// they all renamed over their destinations, the main file last, each existing destination
+/// moved aside first. A failure at any point removes the temporary files and puts every
+/// moved destination back, so an existing output stays as it was and no partial file is left.
+/// After fail() (a fatal diagnostic during the export) commit() writes nothing.
 #include <bodyfmt/diagnostic.h>
 
 #include <filesystem>
@@ -23,9 +24,9 @@ class OutputSet {
   /// The folder of the main file (where relative URIs start).
   std::filesystem::path directory() const;
 
-  /// Stages `contents` for `relative` (relative to directory(), '/'-separated, no "..").
-  /// Staging the same path twice with the same contents is fine; different contents replace
-  /// the earlier ones (the writer decides names, so this is a writer bug and asserts).
+  /// Stages `contents` for `relative` (relative to directory(), '/'-separated). A path that
+  /// is absolute or climbs out with ".." would write outside the output folder: commit()
+  /// then reports it and writes nothing (writers make names with StagedFiles and file_stem).
   void add(const std::string& relative, std::string contents);
   /// Stages the main file.
   void set_main(std::string contents);
@@ -45,6 +46,7 @@ class OutputSet {
  private:
   std::filesystem::path main_path_;
   std::map<std::string, std::string> files_;
+  std::string outside_;  ///< the first staged path that leaves the output folder
   bool failed_ = false;
 };
 
