@@ -14,9 +14,13 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
+#include <set>
 #include <thread>
 
 #ifndef BODYCHECK_INFORMATION_URI
@@ -87,9 +91,11 @@ std::vector<std::string> expand_inputs(const tools::Front& front, bool& fatal) {
       files.push_back(input);
     } else if (fs::is_directory(input, ec)) {
       std::vector<std::string> found;
+      const std::size_t before = files.size();
       for (fs::recursive_directory_iterator it(input, fs::directory_options::skip_permission_denied, ec), end;
            !ec && it != end; it.increment(ec)) {
-        if (it->path().extension() == ".body" && it->is_regular_file(ec)) found.push_back(it->path().string());
+        if (it->path().extension() == ".body" && it->is_regular_file(ec))
+          found.push_back(it->path().lexically_normal().string());
       }
       if (ec) {
         std::cerr << input << ": error: cannot read the directory: " << ec.message() << '\n';
@@ -97,16 +103,29 @@ std::vector<std::string> expand_inputs(const tools::Front& front, bool& fatal) {
       }
       std::sort(found.begin(), found.end());
       files.insert(files.end(), found.begin(), found.end());
+      if (files.size() == before && !ec) {
+        // A mistyped folder must not pass a CI job with "0 files checked".
+        std::cerr << input << ": error: no model files found (no *.body below this folder)\n";
+        fatal = true;
+      }
     } else if (fs::exists(input, ec)) {
-      files.push_back(input);
+      files.push_back(fs::path(input).lexically_normal().string());
     } else {
       std::cerr << input << ": error: no such file or directory\n";
       fatal = true;
     }
   }
+  // Each file once, compared by its canonical path: `a.body`, `./a.body` and `x/../a.body` are
+  // one file (a file reached twice would report its findings twice).
   std::sort(files.begin(), files.end());
-  files.erase(std::unique(files.begin(), files.end()), files.end());
-  return files;
+  std::set<std::string> seen;
+  std::vector<std::string> unique;
+  for (const std::string& file : files) {
+    std::error_code ec;
+    const fs::path canonical = file == "-" ? fs::path(file) : fs::weakly_canonical(file, ec);
+    if (seen.insert(ec ? file : canonical.string()).second) unique.push_back(file);
+  }
+  return unique;
 }
 
 /// One job per file, with its policy (command line over its .bodycheck.yaml). A file whose
@@ -155,10 +174,33 @@ bool same_diagnostic(const Diagnostic& a, const Diagnostic& b) {
   return a.location == b.location && a.rule_id == b.rule_id && a.message == b.message && a.severity == b.severity;
 }
 
+/// One spelling per file: a file reached under several paths (`a/../b/x.body` on the command
+/// line, `b/x.body` as another model's SubBody) is shown under the first spelling met, so its
+/// findings are reported once.
+class FileSpellings {
+ public:
+  FileName spelling(FileName file) {
+    if (file.empty()) return file;
+    auto known = by_spelling_.find(file);
+    if (known != by_spelling_.end()) return known->second;
+    std::error_code ec;
+    const fs::path canonical = fs::weakly_canonical(file.str(), ec);
+    const std::string key = ec ? file.str() : canonical.string();
+    const FileName shown = by_canonical_.emplace(key, file).first->second;
+    by_spelling_.emplace(file, shown);
+    return shown;
+  }
+
+ private:
+  std::map<std::string, FileName> by_canonical_;
+  std::map<FileName, FileName> by_spelling_;
+};
+
 /// Merges the results into one report, deciding the exit code on the way.
 Report make_report(const std::vector<Job>& jobs, std::vector<JobResult>& results, bool quiet, bool& fatal,
                    bool& findings) {
   Report report;
+  FileSpellings spellings;
   for (std::size_t i = 0; i < jobs.size(); ++i) {
     JobResult& r = results[i];
     report.files.push_back(jobs[i].input.name);
@@ -172,6 +214,8 @@ Report make_report(const std::vector<Job>& jobs, std::vector<JobResult>& results
     }
     for (Diagnostic& d : r.diagnostics) {
       if (quiet && d.severity == Severity::kNote) continue;
+      d.location.file = spellings.spelling(d.location.file);
+      if (d.via) d.via->file = spellings.spelling(d.via->file);
       report.diagnostics.push_back(std::move(d));
     }
   }
@@ -212,11 +256,13 @@ bool write_report(const tools::Front& front, const std::string& text, const std:
     std::cout << text << std::flush;
     return true;
   }
+  errno = 0;
   std::ofstream out(output, std::ios::binary);
   out << text;
   out.close();
   if (!out) {
-    front.print_error(output + ": cannot write the report");
+    front.print_error(output + ": cannot write the report: " +
+                      (errno != 0 ? std::string(std::strerror(errno)) : std::string("a write error")));
     return false;
   }
   return true;

@@ -98,12 +98,15 @@ Front::Front(std::string tool_name, std::string description, Features features)
       ->group(loading);
 
   const std::string policy = "Diagnostics";
-  app_.add_option("--enable", enable_, "enable a rule (or a family: units-*), over .bodycheck.yaml (repeatable)")
+  app_.add_option("--enable", enable_,
+                  "enable a rule (or a family: units-*), over .bodycheck.yaml (repeatable, or comma-separated)")
       ->allow_extra_args(false)
+      ->delimiter(',')
       ->check(check_patterns, "RULE")
       ->group(policy);
-  app_.add_option("--disable", disable_, "disable a rule (or a family: units-*) (repeatable)")
+  app_.add_option("--disable", disable_, "disable a rule (or a family: units-*) (repeatable, or comma-separated)")
       ->allow_extra_args(false)
+      ->delimiter(',')
       ->check(check_patterns, "RULE")
       ->group(policy);
   fail_on_option_ = app_.add_option("--fail-on", fail_on_, "lowest severity that fails the run (default error)")
@@ -117,7 +120,8 @@ Front::Front(std::string tool_name, std::string description, Features features)
                   "write the output even when the model has errors (the exit code stays 1)")
         ->group(policy);
   }
-  app_.add_flag("-q,--quiet", quiet_, "print no note diagnostics")->group(policy);
+  app_.add_flag("-q,--quiet", quiet_, "print no notes: neither note diagnostics nor the notes attached to others")
+      ->group(policy);
   app_.add_option("--color", color_, "colour the diagnostics: auto (a terminal, unless NO_COLOR is set), always, never")
       ->check(CLI::IsMember({"auto", "always", "never"}))
       ->group(policy);

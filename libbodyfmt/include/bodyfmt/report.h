@@ -41,7 +41,7 @@ class SourceLines {
 
 struct TextOptions {
   bool source_lines = true;  ///< print the source line and a caret under the column
-  bool notes = true;         ///< print note-severity diagnostics
+  bool notes = true;         ///< print note-severity diagnostics and the note lines attached to others
   bool color = false;        ///< ANSI colours as GCC and Clang use them (bold location, coloured severity, green caret)
 };
 

@@ -162,6 +162,7 @@ std::string format_text_diagnostic(const Diagnostic& d, SourceLines& sources, co
     }
   }
   const std::string note = paint(severity_code(Severity::kNote), "note:");
+  if (!options.notes) return text;
   if (d.via) text += paint("1", location_text(*d.via) + ":") + " " + note + " reached through this alias\n";
   if (!d.fix_hint.empty()) text += paint("1", location_text(d.location) + ":") + " " + note + " " + d.fix_hint + '\n';
   return text;

@@ -535,7 +535,9 @@ TEST_CASE("tessellate: invalid sizes are reported as geometry-invalid-size") {
   negative_grid.height.assign(4, 0.0);
   cases.emplace_back("negative grid dimensions", negative_grid);
 
-  for (const auto& [name, geometry] : cases) {
+  for (const auto& test_case : cases) {
+    const auto& name = test_case.first;  // not a structured binding: CAPTURE needs a variable
+    const auto& geometry = test_case.second;
     CAPTURE(name);
     CollectingSink sink;
     const TriangleMesh m = run(geometry, 20, sink);
@@ -582,7 +584,9 @@ TEST_CASE("tessellate: degenerate geometry is reported as geometry-degenerate") 
   leftover.faces = {0, 1, 2, 0, 1};
   cases.emplace_back("5 triangle indices", leftover);
 
-  for (const auto& [name, geometry] : cases) {
+  for (const auto& test_case : cases) {
+    const auto& name = test_case.first;  // not a structured binding: CAPTURE needs a variable
+    const auto& geometry = test_case.second;
     CAPTURE(name);
     CollectingSink sink;
     run(geometry, 20, sink);

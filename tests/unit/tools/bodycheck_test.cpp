@@ -133,3 +133,36 @@ TEST_CASE("bodycheck: directories, order and formats") {
   CHECK(contains(list.output, "yaml-duplicate-key"));
   CHECK(contains(list.output, "config-invalid"));
 }
+
+TEST_CASE("bodycheck: a folder without models is a usage error, not a pass") {
+  const std::string empty = std::string(BODYFMT_TEST_DATA_DIR) + "/hostile/mesh_dir.stl";
+  Run r = bodycheck("'" + empty + "'");
+  CHECK(r.status == 2);
+  CHECK(contains(r.output, "error: no model files found"));
+}
+
+TEST_CASE("bodycheck: one file named several ways is checked and reported once") {
+  const Run once = bodycheck("defective.body");
+  const Run thrice = bodycheck("defective.body ./defective.body configured/../defective.body");
+  CHECK(thrice.status == once.status);
+  CHECK(thrice.output == once.output);
+  CHECK(contains(thrice.output, "bodycheck: 1 file checked"));
+}
+
+TEST_CASE("bodycheck: --disable takes a comma-separated list, as inline comments do") {
+  const Run r = bodycheck("--disable yaml-duplicate-key,load-joint-type --fail-on warning warning.body defective.body");
+  CHECK(r.status == 0);
+  CHECK(contains(r.output, "2 disabled"));
+}
+
+TEST_CASE("bodycheck: -q hides the notes attached to findings too") {
+  const Run r = bodycheck("-q defective.body");
+  CHECK(contains(r.output, "[load-joint-type]"));
+  CHECK(!contains(r.output, "note:"));
+}
+
+TEST_CASE("bodycheck: a report that cannot be written says why") {
+  const Run r = bodycheck("-o /no/such/folder/report.txt clean.body");
+  CHECK(r.status == 2);
+  CHECK(contains(r.output, "/no/such/folder/report.txt: cannot write the report: No such file or directory"));
+}

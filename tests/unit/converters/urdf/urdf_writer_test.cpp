@@ -460,7 +460,9 @@ TEST_CASE("urdf: SR1 export against the hand-written SR1.urdf") {
   CHECK(ours->links_.size() == hand->links_.size());
   CHECK(ours->joints_.size() == hand->joints_.size());
   CHECK(ours->getRoot()->name == hand->getRoot()->name);
-  for (const auto& [name, hl] : hand->links_) {
+  for (const auto& link_entry : hand->links_) {
+    const std::string& name = link_entry.first;  // not a structured binding: CAPTURE needs a variable
+    const auto& hl = link_entry.second;
     CAPTURE(name);
     auto ol = ours->getLink(name);
     REQUIRE(ol);
@@ -476,7 +478,9 @@ TEST_CASE("urdf: SR1 export against the hand-written SR1.urdf") {
     CHECK(ol->visual_array.size() == count_children(hand_xml, name, "visual") + extra);
     CHECK(ol->collision_array.size() == count_children(hand_xml, name, "collision") + extra);
   }
-  for (const auto& [name, hj] : hand->joints_) {
+  for (const auto& joint_entry : hand->joints_) {
+    const std::string& name = joint_entry.first;
+    const auto& hj = joint_entry.second;
     CAPTURE(name);
     auto oj = ours->getJoint(name);
     REQUIRE(oj);
