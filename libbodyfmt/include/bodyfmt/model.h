@@ -322,7 +322,7 @@ struct Model {
   const Link& root() const { return links.front(); }
   LinkIndex find_link(std::string_view name) const;
   /// Choreonoid's numJoints: ids 0..max plus every non-fixed link without an id.
-  int num_joints() const;
+  long long num_joints() const;  ///< 2^31 for a joint_id of 2^31 - 1
 };
 
 }  // namespace bodyfmt

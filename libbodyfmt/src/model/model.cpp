@@ -28,11 +28,11 @@ LinkIndex Model::find_link(std::string_view link_name) const {
   return -1;
 }
 
-int Model::num_joints() const {
+long long Model::num_joints() const {
   // Choreonoid's joint array holds ids 0..max (gaps become dummy joints).
   int max_id = -1;
   for (const Link& link : links) max_id = std::max(max_id, link.joint_id);
-  return max_id + 1;
+  return static_cast<long long>(max_id) + 1;
 }
 
 }  // namespace bodyfmt
