@@ -295,26 +295,27 @@ void Writer::write_inertial(XMLElement* body, std::size_t index) {
   e->SetAttribute("pos", vec3(in.com).c_str());
   e->SetAttribute("mass", format_number(in.mass).c_str());
   const PrincipalInertia p = principal_inertia(in.inertia);
-  // fullinertia needs a positive definite tensor; a semidefinite one (a point mass, a rod, a
-  // massless frame) goes in its principal form.
-  if (p.moments[0] > kMjMinVal && p.moments[0] > 1e-12 * p.moments[2]) {
+  // A diagonal positive definite tensor goes as fullinertia (MuJoCo reads it off exactly).
+  // Any other tensor goes in its principal form from our decomposition: MuJoCo 2.2.2's
+  // eigen-solver stops early and drops small products of inertia (AizuSpider's R_TRACK loses
+  // Ixy = -2.2e-8 of 0.033), and fullinertia refuses a semidefinite tensor (a point mass, a
+  // massless frame).
+  if (p.exact && p.moments[0] > kMjMinVal) {
     const Eigen::Matrix3d& I = in.inertia;
-    e->SetAttribute("fullinertia", fmt::format("{} {} {} {} {} {}", format_number(I(0, 0)), format_number(I(1, 1)),
-                                               format_number(I(2, 2)), format_number(I(0, 1)),
-                                               format_number(I(0, 2)), format_number(I(1, 2)))
+    e->SetAttribute("fullinertia", fmt::format("{} {} {} 0 0 0", format_number(I(0, 0)), format_number(I(1, 1)),
+                                               format_number(I(2, 2)))
                                        .c_str());
+    return;
+  }
+  if (p.exact) {
+    const Eigen::Matrix3d& I = in.inertia;
+    e->SetAttribute("diaginertia", vec3(Eigen::Vector3d(I(0, 0), I(1, 1), I(2, 2)).cwiseMax(0.0)).c_str());
     return;
   }
   Eigen::Matrix3d axes = p.axes;
   if (axes.determinant() < 0) axes.col(2) *= -1;
-  if (!p.exact && !axes.isIdentity(0)) e->SetAttribute("quat", quat_text(axes).c_str());
-  const Eigen::Vector3d moments = p.moments.cwiseMax(0.0);
-  if (p.exact) {
-    const Eigen::Matrix3d& I = in.inertia;
-    e->SetAttribute("diaginertia", vec3(Eigen::Vector3d(I(0, 0), I(1, 1), I(2, 2)).cwiseMax(0.0)).c_str());
-  } else {
-    e->SetAttribute("diaginertia", vec3(moments).c_str());
-  }
+  if (!axes.isIdentity(0)) e->SetAttribute("quat", quat_text(axes).c_str());
+  e->SetAttribute("diaginertia", vec3(p.moments.cwiseMax(0.0)).c_str());
 }
 
 void Writer::write_joint(XMLElement* body, std::size_t index) {
