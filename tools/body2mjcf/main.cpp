@@ -9,6 +9,8 @@
 #include <bodyfmt/converters/output_set.h>
 #include <bodyfmt/derived.h>
 
+#include <algorithm>
+
 int main(int argc, char** argv) {
   using namespace bodyfmt;
   tools::Front front("body2mjcf", "Export a Choreonoid .body model to MJCF (MuJoCo 2.2.2)", {false, true});
@@ -43,10 +45,16 @@ int main(int argc, char** argv) {
         written = out.commit(sink);
     }
   }
+  const bool refused_inertia =
+      std::any_of(collected.diagnostics().begin(), collected.diagnostics().end(), [](const Diagnostic& d) {
+        return d.severity >= Severity::kError && d.rule_id.rfind("inertia-", 0) == 0;
+      });
   front.print(collected.diagnostics());
   if (!written)
-    front.print_error(
-        output + " was not written" +
-        (front.may_write(collected.diagnostics()) ? "" : ": the model has errors (--best-effort writes it anyway)"));
+    front.print_error(output + " was not written" +
+                      (refused_inertia ? ": MuJoCo refuses an inertia (--balance-inertia writes the nearest valid one)"
+                       : front.may_write(collected.diagnostics())
+                           ? ""
+                           : ": the model has errors (--best-effort writes it anyway)"));
   return tools::exit_code(collected.diagnostics(), policy->exit, !written);
 }

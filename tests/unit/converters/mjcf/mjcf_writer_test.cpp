@@ -183,7 +183,10 @@ std::string compare(const Model& model, const Derived& derived, const mjModel* m
   return {};
 }
 
+/// Finite, and MuJoCo never reset the state for a bad acceleration (mj_step does that silently
+/// after a warning).
 bool finite_state(const mjModel* m, const mjData* d) {
+  if (d->warning[mjWARN_BADQACC].number > 0) return false;
   for (int i = 0; i < m->nq; ++i)
     if (!std::isfinite(d->qpos[i])) return false;
   for (int i = 0; i < m->nv; ++i)
@@ -439,8 +442,14 @@ TEST_CASE("mjcf: devices, actuators, equality constraints, massless links and th
   CHECK(m->key_qpos[m->jnt_qposadr[j1]] == doctest::Approx(10 * M_PI / 180));
   // 1e-5: MASSLESS carries the 1e-6 kg floor.
   CHECK(compare(*e.model, e.derived, l.m, l.d, 1e-5) == "");
-  for (int s = 0; s < 1000; ++s) mj_step(l.m, l.d);
-  CHECK(finite_state(l.m, l.d));
+  // Stepping without actuators: a position servo (kp = 1) on MASSLESS's 1e-9 kg·m² floor is
+  // too stiff for a 1 ms explicit step (SUPPORT.md), the passive model is not.
+  Export passive = export_file(kData / "devices.body", dir);
+  REQUIRE(passive.ok);
+  Loaded p(passive.xml);
+  REQUIRE(p.m != nullptr);
+  for (int s = 0; s < 1000; ++s) mj_step(p.m, p.d);
+  CHECK(finite_state(p.m, p.d));
   fs::remove_all(dir);
 }
 
