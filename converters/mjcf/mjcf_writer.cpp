@@ -8,10 +8,10 @@
 #include <bodyfmt/inertia.h>
 #include <bodyfmt/rules.h>
 
-#include <Eigen/Eigenvalues>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <tinyxml2.h>
+#include <Eigen/Eigenvalues>
 
 #include <algorithm>
 #include <cmath>
@@ -67,8 +67,8 @@ std::string moments_text(const Eigen::Vector3d& m) {
 }
 
 std::string tensor_text(const Eigen::Matrix3d& I) {
-  return fmt::format("[{}, {}, {}, {}, {}, {}]", format_number(I(0, 0)), format_number(I(0, 1)),
-                     format_number(I(0, 2)), format_number(I(1, 1)), format_number(I(1, 2)), format_number(I(2, 2)));
+  return fmt::format("[{}, {}, {}, {}, {}, {}]", format_number(I(0, 0)), format_number(I(0, 1)), format_number(I(0, 2)),
+                     format_number(I(1, 1)), format_number(I(1, 2)), format_number(I(2, 2)));
 }
 
 double radians_to_degrees(double a) { return a * 180.0 / M_PI; }
@@ -146,11 +146,11 @@ class Writer {
     report_rule(sink_, rule, at, std::move(message));
     failed_ = true;
   }
-  /// A rule of the table reported as a warning: what the export changed to satisfy MuJoCo.
-  void changed(std::string_view rule, const SourceLocation& at, std::string message) {
-    Diagnostic d = make_diagnostic(rule, at, std::move(message));
-    d.severity = Severity::kWarning;
-    sink_.report(std::move(d));
+  /// A value the export changed so that MuJoCo accepts it: a loss of the value as given,
+  /// reported now and commented in the link's body when it is written.
+  void changed(std::size_t link_index, const SourceLocation& at, const std::string& what) {
+    converters::report_loss(sink_, at, kTarget, what);
+    inertia_notes_[link_index].push_back("export-loss: " + what);
   }
   void check_name(const std::string& name, const char* what, const SourceLocation& at) {
     if (!converters::is_xml_text(name))
@@ -198,6 +198,7 @@ class Writer {
   XMLElement* asset_ = nullptr;
   bool failed_ = false;
   std::vector<Inertial> inertials_;
+  std::vector<std::vector<std::string>> inertia_notes_;      // per link, commented before <inertial>
   std::vector<std::pair<std::string, Material>> materials_;  // first-use order
   std::map<std::string, std::string> material_by_key_;
   std::map<std::string, std::string> mesh_by_key_;
@@ -208,13 +209,14 @@ class Writer {
   std::vector<std::pair<std::pair<int, std::size_t>, XMLElement*>> sensors_;
   std::size_t current_device_ = 0;
   std::vector<std::pair<std::string, std::string>> track_axes_;  // numeric name, data
-  std::map<const XMLElement*, std::size_t> link_of_;                // body element -> link
+  std::map<const XMLElement*, std::size_t> link_of_;             // body element -> link
   XMLElement* world_ = nullptr;
 };
 
 bool Writer::prepare_inertials() {
   const std::size_t n = model_.links.size();
   inertials_.resize(n);
+  inertia_notes_.resize(n);
   bool ok = true;
   for (std::size_t i = 0; i < n; ++i) {
     const Link& link = model_.links[i];
@@ -224,9 +226,9 @@ bool Writer::prepare_inertials() {
     out.com = mp.center_of_mass;
     out.inertia = symmetrized_inertia(mp.inertia);
     if (!(mp.mass >= 0) || !std::isfinite(mp.mass)) {
-      report_rule(sink_, "inertia-nonpositive-mass", first_known({&link.sources.mass, &link.source}),
-                  fmt::format("link \"{}\" has mass {} kg; MuJoCo refuses negative masses", link.name,
-                              format_number(mp.mass)));
+      report_rule(
+          sink_, "inertia-nonpositive-mass", first_known({&link.sources.mass, &link.source}),
+          fmt::format("link \"{}\" has mass {} kg; MuJoCo refuses negative masses", link.name, format_number(mp.mass)));
       ok = false;
       continue;
     }
@@ -242,20 +244,23 @@ bool Writer::prepare_inertials() {
                   fmt::format("principal moments {} of link \"{}\" are refused by MuJoCo ({}); the model is not "
                               "written",
                               moments_text(p.moments), link.name,
-                              validity.negative_moment ? "a negative moment"
-                                                       : fmt::format("A + B - C = {} < 0",
-                                                                     format_number(validity.triangle_margin))),
+                              validity.negative_moment
+                                  ? "a negative moment"
+                                  : fmt::format("A + B - C = {} < 0", format_number(validity.triangle_margin))),
                   hint + (hint.empty() ? "" : "; ") + "--balance-inertia writes it");
       ok = false;
       continue;
     }
     const Eigen::Matrix3d before = out.inertia;
     out.inertia = balanced ? *balanced : Eigen::Matrix3d::Zero();
-    changed(rule, inertia_location(link),
-            fmt::format("inertia of link \"{}\" balanced for MuJoCo (--balance-inertia): {} with principal moments "
-                        "{} written as {} with principal moments {}",
-                        link.name, tensor_text(before), moments_text(p.moments), tensor_text(out.inertia),
-                        moments_text(principal_inertia(out.inertia).moments)));
+    changed(
+        i, inertia_location(link),
+        fmt::format("the inertia {} of link \"{}\" (principal moments {}, {}); written balanced "
+                    "(--balance-inertia, bodyfmt::balance_inertia) as {} (principal moments {})",
+                    tensor_text(before), link.name, moments_text(p.moments),
+                    validity.negative_moment ? "a negative moment"
+                                             : fmt::format("A + B - C = {}", format_number(validity.triangle_margin)),
+                    tensor_text(out.inertia), moments_text(principal_inertia(out.inertia).moments)));
   }
   if (!ok) return false;
 
@@ -278,10 +283,11 @@ bool Writer::prepare_inertials() {
     const double mass = std::max(in.mass, kMinMovingMass);
     const Eigen::Matrix3d inertia = p.axes * moments.asDiagonal() * p.axes.transpose();
     const Link& link = model_.links[i];
-    changed(in.mass < kMjMinVal ? "inertia-nonpositive-mass" : "inertia-tiny", inertia_location(link),
-            fmt::format("link \"{}\" moves but its mass {} kg or a principal moment of {} is below MuJoCo's mjMINVAL "
-                        "1e-15 and no fixed child carries mass; written with mass {} kg and principal moments {}",
-                        link.name, format_number(in.mass), moments_text(p.moments), format_number(mass),
+    changed(i, inertia_location(link),
+            fmt::format("the mass {} kg and principal moments {} of moving link \"{}\" (MuJoCo refuses a moving body "
+                        "below mjMINVAL = 1e-15 when no fixed child carries mass); written as mass {} kg and "
+                        "principal moments {}",
+                        format_number(in.mass), moments_text(p.moments), link.name, format_number(mass),
                         moments_text(moments)));
     in.mass = mass;
     in.inertia = inertia;
@@ -291,6 +297,7 @@ bool Writer::prepare_inertials() {
 
 void Writer::write_inertial(XMLElement* body, std::size_t index) {
   const Inertial& in = inertials_[index];
+  for (const std::string& note : inertia_notes_[index]) comment(body, note);
   XMLElement* e = element(body, "inertial");
   e->SetAttribute("pos", vec3(in.com).c_str());
   e->SetAttribute("mass", format_number(in.mass).c_str());
@@ -302,9 +309,9 @@ void Writer::write_inertial(XMLElement* body, std::size_t index) {
   // massless frame).
   if (p.exact && p.moments[0] > kMjMinVal) {
     const Eigen::Matrix3d& I = in.inertia;
-    e->SetAttribute("fullinertia", fmt::format("{} {} {} 0 0 0", format_number(I(0, 0)), format_number(I(1, 1)),
-                                               format_number(I(2, 2)))
-                                       .c_str());
+    e->SetAttribute(
+        "fullinertia",
+        fmt::format("{} {} {} 0 0 0", format_number(I(0, 0)), format_number(I(1, 1)), format_number(I(2, 2))).c_str());
     return;
   }
   if (p.exact) {
@@ -351,8 +358,7 @@ void Writer::write_joint(XMLElement* body, std::size_t index) {
   j->SetAttribute("type", link.joint_type == JointType::kRevolute ? "hinge" : "slide");
   j->SetAttribute("pos", "0 0 0");
   const double norm = link.joint_axis.norm();
-  j->SetAttribute("axis",
-                  vec3(norm > 0 ? Eigen::Vector3d(link.joint_axis / norm) : link.joint_axis).c_str());
+  j->SetAttribute("axis", vec3(norm > 0 ? Eigen::Vector3d(link.joint_axis / norm) : link.joint_axis).c_str());
   const double lo = link.joint_range_lower, hi = link.joint_range_upper;
   const bool lo_finite = lo > -kUnlimited, hi_finite = hi < kUnlimited;
   if (lo_finite && hi_finite) {
@@ -381,10 +387,9 @@ void Writer::write_joint(XMLElement* body, std::size_t index) {
 }
 
 std::string Writer::material_name(const Material& m) {
-  const std::string key = fmt::format("{}|{}|{}|{}|{}|{}", vec3(m.diffuse_color),
-                                      vec3(m.specular_color), vec3(m.emissive_color),
-                                      format_number(m.specular_exponent), format_number(m.transparency),
-                                      format_number(m.ambient_intensity));
+  const std::string key = fmt::format("{}|{}|{}|{}|{}|{}", vec3(m.diffuse_color), vec3(m.specular_color),
+                                      vec3(m.emissive_color), format_number(m.specular_exponent),
+                                      format_number(m.transparency), format_number(m.ambient_intensity));
   auto it = material_by_key_.find(key);
   if (it != material_by_key_.end()) return it->second;
   std::string name = fmt::format("material_{}", materials_.size());
@@ -449,8 +454,8 @@ void Writer::add_mesh_piece(std::vector<Piece>& out, const std::string& key, con
   out.push_back(std::move(piece));
 }
 
-std::vector<Piece> Writer::pieces(XMLElement* body, const Link& link, std::size_t link_index,
-                                  std::size_t shape_index, const Shape& shape) {
+std::vector<Piece> Writer::pieces(XMLElement* body, const Link& link, std::size_t link_index, std::size_t shape_index,
+                                  const Shape& shape) {
   std::vector<Piece> out;
   const std::optional<Material>& material = shape.appearance.material;
   const std::string shape_key = fmt::format("shape:{}:{}", link_index, shape_index);
@@ -649,9 +654,8 @@ void Writer::write_devices(XMLElement* body, std::size_t index) {
       Eigen::Isometry3d X = device.X_LD;
       X.linear() = device.X_LD.linear() * R_optical;
       XMLElement* c = element(body, "camera");
-      const std::string name =
-          unique(camera_names_, device.name.empty() ? fmt::format("{}_camera_{}", model_.links[index].name, d)
-                                                    : device.name);
+      const std::string name = unique(
+          camera_names_, device.name.empty() ? fmt::format("{}_camera_{}", model_.links[index].name, d) : device.name);
       check_name(name, "device", device.source);
       c->SetAttribute("name", name.c_str());
       c->SetAttribute("mode", "fixed");
@@ -727,8 +731,7 @@ void Writer::write_equalities() {
       w->SetAttribute("body1", l1.c_str());
       w->SetAttribute("body2", l2.c_str());
       const Eigen::Isometry3d X_12 = ej.X_1J * ej.X_2J.inverse();  // body2 in body1
-      w->SetAttribute("relpose",
-                      (vec3(X_12.translation()) + " " + quat_text(X_12.linear())).c_str());
+      w->SetAttribute("relpose", (vec3(X_12.translation()) + " " + quat_text(X_12.linear())).c_str());
       continue;
     }
     std::vector<Eigen::Vector3d> anchors = {ej.X_1J.translation()};
@@ -876,14 +879,13 @@ bool Writer::run() {
       loss(body, link.source, fmt::format("the contact material '{}'", link.contact_material));
     if (!link.actuation_mode.empty() && link.joint_type != JointType::kPseudoContinuousTrack)
       loss(body, link.source, fmt::format("the actuation mode '{}'", link.actuation_mode),
-               "--actuators adds position or velocity actuators");
+           "--actuators adds position or velocity actuators");
     write_devices(body, i);
   }
   write_equalities();
   write_actuators();
   if (!sensors_.empty()) {
-    std::stable_sort(sensors_.begin(), sensors_.end(),
-                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::stable_sort(sensors_.begin(), sensors_.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     XMLElement* sensor = element(mujoco_, "sensor");
     for (auto& s : sensors_) sensor->InsertEndChild(s.second);
   }
@@ -906,8 +908,7 @@ bool Writer::run() {
     // MuJoCo has scalar specular, shininess and emission (emission scales rgba): the colours'
     // means, and the exponent back on VRML's 0..1 shininess (exponent = 127 shininess + 1).
     e->SetAttribute("specular", format_number(std::clamp(m.specular_color.mean(), 0.0, 1.0)).c_str());
-    e->SetAttribute("shininess",
-                    format_number(std::clamp((m.specular_exponent - 1.0) / 127.0, 0.0, 1.0)).c_str());
+    e->SetAttribute("shininess", format_number(std::clamp((m.specular_exponent - 1.0) / 127.0, 0.0, 1.0)).c_str());
     const double diffuse = m.diffuse_color.mean();
     e->SetAttribute("emission",
                     format_number(diffuse > 0 ? std::clamp(m.emissive_color.mean() / diffuse, 0.0, 1.0) : 0.0).c_str());

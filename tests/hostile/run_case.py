@@ -21,7 +21,7 @@ import subprocess
 import sys
 import tempfile
 
-TOOLS = ["bodyinfo", "bodycheck", "body2urdf"]
+TOOLS = ["bodyinfo", "bodycheck", "body2urdf", "body2mjcf"]
 # Seconds; "within a few seconds" on a loaded 2-core CI machine. Sanitizer builds run several
 # times slower: tests/fuzz/run.sh scales the limit with BODYFMT_TIME_SCALE.
 TIME_LIMIT = 20 * float(os.environ.get("BODYFMT_TIME_SCALE", "1"))

@@ -45,10 +45,9 @@ int main(int argc, char** argv) {
         written = out.commit(sink);
     }
   }
-  const bool refused_inertia =
-      std::any_of(collected.diagnostics().begin(), collected.diagnostics().end(), [](const Diagnostic& d) {
-        return d.severity >= Severity::kError && d.rule_id.rfind("inertia-", 0) == 0;
-      });
+  const bool refused_inertia = std::any_of(
+      collected.diagnostics().begin(), collected.diagnostics().end(),
+      [](const Diagnostic& d) { return d.severity >= Severity::kError && d.rule_id.rfind("inertia-", 0) == 0; });
   front.print(collected.diagnostics());
   if (!written)
     front.print_error(output + " was not written" +
