@@ -10,6 +10,7 @@
 #include <bodyfmt/derived.h>
 
 #include <algorithm>
+#include <filesystem>
 
 int main(int argc, char** argv) {
   using namespace bodyfmt;
@@ -23,7 +24,16 @@ int main(int argc, char** argv) {
                "write the nearest valid inertia for links MuJoCo refuses (a warning per link)");
   app.add_option("--actuators", actuators, "one actuator per revolute and prismatic joint")
       ->check(CLI::IsMember({"none", "position", "velocity"}));
-  app.add_option("--mesh-folder", options.mesh_folder, "folder for meshes, relative to the MJCF file");
+  app.add_option("--mesh-folder", options.mesh_folder,
+                 "folder for meshes, relative to the MJCF file (inside its folder; the compiler's meshdir)")
+      ->check(
+          [](const std::string& folder) -> std::string {
+            const std::filesystem::path path(folder);
+            bool inside = !folder.empty() && path.is_relative();
+            for (const auto& part : path) inside = inside && part != "..";
+            return inside ? std::string() : "the mesh folder must be a relative path inside the MJCF file's folder";
+          },
+          "FOLDER");
   if (auto code = front.parse(argc, argv)) return *code;
   options.actuators = actuators == "position"   ? mjcf::Actuators::kPosition
                       : actuators == "velocity" ? mjcf::Actuators::kVelocity

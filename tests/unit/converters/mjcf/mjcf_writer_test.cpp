@@ -497,3 +497,34 @@ TEST_CASE("mjcf: mesh files are found through meshdir from any working directory
   fs::remove_all(a);
   fs::remove_all(b);
 }
+
+TEST_CASE("mjcf: a chain MuJoCo's XML reader can nest is written, a deeper one is refused before it is built") {
+  const fs::path dir = fresh_dir("chain");
+  for (int links : {96, 97}) {  // 100,000 links: tests/hostile (chain_100k)
+    CAPTURE(links);
+    std::ostringstream body;
+    body << "format: ChoreonoidBody\nformat_version: 2.0\nname: Chain\nlinks:\n";
+    for (int i = 0; i < links; ++i) {
+      body << "  - {name: L" << i << (i ? ", parent: L" + std::to_string(i - 1) : std::string())
+           << ", joint_type: " << (i ? "revolute, joint_axis: Z, joint_id: " + std::to_string(i - 1) : "free")
+           << ", translation: [0, 0, 0.01], mass: 1, inertia: [0.01, 0, 0, 0.01, 0, 0.01]}\n";
+    }
+    const fs::path file = dir / "chain.body";
+    std::ofstream(file) << body.str();
+    Export e = export_file(file, dir);
+    REQUIRE(e.model);
+    if (links == 96) {
+      REQUIRE(e.ok);
+      Loaded l(e.xml);
+      INFO(l.error);
+      CHECK(l.m != nullptr);
+      if (l.m) CHECK(l.m->nbody == 97);
+    } else {
+      CHECK_FALSE(e.ok);
+      const Diagnostic* d = find(e.diagnostics, "export-write");
+      REQUIRE(d != nullptr);
+      CHECK(d->location.line == 5 + 96);  // the 97th link
+    }
+  }
+  fs::remove_all(dir);
+}
