@@ -398,7 +398,7 @@ TEST_CASE("mjcf: devices, actuators, equality constraints, massless links and th
     if (diag.rule_id == "export-loss" && diag.message.find("moving link \"MASSLESS\"") != std::string::npos)
       floor = &diag;
   REQUIRE(floor != nullptr);
-  CHECK(floor->location.line == 82);
+  CHECK(floor->location.line == 83);  // MASSLESS's inertia
   const int massless = mj_name2id(m, mjOBJ_BODY, "MASSLESS");
   CHECK(m->body_mass[massless] == bodyfmt::mjcf::kMinMovingMass);
   CHECK(m->body_inertia[3 * massless] == doctest::Approx(bodyfmt::mjcf::kMinMovingInertia).epsilon(1e-12));
@@ -526,5 +526,25 @@ TEST_CASE("mjcf: a chain MuJoCo's XML reader can nest is written, a deeper one i
       CHECK(d->location.line == 5 + 96);  // the 97th link
     }
   }
+  fs::remove_all(dir);
+}
+
+TEST_CASE("mjcf: body2mjcf exit codes, --strict and atomic output") {
+  const fs::path dir = fresh_dir("cli");
+  const std::string tool = BODYFMT_BODY2MJCF;
+  // 0: written, nothing lost.
+  const fs::path clean = dir / "drop.xml";
+  CHECK(run(tool + " " + quote(kData / "drop.body") + " -o " + quote(clean) + " 2> /dev/null") == 0);
+  CHECK(fs::exists(clean));
+  // 1: written with losses.
+  const fs::path lossy = dir / "losses.xml";
+  CHECK(run(tool + " " + quote(kData / "losses.body") + " -o " + quote(lossy) + " 2> /dev/null") == 1);
+  CHECK(fs::exists(lossy));
+  // 2 with --strict: nothing written, the existing file kept.
+  { std::ofstream(lossy) << "old"; }
+  CHECK(run(tool + " " + quote(kData / "losses.body") + " -o " + quote(lossy) + " --strict 2> /dev/null") == 2);
+  CHECK(read(lossy) == "old");
+  // --actuators takes one of three words.
+  CHECK(run(tool + " " + quote(kData / "drop.body") + " -o " + quote(clean) + " --actuators bogus 2> /dev/null") == 2);
   fs::remove_all(dir);
 }
