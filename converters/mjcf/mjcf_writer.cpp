@@ -651,12 +651,13 @@ void Writer::write_devices(XMLElement* body, std::size_t index) {
     const std::string label = device.name.empty() ? device.type : device.name;
     if (const auto* camera = std::get_if<CameraParams>(&device.params)) {
       // MuJoCo cameras look along -Z with +Y up, as Choreonoid's default "gl" optical frame
-      // (body-format-spec §10.3); the other frames are rotated onto it.
+      // (body-format-spec §10.3); the other frames are rotated onto it, and
+      // optical_frame_rotation is post-multiplied.
       Eigen::Matrix3d R_optical = Eigen::Matrix3d::Identity();
       if (camera->optical_frame == "cv") R_optical = Eigen::Vector3d(1, -1, -1).asDiagonal();
       if (camera->optical_frame == "robotics") R_optical << 0, 0, -1, -1, 0, 0, 0, 1, 0;
       Eigen::Isometry3d X = device.X_LD;
-      X.linear() = device.X_LD.linear() * R_optical;
+      X.linear() = device.X_LD.linear() * R_optical * camera->optical_frame_rotation;
       XMLElement* c = element(body, "camera");
       const std::string name = unique(
           camera_names_, device.name.empty() ? fmt::format("{}_camera_{}", model_.links[index].name, d) : device.name);

@@ -398,7 +398,7 @@ TEST_CASE("mjcf: devices, actuators, equality constraints, massless links and th
     if (diag.rule_id == "export-loss" && diag.message.find("moving link \"MASSLESS\"") != std::string::npos)
       floor = &diag;
   REQUIRE(floor != nullptr);
-  CHECK(floor->location.line == 83);  // MASSLESS's inertia
+  CHECK(floor->location.line == 87);  // MASSLESS's inertia
   const int massless = mj_name2id(m, mjOBJ_BODY, "MASSLESS");
   CHECK(m->body_mass[massless] == bodyfmt::mjcf::kMinMovingMass);
   CHECK(m->body_inertia[3 * massless] == doctest::Approx(bodyfmt::mjcf::kMinMovingInertia).epsilon(1e-12));
@@ -419,6 +419,12 @@ TEST_CASE("mjcf: devices, actuators, equality constraints, massless links and th
   const Eigen::Matrix3d R = m3(l.d->cam_xmat + 9 * cam);
   CHECK((-R.col(2) - Eigen::Vector3d::UnitX()).norm() < 1e-12);
   CHECK((R.col(1) - Eigen::Vector3d::UnitZ()).norm() < 1e-12);
+  // The same direction through optical_frame_rotation instead of the device rotation.
+  const int kinect = mj_name2id(m, mjOBJ_CAMERA, "Kinect");
+  REQUIRE(kinect >= 0);
+  const Eigen::Matrix3d K = m3(l.d->cam_xmat + 9 * kinect);
+  CHECK((-K.col(2) - Eigen::Vector3d::UnitX()).norm() < 1e-12);
+  CHECK((K.col(1) - Eigen::Vector3d::UnitZ()).norm() < 1e-12);
   // Spot light: direction and cutoff in degrees.
   REQUIRE(m->nlight == 1);
   CHECK(v3(m->light_dir).isApprox(Eigen::Vector3d(1, 0, 0)));
