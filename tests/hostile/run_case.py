@@ -22,7 +22,7 @@ import subprocess
 import sys
 import tempfile
 
-TOOLS = ["bodyinfo", "bodycheck", "body2urdf"]
+TOOLS = ["bodyinfo", "bodycheck", "body2urdf", "body2mjcf"]
 # "Within a few seconds": CPU seconds per tool run, so that a loaded machine does not fail a
 # fast tool; the wall-clock limit only catches hangs. Sanitizer builds run several times
 # slower: tests/fuzz/run.sh scales both with BODYFMT_TIME_SCALE.

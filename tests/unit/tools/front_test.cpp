@@ -30,6 +30,7 @@ std::vector<Tool> tools() {
       {"bodyinfo", BODYFMT_BODYINFO, ""},
       {"bodycheck", BODYFMT_BODYCHECK, ""},
       {"body2urdf", BODYFMT_BODY2URDF, "-o '" + (out / "front.urdf").string() + "'"},
+      {"body2mjcf", BODYFMT_BODY2MJCF, "-o '" + (out / "front.xml").string() + "'"},
   };
 }
 

@@ -1,0 +1,962 @@
+#include "mjcf_writer.h"
+
+#include <bodyfmt/converters/loss.h>
+#include <bodyfmt/converters/names.h>
+#include <bodyfmt/converters/numbers.h>
+#include <bodyfmt/converters/staged_files.h>
+#include <bodyfmt/converters/transforms.h>
+#include <bodyfmt/inertia.h>
+#include <bodyfmt/rules.h>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <tinyxml2.h>
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <map>
+#include <set>
+
+namespace bodyfmt::mjcf {
+namespace {
+
+namespace fs = std::filesystem;
+using converters::decompose;
+using converters::format_number;
+std::string vec3(const Eigen::Vector3d& v) { return converters::format_vector(v); }
+using converters::nearly_equal;
+using tinyxml2::XMLElement;
+
+constexpr std::string_view kTarget = "MJCF (MuJoCo 2.2.2)";
+// MuJoCo's mjMINVAL (include/mujoco/mjtnum.h, double build): the smallest mass and principal
+// moment mjCModel accepts for a moving body without a welded descendant that carries mass.
+constexpr double kMjMinVal = 1e-15;
+// Choreonoid's gravity (the MuJoCo default is 9.81).
+constexpr double kGravity = 9.80665;
+// MuJoCo 2.2.2 reads MJCF with the system's tinyxml2 9, whose parser stops at 100 nested
+// elements: <mujoco>, <worldbody>, the bodies, and a body's own children (measured: 96 nested
+// bodies load, 97 do not).
+constexpr int kMaxBodyDepth = 96;
+// Half thickness given to a box with a zero edge.
+constexpr double kFlatBoxHalfThickness = 1e-6;
+// Distance between the two connect points that make a hinge extra joint.
+constexpr double kHingePointSpacing = 0.1;
+
+SourceLocation first_known(std::initializer_list<const SourceLocation*> locations) {
+  for (const SourceLocation* l : locations)
+    if (l && l->known()) return *l;
+  return {};
+}
+
+SourceLocation inertia_location(const Link& link) {
+  const SourceLocation* rigid_body = nullptr;
+  for (const MassContribution& c : link.mass_contributions)
+    if (!rigid_body && !c.from_link_keys && c.source.known()) rigid_body = &c.source;
+  return first_known({&link.sources.inertia, rigid_body, &link.sources.mass, &link.source});
+}
+
+std::string quat_text(const Eigen::Matrix3d& R) {
+  Eigen::Quaterniond q(R);
+  q.normalize();
+  if (q.w() < 0) q.coeffs() *= -1;
+  return fmt::format("{} {} {} {}", format_number(q.w()), format_number(q.x()), format_number(q.y()),
+                     format_number(q.z()));
+}
+
+std::string moments_text(const Eigen::Vector3d& m) {
+  return fmt::format("({}, {}, {})", format_number(m[0]), format_number(m[1]), format_number(m[2]));
+}
+
+std::string tensor_text(const Eigen::Matrix3d& I) {
+  return fmt::format("[{}, {}, {}, {}, {}, {}]", format_number(I(0, 0)), format_number(I(0, 1)), format_number(I(0, 2)),
+                     format_number(I(1, 1)), format_number(I(1, 2)), format_number(I(2, 2)));
+}
+
+double radians_to_degrees(double a) { return a * 180.0 / M_PI; }
+
+/// A link that MuJoCo gives degrees of freedom: a moving joint, or a free one.
+bool is_moving(const Model& model, std::size_t index) {
+  const JointType t = model.links[index].joint_type;
+  return t == JointType::kRevolute || t == JointType::kPrismatic || t == JointType::kFree;
+}
+
+/// MuJoCo allows free joints only on bodies of the world body, so a free non-root link becomes
+/// a top-level body at its initial world pose: a 6-DoF joint to the parent and a free body in
+/// the world give the same motion, only the coordinates differ.
+bool detached(const Link& link) { return link.parent >= 0 && link.joint_type == JointType::kFree; }
+
+/// Whether qhull can build the convex hull MuJoCo collides with: at least 4 distinct points
+/// that span three dimensions (a flat or sliver mesh fails with "qhull error").
+bool spans_volume(const TriangleMesh& mesh) {
+  if (mesh.vertices.size() < 4) return false;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const auto& v : mesh.vertices) mean += v;
+  mean /= static_cast<double>(mesh.vertices.size());
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (const auto& v : mesh.vertices) covariance += (v - mean) * (v - mean).transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::max());
+  Eigen::Vector3d hi = -lo;
+  for (const auto& v : mesh.vertices) {
+    const Eigen::Vector3d p = solver.eigenvectors().transpose() * (v - mean);
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const Eigen::Vector3d extent = hi - lo;
+  return extent.minCoeff() > 1e-6 * extent.maxCoeff() && extent.maxCoeff() > 1e-9;
+}
+
+/// What is written in <inertial>: the link's mass properties after balancing and the
+/// small-mass floor.
+struct Inertial {
+  double mass = 0;
+  Eigen::Vector3d com = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
+};
+
+/// One geom's placement and shape attributes (type, size, mesh).
+struct Piece {
+  Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();
+  std::function<void(XMLElement*)> geometry;
+  std::optional<Material> material;
+  bool collidable = true;  ///< false for a mesh MuJoCo cannot hull
+};
+
+class Writer {
+ public:
+  Writer(const Model& model, const Derived& derived, const MjcfOptions& options, converters::OutputSet& output,
+         DiagnosticSink& sink)
+      : model_(model), derived_(derived), options_(options), output_(output), sink_(sink) {}
+
+  bool run();
+
+ private:
+  XMLElement* element(XMLElement* parent, const char* name) {
+    XMLElement* e = doc_.NewElement(name);
+    parent->InsertEndChild(e);
+    return e;
+  }
+  void comment(XMLElement* parent, const std::string& text) {
+    parent->InsertEndChild(doc_.NewComment((" " + converters::xml_comment_text(text) + " ").c_str()));
+  }
+  void loss(XMLElement* parent, const SourceLocation& at, const std::string& what, const std::string& hint = {}) {
+    converters::report_loss(sink_, at, kTarget, what, hint);
+    comment(parent, "export-loss: " + what);
+  }
+  void fatal(std::string_view rule, const SourceLocation& at, std::string message) {
+    report_rule(sink_, rule, at, std::move(message));
+    failed_ = true;
+  }
+  /// A value the export changed so that MuJoCo accepts it: a loss of the value as given,
+  /// reported now and commented in the link's body when it is written.
+  void changed(std::size_t link_index, const SourceLocation& at, const std::string& what) {
+    converters::report_loss(sink_, at, kTarget, what);
+    inertia_notes_[link_index].push_back("export-loss: " + what);
+  }
+  void check_name(const std::string& name, const char* what, const SourceLocation& at) {
+    if (!converters::is_xml_text(name))
+      fatal("export-xml-text", at,
+            fmt::format("{} name cannot be written in XML (control characters or invalid UTF-8)", what));
+  }
+  std::string unique(std::set<std::string>& used, std::string name) {
+    if (used.count(name)) {
+      std::string base = name;
+      for (int n = 2; used.count(name); ++n) name = fmt::format("{}_{}", base, n);
+    }
+    used.insert(name);
+    return name;
+  }
+  void place(XMLElement* e, const Eigen::Isometry3d& X) {
+    if (!X.translation().isZero(0)) e->SetAttribute("pos", vec3(X.translation()).c_str());
+    if (!X.linear().isIdentity(0)) e->SetAttribute("quat", quat_text(X.linear()).c_str());
+  }
+
+  bool prepare_inertials();
+  void write_inertial(XMLElement* body, std::size_t index);
+  void write_joint(XMLElement* body, std::size_t index);
+  void write_shapes(XMLElement* body, std::size_t index);
+  std::vector<Piece> pieces(XMLElement* body, const Link& link, std::size_t link_index, std::size_t shape_index,
+                            const Shape& shape);
+  void add_mesh_piece(std::vector<Piece>& out, const std::string& key, const std::string& stem,
+                      const TriangleMesh& mesh, const Eigen::Affine3d& X_LS, const std::optional<Material>& material);
+  std::string mesh_asset(const std::string& file, const Eigen::Vector3d& scale);
+  std::string material_name(const Material& material);
+  void write_devices(XMLElement* body, std::size_t index);
+  std::string site(XMLElement* body, const Device& device, std::size_t device_index);
+  void sensor(const Device& device, const char* kind, const std::string& name, const std::string& site_name,
+              const Eigen::Vector3d& max, XMLElement* body);
+  void write_equalities();
+  void write_actuators();
+  void write_keyframe();
+
+  const Model& model_;
+  const Derived& derived_;
+  const MjcfOptions& options_;
+  converters::OutputSet& output_;
+  DiagnosticSink& sink_;
+  tinyxml2::XMLDocument doc_;
+  XMLElement* mujoco_ = nullptr;
+  XMLElement* asset_ = nullptr;
+  bool failed_ = false;
+  std::vector<Inertial> inertials_;
+  std::vector<std::vector<std::string>> inertia_notes_;      // per link, commented before <inertial>
+  std::vector<std::pair<std::string, Material>> materials_;  // first-use order
+  std::map<std::string, std::string> material_by_key_;
+  std::map<std::string, std::string> mesh_by_key_;
+  std::vector<std::tuple<std::string, std::string, Eigen::Vector3d>> mesh_assets_;  // name, file, scale
+  converters::StagedFiles staged_{output_, options_.mesh_folder};
+  std::set<std::string> site_names_, sensor_names_, camera_names_, light_names_, numeric_names_;
+  // Sensors in device-id order: (sort key, element).
+  std::vector<std::pair<std::pair<int, std::size_t>, XMLElement*>> sensors_;
+  std::size_t current_device_ = 0;
+  std::vector<std::pair<std::string, std::string>> track_axes_;  // numeric name, data
+  std::map<const XMLElement*, std::size_t> link_of_;             // body element -> link
+  XMLElement* world_ = nullptr;
+};
+
+bool Writer::prepare_inertials() {
+  const std::size_t n = model_.links.size();
+  inertials_.resize(n);
+  inertia_notes_.resize(n);
+  bool ok = true;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Link& link = model_.links[i];
+    const MassProperties& mp = derived_.mass[i];
+    Inertial& out = inertials_[i];
+    out.mass = mp.mass;
+    out.com = mp.center_of_mass;
+    out.inertia = symmetrized_inertia(mp.inertia);
+    if (!(mp.mass >= 0) || !std::isfinite(mp.mass)) {
+      report_rule(
+          sink_, "inertia-nonpositive-mass", first_known({&link.sources.mass, &link.source}),
+          fmt::format("link \"{}\" has mass {} kg; MuJoCo refuses negative masses", link.name, format_number(mp.mass)));
+      ok = false;
+      continue;
+    }
+    const PrincipalInertia p = principal_inertia(out.inertia);
+    const InertiaValidity validity = inertia_validity(p);
+    if (validity.valid()) continue;
+    const std::optional<Eigen::Matrix3d> balanced = balance_inertia(out.inertia);
+    const char* rule = validity.negative_moment ? "inertia-not-positive-definite" : "inertia-triangle";
+    const std::string hint =
+        balanced ? "nearest valid inertia (link axes, about the centre of mass): " + tensor_text(*balanced) : "";
+    if (!options_.balance_inertia) {
+      report_rule(sink_, rule, inertia_location(link),
+                  fmt::format("principal moments {} of link \"{}\" are refused by MuJoCo ({}); the model is not "
+                              "written",
+                              moments_text(p.moments), link.name,
+                              validity.negative_moment
+                                  ? "a negative moment"
+                                  : fmt::format("A + B - C = {} < 0", format_number(validity.triangle_margin))),
+                  hint + (hint.empty() ? "" : "; ") + "--balance-inertia writes it");
+      ok = false;
+      continue;
+    }
+    const Eigen::Matrix3d before = out.inertia;
+    out.inertia = balanced ? *balanced : Eigen::Matrix3d::Zero();
+    changed(
+        i, inertia_location(link),
+        fmt::format("the inertia {} of link \"{}\" (principal moments {}, {}); written balanced "
+                    "(--balance-inertia, bodyfmt::balance_inertia) as {} (principal moments {})",
+                    tensor_text(before), link.name, moments_text(p.moments),
+                    validity.negative_moment ? "a negative moment"
+                                             : fmt::format("A + B - C = {}", format_number(validity.triangle_margin)),
+                    tensor_text(out.inertia), moments_text(principal_inertia(out.inertia).moments)));
+  }
+  if (!ok) return false;
+
+  // mjCModel refuses a moving body whose mass or a principal moment is below mjMINVAL unless a
+  // body welded to it carries both; reverse depth-first order visits children first.
+  auto accepted = [&](std::size_t k) {
+    return inertials_[k].mass >= kMjMinVal && principal_inertia(inertials_[k].inertia).moments[0] >= kMjMinVal;
+  };
+  std::vector<bool> carried(n, false);
+  for (std::size_t k = n; k-- > 1;) {
+    const Link& c = model_.links[k];
+    if (c.parent < 0 || is_moving(model_, k)) continue;
+    if (carried[k] || accepted(k)) carried[static_cast<std::size_t>(c.parent)] = true;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!is_moving(model_, i) || carried[i] || accepted(i)) continue;
+    Inertial& in = inertials_[i];
+    const PrincipalInertia p = principal_inertia(in.inertia);
+    const Eigen::Vector3d moments = p.moments.cwiseMax(kMinMovingInertia);
+    const double mass = std::max(in.mass, kMinMovingMass);
+    const Eigen::Matrix3d inertia = p.axes * moments.asDiagonal() * p.axes.transpose();
+    const Link& link = model_.links[i];
+    changed(i, inertia_location(link),
+            fmt::format("the mass {} kg and principal moments {} of moving link \"{}\" (MuJoCo refuses a moving body "
+                        "below mjMINVAL = 1e-15 when no fixed child carries mass); written as mass {} kg and "
+                        "principal moments {}",
+                        format_number(in.mass), moments_text(p.moments), link.name, format_number(mass),
+                        moments_text(moments)));
+    in.mass = mass;
+    in.inertia = inertia;
+  }
+  return true;
+}
+
+void Writer::write_inertial(XMLElement* body, std::size_t index) {
+  const Inertial& in = inertials_[index];
+  for (const std::string& note : inertia_notes_[index]) comment(body, note);
+  XMLElement* e = element(body, "inertial");
+  e->SetAttribute("pos", vec3(in.com).c_str());
+  e->SetAttribute("mass", format_number(in.mass).c_str());
+  const PrincipalInertia p = principal_inertia(in.inertia);
+  // A diagonal positive definite tensor goes as fullinertia (MuJoCo reads it off exactly).
+  // Any other tensor goes in its principal form from our decomposition: MuJoCo 2.2.2's
+  // eigen-solver stops early and drops small products of inertia (AizuSpider's R_TRACK loses
+  // Ixy = -2.2e-8 of 0.033), and fullinertia refuses a semidefinite tensor (a point mass, a
+  // massless frame).
+  if (p.exact && p.moments[0] > kMjMinVal) {
+    const Eigen::Matrix3d& I = in.inertia;
+    e->SetAttribute(
+        "fullinertia",
+        fmt::format("{} {} {} 0 0 0", format_number(I(0, 0)), format_number(I(1, 1)), format_number(I(2, 2))).c_str());
+    return;
+  }
+  if (p.exact) {
+    const Eigen::Matrix3d& I = in.inertia;
+    e->SetAttribute("diaginertia", vec3(Eigen::Vector3d(I(0, 0), I(1, 1), I(2, 2)).cwiseMax(0.0)).c_str());
+    return;
+  }
+  Eigen::Matrix3d axes = p.axes;
+  if (axes.determinant() < 0) axes.col(2) *= -1;
+  if (!axes.isIdentity(0)) e->SetAttribute("quat", quat_text(axes).c_str());
+  e->SetAttribute("diaginertia", vec3(p.moments.cwiseMax(0.0)).c_str());
+}
+
+void Writer::write_joint(XMLElement* body, std::size_t index) {
+  const Link& link = model_.links[index];
+  const SourceLocation joint_at = first_known({&link.sources.joint_type, &link.source});
+  switch (link.joint_type) {
+    case JointType::kFixed: return;
+    case JointType::kFree:
+      if (detached(link))
+        comment(body, fmt::format("a free joint relative to '{}' in the model: a top-level body in MuJoCo",
+                                  model_.links[static_cast<std::size_t>(link.parent)].name));
+      element(body, "freejoint")->SetAttribute("name", link.name.c_str());
+      return;
+    case JointType::kPseudoContinuousTrack: {
+      // MuJoCo 2.2.2 has no surface velocity: the track stays a welded body with its geoms and
+      // its axis is kept for a controller (dynamics-checker.md §3.2).
+      const double norm = link.joint_axis.norm();
+      const Eigen::Vector3d axis = norm > 0 ? Eigen::Vector3d(link.joint_axis / norm) : link.joint_axis;
+      const std::string name = unique(numeric_names_, "track_axis:" + link.name);
+      track_axes_.emplace_back(name, vec3(axis));
+      loss(body, joint_at,
+           fmt::format("the pseudo_continuous_track of '{}': MuJoCo 2.2.2 has no surface velocity (the body is "
+                       "welded; its axis {} is kept as <custom><numeric name=\"{}\">)",
+                       link.name, vec3(axis), name),
+           "drive it from mjcb_control as in dynamics-checker.md §3.2");
+      return;
+    }
+    case JointType::kRevolute:
+    case JointType::kPrismatic: break;
+  }
+  XMLElement* j = element(body, "joint");
+  j->SetAttribute("name", link.name.c_str());
+  j->SetAttribute("type", link.joint_type == JointType::kRevolute ? "hinge" : "slide");
+  j->SetAttribute("pos", "0 0 0");
+  const double norm = link.joint_axis.norm();
+  j->SetAttribute("axis", vec3(norm > 0 ? Eigen::Vector3d(link.joint_axis / norm) : link.joint_axis).c_str());
+  const double lo = link.joint_range_lower, hi = link.joint_range_upper;
+  const bool lo_finite = lo > -kUnlimited, hi_finite = hi < kUnlimited;
+  if (lo_finite && hi_finite) {
+    j->SetAttribute("limited", "true");
+    j->SetAttribute("range", fmt::format("{} {}", format_number(lo), format_number(hi)).c_str());
+  } else {
+    j->SetAttribute("limited", "false");
+    if (lo_finite || hi_finite) {
+      loss(body, first_known({&link.sources.joint_range, &link.source}),
+           fmt::format("the one-sided range [{}, {}] of '{}' (MuJoCo limits need both bounds; written unlimited)",
+                       lo_finite ? format_number(lo) : "-inf", hi_finite ? format_number(hi) : "inf", link.name));
+    }
+  }
+  if (link.joint_axis_inertia != 0) j->SetAttribute("armature", format_number(link.joint_axis_inertia).c_str());
+  const bool velocity_limited = link.velocity_lower > -kUnlimited || link.velocity_upper < kUnlimited;
+  const bool effort_limited = link.effort_lower > -kUnlimited || link.effort_upper < kUnlimited;
+  std::vector<std::string> lost;
+  if (velocity_limited && options_.actuators != Actuators::kVelocity) lost.push_back("velocity");
+  if (effort_limited && options_.actuators == Actuators::kNone) lost.push_back("effort");
+  if (!lost.empty()) {
+    loss(body, first_known({&link.sources.joint_velocity, &link.source}),
+         fmt::format("the {} limits of '{}' (MuJoCo joints have none)", fmt::join(lost, " and "), link.name),
+         lost.size() == 2 || lost[0] == "velocity" ? "--actuators velocity writes them as control and force ranges"
+                                                   : "--actuators writes it as a force range");
+  }
+}
+
+std::string Writer::material_name(const Material& m) {
+  const std::string key = fmt::format("{}|{}|{}|{}|{}|{}", vec3(m.diffuse_color), vec3(m.specular_color),
+                                      vec3(m.emissive_color), format_number(m.specular_exponent),
+                                      format_number(m.transparency), format_number(m.ambient_intensity));
+  auto it = material_by_key_.find(key);
+  if (it != material_by_key_.end()) return it->second;
+  std::string name = fmt::format("material_{}", materials_.size());
+  materials_.emplace_back(name, m);
+  material_by_key_.emplace(key, name);
+  return name;
+}
+
+std::string Writer::mesh_asset(const std::string& file, const Eigen::Vector3d& scale) {
+  const std::string key = file + "|" + vec3(scale);
+  auto it = mesh_by_key_.find(key);
+  if (it != mesh_by_key_.end()) return it->second;
+  std::string name = fs::path(file).stem().string();
+  std::set<std::string> used;
+  for (const auto& a : mesh_assets_) used.insert(std::get<0>(a));
+  name = unique(used, name);
+  mesh_assets_.emplace_back(name, file, scale);
+  mesh_by_key_.emplace(key, name);
+  return name;
+}
+
+void Writer::add_mesh_piece(std::vector<Piece>& out, const std::string& key, const std::string& stem,
+                            const TriangleMesh& mesh, const Eigen::Affine3d& X_LS,
+                            const std::optional<Material>& material) {
+  Piece piece;
+  piece.material = material;
+  piece.origin.translation() = X_LS.translation();
+  TriangleMesh written = mesh;
+  Eigen::Vector3d scale = Eigen::Vector3d::Ones();
+  std::string file_key = key;
+  if (auto sr = decompose(X_LS.linear())) {
+    piece.origin.linear() = sr->rotation;
+    scale = sr->scale;
+    TriangleMesh scaled = mesh;
+    for (auto& v : scaled.vertices) v = v.cwiseProduct(scale);
+    piece.collidable = spans_volume(scaled);
+  } else {
+    // Shear or mirror: bake the linear part into the vertices (a mirror flips the winding).
+    const Eigen::Matrix3d L = X_LS.linear();
+    for (auto& v : written.vertices) v = L * v;
+    written.normals.clear();
+    if (L.determinant() < 0)
+      for (auto& t : written.triangles) std::swap(t[1], t[2]);
+    file_key += ":baked";
+    piece.collidable = spans_volume(written);
+  }
+  std::string error;
+  const std::optional<std::string> relative =
+      staged_.mesh(file_key, stem, written, std::nullopt, converters::MeshFormat::kStl, error);
+  if (!relative) {
+    fatal("export-write", model_.source, error);
+    return;
+  }
+  // <mesh file> is relative to the compiler's meshdir (the staging folder).
+  const std::string prefix = options_.mesh_folder + "/";
+  const std::string file = relative->rfind(prefix, 0) == 0 ? relative->substr(prefix.size()) : *relative;
+  const std::string name = mesh_asset(file, scale);
+  piece.geometry = [name](XMLElement* g) {
+    g->SetAttribute("type", "mesh");
+    g->SetAttribute("mesh", name.c_str());
+  };
+  out.push_back(std::move(piece));
+}
+
+std::vector<Piece> Writer::pieces(XMLElement* body, const Link& link, std::size_t link_index, std::size_t shape_index,
+                                  const Shape& shape) {
+  std::vector<Piece> out;
+  const std::optional<Material>& material = shape.appearance.material;
+  const std::string shape_key = fmt::format("shape:{}:{}", link_index, shape_index);
+  const std::string stem =
+      fmt::format("{}_{}", link.name, shape.name.empty() ? fmt::format("shape{}", shape_index) : shape.name);
+  const auto sr = decompose(shape.X_LS.linear());
+  auto tessellated = [&](bool report_scale) {
+    if (report_scale) {
+      loss(body, shape.source,
+           fmt::format("a non-uniformly scaled {} as a primitive", geometry_type_name(shape.geometry)),
+           "written as a tessellated mesh");
+    }
+    GeometryAlreadyReported filtered(sink_);
+    TriangleMesh mesh = compute_shape_local_mesh(model_, shape, filtered);
+    if (mesh.empty()) {
+      loss(body, shape.source, fmt::format("an empty {} (nothing to draw)", geometry_type_name(shape.geometry)));
+      return;
+    }
+    add_mesh_piece(out, shape_key, stem, mesh, shape.X_LS, material);
+  };
+  auto primitive = [&](std::function<void(XMLElement*)> fill, const Eigen::Matrix3d& extra_rotation) {
+    Piece piece;
+    piece.origin.linear() = sr->rotation * extra_rotation;
+    piece.origin.translation() = shape.X_LS.translation();
+    piece.geometry = std::move(fill);
+    piece.material = material;
+    out.push_back(std::move(piece));
+  };
+  auto uniform = [&]() {
+    return sr && nearly_equal(sr->scale.x(), sr->scale.y()) && nearly_equal(sr->scale.x(), sr->scale.z());
+  };
+  // body-format-spec §19: Body cylinders and capsules run along +Y, MuJoCo's along +Z;
+  // Rx(-90°) maps +Z onto +Y exactly.
+  const Eigen::Matrix3d z_to_y = Eigen::AngleAxisd(-M_PI / 2, Eigen::Vector3d::UnitX()).toRotationMatrix();
+
+  if (const auto* box = std::get_if<Box>(&shape.geometry); box && sr) {
+    Eigen::Vector3d half = box->size.cwiseProduct(sr->scale) / 2;
+    if ((half.array() <= 0).any()) {
+      // MuJoCo refuses zero sizes; a flat box (Choreonoid's stand-in for a plane) gets a
+      // thickness no contact can tell apart.
+      half = half.cwiseMax(kFlatBoxHalfThickness);
+      loss(body, shape.source,
+           fmt::format("a box with a zero edge (written with edges {})", vec3(Eigen::Vector3d(2 * half))),
+           "MuJoCo geoms need positive sizes");
+    }
+    primitive(
+        [half](XMLElement* g) {
+          g->SetAttribute("type", "box");
+          g->SetAttribute("size", vec3(half).c_str());
+        },
+        Eigen::Matrix3d::Identity());
+  } else if (const auto* sphere = std::get_if<Sphere>(&shape.geometry)) {
+    if (uniform()) {
+      const double r = sphere->radius * sr->scale.x();
+      primitive(
+          [r](XMLElement* g) {
+            g->SetAttribute("type", "sphere");
+            g->SetAttribute("size", format_number(r).c_str());
+          },
+          Eigen::Matrix3d::Identity());
+    } else {
+      tessellated(true);
+    }
+  } else if (const auto* cyl = std::get_if<Cylinder>(&shape.geometry)) {
+    if (sr && nearly_equal(sr->scale.x(), sr->scale.z())) {
+      if (!cyl->top || !cyl->bottom)
+        loss(body, shape.source, "a cylinder without its top or bottom cap", "MuJoCo cylinders are closed");
+      const double r = cyl->radius * sr->scale.x();
+      const double half = cyl->height * sr->scale.y() / 2;
+      primitive(
+          [r, half](XMLElement* g) {
+            g->SetAttribute("type", "cylinder");
+            g->SetAttribute("size", fmt::format("{} {}", format_number(r), format_number(half)).c_str());
+          },
+          z_to_y);
+    } else {
+      tessellated(true);
+    }
+  } else if (const auto* cap = std::get_if<Capsule>(&shape.geometry)) {
+    if (uniform()) {
+      const double r = cap->radius * sr->scale.x();
+      const double half = cap->height * sr->scale.x() / 2;
+      primitive(
+          [r, half](XMLElement* g) {
+            g->SetAttribute("type", "capsule");
+            g->SetAttribute("size", fmt::format("{} {}", format_number(r), format_number(half)).c_str());
+          },
+          z_to_y);
+    } else {
+      tessellated(true);
+    }
+  } else if (const auto* res = std::get_if<MeshResource>(&shape.geometry)) {
+    if (res->mesh < 0 || static_cast<std::size_t>(res->mesh) >= model_.meshes.size() ||
+        model_.meshes[static_cast<std::size_t>(res->mesh)].parts.empty()) {
+      loss(body, shape.source, fmt::format("mesh '{}', which could not be loaded; the shape is left out", res->uri));
+      return out;
+    }
+    const MeshAsset& asset = model_.meshes[static_cast<std::size_t>(res->mesh)];
+    bool textured = false;
+    for (const MeshPart& part : asset.parts) textured = textured || part.texture.has_value();
+    if (textured) loss(body, shape.source, fmt::format("the texture of mesh '{}'", res->uri), "colours are kept");
+    // Every part is written as its own STL (MuJoCo 2.2.2 reads no DAE and no colours from
+    // files), so each keeps its own material.
+    const std::string asset_stem = fs::path(asset.path).stem().string() + (asset.node.empty() ? "" : "_" + asset.node);
+    for (std::size_t p = 0; p < asset.parts.size(); ++p) {
+      const MeshPart& part = asset.parts[p];
+      if (part.mesh.empty()) continue;
+      const std::string key = fmt::format("asset:{}:{}", res->mesh, p);
+      const std::string part_stem = asset.parts.size() > 1 ? fmt::format("{}_{}", asset_stem, p) : asset_stem;
+      add_mesh_piece(out, sr ? key : key + ":" + shape_key, part_stem, part.mesh, shape.X_LS,
+                     material ? material : part.material);
+    }
+  } else {
+    tessellated(false);
+  }
+  return out;
+}
+
+void Writer::write_shapes(XMLElement* body, std::size_t index) {
+  const Link& link = model_.links[index];
+  for (std::size_t s = 0; s < link.shapes.size(); ++s) {
+    const Shape& shape = link.shapes[s];
+    if (shape.appearance.texture)
+      loss(body, shape.source, fmt::format("the texture '{}'", shape.appearance.texture->uri), "colours are kept");
+    if (!shape.visual && !shape.collision) continue;
+    for (Piece& piece : pieces(body, link, index, s, shape)) {
+      // body-format-spec §7.3: under Visual visual only, under Collision collision only, under
+      // neither both. Visual geoms: group 2, no contact, no mass; collision geoms: group 3.
+      if (shape.collision && !piece.collidable) {
+        loss(body, shape.source,
+             fmt::format("the collision geometry of a flat or degenerate {} (MuJoCo collides with convex hulls, "
+                         "which need a volume; only its visual geom is written)",
+                         geometry_type_name(shape.geometry)));
+      }
+      for (bool visual : {true, false}) {
+        if (visual ? !shape.visual : !shape.collision || !piece.collidable) continue;
+        XMLElement* g = element(body, "geom");
+        place(g, piece.origin);
+        piece.geometry(g);
+        if (visual) {
+          g->SetAttribute("group", 2);
+          g->SetAttribute("contype", 0);
+          g->SetAttribute("conaffinity", 0);
+          g->SetAttribute("mass", 0);
+          if (piece.material) g->SetAttribute("material", material_name(*piece.material).c_str());
+        } else {
+          g->SetAttribute("group", 3);
+        }
+      }
+    }
+  }
+}
+
+std::string Writer::site(XMLElement* body, const Device& device, std::size_t device_index) {
+  const Link& link = model_.links[static_cast<std::size_t>(device.link)];
+  const std::string name = unique(
+      site_names_, device.name.empty() ? fmt::format("{}_{}_{}", link.name, device.type, device_index) : device.name);
+  check_name(name, "device", device.source);
+  XMLElement* s = element(body, "site");
+  s->SetAttribute("name", name.c_str());
+  place(s, device.X_LD);
+  return name;
+}
+
+void Writer::sensor(const Device& device, const char* kind, const std::string& name, const std::string& site_name,
+                    const Eigen::Vector3d& max, XMLElement* body) {
+  XMLElement* e = doc_.NewElement(kind);
+  e->SetAttribute("name", unique(sensor_names_, name).c_str());
+  e->SetAttribute("site", site_name.c_str());
+  // MuJoCo's cutoff clips every axis to one bound.
+  if ((max.array() < kUnlimited).any()) {
+    if (nearly_equal(max.x(), max.y()) && nearly_equal(max.x(), max.z())) {
+      e->SetAttribute("cutoff", format_number(max.x()).c_str());
+    } else {
+      const Eigen::Vector3d shown = max.unaryExpr([](double v) { return converters::finite_or_stand_in(v); });
+      loss(body, device.source,
+           fmt::format("the per-axis limits {} of {} sensor '{}' (MuJoCo's cutoff is one bound; not written)",
+                       vec3(shown), kind, name));
+    }
+  }
+  sensors_.push_back({{device.id >= 0 ? device.id : INT32_MAX, current_device_}, e});
+}
+
+void Writer::write_devices(XMLElement* body, std::size_t index) {
+  for (std::size_t d = 0; d < model_.devices.size(); ++d) {
+    const Device& device = model_.devices[d];
+    if (device.link != static_cast<LinkIndex>(index)) continue;
+    current_device_ = d;
+    const std::string label = device.name.empty() ? device.type : device.name;
+    if (const auto* camera = std::get_if<CameraParams>(&device.params)) {
+      // MuJoCo cameras look along -Z with +Y up, as Choreonoid's default "gl" optical frame
+      // (body-format-spec §10.3); the other frames are rotated onto it, and
+      // optical_frame_rotation is post-multiplied.
+      Eigen::Matrix3d R_optical = Eigen::Matrix3d::Identity();
+      if (camera->optical_frame == "cv") R_optical = Eigen::Vector3d(1, -1, -1).asDiagonal();
+      if (camera->optical_frame == "robotics") R_optical << 0, 0, -1, -1, 0, 0, 0, 1, 0;
+      Eigen::Isometry3d X = device.X_LD;
+      X.linear() = device.X_LD.linear() * R_optical * camera->optical_frame_rotation;
+      XMLElement* c = element(body, "camera");
+      const std::string name = unique(
+          camera_names_, device.name.empty() ? fmt::format("{}_camera_{}", model_.links[index].name, d) : device.name);
+      check_name(name, "device", device.source);
+      c->SetAttribute("name", name.c_str());
+      c->SetAttribute("mode", "fixed");
+      place(c, X);
+      // Choreonoid's field of view spans the shorter image side; MuJoCo's fovy is vertical and
+      // always in degrees.
+      double fovy = camera->field_of_view;
+      if (camera->width < camera->height && camera->height > 0)
+        fovy = 2 * std::atan(std::tan(camera->field_of_view / 2) * camera->height / camera->width);
+      c->SetAttribute("fovy", format_number(radians_to_degrees(fovy)).c_str());
+      loss(body, device.source,
+           fmt::format("the resolution {}x{}, frame rate, clip distances{} of camera '{}' (MuJoCo 2.2.2 cameras have "
+                       "none)",
+                       camera->width, camera->height,
+                       camera->lens_type != "NORMAL" ? fmt::format(" and {} lens", camera->lens_type) : "", label));
+    } else if (const auto* light = std::get_if<LightParams>(&device.params)) {
+      XMLElement* l = element(body, "light");
+      const std::string name = unique(
+          light_names_, device.name.empty() ? fmt::format("{}_light_{}", model_.links[index].name, d) : device.name);
+      check_name(name, "device", device.source);
+      l->SetAttribute("name", name.c_str());
+      l->SetAttribute("mode", "fixed");
+      l->SetAttribute("pos", vec3(device.X_LD.translation()).c_str());
+      const bool spot = device.type == "SpotLight";
+      const Eigen::Vector3d dir = device.X_LD.linear() * (spot ? light->direction : Eigen::Vector3d(0, 0, -1));
+      l->SetAttribute("dir", vec3(dir.normalized()).c_str());
+      l->SetAttribute("diffuse", vec3(Eigen::Vector3d(light->color * light->intensity)).c_str());
+      l->SetAttribute("attenuation", vec3(light->attenuation).c_str());
+      // A point light is an OpenGL spot with a 180° cutoff; MuJoCo's cutoff is in degrees.
+      l->SetAttribute("cutoff", format_number(spot ? radians_to_degrees(light->cut_off_angle) : 180.0).c_str());
+      if (spot) l->SetAttribute("exponent", format_number(light->cut_off_exponent).c_str());
+      if (!device.on) l->SetAttribute("active", "false");
+      if (spot) loss(body, device.source, fmt::format("the beam width of spot light '{}'", label));
+    } else if (const auto* force = std::get_if<ForceSensorParams>(&device.params)) {
+      const std::string s = site(body, device, d);
+      sensor(device, "force", s + "_force", s, force->max_force, body);
+      sensor(device, "torque", s + "_torque", s, force->max_torque, body);
+    } else if (const auto* inertial = std::get_if<InertialSensorParams>(&device.params)) {
+      const std::string s = site(body, device, d);
+      const bool imu = device.type == "Imu";
+      if (imu || device.type == "RateGyroSensor")
+        sensor(device, "gyro", imu ? s + "_gyro" : s, s, inertial->max_angular_velocity, body);
+      if (imu || device.type == "AccelerationSensor")
+        sensor(device, "accelerometer", imu ? s + "_accelerometer" : s, s, inertial->max_acceleration, body);
+    } else {
+      loss(body, device.source, fmt::format("device '{}' ({})", label, device.type));
+    }
+  }
+}
+
+void Writer::write_equalities() {
+  XMLElement* equality = nullptr;
+  auto eq = [&](const char* kind) {
+    if (!equality) equality = element(mujoco_, "equality");
+    return element(equality, kind);
+  };
+  for (const ExtraJoint& ej : model_.extra_joints) {
+    if (ej.link1 < 0 || ej.link2 < 0) continue;
+    const std::size_t i1 = static_cast<std::size_t>(ej.link1), i2 = static_cast<std::size_t>(ej.link2);
+    const std::string& l1 = model_.links[i1].name;
+    const std::string& l2 = model_.links[i2].name;
+    const std::string what = fmt::format("the {} extra joint between '{}' and '{}'", ej.type, l1, l2);
+    if (ej.type == "piston") {
+      loss(mujoco_, ej.source, what + " (MuJoCo has no equality constraint for it)");
+      continue;
+    }
+    // MuJoCo 2.2.2 takes body2's side of a connect from the initial configuration (qpos0), so
+    // the loop must be closed there.
+    const Eigen::Isometry3d W1 = derived_.X_WL[i1] * ej.X_1J, W2 = derived_.X_WL[i2] * ej.X_2J;
+    const double gap = (W1.translation() - W2.translation()).norm();
+    if (ej.type == "fixed") {
+      XMLElement* w = eq("weld");
+      w->SetAttribute("body1", l1.c_str());
+      w->SetAttribute("body2", l2.c_str());
+      const Eigen::Isometry3d X_12 = ej.X_1J * ej.X_2J.inverse();  // body2 in body1
+      w->SetAttribute("relpose", (vec3(X_12.translation()) + " " + quat_text(X_12.linear())).c_str());
+      continue;
+    }
+    std::vector<Eigen::Vector3d> anchors = {ej.X_1J.translation()};
+    if (ej.type == "hinge") {
+      // A hinge is two connects on its axis.
+      const Eigen::Vector3d axis = (ej.X_1J.linear() * ej.axis).normalized();
+      anchors.push_back(ej.X_1J.translation() + kHingePointSpacing * axis);
+    } else if (ej.type != "ball") {
+      loss(mujoco_, ej.source, what);
+      continue;
+    }
+    for (const Eigen::Vector3d& a : anchors) {
+      XMLElement* c = eq("connect");
+      c->SetAttribute("body1", l1.c_str());
+      c->SetAttribute("body2", l2.c_str());
+      c->SetAttribute("anchor", vec3(a).c_str());
+    }
+    if (gap > 1e-9) {
+      loss(mujoco_, ej.source,
+           fmt::format("{} as given: its two points are {} m apart at the initial pose, and MuJoCo 2.2.2 takes the "
+                       "point on '{}' from there",
+                       what, format_number(gap), l2));
+    }
+  }
+}
+
+void Writer::write_actuators() {
+  if (options_.actuators == Actuators::kNone) return;
+  std::vector<std::size_t> order;
+  for (std::size_t i = 0; i < model_.links.size(); ++i) {
+    const JointType t = model_.links[i].joint_type;
+    if (t == JointType::kRevolute || t == JointType::kPrismatic) order.push_back(i);
+  }
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    const int ia = model_.links[a].joint_id, ib = model_.links[b].joint_id;
+    return (ia >= 0 ? ia : INT32_MAX) < (ib >= 0 ? ib : INT32_MAX);
+  });
+  if (order.empty()) return;
+  XMLElement* actuator = element(mujoco_, "actuator");
+  const bool position = options_.actuators == Actuators::kPosition;
+  auto range = [](XMLElement* e, const char* limited, const char* range, double lo, double hi) {
+    if (lo > -kUnlimited && hi < kUnlimited) {
+      e->SetAttribute(limited, "true");
+      e->SetAttribute(range, fmt::format("{} {}", format_number(lo), format_number(hi)).c_str());
+    } else {
+      e->SetAttribute(limited, "false");
+    }
+  };
+  for (std::size_t i : order) {
+    const Link& link = model_.links[i];
+    XMLElement* a = element(actuator, position ? "position" : "velocity");
+    a->SetAttribute("name", link.name.c_str());
+    a->SetAttribute("joint", link.name.c_str());
+    if (position)
+      range(a, "ctrllimited", "ctrlrange", link.joint_range_lower, link.joint_range_upper);
+    else
+      range(a, "ctrllimited", "ctrlrange", link.velocity_lower, link.velocity_upper);
+    range(a, "forcelimited", "forcerange", link.effort_lower, link.effort_upper);
+  }
+}
+
+void Writer::write_keyframe() {
+  bool displaced = false;
+  for (const Link& link : model_.links) displaced = displaced || link.initial_displacement != 0;
+  if (!displaced) return;
+  // qpos follows MuJoCo's body order: the document's depth-first order of <body> elements.
+  std::vector<std::string> qpos;
+  std::vector<const XMLElement*> stack;
+  for (const XMLElement* b = world_->LastChildElement("body"); b; b = b->PreviousSiblingElement("body"))
+    stack.push_back(b);
+  while (!stack.empty()) {
+    const XMLElement* b = stack.back();
+    stack.pop_back();
+    for (const XMLElement* c = b->LastChildElement("body"); c; c = c->PreviousSiblingElement("body"))
+      stack.push_back(c);
+    const std::size_t i = link_of_.at(b);
+    const Link& link = model_.links[i];
+    if (link.joint_type == JointType::kFree) {
+      qpos.push_back(vec3(derived_.X_WL[i].translation()));
+      qpos.push_back(quat_text(derived_.X_WL[i].linear()));
+    } else if (link.joint_type == JointType::kRevolute || link.joint_type == JointType::kPrismatic) {
+      qpos.push_back(format_number(link.initial_displacement));
+    }
+  }
+  XMLElement* key = element(element(mujoco_, "keyframe"), "key");
+  key->SetAttribute("name", "initial");
+  key->SetAttribute("qpos", fmt::format("{}", fmt::join(qpos, " ")).c_str());
+}
+
+bool Writer::run() {
+  if (model_.links.empty() || derived_.mass.size() != model_.links.size() ||
+      derived_.X_WL.size() != model_.links.size()) {
+    fatal("internal-error", model_.source, "the model has no links or its derived data is missing");
+    output_.fail();
+    return false;
+  }
+  if (!prepare_inertials()) {
+    output_.fail();
+    return false;
+  }
+  // Checked before any element exists: tinyxml2 also builds, prints and frees documents
+  // recursively, so a 100,000-link chain must never become one.
+  std::vector<int> depth(model_.links.size(), 1);
+  for (std::size_t i = 1; i < model_.links.size(); ++i) {
+    const Link& link = model_.links[i];
+    if (link.parent >= 0 && !detached(link)) depth[i] = depth[static_cast<std::size_t>(link.parent)] + 1;
+    if (depth[i] > kMaxBodyDepth) {
+      fatal("export-write", first_known({&link.sources.name, &link.source}),
+            fmt::format("link \"{}\" is {} bodies deep; MuJoCo 2.2.2 reads MJCF with tinyxml2, which stops at 100 "
+                        "nested elements ({} nested bodies), so nothing is written",
+                        link.name, depth[i], kMaxBodyDepth));
+      output_.fail();
+      return false;
+    }
+  }
+  doc_.InsertEndChild(doc_.NewDeclaration());
+  mujoco_ = doc_.NewElement("mujoco");
+  doc_.InsertEndChild(mujoco_);
+  if (!converters::is_xml_text(model_.name))
+    fatal("export-xml-text", model_.source,
+          "the body name cannot be written in XML (control characters or invalid UTF-8)");
+  mujoco_->SetAttribute("model", model_.name.empty() ? "body" : model_.name.c_str());
+  comment(mujoco_, fmt::format("Generated by body2mjcf from {}", fs::path(model_.source_file).filename().string()));
+  // Every unit and default that matters is written: radians, limits only where stated, the
+  // inertials as given (no mass from geoms, no bounds, no balancing by MuJoCo).
+  XMLElement* compiler = element(mujoco_, "compiler");
+  compiler->SetAttribute("angle", "radian");
+  compiler->SetAttribute("autolimits", "false");
+  compiler->SetAttribute("meshdir", options_.mesh_folder.c_str());
+  compiler->SetAttribute("inertiafromgeom", "false");
+  compiler->SetAttribute("boundmass", 0);
+  compiler->SetAttribute("boundinertia", 0);
+  compiler->SetAttribute("balanceinertia", "false");
+  XMLElement* option = element(mujoco_, "option");
+  option->SetAttribute("timestep", "0.001");
+  option->SetAttribute("gravity", vec3(Eigen::Vector3d(0, 0, -kGravity)).c_str());
+  asset_ = element(mujoco_, "asset");
+  XMLElement* world = element(mujoco_, "worldbody");
+  world_ = world;
+
+  std::vector<XMLElement*> bodies(model_.links.size(), nullptr);
+  for (std::size_t i = 0; i < model_.links.size(); ++i) {
+    const Link& link = model_.links[i];
+    const SourceLocation name_at = first_known({&link.sources.name, &link.source});
+    check_name(link.name, "link", name_at);
+    if (link.name == "world")
+      fatal("export-name-conflict", name_at, "a link named 'world' clashes with MuJoCo's world body");
+    // Links are in depth-first pre-order, so a parent's element exists before its children.
+    XMLElement* parent = link.parent < 0 || detached(link) ? world : bodies[static_cast<std::size_t>(link.parent)];
+    XMLElement* body = element(parent, "body");
+    bodies[i] = body;
+    link_of_.emplace(body, i);
+    body->SetAttribute("name", link.name.c_str());
+    place(body, detached(link) ? derived_.X_WL[i] : link.X_PL);
+    if (link.joint_id >= 0) comment(body, fmt::format("joint_id {}", link.joint_id));
+    write_joint(body, i);
+    write_inertial(body, i);
+    write_shapes(body, i);
+    if (!link.contact_material.empty() && link.contact_material != "default")
+      loss(body, link.source, fmt::format("the contact material '{}'", link.contact_material));
+    if (!link.actuation_mode.empty() && link.joint_type != JointType::kPseudoContinuousTrack)
+      loss(body, link.source, fmt::format("the actuation mode '{}'", link.actuation_mode),
+           "--actuators adds position or velocity actuators");
+    write_devices(body, i);
+  }
+  write_equalities();
+  write_actuators();
+  if (!sensors_.empty()) {
+    std::stable_sort(sensors_.begin(), sensors_.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    XMLElement* sensor = element(mujoco_, "sensor");
+    for (auto& s : sensors_) sensor->InsertEndChild(s.second);
+  }
+  if (!track_axes_.empty()) {
+    XMLElement* custom = element(mujoco_, "custom");
+    for (const auto& [name, data] : track_axes_) {
+      XMLElement* n = element(custom, "numeric");
+      n->SetAttribute("name", name.c_str());
+      n->SetAttribute("size", 3);
+      n->SetAttribute("data", data.c_str());
+    }
+  }
+  write_keyframe();
+
+  for (const auto& [name, m] : materials_) {
+    XMLElement* e = element(asset_, "material");
+    e->SetAttribute("name", name.c_str());
+    const Eigen::Vector4d rgba(m.diffuse_color.x(), m.diffuse_color.y(), m.diffuse_color.z(), 1.0 - m.transparency);
+    e->SetAttribute("rgba", converters::format_vector(rgba).c_str());
+    // MuJoCo has scalar specular, shininess and emission (emission scales rgba): the colours'
+    // means, and the exponent back on VRML's 0..1 shininess (exponent = 127 shininess + 1).
+    e->SetAttribute("specular", format_number(std::clamp(m.specular_color.mean(), 0.0, 1.0)).c_str());
+    e->SetAttribute("shininess", format_number(std::clamp((m.specular_exponent - 1.0) / 127.0, 0.0, 1.0)).c_str());
+    const double diffuse = m.diffuse_color.mean();
+    e->SetAttribute("emission",
+                    format_number(diffuse > 0 ? std::clamp(m.emissive_color.mean() / diffuse, 0.0, 1.0) : 0.0).c_str());
+  }
+  for (const auto& [name, file, scale] : mesh_assets_) {
+    XMLElement* e = element(asset_, "mesh");
+    e->SetAttribute("name", name.c_str());
+    e->SetAttribute("file", file.c_str());
+    if (!(scale.array() == 1.0).all()) e->SetAttribute("scale", vec3(scale).c_str());
+  }
+  if (asset_->NoChildren()) mujoco_->DeleteChild(asset_);
+
+  if (failed_) {
+    output_.fail();
+    return false;
+  }
+  tinyxml2::XMLPrinter printer;
+  doc_.Print(&printer);
+  output_.set_main(std::string(printer.CStr(), static_cast<std::size_t>(printer.CStrSize() - 1)));
+  return true;
+}
+
+}  // namespace
+
+bool write_mjcf(const Model& model, const Derived& derived, const MjcfOptions& options, converters::OutputSet& output,
+                DiagnosticSink& sink) {
+  Writer writer(model, derived, options, output, sink);
+  return writer.run();
+}
+
+}  // namespace bodyfmt::mjcf
