@@ -153,8 +153,10 @@ class Writer {
   /// A value the export changed so that MuJoCo accepts it: a loss of the value as given,
   /// reported now and commented in the link's body when it is written.
   void changed(std::size_t link_index, const SourceLocation& at, const std::string& what) {
-    converters::report_loss(sink_, at, kTarget, what);
-    inertia_notes_[link_index].push_back("export-loss: " + what);
+    // Not a loss that --strict refuses: the user asked for it (--balance-inertia), or MuJoCo
+    // cannot load the body otherwise; a warning with the old and new values.
+    report_rule(sink_, "export-value-changed", at, "MuJoCo cannot accept " + what);
+    inertia_notes_[link_index].push_back("export-value-changed: " + what);
   }
   void check_name(const std::string& name, const char* what, const SourceLocation& at) {
     if (!converters::is_xml_text(name))

@@ -217,6 +217,12 @@ std::vector<RuleInfo> make_table() {
       {"export-name-conflict", F,
        "a name the export must add is already used by the model (e.g. --floating-base's 'world')",
        "two elements of one name make the output ambiguous, so nothing is written", ""},
+      {"export-value-changed", W,
+       "the export changed a value so that the target accepts it (a balanced inertia, a raised mass), with the old and "
+       "new values",
+       "the exported body simulates differently from the model as written unless this is reported; --strict does not "
+       "refuse it",
+       ""},
       {"export-xml-text", F,
        "a name or text that XML cannot hold (control characters, non-characters or invalid UTF-8)",
        "no XML parser would read the output, so nothing is written", ""},

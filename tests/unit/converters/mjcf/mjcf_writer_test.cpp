@@ -243,7 +243,7 @@ TEST_CASE("mjcf: every corpus model compiles in MuJoCo 2.2.2 with our masses, in
     CHECK(compare(*e.model, e.derived, l.m, l.d) == "");
     ++compared;
     for (const auto& d : e.diagnostics)
-      balanced += d.rule_id == "export-loss" && d.message.find("written balanced") != std::string::npos;
+      balanced += d.rule_id == "export-value-changed" && d.message.find("written balanced") != std::string::npos;
     // Closed loops are closed at qpos0 unless the writer said otherwise.
     const bool open_loop = std::any_of(e.diagnostics.begin(), e.diagnostics.end(), [](const Diagnostic& d) {
       return d.message.find("apart at the initial pose") != std::string::npos;
@@ -347,13 +347,14 @@ TEST_CASE(
   options.balance_inertia = true;
   Export e = export_file(kSimpleTank, dir, options);
   REQUIRE(e.ok);
-  // A warning at the inertia's line (export-loss: the tensor as given is not written).
+  // A warning at the inertia's line (export-value-changed: the tensor as given is not written).
   const Diagnostic* w = nullptr;
   for (const auto& diag : e.diagnostics)
-    if (diag.rule_id == "export-loss" && diag.location.line == 27) w = &diag;
+    if (diag.rule_id == "export-value-changed" && diag.location.line == 27) w = &diag;
   REQUIRE(w != nullptr);
   CHECK(w->severity == Severity::kWarning);
-  CHECK(e.text.find("<!-- export-loss: the inertia [0.1, 0, 0, 0.1, 0, 0.5] of link \"CHASSIS\"") != std::string::npos);
+  CHECK(e.text.find("<!-- export-value-changed: the inertia [0.1, 0, 0, 0.1, 0, 0.5] of link \"CHASSIS\"") !=
+        std::string::npos);
   // Old and new values, the same numbers bodycheck's fix hint gives.
   CHECK(w->message.find("[0.1, 0, 0, 0.1, 0, 0.5]") != std::string::npos);
   CHECK(w->message.find("[0.20000002333333336, 0, 0, 0.20000002333333336, 0, 0.39999997666666665]") !=
@@ -395,7 +396,7 @@ TEST_CASE("mjcf: devices, actuators, equality constraints, massless links and th
   // The massless moving link got the documented floor, with a warning at its inertia.
   const Diagnostic* floor = nullptr;
   for (const auto& diag : e.diagnostics)
-    if (diag.rule_id == "export-loss" && diag.message.find("moving link \"MASSLESS\"") != std::string::npos)
+    if (diag.rule_id == "export-value-changed" && diag.message.find("moving link \"MASSLESS\"") != std::string::npos)
       floor = &diag;
   REQUIRE(floor != nullptr);
   CHECK(floor->location.line == 87);  // MASSLESS's inertia
