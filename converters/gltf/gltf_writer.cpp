@@ -4,6 +4,7 @@
 #include "json.h"
 
 #include <bodyfmt/converters/loss.h>
+#include <bodyfmt/converters/transforms.h>
 #include <bodyfmt/rules.h>
 #include <bodyfmt/tessellate.h>
 
@@ -282,6 +283,20 @@ void Writer::write_shape(aiNode* parent, const Link& link, std::size_t s, const 
   NodeTable t;
   t.name = name;
   t.transform = X;
+  if (!converters::decompose(X.linear())) {
+    // A node must be translation, rotation and positive scale: shear and mirroring are baked
+    // into the vertices (normals by the inverse transpose, winding kept outward).
+    const Eigen::Matrix3d L = X.linear();
+    const Eigen::Matrix3d N = L.inverse().transpose();
+    const bool mirror = L.determinant() < 0;
+    for (Part& part : parts) {
+      for (auto& v : part.mesh.vertices) v = L * v;
+      for (auto& n : part.mesh.normals) n = (N * n).normalized();
+      if (mirror)
+        for (auto& tri : part.mesh.triangles) std::swap(tri[1], tri[2]);
+    }
+    t.transform = Eigen::Affine3d(Eigen::Translation3d(X.translation()));
+  }
   aiNode* shape_node = node(parent, std::move(t));
   std::vector<unsigned> mesh_indices;
   for (std::size_t p = 0; p < parts.size(); ++p) {
@@ -459,6 +474,20 @@ void Writer::write_link(aiNode* parent, std::size_t index) {
     x["joint_range"] = range(link.joint_range_lower, link.joint_range_upper);
     x["joint_velocity_range"] = range(link.velocity_lower, link.velocity_upper);
   }
+  if (std::abs(link.effort_lower) < kUnlimited || std::abs(link.effort_upper) < kUnlimited)
+    x["joint_effort_range"] = range(link.effort_lower, link.effort_upper);
+  if (link.initial_displacement != 0) x["initial_joint_displacement"] = link.initial_displacement;
+  if (link.joint_axis_inertia != 0) x["joint_axis_inertia"] = link.joint_axis_inertia;
+  if (!link.actuation_mode.empty()) x["actuation_mode"] = link.actuation_mode;
+  if (!link.contact_material.empty()) x["contact_material"] = link.contact_material;
+  // Mass data, so that nothing of the link is silently dropped (glTF has no physics).
+  const MassProperties& mp = derived_.mass[index];
+  x["mass"] = mp.mass;
+  x["center_of_mass"] = vec3(mp.center_of_mass);
+  Json inertia = Json::array();
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) inertia.push_back(mp.inertia(r, c));
+  x["inertia"] = std::move(inertia);
   if (link.joint_type == JointType::kPseudoContinuousTrack) {
     loss(link.sources.joint_type.known() ? link.sources.joint_type : link.source,
          fmt::format("the belt motion of the continuous track '{}'", link.name),
@@ -472,7 +501,6 @@ void Writer::write_link(aiNode* parent, std::size_t index) {
 }
 
 bool Writer::run() {
-  (void)derived_;
   tables_.generator = fmt::format("bodyfmt {} body2gltf (assimp {}.{}.{} glTF2 exporter, post-processed)",
                                   options_.version, aiGetVersionMajor(), aiGetVersionMinor(), aiGetVersionRevision());
   // Body is Z-up, glTF Y-up: the model node turns +Z to +Y (and +Y to -Z).
