@@ -25,14 +25,17 @@ int main(int argc, char** argv) {
       ->excludes(c);
   if (auto code = front.parse(argc, argv)) return *code;
   std::string ext = std::filesystem::path(output).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
   if (ext != ".glb" && ext != ".gltf") {
     front.print_error("-o must name a .glb or .gltf file: " + output);
     return tools::kExitFatal;
   }
   gltf::GltfOptions options;
   options.binary = ext == ".glb";
-  options.geometry = both ? gltf::GeometrySet::kBoth : collision ? gltf::GeometrySet::kCollision : gltf::GeometrySet::kVisual;
+  options.geometry = both        ? gltf::GeometrySet::kBoth
+                     : collision ? gltf::GeometrySet::kCollision
+                                 : gltf::GeometrySet::kVisual;
   options.version = BODYFMT_VERSION;
 
   const std::string& path = front.inputs().front();

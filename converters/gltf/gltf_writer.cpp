@@ -8,10 +8,10 @@
 #include <bodyfmt/rules.h>
 #include <bodyfmt/tessellate.h>
 
-#include <assimp/Exporter.hpp>
 #include <assimp/scene.h>
 #include <assimp/version.h>
 #include <fmt/format.h>
+#include <assimp/Exporter.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -49,7 +49,8 @@ Json range(double lo, double hi) { return Json(Json::Array{limit(lo), limit(hi)}
 
 std::string lower_extension(const std::string& path) {
   std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext;
 }
 
@@ -142,8 +143,8 @@ std::vector<Writer::Part> Writer::parts_of(const Shape& shape) {
     }
   } else {
     GeometryAlreadyReported filtered(sink_);
-    parts.push_back({compute_shape_local_mesh(model_, shape, filtered), shape.appearance.material,
-                     shape.appearance.texture});
+    parts.push_back(
+        {compute_shape_local_mesh(model_, shape, filtered), shape.appearance.material, shape.appearance.texture});
   }
   const std::optional<double> crease = crease_angle_of(shape.geometry);
   for (Part& p : parts) {
@@ -161,8 +162,7 @@ int Writer::texture_index(const Texture& texture, const SourceLocation& at) {
          texture.resolved_path.empty() ? "the file was not found" : "glTF embeds PNG and JPEG images only");
     return -1;
   }
-  const std::string key =
-      fmt::format("{}\n{}{}", texture.resolved_path, int(texture.repeat_s), int(texture.repeat_t));
+  const std::string key = fmt::format("{}\n{}{}", texture.resolved_path, int(texture.repeat_s), int(texture.repeat_t));
   if (auto it = texture_keys_.find(key); it != texture_keys_.end()) return it->second;
 
   int image = -1;
@@ -186,7 +186,8 @@ int Writer::texture_index(const Texture& texture, const SourceLocation& at) {
       loss(at, fmt::format("the texture '{}'", texture.uri), "the file is neither PNG nor JPEG data");
       return -1;
     }
-    std::string name = fmt::format("{}{}", fs::path(texture.resolved_path).stem().string(), png_magic ? ".png" : ".jpg");
+    std::string name =
+        fmt::format("{}{}", fs::path(texture.resolved_path).stem().string(), png_magic ? ".png" : ".jpg");
     for (int n = 2; image_names_.count(name); ++n)
       name = fmt::format("{}_{}{}", fs::path(texture.resolved_path).stem().string(), n, png_magic ? ".png" : ".jpg");
     image_names_.insert(name);
@@ -196,8 +197,8 @@ int Writer::texture_index(const Texture& texture, const SourceLocation& at) {
     image_keys_.emplace(texture.resolved_path, image);
   }
   Json sampler = Json::object();
-  sampler["magFilter"] = 9729;  // LINEAR
-  sampler["minFilter"] = 9987;  // LINEAR_MIPMAP_LINEAR
+  sampler["magFilter"] = 9729;                          // LINEAR
+  sampler["minFilter"] = 9987;                          // LINEAR_MIPMAP_LINEAR
   sampler["wrapS"] = texture.repeat_s ? 10497 : 33071;  // REPEAT : CLAMP_TO_EDGE
   sampler["wrapT"] = texture.repeat_t ? 10497 : 33071;
   tables_.samplers.push_back(std::move(sampler));
@@ -265,7 +266,8 @@ unsigned Writer::add_mesh(const TriangleMesh& mesh, int material, const std::str
     aiFace& face = m->mFaces[f];
     face.mNumIndices = 3;
     face.mIndices = new unsigned[3];
-    for (int k = 0; k < 3; ++k) face.mIndices[k] = static_cast<unsigned>(mesh.triangles[f][static_cast<std::size_t>(k)]);
+    for (int k = 0; k < 3; ++k)
+      face.mIndices[k] = static_cast<unsigned>(mesh.triangles[f][static_cast<std::size_t>(k)]);
   }
   meshes_.push_back(m);
   return static_cast<unsigned>(meshes_.size() - 1);
@@ -305,14 +307,17 @@ void Writer::write_shape(aiNode* parent, const Link& link, std::size_t s, const 
     if (part.texture) {
       if (part.mesh.tex_coords.size() == part.mesh.vertices.size()) {
         // Report once per shape (the collision copy of --both would repeat it).
-        if (report) texture = texture_index(*part.texture, shape.source);
-        else texture = texture_keys_.count(fmt::format("{}\n{}{}", part.texture->resolved_path,
-                                                      int(part.texture->repeat_s), int(part.texture->repeat_t)))
-                           ? texture_keys_[fmt::format("{}\n{}{}", part.texture->resolved_path,
-                                                      int(part.texture->repeat_s), int(part.texture->repeat_t))]
-                           : -1;
+        if (report)
+          texture = texture_index(*part.texture, shape.source);
+        else
+          texture = texture_keys_.count(fmt::format("{}\n{}{}", part.texture->resolved_path,
+                                                    int(part.texture->repeat_s), int(part.texture->repeat_t)))
+                        ? texture_keys_[fmt::format("{}\n{}{}", part.texture->resolved_path,
+                                                    int(part.texture->repeat_s), int(part.texture->repeat_t))]
+                        : -1;
       } else if (report) {
-        loss(shape.source, fmt::format("the texture '{}' on a {}", part.texture->uri, geometry_type_name(shape.geometry)),
+        loss(shape.source,
+             fmt::format("the texture '{}' on a {}", part.texture->uri, geometry_type_name(shape.geometry)),
              "the geometry has no texture coordinates; the colour is kept");
       }
     }
@@ -392,16 +397,17 @@ void Writer::write_devices(aiNode* link_node, std::size_t link_index) {
       Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
       if (cam->optical_frame == "cv") R = Eigen::Vector3d(1, -1, -1).asDiagonal();
       if (cam->optical_frame == "robotics") R << 0, 0, -1, -1, 0, 0, 0, 1, 0;
-      t.transform = device.X_LD * Eigen::Affine3d(R);
+      t.transform = device.X_LD * Eigen::Affine3d(R * cam->optical_frame_rotation);
       const double aspect = cam->height > 0 ? double(cam->width) / cam->height : 1.0;
       // Choreonoid's field of view spans the shorter image side.
-      const double yfov =
-          aspect >= 1 ? cam->field_of_view : 2 * std::atan(std::tan(cam->field_of_view / 2) / aspect);
-      const bool valid = cam->width > 0 && cam->height > 0 && yfov > 0 && yfov < kPi &&
-                         cam->near_clip_distance > 0 && cam->far_clip_distance > cam->near_clip_distance;
+      const double yfov = aspect >= 1 ? cam->field_of_view : 2 * std::atan(std::tan(cam->field_of_view / 2) / aspect);
+      const bool valid = cam->width > 0 && cam->height > 0 && yfov > 0 && yfov < kPi && cam->near_clip_distance > 0 &&
+                         cam->far_clip_distance > cam->near_clip_distance;
       if (!valid) {
-        loss(device.source, fmt::format("the camera '{}' (its size, field of view or clip distances are not a valid "
-                                        "glTF perspective camera)", device.name),
+        loss(device.source,
+             fmt::format("the camera '{}' (its size, field of view or clip distances are not a valid "
+                         "glTF perspective camera)",
+                         device.name),
              "the node keeps its pose");
       } else {
         if (cam->lens_type != "NORMAL")
@@ -560,8 +566,8 @@ bool Writer::run() {
 
 }  // namespace
 
-bool write_gltf(const Model& model, const Derived& derived, const GltfOptions& options,
-                converters::OutputSet& output, DiagnosticSink& sink) {
+bool write_gltf(const Model& model, const Derived& derived, const GltfOptions& options, converters::OutputSet& output,
+                DiagnosticSink& sink) {
   Writer writer(model, derived, options, output, sink);
   return writer.run();
 }

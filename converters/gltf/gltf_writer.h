@@ -30,7 +30,7 @@ struct GltfOptions {
 /// Builds the glTF and stages it (and for .gltf its .bin and textures) in `output`. Losses go
 /// to `sink` as `export-loss`; an export assimp refuses is reported as `export-write` (fatal)
 /// and calls output.fail(). Returns false in that case.
-bool write_gltf(const Model& model, const Derived& derived, const GltfOptions& options,
-                converters::OutputSet& output, DiagnosticSink& sink);
+bool write_gltf(const Model& model, const Derived& derived, const GltfOptions& options, converters::OutputSet& output,
+                DiagnosticSink& sink);
 
 }  // namespace bodyfmt::gltf

@@ -159,10 +159,14 @@ class Parser {
     for (int i = 0; i < 4; ++i) {
       const char h = text_[pos_++];
       cp <<= 4;
-      if (h >= '0' && h <= '9') cp |= static_cast<unsigned>(h - '0');
-      else if (h >= 'a' && h <= 'f') cp |= static_cast<unsigned>(h - 'a' + 10);
-      else if (h >= 'A' && h <= 'F') cp |= static_cast<unsigned>(h - 'A' + 10);
-      else return false;
+      if (h >= '0' && h <= '9')
+        cp |= static_cast<unsigned>(h - '0');
+      else if (h >= 'a' && h <= 'f')
+        cp |= static_cast<unsigned>(h - 'a' + 10);
+      else if (h >= 'A' && h <= 'F')
+        cp |= static_cast<unsigned>(h - 'A' + 10);
+      else
+        return false;
     }
     return true;
   }
@@ -329,8 +333,6 @@ std::string Json::dump() const {
   return out;
 }
 
-std::optional<Json> Json::parse(std::string_view text, std::string* error) {
-  return Parser(text).document(error);
-}
+std::optional<Json> Json::parse(std::string_view text, std::string* error) { return Parser(text).document(error); }
 
 }  // namespace bodyfmt::gltf

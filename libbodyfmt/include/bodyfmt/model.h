@@ -213,6 +213,8 @@ struct CameraParams {
   double far_clip_distance = 200;
   double frame_rate = 30;
   std::string optical_frame = "gl";
+  /// `optical_frame_rotation`, post-multiplied onto the optical frame's rotation.
+  Eigen::Matrix3d optical_frame_rotation = Eigen::Matrix3d::Identity();
   // RangeCamera only
   double min_distance = 0.1;
   double max_distance = 10;

@@ -78,7 +78,9 @@ bool read_camera(MappingReader& r, Device& d) {
   assign_if(c.max_distance, take_optional_double(r, {"max_distance"}));
   assign_if(c.detection_rate, take_optional_double(r, {"detection_rate"}));
   assign_if(c.error_deviation, take_optional_double(r, {"error_deviation"}));
-  r.take({"optical_frame_rotation"});
+  if (auto rot = r.take({"optical_frame_rotation"})) {
+    if (auto R = read_rotation(ctx, rot)) c.optical_frame_rotation = *R;
+  }
   d.params = c;
   return true;
 }

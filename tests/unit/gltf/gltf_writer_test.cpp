@@ -1,17 +1,17 @@
 // body2gltf's writer: a round trip through assimp's glTF importer on every corpus model,
 // losses at their source lines, determinism, cameras, lights, textures and the JSON model.
-#include "gltf_finish.h"
 #include "gltf_writer.h"
+#include "gltf_finish.h"
 #include "json.h"
 
 #include <bodyfmt/derived.h>
 #include <bodyfmt/load.h>
 #include <bodyfmt/mesh.h>
 
-#include <assimp/Importer.hpp>
 #include <assimp/scene.h>
 #include <doctest/doctest.h>
 #include <fmt/format.h>
+#include <assimp/Importer.hpp>
 
 #include <cmath>
 #include <filesystem>
@@ -111,8 +111,8 @@ Eigen::Matrix4d world_of(const aiNode* n) {
 
 /// Triangles and vertices (in the link node's frame) of every mesh below `n` that belongs to
 /// this link (stops at child link nodes).
-void link_geometry(const aiScene* scene, const aiNode* n, const Eigen::Matrix4d& X, const std::set<const aiNode*>& links,
-                   std::size_t& triangles, BoundingBox& box) {
+void link_geometry(const aiScene* scene, const aiNode* n, const Eigen::Matrix4d& X,
+                   const std::set<const aiNode*>& links, std::size_t& triangles, BoundingBox& box) {
   for (unsigned i = 0; i < n->mNumMeshes; ++i) {
     const aiMesh* m = scene->mMeshes[n->mMeshes[i]];
     triangles += m->mNumFaces;
@@ -145,9 +145,11 @@ void check_round_trip(const fs::path& path) {
     for (const Link& l : model.links) names.insert(l.name);
     std::map<std::string, const aiNode*> link_nodes;
     const aiNode* model_node = scene->mRootNode;
-    if (model_node->mName != aiString(model.name) && model_node->mNumChildren == 1) model_node = model_node->mChildren[0];
+    if (model_node->mName != aiString(model.name) && model_node->mNumChildren == 1)
+      model_node = model_node->mChildren[0];
     REQUIRE(std::string(model_node->mName.C_Str()) == model.name);
-    for (unsigned i = 0; i < model_node->mNumChildren; ++i) collect_links(model_node->mChildren[i], names, true, link_nodes);
+    for (unsigned i = 0; i < model_node->mNumChildren; ++i)
+      collect_links(model_node->mChildren[i], names, true, link_nodes);
     std::set<const aiNode*> link_set;
     for (auto& [n, p] : link_nodes) link_set.insert(p);
 
@@ -177,8 +179,10 @@ void check_round_trip(const fs::path& path) {
       CHECK(box.empty() == ref.empty());
       if (!ref.empty() && !box.empty()) {
         const double tol = 1e-5 * std::max(1.0, (ref.max - ref.min).norm());
-        CHECK_MESSAGE((box.min - ref.min).cwiseAbs().maxCoeff() <= tol, box.min.transpose() << " vs " << ref.min.transpose());
-        CHECK_MESSAGE((box.max - ref.max).cwiseAbs().maxCoeff() <= tol, box.max.transpose() << " vs " << ref.max.transpose());
+        CHECK_MESSAGE((box.min - ref.min).cwiseAbs().maxCoeff() <= tol, box.min.transpose()
+                                                                            << " vs " << ref.min.transpose());
+        CHECK_MESSAGE((box.max - ref.max).cwiseAbs().maxCoeff() <= tol, box.max.transpose()
+                                                                            << " vs " << ref.max.transpose());
       }
     }
     CHECK(total_got == total_expected);
@@ -293,6 +297,13 @@ TEST_CASE("gltf: cameras face where Choreonoid's camera faces") {
   Json ldoc = json_of(e->main);
   const Json& eye = ldoc["cameras"].items()[0];
   CHECK(eye.find("perspective")->find("yfov")->number() == doctest::Approx(2 * std::atan(std::tan(M_PI / 6) * 2)));
+}
+
+TEST_CASE("gltf: optical_frame_rotation turns the camera as in Choreonoid (TankBody's Kinect looks forward)") {
+  const fs::path tank = kCorpus / "choreonoid" / "Tank" / "TankBody.body";
+  if (!fs::exists(tank)) return;
+  auto e = export_model(tank);
+  CHECK((camera_forward(e->main, "Kinect") - Eigen::Vector3d(1, 0, 0)).norm() < 1e-6);
 }
 
 TEST_CASE("gltf: a spot light shines along its direction with its cone angles") {
