@@ -13,7 +13,10 @@
 #include <fmt/format.h>
 #include <assimp/Importer.hpp>
 
+#include <sys/wait.h>
+
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -219,11 +222,54 @@ TEST_CASE("gltf: losses are reported at their source lines, once each") {
   CHECK(expected.size() == 6);
 }
 
-TEST_CASE("gltf: --strict makes losses errors") {
-  // The DiagnosticPolicy does the promotion (as for body2urdf); checked through the tool in
-  // validate_corpus.py's sibling ctest entry. Here: a clean model reports no loss at all.
+TEST_CASE("gltf: a model glTF can express fully reports no loss") {
   auto e = export_model(kData / "textured.body");
   for (const Diagnostic& d : e->sink.diagnostics()) CHECK_MESSAGE(d.rule_id != "export-loss", d.message);
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+int run(const std::string& command) {
+  const int status = std::system(command.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string quote(const fs::path& p) { return "'" + p.string() + "'"; }
+
+TEST_CASE("gltf: body2gltf exit codes, --strict, .gltf files and atomic output") {
+  const std::string tool = BODYFMT_BODY2GLTF;
+  const fs::path dir = fs::temp_directory_path() / "bodyfmt_gltf_cli";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  // 0: written, nothing lost; byte-identical on a second run; .gltf with its .bin and image.
+  const fs::path gltf = dir / "tex.gltf";
+  CHECK(run(tool + " " + quote(kData / "textured.body") + " -o " + quote(gltf) + " -q 2> /dev/null") == 0);
+  const std::string first = slurp(gltf), bin = slurp(dir / "tex.bin");
+  CHECK(!bin.empty());
+  CHECK(fs::exists(dir / "checker.png"));
+  CHECK(run(tool + " " + quote(kData / "textured.body") + " -o " + quote(gltf) + " -q 2> /dev/null") == 0);
+  CHECK(slurp(gltf) == first);
+  CHECK(slurp(dir / "tex.bin") == bin);
+  // 1: written with losses.
+  const fs::path lossy = dir / "losses.glb";
+  CHECK(run(tool + " " + quote(kData / "losses.body") + " -o " + quote(lossy) + " 2> /dev/null") == 1);
+  CHECK(slurp(lossy).compare(0, 4, "glTF") == 0);
+  // 2 with --strict: nothing written, the existing file kept.
+  { std::ofstream(lossy) << "old"; }
+  CHECK(run(tool + " " + quote(kData / "losses.body") + " -o " + quote(lossy) + " --strict 2> /dev/null") == 2);
+  CHECK(slurp(lossy) == "old");
+  // 2: an output that is neither .glb nor .gltf.
+  CHECK(run(tool + " " + quote(kData / "textured.body") + " -o " + quote(dir / "x.obj") + " 2> /dev/null") == 2);
+  CHECK(!fs::exists(dir / "x.obj"));
+  // --collision and --both together are a usage error.
+  CHECK(run(tool + " " + quote(kData / "textured.body") + " -o " + quote(dir / "y.glb") +
+            " --collision --both 2> /dev/null") == 2);
+  fs::remove_all(dir);
 }
 
 TEST_CASE("gltf: output is byte-identical across runs, GLB and .gltf") {
