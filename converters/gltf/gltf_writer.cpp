@@ -21,6 +21,7 @@
 #include <memory>
 #include <set>
 #include <sstream>
+#include <unordered_map>
 
 namespace bodyfmt::gltf {
 namespace {
@@ -74,7 +75,10 @@ class Writer {
       : model_(model), derived_(derived), options_(options), output_(output), sink_(sink) {}
   ~Writer() {
     // Nodes not yet owned by a scene (an early return) are freed here; the scene frees the rest.
-    if (!scene_ && root_) delete root_;
+    if (!scene_ && root_) {
+      attach_children();  // so that deleting the root frees every node
+      delete root_;
+    }
     if (!scene_) {
       for (aiMesh* m : meshes_) delete m;
     }
@@ -98,7 +102,9 @@ class Writer {
         static_cast<ai_real>(m(1, 2)), static_cast<ai_real>(m(1, 3)), static_cast<ai_real>(m(2, 0)),
         static_cast<ai_real>(m(2, 1)), static_cast<ai_real>(m(2, 2)), static_cast<ai_real>(m(2, 3)), 0, 0, 0, 1);
     tables_.nodes.push_back(std::move(table));
-    if (parent) parent->addChildren(1, &n);
+    // Children are attached once at the end (attach_children): aiNode::addChildren copies the
+    // whole child array on every call, quadratic for a link with 100k children.
+    if (parent) children_[parent].push_back(n);
     return n;
   }
   void loss(const SourceLocation& at, const std::string& what, const std::string& hint = {}) {
@@ -128,6 +134,19 @@ class Writer {
   std::map<std::string, int> texture_keys_;  ///< resolved path + wrap modes -> texture
   std::map<std::string, int> image_keys_;    ///< resolved path -> image
   std::set<std::string> image_names_;
+  std::unordered_map<aiNode*, std::vector<aiNode*>> children_;
+
+  void attach_children() {
+    for (auto& [parent, kids] : children_) {
+      parent->mNumChildren = static_cast<unsigned>(kids.size());
+      parent->mChildren = new aiNode*[kids.size()];
+      for (std::size_t i = 0; i < kids.size(); ++i) {
+        parent->mChildren[i] = kids[i];
+        kids[i]->mParent = parent;
+      }
+    }
+    children_.clear();
+  }
 };
 
 std::vector<Writer::Part> Writer::parts_of(const Shape& shape) {
@@ -524,6 +543,7 @@ bool Writer::run() {
     loss(ej.source, fmt::format("the {} extra joint between '{}' and '{}' (a closed loop)", ej.type, l1, l2));
   }
 
+  attach_children();
   scene_ = std::make_unique<aiScene>();
   scene_->mRootNode = root_;
   const std::size_t nmat = std::max<std::size_t>(1, tables_.materials.size());
