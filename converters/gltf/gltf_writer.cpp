@@ -1,0 +1,595 @@
+#include "gltf_writer.h"
+
+#include "gltf_finish.h"
+#include "json.h"
+
+#include <bodyfmt/converters/loss.h>
+#include <bodyfmt/converters/transforms.h>
+#include <bodyfmt/rules.h>
+#include <bodyfmt/tessellate.h>
+
+#include <assimp/scene.h>
+#include <assimp/version.h>
+#include <fmt/format.h>
+#include <assimp/Exporter.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <set>
+#include <sstream>
+#include <unordered_map>
+
+namespace bodyfmt::gltf {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr std::string_view kTarget = "glTF";
+constexpr double kPi = 3.14159265358979323846;
+/// Crease angle for tessellated primitives: smooth across the facets of a round surface
+/// (18 degrees apart at the default 20 divisions, up to 51 degrees at 7), sharp at box edges
+/// and cylinder caps (90 degrees), as Choreonoid shades them.
+constexpr double kPrimitiveCreaseAngle = 1.0;
+/// Largest texture file embedded (the loader's own file limit is larger; a texture this big
+/// is almost certainly a mistake and would bloat every GLB).
+constexpr std::uintmax_t kMaxTextureBytes = 64u << 20;
+
+Json vec3(const Eigen::Vector3d& v) {
+  Json a = Json::array();
+  for (int i = 0; i < 3; ++i) a.push_back(v[i]);
+  return a;
+}
+
+/// A limit as JSON: null where Choreonoid means unlimited (JSON has no infinity).
+Json limit(double v) { return std::abs(v) >= kUnlimited ? Json() : Json(v); }
+
+Json range(double lo, double hi) { return Json(Json::Array{limit(lo), limit(hi)}); }
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+double clamp01(double v) { return std::isfinite(v) ? std::clamp(v, 0.0, 1.0) : 0.0; }
+
+/// Crease angle of a shape's polygon geometry, or of a mesh resource; nullopt = keep the
+/// normals the mesh came with.
+std::optional<double> crease_angle_of(const Geometry& g) {
+  if (const auto* x = std::get_if<IndexedFaceSet>(&g)) return x->crease_angle;
+  if (const auto* x = std::get_if<TriangleMeshGeometry>(&g)) return x->crease_angle;
+  if (const auto* x = std::get_if<Extrusion>(&g)) return x->crease_angle;
+  if (const auto* x = std::get_if<ElevationGrid>(&g)) return x->crease_angle;
+  if (const auto* x = std::get_if<MeshResource>(&g)) return x->crease_angle;
+  return kPrimitiveCreaseAngle;
+}
+
+class Writer {
+ public:
+  Writer(const Model& model, const Derived& derived, const GltfOptions& options, converters::OutputSet& output,
+         DiagnosticSink& sink)
+      : model_(model), derived_(derived), options_(options), output_(output), sink_(sink) {}
+  ~Writer() {
+    // Nodes not yet owned by a scene (an early return) are freed here; the scene frees the rest.
+    if (!scene_ && root_) {
+      attach_children();  // so that deleting the root frees every node
+      delete root_;
+    }
+    if (!scene_) {
+      for (aiMesh* m : meshes_) delete m;
+    }
+  }
+
+  bool run();
+
+ private:
+  struct Part {
+    TriangleMesh mesh;
+    std::optional<Material> material;
+    std::optional<Texture> texture;
+  };
+
+  aiNode* node(aiNode* parent, NodeTable table) {
+    auto* n = new aiNode(fmt::format("{}{}", kMarker, tables_.nodes.size()));
+    const Eigen::Matrix4d& m = table.transform.matrix();
+    n->mTransformation = aiMatrix4x4(
+        static_cast<ai_real>(m(0, 0)), static_cast<ai_real>(m(0, 1)), static_cast<ai_real>(m(0, 2)),
+        static_cast<ai_real>(m(0, 3)), static_cast<ai_real>(m(1, 0)), static_cast<ai_real>(m(1, 1)),
+        static_cast<ai_real>(m(1, 2)), static_cast<ai_real>(m(1, 3)), static_cast<ai_real>(m(2, 0)),
+        static_cast<ai_real>(m(2, 1)), static_cast<ai_real>(m(2, 2)), static_cast<ai_real>(m(2, 3)), 0, 0, 0, 1);
+    tables_.nodes.push_back(std::move(table));
+    // Children are attached once at the end (attach_children): aiNode::addChildren copies the
+    // whole child array on every call, quadratic for a link with 100k children.
+    if (parent) children_[parent].push_back(n);
+    return n;
+  }
+  void loss(const SourceLocation& at, const std::string& what, const std::string& hint = {}) {
+    converters::report_loss(sink_, at, kTarget, what, hint);
+  }
+
+  void write_link(aiNode* parent, std::size_t index);
+  void write_geometry(aiNode* link_node, const Link& link, bool visual);
+  void write_shape(aiNode* parent, const Link& link, std::size_t s, const Eigen::Affine3d& X, bool report);
+  void write_devices(aiNode* link_node, std::size_t link_index);
+  unsigned add_mesh(const TriangleMesh& mesh, int material, const std::string& name);
+  int material_index(const Material& material, int texture);
+  int texture_index(const Texture& texture, const SourceLocation& at);
+  std::vector<Part> parts_of(const Shape& shape);
+
+  const Model& model_;
+  const Derived& derived_;
+  const GltfOptions& options_;
+  converters::OutputSet& output_;
+  DiagnosticSink& sink_;
+
+  SceneTables tables_;
+  aiNode* root_ = nullptr;
+  std::unique_ptr<aiScene> scene_;
+  std::vector<aiMesh*> meshes_;
+  std::map<std::string, int> material_keys_;
+  std::map<std::string, int> texture_keys_;  ///< resolved path + wrap modes -> texture
+  std::map<std::string, int> image_keys_;    ///< resolved path -> image
+  std::set<std::string> image_names_;
+  std::unordered_map<aiNode*, std::vector<aiNode*>> children_;
+
+  void attach_children() {
+    for (auto& [parent, kids] : children_) {
+      parent->mNumChildren = static_cast<unsigned>(kids.size());
+      parent->mChildren = new aiNode*[kids.size()];
+      for (std::size_t i = 0; i < kids.size(); ++i) {
+        parent->mChildren[i] = kids[i];
+        kids[i]->mParent = parent;
+      }
+    }
+    children_.clear();
+  }
+};
+
+std::vector<Writer::Part> Writer::parts_of(const Shape& shape) {
+  std::vector<Part> parts;
+  const auto* resource = std::get_if<MeshResource>(&shape.geometry);
+  if (resource && resource->mesh >= 0 && static_cast<std::size_t>(resource->mesh) < model_.meshes.size()) {
+    // Each part keeps its own material; the shape's appearance, where written, wins.
+    for (const MeshPart& part : model_.meshes[static_cast<std::size_t>(resource->mesh)].parts) {
+      Part p{part.mesh, part.material, part.texture};
+      if (shape.appearance.material) p.material = shape.appearance.material;
+      if (shape.appearance.texture) p.texture = shape.appearance.texture;
+      parts.push_back(std::move(p));
+    }
+  } else {
+    GeometryAlreadyReported filtered(sink_);
+    parts.push_back(
+        {compute_shape_local_mesh(model_, shape, filtered), shape.appearance.material, shape.appearance.texture});
+  }
+  const std::optional<double> crease = crease_angle_of(shape.geometry);
+  for (Part& p : parts) {
+    const bool has_normals = p.mesh.normals.size() == p.mesh.vertices.size() && !p.mesh.vertices.empty();
+    if (crease || !has_normals) p.mesh = with_vertex_normals(p.mesh, crease.value_or(0.0));
+  }
+  return parts;
+}
+
+int Writer::texture_index(const Texture& texture, const SourceLocation& at) {
+  const std::string ext = lower_extension(texture.resolved_path.empty() ? texture.uri : texture.resolved_path);
+  const bool png = ext == ".png", jpeg = ext == ".jpg" || ext == ".jpeg";
+  if (texture.resolved_path.empty() || !(png || jpeg)) {
+    loss(at, fmt::format("the texture '{}'", texture.uri),
+         texture.resolved_path.empty() ? "the file was not found" : "glTF embeds PNG and JPEG images only");
+    return -1;
+  }
+  const std::string key = fmt::format("{}\n{}{}", texture.resolved_path, int(texture.repeat_s), int(texture.repeat_t));
+  if (auto it = texture_keys_.find(key); it != texture_keys_.end()) return it->second;
+
+  int image = -1;
+  if (auto it = image_keys_.find(texture.resolved_path); it != image_keys_.end()) {
+    image = it->second;
+  } else {
+    std::error_code ec;
+    const auto size = fs::file_size(texture.resolved_path, ec);
+    std::ifstream in(texture.resolved_path, std::ios::binary);
+    if (ec || !in || size > kMaxTextureBytes) {
+      loss(at, fmt::format("the texture '{}'", texture.uri),
+           ec || !in ? "the file cannot be read" : "the file is larger than 64 MiB");
+      return -1;
+    }
+    std::ostringstream bytes;
+    bytes << in.rdbuf();
+    const std::string data = bytes.str();
+    const bool png_magic = data.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0;
+    const bool jpeg_magic = data.size() > 2 && data[0] == '\xFF' && data[1] == '\xD8';
+    if (!png_magic && !jpeg_magic) {
+      loss(at, fmt::format("the texture '{}'", texture.uri), "the file is neither PNG nor JPEG data");
+      return -1;
+    }
+    std::string name =
+        fmt::format("{}{}", fs::path(texture.resolved_path).stem().string(), png_magic ? ".png" : ".jpg");
+    for (int n = 2; image_names_.count(name); ++n)
+      name = fmt::format("{}_{}{}", fs::path(texture.resolved_path).stem().string(), n, png_magic ? ".png" : ".jpg");
+    image_names_.insert(name);
+    image = static_cast<int>(tables_.images.size());
+    tables_.images.push_back({name, png_magic ? "image/png" : "image/jpeg", data});
+    if (!options_.binary) output_.add(name, data);
+    image_keys_.emplace(texture.resolved_path, image);
+  }
+  Json sampler = Json::object();
+  sampler["magFilter"] = 9729;                          // LINEAR
+  sampler["minFilter"] = 9987;                          // LINEAR_MIPMAP_LINEAR
+  sampler["wrapS"] = texture.repeat_s ? 10497 : 33071;  // REPEAT : CLAMP_TO_EDGE
+  sampler["wrapT"] = texture.repeat_t ? 10497 : 33071;
+  tables_.samplers.push_back(std::move(sampler));
+  Json tex = Json::object();
+  tex["sampler"] = tables_.samplers.items().size() - 1;
+  tex["source"] = image;
+  tables_.textures.push_back(std::move(tex));
+  const int index = static_cast<int>(tables_.textures.items().size() - 1);
+  texture_keys_.emplace(key, index);
+  return index;
+}
+
+/// Phong (VRML97) -> PBR metallic-roughness; SUPPORT.md "Materials" gives the reasons.
+int Writer::material_index(const Material& m, int texture) {
+  Json pbr = Json::object();
+  pbr["baseColorFactor"] = Json(Json::Array{clamp01(m.diffuse_color.x()), clamp01(m.diffuse_color.y()),
+                                            clamp01(m.diffuse_color.z()), clamp01(1.0 - m.transparency)});
+  pbr["metallicFactor"] = 0.0;
+  const double n = std::max(0.0, m.specular_exponent);
+  pbr["roughnessFactor"] = clamp01(std::pow(2.0 / (n + 2.0), 0.25));
+  if (texture >= 0) pbr["baseColorTexture"]["index"] = texture;
+  Json mat = Json::object();
+  mat["pbrMetallicRoughness"] = std::move(pbr);
+  const Eigen::Vector3d e = m.emissive_color.unaryExpr([](double v) { return clamp01(v); });
+  if (!e.isZero(0)) mat["emissiveFactor"] = vec3(e);
+  if (m.transparency > 0) mat["alphaMode"] = "BLEND";
+  const std::string key = mat.dump();
+  if (auto it = material_keys_.find(key); it != material_keys_.end()) return it->second;
+  const int index = static_cast<int>(tables_.materials.size());
+  Json named = Json::object();
+  named["name"] = fmt::format("material{}", index);
+  for (auto& [k, v] : mat.members()) named[k] = v;
+  tables_.materials.push_back(std::move(named));
+  material_keys_.emplace(key, index);
+  return index;
+}
+
+unsigned Writer::add_mesh(const TriangleMesh& mesh, int material, const std::string& name) {
+  auto* m = new aiMesh();
+  m->mName = aiString(fmt::format("{}{}", kMarker, tables_.mesh_names.size()));
+  tables_.mesh_names.push_back(name);
+  m->mPrimitiveTypes = aiPrimitiveType_TRIANGLE;
+  m->mMaterialIndex = static_cast<unsigned>(material);
+  m->mNumVertices = static_cast<unsigned>(mesh.vertices.size());
+  m->mVertices = new aiVector3D[mesh.vertices.size()];
+  m->mNormals = new aiVector3D[mesh.vertices.size()];
+  const bool uv = mesh.tex_coords.size() == mesh.vertices.size();
+  if (uv) {
+    m->mTextureCoords[0] = new aiVector3D[mesh.vertices.size()];
+    m->mNumUVComponents[0] = 2;
+  }
+  for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
+    const Eigen::Vector3d& v = mesh.vertices[i];
+    m->mVertices[i] = aiVector3D(static_cast<ai_real>(v.x()), static_cast<ai_real>(v.y()), static_cast<ai_real>(v.z()));
+    const Eigen::Vector3d nrm = i < mesh.normals.size() ? mesh.normals[i].normalized() : Eigen::Vector3d::UnitZ();
+    m->mNormals[i] =
+        aiVector3D(static_cast<ai_real>(nrm.x()), static_cast<ai_real>(nrm.y()), static_cast<ai_real>(nrm.z()));
+    if (uv)
+      m->mTextureCoords[0][i] =
+          aiVector3D(static_cast<ai_real>(mesh.tex_coords[i].x()), static_cast<ai_real>(mesh.tex_coords[i].y()), 0);
+  }
+  m->mNumFaces = static_cast<unsigned>(mesh.triangles.size());
+  m->mFaces = new aiFace[mesh.triangles.size()];
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    aiFace& face = m->mFaces[f];
+    face.mNumIndices = 3;
+    face.mIndices = new unsigned[3];
+    for (int k = 0; k < 3; ++k)
+      face.mIndices[k] = static_cast<unsigned>(mesh.triangles[f][static_cast<std::size_t>(k)]);
+  }
+  meshes_.push_back(m);
+  return static_cast<unsigned>(meshes_.size() - 1);
+}
+
+void Writer::write_shape(aiNode* parent, const Link& link, std::size_t s, const Eigen::Affine3d& X, bool report) {
+  const Shape& shape = link.shapes[s];
+  const std::string name = shape.name.empty() ? fmt::format("{}/shape{}", link.name, s) : shape.name;
+  std::vector<Part> parts = parts_of(shape);
+  parts.erase(std::remove_if(parts.begin(), parts.end(), [](const Part& p) { return p.mesh.empty(); }), parts.end());
+  if (parts.empty()) {
+    if (report) loss(shape.source, fmt::format("an empty {} (nothing to draw)", geometry_type_name(shape.geometry)));
+    return;
+  }
+  NodeTable t;
+  t.name = name;
+  t.transform = X;
+  if (!converters::decompose(X.linear())) {
+    // A node must be translation, rotation and positive scale: shear and mirroring are baked
+    // into the vertices (normals by the inverse transpose, winding kept outward).
+    const Eigen::Matrix3d L = X.linear();
+    const Eigen::Matrix3d N = L.inverse().transpose();
+    const bool mirror = L.determinant() < 0;
+    for (Part& part : parts) {
+      for (auto& v : part.mesh.vertices) v = L * v;
+      for (auto& n : part.mesh.normals) n = (N * n).normalized();
+      if (mirror)
+        for (auto& tri : part.mesh.triangles) std::swap(tri[1], tri[2]);
+    }
+    t.transform = Eigen::Affine3d(Eigen::Translation3d(X.translation()));
+  }
+  aiNode* shape_node = node(parent, std::move(t));
+  std::vector<unsigned> mesh_indices;
+  for (std::size_t p = 0; p < parts.size(); ++p) {
+    Part& part = parts[p];
+    int texture = -1;
+    if (part.texture) {
+      if (part.mesh.tex_coords.size() == part.mesh.vertices.size()) {
+        // Report once per shape (the collision copy of --both would repeat it).
+        if (report)
+          texture = texture_index(*part.texture, shape.source);
+        else
+          texture = texture_keys_.count(fmt::format("{}\n{}{}", part.texture->resolved_path,
+                                                    int(part.texture->repeat_s), int(part.texture->repeat_t)))
+                        ? texture_keys_[fmt::format("{}\n{}{}", part.texture->resolved_path,
+                                                    int(part.texture->repeat_s), int(part.texture->repeat_t))]
+                        : -1;
+      } else if (report) {
+        loss(shape.source,
+             fmt::format("the texture '{}' on a {}", part.texture->uri, geometry_type_name(shape.geometry)),
+             "the geometry has no texture coordinates; the colour is kept");
+      }
+    }
+    const int material = material_index(part.material.value_or(Material{}), texture);
+    const std::string mesh_name = parts.size() == 1 ? name : fmt::format("{}/part{}", name, p);
+    mesh_indices.push_back(add_mesh(part.mesh, material, mesh_name));
+  }
+  // glTF allows one mesh per node: a single part goes on the shape node, several on children.
+  auto attach = [](aiNode* n, unsigned mesh) {
+    n->mNumMeshes = 1;
+    n->mMeshes = new unsigned[1]{mesh};
+  };
+  if (mesh_indices.size() == 1) {
+    attach(shape_node, mesh_indices[0]);
+  } else {
+    for (std::size_t p = 0; p < mesh_indices.size(); ++p) {
+      NodeTable pt;
+      pt.name = fmt::format("{}/part{}", name, p);
+      attach(node(shape_node, std::move(pt)), mesh_indices[p]);
+    }
+  }
+}
+
+void Writer::write_geometry(aiNode* link_node, const Link& link, bool visual) {
+  const bool both = options_.geometry == GeometrySet::kBoth;
+  aiNode* base = link_node;
+  if (both) {
+    NodeTable g;
+    g.name = fmt::format("{}/{}", link.name, visual ? "visual" : "collision");
+    g.extras = Json::object();
+    g.extras["geometry"] = visual ? "visual" : "collision";
+    if (!visual) g.extras["hidden"] = true;
+    base = node(link_node, std::move(g));
+  }
+  // The link's element tree: one node per frame, shapes under their innermost frame.
+  std::vector<aiNode*> frame_nodes;
+  std::vector<Eigen::Affine3d> frame_in_link;
+  for (std::size_t k = 0; k < link.frames.size(); ++k) {
+    const SceneFrame& f = link.frames[k];
+    const bool root = f.parent < 0 || static_cast<std::size_t>(f.parent) >= k;
+    NodeTable t;
+    t.name = fmt::format("{}/frame{}", link.name, k);
+    t.transform = f.X_PF;
+    frame_nodes.push_back(node(root ? base : frame_nodes[static_cast<std::size_t>(f.parent)], std::move(t)));
+    frame_in_link.push_back(root ? f.X_PF : frame_in_link[static_cast<std::size_t>(f.parent)] * f.X_PF);
+  }
+  for (std::size_t s = 0; s < link.shapes.size(); ++s) {
+    const Shape& shape = link.shapes[s];
+    if (!(visual ? shape.visual : shape.collision)) continue;
+    aiNode* parent = base;
+    Eigen::Affine3d X = shape.X_LS;
+    if (shape.frame >= 0 && static_cast<std::size_t>(shape.frame) < frame_nodes.size()) {
+      const Eigen::Affine3d& F = frame_in_link[static_cast<std::size_t>(shape.frame)];
+      if (std::abs(F.linear().determinant()) > 1e-12) {
+        parent = frame_nodes[static_cast<std::size_t>(shape.frame)];
+        X = F.inverse() * shape.X_LS;
+      }
+    }
+    const bool report = visual || !both || !shape.visual;
+    write_shape(parent, link, s, X, report);
+  }
+}
+
+void Writer::write_devices(aiNode* link_node, std::size_t link_index) {
+  for (std::size_t d = 0; d < model_.devices.size(); ++d) {
+    const Device& device = model_.devices[d];
+    if (device.link != static_cast<LinkIndex>(link_index)) continue;
+    NodeTable t;
+    t.name = device.name.empty() ? fmt::format("{}/{}{}", model_.links[link_index].name, device.type, d) : device.name;
+    t.transform = device.X_LD;
+    t.extras = Json::object();
+    t.extras["device_type"] = device.type;
+    if (device.id >= 0) t.extras["device_id"] = device.id;
+    if (!device.on) t.extras["on"] = false;
+    if (const auto* cam = std::get_if<CameraParams>(&device.params)) {
+      // The glTF camera looks along -Z with +Y up, as Choreonoid's "gl" optical frame.
+      Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+      if (cam->optical_frame == "cv") R = Eigen::Vector3d(1, -1, -1).asDiagonal();
+      if (cam->optical_frame == "robotics") R << 0, 0, -1, -1, 0, 0, 0, 1, 0;
+      t.transform = device.X_LD * Eigen::Affine3d(R * cam->optical_frame_rotation);
+      const double aspect = cam->height > 0 ? double(cam->width) / cam->height : 1.0;
+      // Choreonoid's field of view spans the shorter image side.
+      const double yfov = aspect >= 1 ? cam->field_of_view : 2 * std::atan(std::tan(cam->field_of_view / 2) / aspect);
+      const bool valid = cam->width > 0 && cam->height > 0 && yfov > 0 && yfov < kPi && cam->near_clip_distance > 0 &&
+                         cam->far_clip_distance > cam->near_clip_distance;
+      if (!valid) {
+        loss(device.source,
+             fmt::format("the camera '{}' (its size, field of view or clip distances are not a valid "
+                         "glTF perspective camera)",
+                         device.name),
+             "the node keeps its pose");
+      } else {
+        if (cam->lens_type != "NORMAL")
+          loss(device.source, fmt::format("the {} lens of camera '{}'", cam->lens_type, device.name),
+               "written as a perspective camera");
+        Json c = Json::object();
+        c["name"] = t.name;
+        c["type"] = "perspective";
+        c["perspective"]["aspectRatio"] = aspect;
+        c["perspective"]["yfov"] = yfov;
+        c["perspective"]["znear"] = cam->near_clip_distance;
+        c["perspective"]["zfar"] = cam->far_clip_distance;
+        t.camera = static_cast<int>(tables_.cameras.items().size());
+        tables_.cameras.push_back(std::move(c));
+        t.extras["resolution"] = Json(Json::Array{cam->width, cam->height});
+        t.extras["optical_frame"] = cam->optical_frame;
+      }
+    } else if (const auto* light = std::get_if<LightParams>(&device.params)) {
+      const bool spot = device.type == "SpotLight";
+      Json l = Json::object();
+      l["name"] = t.name;
+      l["type"] = spot ? "spot" : "point";
+      l["color"] = vec3(light->color.unaryExpr([](double v) { return clamp01(v); }));
+      l["intensity"] = std::max(0.0, light->intensity);
+      if (spot) {
+        // A KHR light shines along its node's -Z: turn -Z onto `direction`.
+        const Eigen::Vector3d dir = light->direction.normalized();
+        if (dir.allFinite()) {
+          const Eigen::Quaterniond q = Eigen::Quaterniond::FromTwoVectors(-Eigen::Vector3d::UnitZ(), dir);
+          t.transform = device.X_LD * Eigen::Affine3d(q.toRotationMatrix());
+        }
+        const double outer = std::clamp(light->cut_off_angle, 1e-6, kPi / 2);
+        const double inner = std::clamp(light->beam_width, 0.0, outer - 1e-6);
+        l["spot"]["innerConeAngle"] = inner;
+        l["spot"]["outerConeAngle"] = outer;
+        if (light->cut_off_exponent != 0 && light->beam_width < light->cut_off_angle)
+          t.extras["cut_off_exponent"] = light->cut_off_exponent;
+      }
+      loss(device.source,
+           fmt::format("the attenuation [{}, {}, {}] of light '{}'", light->attenuation.x(), light->attenuation.y(),
+                       light->attenuation.z(), device.name),
+           "KHR_lights_punctual lights fall off with the inverse square of the distance");
+      t.extras["attenuation"] = vec3(light->attenuation);
+      t.light = static_cast<int>(tables_.lights.items().size());
+      tables_.lights.push_back(std::move(l));
+    } else {
+      loss(device.source, fmt::format("the {} device '{}'", device.type, device.name),
+           "an empty node keeps its name and pose; extras give its type");
+    }
+    node(link_node, std::move(t));
+  }
+}
+
+void Writer::write_link(aiNode* parent, std::size_t index) {
+  const Link& link = model_.links[index];
+  NodeTable t;
+  t.name = link.name;
+  t.transform = link.X_PL;
+  Json& x = t.extras = Json::object();
+  x["joint_name"] = link.joint_name.empty() ? link.name : link.joint_name;
+  x["joint_type"] = std::string(joint_type_name(link.joint_type));
+  const bool moving = link.joint_type == JointType::kRevolute || link.joint_type == JointType::kPrismatic ||
+                      link.joint_type == JointType::kPseudoContinuousTrack;
+  if (moving) {
+    const Eigen::Vector3d axis = link.joint_axis.normalized();
+    x["joint_axis"] = vec3(axis.allFinite() ? axis : link.joint_axis);
+  }
+  if (link.joint_id >= 0) x["joint_id"] = link.joint_id;
+  if (link.joint_type == JointType::kRevolute || link.joint_type == JointType::kPrismatic) {
+    x["joint_range"] = range(link.joint_range_lower, link.joint_range_upper);
+    x["joint_velocity_range"] = range(link.velocity_lower, link.velocity_upper);
+  }
+  if (std::abs(link.effort_lower) < kUnlimited || std::abs(link.effort_upper) < kUnlimited)
+    x["joint_effort_range"] = range(link.effort_lower, link.effort_upper);
+  if (link.initial_displacement != 0) x["initial_joint_displacement"] = link.initial_displacement;
+  if (link.joint_axis_inertia != 0) x["joint_axis_inertia"] = link.joint_axis_inertia;
+  if (!link.actuation_mode.empty()) x["actuation_mode"] = link.actuation_mode;
+  if (!link.contact_material.empty()) x["contact_material"] = link.contact_material;
+  // Mass data, so that nothing of the link is silently dropped (glTF has no physics).
+  const MassProperties& mp = derived_.mass[index];
+  x["mass"] = mp.mass;
+  x["center_of_mass"] = vec3(mp.center_of_mass);
+  Json inertia = Json::array();
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) inertia.push_back(mp.inertia(r, c));
+  x["inertia"] = std::move(inertia);
+  if (link.joint_type == JointType::kPseudoContinuousTrack) {
+    loss(link.sources.joint_type.known() ? link.sources.joint_type : link.source,
+         fmt::format("the belt motion of the continuous track '{}'", link.name),
+         "the link and its shapes are kept; extras.joint_type says it is a track");
+  }
+  aiNode* n = node(parent, std::move(t));
+  if (options_.geometry != GeometrySet::kCollision) write_geometry(n, link, true);
+  if (options_.geometry != GeometrySet::kVisual) write_geometry(n, link, false);
+  write_devices(n, index);
+  for (LinkIndex child : link.children) write_link(n, static_cast<std::size_t>(child));
+}
+
+bool Writer::run() {
+  tables_.generator = fmt::format("bodyfmt {} body2gltf (assimp {}.{}.{} glTF2 exporter, post-processed)",
+                                  options_.version, aiGetVersionMajor(), aiGetVersionMinor(), aiGetVersionRevision());
+  // Body is Z-up, glTF Y-up: the model node turns +Z to +Y (and +Y to -Z).
+  NodeTable top;
+  top.name = model_.name.empty() ? "body" : model_.name;
+  top.transform.linear() << 1, 0, 0, 0, 0, 1, 0, -1, 0;
+  top.extras = Json::object();
+  top.extras["up_axis_converted_from"] = "Z";
+  root_ = node(nullptr, std::move(top));
+  if (!model_.links.empty()) write_link(root_, 0);
+
+  for (const ExtraJoint& ej : model_.extra_joints) {
+    const std::string l1 = ej.link1 >= 0 ? model_.links[static_cast<std::size_t>(ej.link1)].name : "?";
+    const std::string l2 = ej.link2 >= 0 ? model_.links[static_cast<std::size_t>(ej.link2)].name : "?";
+    loss(ej.source, fmt::format("the {} extra joint between '{}' and '{}' (a closed loop)", ej.type, l1, l2));
+  }
+
+  attach_children();
+  scene_ = std::make_unique<aiScene>();
+  scene_->mRootNode = root_;
+  const std::size_t nmat = std::max<std::size_t>(1, tables_.materials.size());
+  scene_->mNumMaterials = static_cast<unsigned>(nmat);
+  scene_->mMaterials = new aiMaterial*[nmat];
+  for (std::size_t i = 0; i < nmat; ++i) {
+    scene_->mMaterials[i] = new aiMaterial();
+    const aiString name(fmt::format("{}{}", kMarker, i));
+    scene_->mMaterials[i]->AddProperty(&name, AI_MATKEY_NAME);
+  }
+  scene_->mNumMeshes = static_cast<unsigned>(meshes_.size());
+  scene_->mMeshes = new aiMesh*[std::max<std::size_t>(1, meshes_.size())];
+  std::copy(meshes_.begin(), meshes_.end(), scene_->mMeshes);
+
+  Assimp::Exporter exporter;
+  const aiExportDataBlob* blob = exporter.ExportToBlob(scene_.get(), "glb2");
+  std::string error;
+  std::optional<FinishedGltf> done;
+  const std::string stem = output_.main_path().stem().string();
+  const std::string bin_name = (stem.empty() ? std::string("model") : stem) + ".bin";
+  if (!blob) {
+    error = exporter.GetErrorString();
+  } else {
+    done = finish_gltf(std::string_view(static_cast<const char*>(blob->data), blob->size), tables_,
+                       options_.binary ? std::string() : bin_name, &error);
+  }
+  if (!done) {
+    report_rule(sink_, "export-write", model_.source, "assimp's glTF2 export failed: " + error);
+    output_.fail();
+    return false;
+  }
+  if (options_.binary) {
+    output_.set_main(pack_glb(done->json, done->bin));
+  } else {
+    output_.set_main(done->json + "\n");
+    if (!done->bin.empty()) output_.add(bin_name, std::move(done->bin));
+  }
+  return true;
+}
+
+}  // namespace
+
+bool write_gltf(const Model& model, const Derived& derived, const GltfOptions& options, converters::OutputSet& output,
+                DiagnosticSink& sink) {
+  Writer writer(model, derived, options, output, sink);
+  return writer.run();
+}
+
+}  // namespace bodyfmt::gltf

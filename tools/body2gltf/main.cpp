@@ -1,0 +1,62 @@
+// body2gltf: writes a glTF 2.0 model (GLB, or .gltf + .bin + textures) for a Choreonoid .body
+// model. Exit codes (tools/common/front.h): 0 written with nothing lost; 1 written, with
+// losses or other findings reported; 2 not written (bad usage, the model cannot be loaded, a
+// fatal problem, or --strict losses).
+
+#include "front.h"
+#include "gltf_writer.h"
+
+#include <bodyfmt/converters/output_set.h>
+#include <bodyfmt/derived.h>
+
+#include <algorithm>
+#include <filesystem>
+
+int main(int argc, char** argv) {
+  using namespace bodyfmt;
+  tools::Front front("body2gltf", "Export a Choreonoid .body model to glTF 2.0 (.glb or .gltf)", {false, true});
+  std::string output;
+  bool collision = false, both = false;
+  CLI::App& app = front.app();
+  app.add_option("-o,--output", output, "the .glb (binary) or .gltf (JSON + .bin + textures) file to write")
+      ->required();
+  auto* c = app.add_flag("--collision", collision, "export the collision model instead of the visual one");
+  app.add_flag("--both", both, "export visual and collision models under separate nodes (collision hidden)")
+      ->excludes(c);
+  if (auto code = front.parse(argc, argv)) return *code;
+  std::string ext = std::filesystem::path(output).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+  if (ext != ".glb" && ext != ".gltf") {
+    front.print_error("-o must name a .glb or .gltf file: " + output);
+    return tools::kExitFatal;
+  }
+  gltf::GltfOptions options;
+  options.binary = ext == ".glb";
+  options.geometry = both        ? gltf::GeometrySet::kBoth
+                     : collision ? gltf::GeometrySet::kCollision
+                                 : gltf::GeometrySet::kVisual;
+  options.version = BODYFMT_VERSION;
+
+  const std::string& path = front.inputs().front();
+  auto policy = front.policy_for(path);
+  if (!policy) return tools::kExitFatal;
+  CollectingSink collected;
+  DiagnosticPolicy sink(collected, policy->options);  // --strict: export-loss is an error
+  bool written = false;
+  if (auto input = front.open_input(path, sink)) {
+    auto model = front.load(*input, sink);
+    if (model && front.may_write(collected.diagnostics())) {
+      const Derived derived = compute_derived(*model, sink);
+      converters::OutputSet out(output);
+      if (gltf::write_gltf(*model, derived, options, out, sink) && front.may_write(collected.diagnostics()))
+        written = out.commit(sink);
+    }
+  }
+  front.print(collected.diagnostics());
+  if (!written)
+    front.print_error(
+        output + " was not written" +
+        (front.may_write(collected.diagnostics()) ? "" : ": the model has errors (--best-effort writes it anyway)"));
+  return tools::exit_code(collected.diagnostics(), policy->exit, !written);
+}
