@@ -107,8 +107,9 @@ class Writer {
     if (parent) children_[parent].push_back(n);
     return n;
   }
-  void loss(const SourceLocation& at, const std::string& what, const std::string& hint = {}) {
-    converters::report_loss(sink_, at, kTarget, what, hint);
+  void loss(converters::LossKind kind, const SourceLocation& at, const std::string& what,
+            const std::string& hint = {}) {
+    converters::report_loss(sink_, at, kTarget, kind, what, hint);
   }
 
   void write_link(aiNode* parent, std::size_t index);
@@ -177,7 +178,7 @@ int Writer::texture_index(const Texture& texture, const SourceLocation& at) {
   const std::string ext = lower_extension(texture.resolved_path.empty() ? texture.uri : texture.resolved_path);
   const bool png = ext == ".png", jpeg = ext == ".jpg" || ext == ".jpeg";
   if (texture.resolved_path.empty() || !(png || jpeg)) {
-    loss(at, fmt::format("the texture '{}'", texture.uri),
+    loss(converters::LossKind::kTextures, at, fmt::format("the texture '{}'", texture.uri),
          texture.resolved_path.empty() ? "the file was not found" : "glTF embeds PNG and JPEG images only");
     return -1;
   }
@@ -192,7 +193,7 @@ int Writer::texture_index(const Texture& texture, const SourceLocation& at) {
     const auto size = fs::file_size(texture.resolved_path, ec);
     std::ifstream in(texture.resolved_path, std::ios::binary);
     if (ec || !in || size > kMaxTextureBytes) {
-      loss(at, fmt::format("the texture '{}'", texture.uri),
+      loss(converters::LossKind::kTextures, at, fmt::format("the texture '{}'", texture.uri),
            ec || !in ? "the file cannot be read" : "the file is larger than 64 MiB");
       return -1;
     }
@@ -202,7 +203,8 @@ int Writer::texture_index(const Texture& texture, const SourceLocation& at) {
     const bool png_magic = data.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0;
     const bool jpeg_magic = data.size() > 2 && data[0] == '\xFF' && data[1] == '\xD8';
     if (!png_magic && !jpeg_magic) {
-      loss(at, fmt::format("the texture '{}'", texture.uri), "the file is neither PNG nor JPEG data");
+      loss(converters::LossKind::kTextures, at, fmt::format("the texture '{}'", texture.uri),
+           "the file is neither PNG nor JPEG data");
       return -1;
     }
     std::string name =
@@ -298,7 +300,9 @@ void Writer::write_shape(aiNode* parent, const Link& link, std::size_t s, const 
   std::vector<Part> parts = parts_of(shape);
   parts.erase(std::remove_if(parts.begin(), parts.end(), [](const Part& p) { return p.mesh.empty(); }), parts.end());
   if (parts.empty()) {
-    if (report) loss(shape.source, fmt::format("an empty {} (nothing to draw)", geometry_type_name(shape.geometry)));
+    if (report)
+      loss(converters::LossKind::kGeometry, shape.source,
+           fmt::format("an empty {} (nothing to draw)", geometry_type_name(shape.geometry)));
     return;
   }
   NodeTable t;
@@ -335,7 +339,7 @@ void Writer::write_shape(aiNode* parent, const Link& link, std::size_t s, const 
                                                     int(part.texture->repeat_s), int(part.texture->repeat_t))]
                         : -1;
       } else if (report) {
-        loss(shape.source,
+        loss(converters::LossKind::kTextures, shape.source,
              fmt::format("the texture '{}' on a {}", part.texture->uri, geometry_type_name(shape.geometry)),
              "the geometry has no texture coordinates; the colour is kept");
       }
@@ -423,14 +427,15 @@ void Writer::write_devices(aiNode* link_node, std::size_t link_index) {
       const bool valid = cam->width > 0 && cam->height > 0 && yfov > 0 && yfov < kPi && cam->near_clip_distance > 0 &&
                          cam->far_clip_distance > cam->near_clip_distance;
       if (!valid) {
-        loss(device.source,
+        loss(converters::LossKind::kDevices, device.source,
              fmt::format("the camera '{}' (its size, field of view or clip distances are not a valid "
                          "glTF perspective camera)",
                          device.name),
              "the node keeps its pose");
       } else {
         if (cam->lens_type != "NORMAL")
-          loss(device.source, fmt::format("the {} lens of camera '{}'", cam->lens_type, device.name),
+          loss(converters::LossKind::kDevices, device.source,
+               fmt::format("the {} lens of camera '{}'", cam->lens_type, device.name),
                "written as a perspective camera");
         Json c = Json::object();
         c["name"] = t.name;
@@ -465,7 +470,7 @@ void Writer::write_devices(aiNode* link_node, std::size_t link_index) {
         if (light->cut_off_exponent != 0 && light->beam_width < light->cut_off_angle)
           t.extras["cut_off_exponent"] = light->cut_off_exponent;
       }
-      loss(device.source,
+      loss(converters::LossKind::kDevices, device.source,
            fmt::format("the attenuation [{}, {}, {}] of light '{}'", light->attenuation.x(), light->attenuation.y(),
                        light->attenuation.z(), device.name),
            "KHR_lights_punctual lights fall off with the inverse square of the distance");
@@ -473,7 +478,7 @@ void Writer::write_devices(aiNode* link_node, std::size_t link_index) {
       t.light = static_cast<int>(tables_.lights.items().size());
       tables_.lights.push_back(std::move(l));
     } else {
-      loss(device.source, fmt::format("the {} device '{}'", device.type, device.name),
+      loss(converters::LossKind::kDevices, device.source, fmt::format("the {} device '{}'", device.type, device.name),
            "an empty node keeps its name and pose; extras give its type");
     }
     node(link_node, std::move(t));
@@ -514,7 +519,7 @@ void Writer::write_link(aiNode* parent, std::size_t index) {
     for (int c = 0; c < 3; ++c) inertia.push_back(mp.inertia(r, c));
   x["inertia"] = std::move(inertia);
   if (link.joint_type == JointType::kPseudoContinuousTrack) {
-    loss(link.sources.joint_type.known() ? link.sources.joint_type : link.source,
+    loss(converters::LossKind::kTracks, link.sources.joint_type.known() ? link.sources.joint_type : link.source,
          fmt::format("the belt motion of the continuous track '{}'", link.name),
          "the link and its shapes are kept; extras.joint_type says it is a track");
   }
@@ -540,7 +545,8 @@ bool Writer::run() {
   for (const ExtraJoint& ej : model_.extra_joints) {
     const std::string l1 = ej.link1 >= 0 ? model_.links[static_cast<std::size_t>(ej.link1)].name : "?";
     const std::string l2 = ej.link2 >= 0 ? model_.links[static_cast<std::size_t>(ej.link2)].name : "?";
-    loss(ej.source, fmt::format("the {} extra joint between '{}' and '{}' (a closed loop)", ej.type, l1, l2));
+    loss(converters::LossKind::kExtraJoints, ej.source,
+         fmt::format("the {} extra joint between '{}' and '{}' (a closed loop)", ej.type, l1, l2));
   }
 
   attach_children();

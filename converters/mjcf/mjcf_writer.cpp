@@ -142,8 +142,9 @@ class Writer {
   void comment(XMLElement* parent, const std::string& text) {
     parent->InsertEndChild(doc_.NewComment((" " + converters::xml_comment_text(text) + " ").c_str()));
   }
-  void loss(XMLElement* parent, const SourceLocation& at, const std::string& what, const std::string& hint = {}) {
-    converters::report_loss(sink_, at, kTarget, what, hint);
+  void loss(converters::LossKind kind, XMLElement* parent, const SourceLocation& at, const std::string& what,
+            const std::string& hint = {}) {
+    converters::report_loss(sink_, at, kTarget, kind, what, hint);
     comment(parent, "export-loss: " + what);
   }
   void fatal(std::string_view rule, const SourceLocation& at, std::string message) {
@@ -349,7 +350,7 @@ void Writer::write_joint(XMLElement* body, std::size_t index) {
       const Eigen::Vector3d axis = norm > 0 ? Eigen::Vector3d(link.joint_axis / norm) : link.joint_axis;
       const std::string name = unique(numeric_names_, "track_axis:" + link.name);
       track_axes_.emplace_back(name, vec3(axis));
-      loss(body, joint_at,
+      loss(converters::LossKind::kTracks, body, joint_at,
            fmt::format("the pseudo_continuous_track of '{}': MuJoCo 2.2.2 has no surface velocity (the body is "
                        "welded; its axis {} is kept as <custom><numeric name=\"{}\">)",
                        link.name, vec3(axis), name),
@@ -373,7 +374,7 @@ void Writer::write_joint(XMLElement* body, std::size_t index) {
   } else {
     j->SetAttribute("limited", "false");
     if (lo_finite || hi_finite) {
-      loss(body, first_known({&link.sources.joint_range, &link.source}),
+      loss(converters::LossKind::kJoints, body, first_known({&link.sources.joint_range, &link.source}),
            fmt::format("the one-sided range [{}, {}] of '{}' (MuJoCo limits need both bounds; written unlimited)",
                        lo_finite ? format_number(lo) : "-inf", hi_finite ? format_number(hi) : "inf", link.name));
     }
@@ -385,7 +386,7 @@ void Writer::write_joint(XMLElement* body, std::size_t index) {
   if (velocity_limited && options_.actuators != Actuators::kVelocity) lost.push_back("velocity");
   if (effort_limited && options_.actuators == Actuators::kNone) lost.push_back("effort");
   if (!lost.empty()) {
-    loss(body, first_known({&link.sources.joint_velocity, &link.source}),
+    loss(converters::LossKind::kJoints, body, first_known({&link.sources.joint_velocity, &link.source}),
          fmt::format("the {} limits of '{}' (MuJoCo joints have none)", fmt::join(lost, " and "), link.name),
          lost.size() == 2 || lost[0] == "velocity" ? "--actuators velocity writes them as control and force ranges"
                                                    : "--actuators writes it as a force range");
@@ -470,14 +471,15 @@ std::vector<Piece> Writer::pieces(XMLElement* body, const Link& link, std::size_
   const auto sr = decompose(shape.X_LS.linear());
   auto tessellated = [&](bool report_scale) {
     if (report_scale) {
-      loss(body, shape.source,
+      loss(converters::LossKind::kGeometry, body, shape.source,
            fmt::format("a non-uniformly scaled {} as a primitive", geometry_type_name(shape.geometry)),
            "written as a tessellated mesh");
     }
     GeometryAlreadyReported filtered(sink_);
     TriangleMesh mesh = compute_shape_local_mesh(model_, shape, filtered);
     if (mesh.empty()) {
-      loss(body, shape.source, fmt::format("an empty {} (nothing to draw)", geometry_type_name(shape.geometry)));
+      loss(converters::LossKind::kGeometry, body, shape.source,
+           fmt::format("an empty {} (nothing to draw)", geometry_type_name(shape.geometry)));
       return;
     }
     add_mesh_piece(out, shape_key, stem, mesh, shape.X_LS, material);
@@ -503,7 +505,7 @@ std::vector<Piece> Writer::pieces(XMLElement* body, const Link& link, std::size_
       // MuJoCo refuses zero sizes; a flat box (Choreonoid's stand-in for a plane) gets a
       // thickness no contact can tell apart.
       half = half.cwiseMax(kFlatBoxHalfThickness);
-      loss(body, shape.source,
+      loss(converters::LossKind::kGeometry, body, shape.source,
            fmt::format("a box with a zero edge (written with edges {})", vec3(Eigen::Vector3d(2 * half))),
            "MuJoCo geoms need positive sizes");
     }
@@ -528,7 +530,8 @@ std::vector<Piece> Writer::pieces(XMLElement* body, const Link& link, std::size_
   } else if (const auto* cyl = std::get_if<Cylinder>(&shape.geometry)) {
     if (sr && nearly_equal(sr->scale.x(), sr->scale.z())) {
       if (!cyl->top || !cyl->bottom)
-        loss(body, shape.source, "a cylinder without its top or bottom cap", "MuJoCo cylinders are closed");
+        loss(converters::LossKind::kGeometry, body, shape.source, "a cylinder without its top or bottom cap",
+             "MuJoCo cylinders are closed");
       const double r = cyl->radius * sr->scale.x();
       const double half = cyl->height * sr->scale.y() / 2;
       primitive(
@@ -556,13 +559,16 @@ std::vector<Piece> Writer::pieces(XMLElement* body, const Link& link, std::size_
   } else if (const auto* res = std::get_if<MeshResource>(&shape.geometry)) {
     if (res->mesh < 0 || static_cast<std::size_t>(res->mesh) >= model_.meshes.size() ||
         model_.meshes[static_cast<std::size_t>(res->mesh)].parts.empty()) {
-      loss(body, shape.source, fmt::format("mesh '{}', which could not be loaded; the shape is left out", res->uri));
+      loss(converters::LossKind::kGeometry, body, shape.source,
+           fmt::format("mesh '{}', which could not be loaded; the shape is left out", res->uri));
       return out;
     }
     const MeshAsset& asset = model_.meshes[static_cast<std::size_t>(res->mesh)];
     bool textured = false;
     for (const MeshPart& part : asset.parts) textured = textured || part.texture.has_value();
-    if (textured) loss(body, shape.source, fmt::format("the texture of mesh '{}'", res->uri), "colours are kept");
+    if (textured)
+      loss(converters::LossKind::kTextures, body, shape.source, fmt::format("the texture of mesh '{}'", res->uri),
+           "colours are kept");
     // Every part is written as its own STL (MuJoCo 2.2.2 reads no DAE and no colours from
     // files), so each keeps its own material.
     const std::string asset_stem = fs::path(asset.path).stem().string() + (asset.node.empty() ? "" : "_" + asset.node);
@@ -585,13 +591,14 @@ void Writer::write_shapes(XMLElement* body, std::size_t index) {
   for (std::size_t s = 0; s < link.shapes.size(); ++s) {
     const Shape& shape = link.shapes[s];
     if (shape.appearance.texture)
-      loss(body, shape.source, fmt::format("the texture '{}'", shape.appearance.texture->uri), "colours are kept");
+      loss(converters::LossKind::kTextures, body, shape.source,
+           fmt::format("the texture '{}'", shape.appearance.texture->uri), "colours are kept");
     if (!shape.visual && !shape.collision) continue;
     for (Piece& piece : pieces(body, link, index, s, shape)) {
       // body-format-spec §7.3: under Visual visual only, under Collision collision only, under
       // neither both. Visual geoms: group 2, no contact, no mass; collision geoms: group 3.
       if (shape.collision && !piece.collidable) {
-        loss(body, shape.source,
+        loss(converters::LossKind::kGeometry, body, shape.source,
              fmt::format("the collision geometry of a flat or degenerate {} (MuJoCo collides with convex hulls, "
                          "which need a volume; only its visual geom is written)",
                          geometry_type_name(shape.geometry)));
@@ -637,7 +644,7 @@ void Writer::sensor(const Device& device, const char* kind, const std::string& n
       e->SetAttribute("cutoff", format_number(max.x()).c_str());
     } else {
       const Eigen::Vector3d shown = max.unaryExpr([](double v) { return converters::finite_or_stand_in(v); });
-      loss(body, device.source,
+      loss(converters::LossKind::kDevices, body, device.source,
            fmt::format("the per-axis limits {} of {} sensor '{}' (MuJoCo's cutoff is one bound; not written)",
                        vec3(shown), kind, name));
     }
@@ -673,7 +680,7 @@ void Writer::write_devices(XMLElement* body, std::size_t index) {
       if (camera->width < camera->height && camera->height > 0)
         fovy = 2 * std::atan(std::tan(camera->field_of_view / 2) * camera->height / camera->width);
       c->SetAttribute("fovy", format_number(radians_to_degrees(fovy)).c_str());
-      loss(body, device.source,
+      loss(converters::LossKind::kDevices, body, device.source,
            fmt::format("the resolution {}x{}, frame rate, clip distances{} of camera '{}' (MuJoCo 2.2.2 cameras have "
                        "none)",
                        camera->width, camera->height,
@@ -695,7 +702,9 @@ void Writer::write_devices(XMLElement* body, std::size_t index) {
       l->SetAttribute("cutoff", format_number(spot ? radians_to_degrees(light->cut_off_angle) : 180.0).c_str());
       if (spot) l->SetAttribute("exponent", format_number(light->cut_off_exponent).c_str());
       if (!device.on) l->SetAttribute("active", "false");
-      if (spot) loss(body, device.source, fmt::format("the beam width of spot light '{}'", label));
+      if (spot)
+        loss(converters::LossKind::kDevices, body, device.source,
+             fmt::format("the beam width of spot light '{}'", label));
     } else if (const auto* force = std::get_if<ForceSensorParams>(&device.params)) {
       const std::string s = site(body, device, d);
       sensor(device, "force", s + "_force", s, force->max_force, body);
@@ -708,7 +717,7 @@ void Writer::write_devices(XMLElement* body, std::size_t index) {
       if (imu || device.type == "AccelerationSensor")
         sensor(device, "accelerometer", imu ? s + "_accelerometer" : s, s, inertial->max_acceleration, body);
     } else {
-      loss(body, device.source, fmt::format("device '{}' ({})", label, device.type));
+      loss(converters::LossKind::kDevices, body, device.source, fmt::format("device '{}' ({})", label, device.type));
     }
   }
 }
@@ -726,7 +735,8 @@ void Writer::write_equalities() {
     const std::string& l2 = model_.links[i2].name;
     const std::string what = fmt::format("the {} extra joint between '{}' and '{}'", ej.type, l1, l2);
     if (ej.type == "piston") {
-      loss(mujoco_, ej.source, what + " (MuJoCo has no equality constraint for it)");
+      loss(converters::LossKind::kExtraJoints, mujoco_, ej.source,
+           what + " (MuJoCo has no equality constraint for it)");
       continue;
     }
     // MuJoCo 2.2.2 takes body2's side of a connect from the initial configuration (qpos0), so
@@ -747,7 +757,7 @@ void Writer::write_equalities() {
       const Eigen::Vector3d axis = (ej.X_1J.linear() * ej.axis).normalized();
       anchors.push_back(ej.X_1J.translation() + kHingePointSpacing * axis);
     } else if (ej.type != "ball") {
-      loss(mujoco_, ej.source, what);
+      loss(converters::LossKind::kExtraJoints, mujoco_, ej.source, what);
       continue;
     }
     for (const Eigen::Vector3d& a : anchors) {
@@ -757,7 +767,7 @@ void Writer::write_equalities() {
       c->SetAttribute("anchor", vec3(a).c_str());
     }
     if (gap > 1e-9) {
-      loss(mujoco_, ej.source,
+      loss(converters::LossKind::kExtraJoints, mujoco_, ej.source,
            fmt::format("{} as given: its two points are {} m apart at the initial pose, and MuJoCo 2.2.2 takes the "
                        "point on '{}' from there",
                        what, format_number(gap), l2));
@@ -898,9 +908,11 @@ bool Writer::run() {
     write_inertial(body, i);
     write_shapes(body, i);
     if (!link.contact_material.empty() && link.contact_material != "default")
-      loss(body, link.source, fmt::format("the contact material '{}'", link.contact_material));
+      loss(converters::LossKind::kDynamics, body, link.source,
+           fmt::format("the contact material '{}'", link.contact_material));
     if (!link.actuation_mode.empty() && link.joint_type != JointType::kPseudoContinuousTrack)
-      loss(body, link.source, fmt::format("the actuation mode '{}'", link.actuation_mode),
+      loss(converters::LossKind::kDynamics, body, link.source,
+           fmt::format("the actuation mode '{}'", link.actuation_mode),
            "--actuators adds position or velocity actuators");
     write_devices(body, i);
   }

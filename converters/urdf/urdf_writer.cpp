@@ -66,8 +66,9 @@ class Writer {
   void comment(XMLElement* parent, const std::string& text) {
     parent->InsertEndChild(doc_.NewComment((" " + converters::xml_comment_text(text) + " ").c_str()));
   }
-  void loss(XMLElement* parent, const SourceLocation& at, const std::string& what, const std::string& hint = {}) {
-    converters::report_loss(sink_, at, kTarget, what, hint);
+  void loss(converters::LossKind kind, XMLElement* parent, const SourceLocation& at, const std::string& what,
+            const std::string& hint = {}) {
+    converters::report_loss(sink_, at, kTarget, kind, what, hint);
     comment(parent, "export-loss: " + what);
   }
   /// Reports a rule whose table severity is fatal and marks the export failed.
@@ -222,14 +223,15 @@ std::vector<Piece> Writer::pieces(XMLElement* link_el, const Link& link, std::si
   const auto sr = decompose(shape.X_LS.linear());
   auto tessellated = [&](bool report_scale) {
     if (report_scale) {
-      loss(link_el, shape.source,
+      loss(converters::LossKind::kGeometry, link_el, shape.source,
            fmt::format("a non-uniformly scaled {} as a primitive", geometry_type_name(shape.geometry)),
            "written as a tessellated mesh");
     }
     GeometryAlreadyReported filtered(sink_);
     TriangleMesh mesh = compute_shape_local_mesh(model_, shape, filtered);
     if (mesh.empty()) {
-      loss(link_el, shape.source, fmt::format("an empty {} (nothing to draw)", geometry_type_name(shape.geometry)));
+      loss(converters::LossKind::kGeometry, link_el, shape.source,
+           fmt::format("an empty {} (nothing to draw)", geometry_type_name(shape.geometry)));
       return;
     }
     add_mesh_pieces(out, shape_key, stem, mesh, shape.X_LS, material);
@@ -258,7 +260,8 @@ std::vector<Piece> Writer::pieces(XMLElement* link_el, const Link& link, std::si
   } else if (const auto* cyl = std::get_if<Cylinder>(&shape.geometry)) {
     if (sr && nearly_equal(sr->scale.x(), sr->scale.z())) {
       if (!cyl->top || !cyl->bottom) {
-        loss(link_el, shape.source, "a cylinder without its top or bottom cap", "URDF cylinders are closed");
+        loss(converters::LossKind::kGeometry, link_el, shape.source, "a cylinder without its top or bottom cap",
+             "URDF cylinders are closed");
       }
       const double r = cyl->radius * sr->scale.x();
       const double h = cyl->height * sr->scale.y();
@@ -277,7 +280,8 @@ std::vector<Piece> Writer::pieces(XMLElement* link_el, const Link& link, std::si
   } else if (const auto* res = std::get_if<MeshResource>(&shape.geometry)) {
     if (res->mesh < 0 || static_cast<std::size_t>(res->mesh) >= model_.meshes.size() ||
         model_.meshes[static_cast<std::size_t>(res->mesh)].parts.empty()) {
-      loss(link_el, shape.source, fmt::format("mesh '{}', which could not be loaded; the shape is left out", res->uri));
+      loss(converters::LossKind::kGeometry, link_el, shape.source,
+           fmt::format("mesh '{}', which could not be loaded; the shape is left out", res->uri));
       return out;
     }
     const MeshAsset& asset = model_.meshes[static_cast<std::size_t>(res->mesh)];
@@ -287,7 +291,9 @@ std::vector<Piece> Writer::pieces(XMLElement* link_el, const Link& link, std::si
     const bool copy = options_.copy_meshes || !options_.package_uri.empty();
     bool textured = false;
     for (const MeshPart& part : asset.parts) textured = textured || part.texture.has_value();
-    if (textured) loss(link_el, shape.source, fmt::format("the texture of mesh '{}'", res->uri), "colours are kept");
+    if (textured)
+      loss(converters::LossKind::kTextures, link_el, shape.source, fmt::format("the texture of mesh '{}'", res->uri),
+           "colours are kept");
     if (usable_as_is && sr) {
       std::string target;
       if (copy) {
@@ -330,10 +336,12 @@ void Writer::write_shapes(XMLElement* link_el, std::size_t link_index) {
   for (std::size_t s = 0; s < link.shapes.size(); ++s) {
     const Shape& shape = link.shapes[s];
     if (shape.appearance.texture) {
-      loss(link_el, shape.source, fmt::format("the texture '{}'", shape.appearance.texture->uri), "colours are kept");
+      loss(converters::LossKind::kTextures, link_el, shape.source,
+           fmt::format("the texture '{}'", shape.appearance.texture->uri), "colours are kept");
     }
     if (shape.appearance.material && !shape.appearance.material->emissive_color.isZero(0)) {
-      loss(link_el, shape.source, "an emissive colour", "URDF materials have one rgba colour");
+      loss(converters::LossKind::kMaterials, link_el, shape.source, "an emissive colour",
+           "URDF materials have one rgba colour");
     }
     if (!shape.visual && !shape.collision) continue;
     for (Piece& piece : pieces(link_el, link, link_index, s, shape)) {
@@ -360,7 +368,7 @@ void Writer::write_devices(XMLElement* link_el, std::size_t link_index) {
     if (device.link != static_cast<LinkIndex>(link_index)) continue;
     const std::string label = device.name.empty() ? device.type : device.name;
     if (!options_.devices_as_frames) {
-      loss(link_el, device.source, fmt::format("device '{}' ({})", label, device.type),
+      loss(converters::LossKind::kDevices, link_el, device.source, fmt::format("device '{}' ({})", label, device.type),
            "--devices-as-frames writes it as a fixed child link");
       continue;
     }
@@ -401,12 +409,12 @@ void Writer::write_joint(std::size_t index, const std::string& joint_name) {
       break;
     case JointType::kPseudoContinuousTrack:
       comment(j, fmt::format("pseudo_continuous_track axis {}", format_vector(link.joint_axis)));
-      loss(j, link.sources.joint_type.known() ? link.sources.joint_type : link.source,
+      loss(converters::LossKind::kTracks, j, link.sources.joint_type.known() ? link.sources.joint_type : link.source,
            fmt::format("the pseudo_continuous_track of '{}' (a fixed joint is written; axis {})", link.name,
                        format_vector(link.joint_axis)));
       break;
     case JointType::kFree:
-      loss(j, link.sources.joint_type.known() ? link.sources.joint_type : link.source,
+      loss(converters::LossKind::kJoints, j, link.sources.joint_type.known() ? link.sources.joint_type : link.source,
            fmt::format("the free joint of the non-root link '{}' (a fixed joint is written)", link.name));
       break;
     case JointType::kFixed: break;
@@ -423,7 +431,7 @@ void Writer::write_joint(std::size_t index, const std::string& joint_name) {
   auto symmetric = [&](double lo, double hi, const char* what, const SourceLocation& at) {
     if (lo == -hi) return finite_or_stand_in(hi);
     const double bound = std::min(std::abs(lo), std::abs(hi));
-    loss(j, at.known() ? at : link.source,
+    loss(converters::LossKind::kJoints, j, at.known() ? at : link.source,
          fmt::format("the asymmetric {} range [{}, {}] of '{}' (written as {})", what, format_number(lo),
                      format_number(hi), joint_name, format_number(finite_or_stand_in(bound))));
     return finite_or_stand_in(bound);
@@ -438,11 +446,11 @@ void Writer::write_joint(std::size_t index, const std::string& joint_name) {
   limit->SetAttribute("effort", format_number(effort).c_str());
   limit->SetAttribute("velocity", format_number(velocity).c_str());
   if (link.joint_axis_inertia != 0) {
-    loss(j, link.source,
+    loss(converters::LossKind::kDynamics, j, link.source,
          fmt::format("the rotor inertia {} of '{}'", format_number(link.joint_axis_inertia), joint_name));
   }
   if (link.initial_displacement != 0) {
-    loss(j, link.source,
+    loss(converters::LossKind::kDynamics, j, link.source,
          fmt::format("the initial displacement {} of '{}'", format_number(link.initial_displacement), joint_name));
   }
 }
@@ -489,20 +497,24 @@ bool Writer::run() {
     link_el->SetAttribute("name", link.name.c_str());
     if (i == 0 && !options_.floating_base) {
       if (!link.X_PL.isApprox(Eigen::Isometry3d::Identity(), 0)) {
-        loss(link_el, link.sources.translation.known() ? link.sources.translation : link.source,
-             "the root link's initial pose", "--floating-base writes it as the origin of a joint to a 'world' link");
+        loss(converters::LossKind::kDynamics, link_el,
+             link.sources.translation.known() ? link.sources.translation : link.source, "the root link's initial pose",
+             "--floating-base writes it as the origin of a joint to a 'world' link");
       }
       if (link.joint_type != JointType::kFree && link.joint_type != JointType::kFixed) {
-        loss(link_el, link.source, fmt::format("a {} joint on the root link", joint_type_name(link.joint_type)));
+        loss(converters::LossKind::kJoints, link_el, link.source,
+             fmt::format("a {} joint on the root link", joint_type_name(link.joint_type)));
       }
     }
     write_inertial(link_el, i);
     write_shapes(link_el, i);
     if (!link.contact_material.empty() && link.contact_material != "default") {
-      loss(link_el, link.source, fmt::format("the contact material '{}'", link.contact_material));
+      loss(converters::LossKind::kDynamics, link_el, link.source,
+           fmt::format("the contact material '{}'", link.contact_material));
     }
     if (!link.actuation_mode.empty() && link.joint_type != JointType::kPseudoContinuousTrack) {
-      loss(link_el, link.source, fmt::format("the actuation mode '{}'", link.actuation_mode));
+      loss(converters::LossKind::kDynamics, link_el, link.source,
+           fmt::format("the actuation mode '{}'", link.actuation_mode));
     }
     write_devices(link_el, i);
   }
@@ -534,7 +546,8 @@ bool Writer::run() {
   for (const ExtraJoint& ej : model_.extra_joints) {
     const std::string l1 = ej.link1 >= 0 ? model_.links[static_cast<std::size_t>(ej.link1)].name : "?";
     const std::string l2 = ej.link2 >= 0 ? model_.links[static_cast<std::size_t>(ej.link2)].name : "?";
-    loss(robot_, ej.source, fmt::format("the {} extra joint between '{}' and '{}' (a closed loop)", ej.type, l1, l2));
+    loss(converters::LossKind::kExtraJoints, robot_, ej.source,
+         fmt::format("the {} extra joint between '{}' and '{}' (a closed loop)", ej.type, l1, l2));
   }
 
   // Named materials go first, where every reader finds them before their use.

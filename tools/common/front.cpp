@@ -20,7 +20,12 @@ namespace bodyfmt::tools {
 
 bool is_finding(const Diagnostic& d, const ExitPolicy& policy) {
   if (d.severity >= policy.fail_level) return true;
-  return policy.export_warnings_fail && d.severity >= Severity::kWarning && d.rule_id.rfind("export-", 0) == 0;
+  if (!policy.export_warnings_fail || d.severity < Severity::kWarning || d.rule_id.rfind("export-", 0) != 0)
+    return false;
+  const bool allowed =
+      d.rule_id == "export-loss" &&
+      std::find(policy.allowed_losses.begin(), policy.allowed_losses.end(), d.category) != policy.allowed_losses.end();
+  return !allowed;
 }
 
 int exit_code(const std::vector<Diagnostic>& diagnostics, const ExitPolicy& policy, bool fatal) {
@@ -116,6 +121,13 @@ Front::Front(std::string tool_name, std::string description, Features features)
   app_.add_flag("--no-config", no_config_, "ignore .bodycheck.yaml files")->group(policy);
   if (features_.exporter) {
     app_.add_flag("--strict", strict_, "treat every export loss as an error: nothing is written")->group(policy);
+    app_.add_option("--allow-loss", allowed_losses_,
+                    "kinds of loss to accept: still reported, but the exit code stays 0 when only these were lost ("
+                    "comma-separated: tracks, closed-loops, devices, textures, materials, geometry, joints, dynamics)")
+        ->delimiter(',')
+        ->check(CLI::IsMember(
+            {"tracks", "closed-loops", "devices", "textures", "materials", "geometry", "joints", "dynamics"}))
+        ->group(policy);
     app_.add_flag("--best-effort", best_effort_,
                   "write the output even when the model has errors (the exit code stays 1)")
         ->group(policy);
@@ -206,6 +218,7 @@ std::optional<Front::FilePolicy> Front::policy_for(const std::string& file) {
   else if (config && config->fail_on)
     policy.exit.fail_level = *config->fail_on;
   policy.exit.export_warnings_fail = features_.exporter;
+  policy.exit.allowed_losses = allowed_losses_;
   return policy;
 }
 

@@ -33,6 +33,8 @@ struct ExitPolicy {
   Severity fail_level = Severity::kError;  ///< --fail-on / .bodycheck.yaml
   /// Exporters: any `export-*` finding at warning or above (a lossy or renamed export) fails.
   bool export_warnings_fail = false;
+  /// Exporters: kinds of `export-loss` accepted (--allow-loss): reported, but not failing.
+  std::vector<std::string> allowed_losses;
 };
 
 /// True when `d` counts as a finding under `policy`.
@@ -119,6 +121,7 @@ class Front {
   bool no_config_ = false;
   bool strict_ = false;
   bool best_effort_ = false;
+  std::vector<std::string> allowed_losses_;
   std::string color_ = "auto";
   CLI::Option* fail_on_option_ = nullptr;
   CLI::Option* werror_option_ = nullptr;

@@ -62,6 +62,9 @@ struct Diagnostic {
   SourceLocation location;
   std::optional<SourceLocation> via;  ///< alias use site when the value came through *anchor
   std::string fix_hint;
+  /// A finer kind within the rule, where the rule has kinds (an export loss's: "tracks",
+  /// "devices", ...; see converters/common/loss.h); empty otherwise.
+  std::string category;
 };
 
 /// Receives diagnostics. Implementations must not throw.

@@ -191,3 +191,29 @@ TEST_CASE("front: usage errors and unreadable inputs exit 2, in every tool") {
     CHECK(contains(directory.output, "\"configured\" is a directory, not a .body file [io-read]"));
   }
 }
+
+TEST_CASE("front: --allow-loss accepts the named kinds of loss, still reported, and only those") {
+  const std::string tank = std::string(BODYFMT_EXAMPLES_DIR) + "/simpletank.body";
+  const std::string arm = std::string(BODYFMT_EXAMPLES_DIR) + "/arm.body";
+  const fs::path out = fs::temp_directory_path() / "bodyfmt_front_test";
+  struct Case {
+    std::string binary, model, output, all_kinds, some_kinds;
+  };
+  // The kinds each export loses, as the tools print them ("loss kind: ...").
+  const std::vector<Case> cases = {
+      {BODYFMT_BODY2URDF, tank, (out / "allow.urdf").string(), "devices,dynamics,materials,tracks", "devices,tracks"},
+      {BODYFMT_BODY2GLTF, tank, (out / "allow.glb").string(), "devices,tracks", "tracks"},
+      {BODYFMT_BODY2MJCF, arm, (out / "allow.xml").string(), "devices,joints", "joints"},
+  };
+  for (const Case& c : cases) {
+    CAPTURE(c.binary);
+    const std::string base = "'" + c.binary + "' '" + c.model + "' -o '" + c.output + "' ";
+    const Run lossy = run(base);
+    CHECK(lossy.status == 1);
+    const Run allowed = run(base + "--allow-loss " + c.all_kinds);
+    CHECK(allowed.status == 0);
+    CHECK(contains(allowed.output, "[export-loss]"));  // still reported
+    CHECK(run(base + "--allow-loss " + c.some_kinds).status == 1);
+    CHECK(run(base + "--allow-loss trakcs").status == 2);
+  }
+}

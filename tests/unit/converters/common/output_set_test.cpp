@@ -87,7 +87,7 @@ TEST_CASE("converters: after fail() commit writes nothing") {
 
 TEST_CASE("converters: report_loss emits export-loss at the given location") {
   CollectingSink sink;
-  report_loss(sink, SourceLocation{"a.body", 12, 7}, "URDF", "a texture", "colours are kept");
+  report_loss(sink, SourceLocation{"a.body", 12, 7}, "URDF", LossKind::kTextures, "a texture", "colours are kept");
   REQUIRE(sink.diagnostics().size() == 1);
   const Diagnostic& d = sink.diagnostics()[0];
   CHECK(d.rule_id == "export-loss");
