@@ -88,6 +88,7 @@ Front::Front(std::string tool_name, std::string description, Features features)
 
   const std::string loading = "Loading";
   app_.add_option("--package-path", package_paths_, "a folder holding ROS packages for package:// URIs (repeatable)")
+      ->allow_extra_args(false)
       ->group(loading);
   app_.add_flag("--no-meshes", no_meshes_, "do not import external mesh files")->group(loading);
   app_.add_option("--max-yaml-nodes", load_options_.max_expanded_yaml_nodes,
@@ -124,6 +125,7 @@ Front::Front(std::string tool_name, std::string description, Features features)
     app_.add_option("--allow-loss", allowed_losses_,
                     "kinds of loss to accept: still reported, but the exit code stays 0 when only these were lost ("
                     "comma-separated: tracks, closed-loops, devices, textures, materials, geometry, joints, dynamics)")
+        ->allow_extra_args(false)
         ->delimiter(',')
         ->check(CLI::IsMember(
             {"tracks", "closed-loops", "devices", "textures", "materials", "geometry", "joints", "dynamics"}))

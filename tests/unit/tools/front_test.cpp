@@ -179,6 +179,16 @@ TEST_CASE("front: --color always paints like GCC; never, and NO_COLOR with auto,
   }
 }
 
+TEST_CASE("front: list options before the model take one value each, in every tool") {
+  for (const Tool& tool : tools()) {
+    CAPTURE(tool.name);
+    const Run r =
+        run("'" + tool.binary + "' --package-path /tmp --disable yaml-duplicate-key warning.body " + tool.extra);
+    CHECK(r.status == 0);
+    CHECK(!contains(r.output, "yaml-duplicate-key"));
+  }
+}
+
 TEST_CASE("front: usage errors and unreadable inputs exit 2, in every tool") {
   for (const Tool& tool : tools()) {
     CAPTURE(tool.name);
@@ -212,6 +222,9 @@ TEST_CASE("front: --allow-loss accepts the named kinds of loss, still reported, 
     CHECK(lossy.status == 1);
     const Run allowed = run(base + "--allow-loss " + c.all_kinds);
     CHECK(allowed.status == 0);
+    // Before the model, too: the option takes one list, not the model file after it.
+    CHECK(run("'" + c.binary + "' --allow-loss " + c.all_kinds + " '" + c.model + "' -o '" + c.output + "'").status ==
+          0);
     CHECK(contains(allowed.output, "[export-loss]"));  // still reported
     CHECK(run(base + "--allow-loss " + c.some_kinds).status == 1);
     CHECK(run(base + "--allow-loss trakcs").status == 2);
