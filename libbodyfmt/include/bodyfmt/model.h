@@ -92,7 +92,8 @@ struct MeshResource {
   double length_scale = 1.0;  ///< metadata length_unit: 0.001 for millimeter, 0.0254 for inch
   bool y_up = false;          ///< metadata upper_axis: Y
   std::optional<double> crease_angle;
-  MeshIndex mesh = -1;  ///< Model::meshes entry once imported
+  MeshIndex mesh = -1;        ///< Model::meshes entry once imported
+  SourceLocation uri_source;  ///< the `uri:` value, where problems with the file are reported
 };
 
 using Geometry = std::variant<Box, Sphere, Cylinder, Cone, Capsule, Extrusion, ElevationGrid, IndexedFaceSet,

@@ -132,7 +132,9 @@ void BodyReader::import_meshes(Model& model) {
       import_options.max_file_bytes = options_.max_file_bytes;
       if (auto it = selected_nodes.find(mesh->resolved_path); it != selected_nodes.end())
         import_options.detached_nodes = it->second;
-      auto asset = session_.meshes.get(mesh->resolved_path, import_options, ctx_.sink, shape.source);
+      // Problems with the file point at the `uri:` value that names it.
+      const SourceLocation& where = mesh->uri_source.known() ? mesh->uri_source : shape.source;
+      auto asset = session_.meshes.get(mesh->resolved_path, import_options, ctx_.sink, where);
       MeshIndex index = -1;
       if (asset) {
         index = static_cast<MeshIndex>(model.meshes.size());

@@ -231,6 +231,7 @@ Geometry read_resource_geometry(LoadContext& ctx, MappingReader& r) {
     ctx.report("load-missing-key", r.node(), "key \"uri\" is not found in a Resource geometry");
   } else if (auto text = required_string(ctx, uri)) {
     mesh.uri = *text;
+    mesh.uri_source = uri.use_site();
     mesh.resolved_path = resolve_uri(ctx, uri, mesh.uri, uri->location.file);
   }
   if (auto node = r.take({"node", "fragment"})) mesh.node = required_string(ctx, node).value_or("");

@@ -68,6 +68,7 @@ class Resources final : public ResourceReader {
     shape.source = node.use_site();
     MeshResource mesh;
     mesh.uri = uri->scalar;
+    mesh.uri_source = uri.use_site();
     mesh.resolved_path = path;
     if (fragment) mesh.node = fragment->scalar;
     if (metadata) read_mesh_metadata(ctx_, metadata, mesh);

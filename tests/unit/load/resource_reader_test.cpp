@@ -150,7 +150,8 @@ TEST_CASE("load: file:// URIs and a missing mesh file name the resolved path") {
   CHECK(std::get<bodyfmt::MeshResource>(a.shapes[0].geometry).mesh >= 0);
   auto d = r.take("mesh-file-missing");
   CHECK(d.message.find("missing/part.stl") != std::string::npos);
-  CHECK(d.location.line == 8);  // the Resource node that refers to it
+  CHECK(d.location.line == 9);  // the uri: value that names it, not the Resource node on line 8
+  CHECK(d.location.column == 14);
 }
 
 TEST_CASE("load: ContinuousTrack expands into a chain of links") {

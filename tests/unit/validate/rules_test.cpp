@@ -252,7 +252,7 @@ TEST_CASE("validate: geometry-unknown-type (loader)") {
 // ---- Resources
 
 TEST_CASE("validate: mesh-file-missing (loader)") {
-  expect_finding("mesh-file-missing.body", "mesh-file-missing", {10, 9});
+  expect_finding("mesh-file-missing.body", "mesh-file-missing", {11, 42});  // the uri: value
 }
 TEST_CASE("validate: resource-absolute-path") {
   expect_finding("resource-absolute-path.body", "resource-absolute-path", {14, 9}, {"mesh-file-missing"});
