@@ -18,6 +18,7 @@ cmake --build "$build"
 # The package test links an outside project against the installed library, which would need
 # the sanitizer runtime flags too; the first build runs it.
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+export LSAN_OPTIONS=suppressions=$PWD/tests/fuzz/lsan.supp
 export BODYFMT_TIME_SCALE=6  # sanitized tools are several times slower (tests/hostile/run_case.py)
 ctest --test-dir "$build" --output-on-failure -j2 -E '^package\.find_package$'
 
