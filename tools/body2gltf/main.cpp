@@ -3,6 +3,7 @@
 // losses or other findings reported; 2 not written (bad usage, the model cannot be loaded, a
 // fatal problem, or --strict losses).
 
+#include "export_run.h"
 #include "front.h"
 #include "gltf_writer.h"
 
@@ -10,7 +11,6 @@
 #include <bodyfmt/derived.h>
 
 #include <algorithm>
-#include <filesystem>
 
 int main(int argc, char** argv) {
   using namespace bodyfmt;
@@ -38,25 +38,8 @@ int main(int argc, char** argv) {
                                  : gltf::GeometrySet::kVisual;
   options.version = BODYFMT_VERSION;
 
-  const std::string& path = front.inputs().front();
-  auto policy = front.policy_for(path);
-  if (!policy) return tools::kExitFatal;
-  CollectingSink collected;
-  DiagnosticPolicy sink(collected, policy->options);  // --strict: export-loss is an error
-  bool written = false;
-  if (auto input = front.open_input(path, sink)) {
-    auto model = front.load(*input, sink);
-    if (model && front.may_write(collected.diagnostics())) {
-      const Derived derived = compute_derived(*model, sink);
-      converters::OutputSet out(output);
-      if (gltf::write_gltf(*model, derived, options, out, sink) && front.may_write(collected.diagnostics()))
-        written = out.commit(sink);
-    }
-  }
-  front.print(collected.diagnostics());
-  if (!written)
-    front.print_error(
-        output + " was not written" +
-        (front.may_write(collected.diagnostics()) ? "" : ": the model has errors (--best-effort writes it anyway)"));
-  return tools::exit_code(collected.diagnostics(), policy->exit, !written);
+  return tools::run_export(
+      front, output, [&](const Model& model, const Derived& derived, converters::OutputSet& out, DiagnosticSink& sink) {
+        return gltf::write_gltf(model, derived, options, out, sink);
+      });
 }

@@ -3,6 +3,7 @@
 // other findings reported; 2 not written (bad usage, the model cannot be loaded, an inertia
 // MuJoCo refuses without --balance-inertia, a fatal problem, or --strict losses).
 
+#include "export_run.h"
 #include "front.h"
 #include "mjcf_writer.h"
 
@@ -10,7 +11,6 @@
 #include <bodyfmt/derived.h>
 
 #include <algorithm>
-#include <filesystem>
 
 int main(int argc, char** argv) {
   using namespace bodyfmt;
@@ -26,44 +26,24 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"none", "position", "velocity"}));
   app.add_option("--mesh-folder", options.mesh_folder,
                  "folder for meshes, relative to the MJCF file (inside its folder; the compiler's meshdir)")
-      ->check(
-          [](const std::string& folder) -> std::string {
-            const std::filesystem::path path(folder);
-            bool inside = !folder.empty() && path.is_relative();
-            for (const auto& part : path) inside = inside && part != "..";
-            return inside ? std::string() : "the mesh folder must be a relative path inside the MJCF file's folder";
-          },
-          "FOLDER");
+      ->check(tools::check_inside_output_folder, "FOLDER");
   if (auto code = front.parse(argc, argv)) return *code;
   options.actuators = actuators == "position"   ? mjcf::Actuators::kPosition
                       : actuators == "velocity" ? mjcf::Actuators::kVelocity
                                                 : mjcf::Actuators::kNone;
 
-  const std::string& path = front.inputs().front();
-  auto policy = front.policy_for(path);
-  if (!policy) return tools::kExitFatal;
-  CollectingSink collected;
-  DiagnosticPolicy sink(collected, policy->options);  // --strict: export-loss is an error
-  bool written = false;
-  if (auto input = front.open_input(path, sink)) {
-    auto model = front.load(*input, sink);
-    if (model && front.may_write(collected.diagnostics())) {
-      const Derived derived = compute_derived(*model, sink);
-      converters::OutputSet out(output);
-      // --strict losses, a refused inertia and export errors stop the write.
-      if (mjcf::write_mjcf(*model, derived, options, out, sink) && front.may_write(collected.diagnostics()))
-        written = out.commit(sink);
-    }
-  }
-  const bool refused_inertia = std::any_of(
-      collected.diagnostics().begin(), collected.diagnostics().end(),
-      [](const Diagnostic& d) { return d.severity >= Severity::kError && d.rule_id.rfind("inertia-", 0) == 0; });
-  front.print(collected.diagnostics());
-  if (!written)
-    front.print_error(output + " was not written" +
-                      (refused_inertia ? ": MuJoCo refuses an inertia (--balance-inertia writes the nearest valid one)"
-                       : front.may_write(collected.diagnostics())
-                           ? ""
-                           : ": the model has errors (--best-effort writes it anyway)"));
-  return tools::exit_code(collected.diagnostics(), policy->exit, !written);
+  return tools::run_export(
+      front, output,
+      [&](const Model& model, const Derived& derived, converters::OutputSet& out, DiagnosticSink& sink) {
+        return mjcf::write_mjcf(model, derived, options, out, sink);
+      },
+      [](const std::vector<Diagnostic>& diagnostics) {
+        // A refused inertia has its own remedy.
+        const bool refused_inertia = std::any_of(diagnostics.begin(), diagnostics.end(), [](const Diagnostic& d) {
+          return d.severity >= Severity::kError && d.rule_id.rfind("inertia-", 0) == 0;
+        });
+        return refused_inertia
+                   ? std::string("MuJoCo refuses an inertia (--balance-inertia writes the nearest valid one)")
+                   : std::string();
+      });
 }

@@ -3,13 +3,12 @@
 // other findings reported; 2 not written (bad usage, the model cannot be loaded, a fatal
 // problem, or --strict losses).
 
+#include "export_run.h"
 #include "front.h"
 #include "urdf_writer.h"
 
 #include <bodyfmt/converters/output_set.h>
 #include <bodyfmt/derived.h>
-
-#include <filesystem>
 
 int main(int argc, char** argv) {
   using namespace bodyfmt;
@@ -24,14 +23,7 @@ int main(int argc, char** argv) {
                "copy external mesh files next to the URDF instead of referencing them");
   app.add_option("--package-uri", options.package_uri, "prefix mesh URIs with package://NAME/ (meshes are copied)");
   app.add_option("--mesh-folder", options.mesh_folder, "folder for meshes, relative to the URDF (inside its folder)")
-      ->check(
-          [](const std::string& folder) -> std::string {
-            const std::filesystem::path path(folder);
-            bool inside = !folder.empty() && path.is_relative();
-            for (const auto& part : path) inside = inside && part != "..";
-            return inside ? std::string() : "the mesh folder must be a relative path inside the URDF's folder";
-          },
-          "FOLDER");
+      ->check(tools::check_inside_output_folder, "FOLDER");
   app.add_flag("--floating-base", options.floating_base,
                "add a 'world' link and a floating joint at the root's initial pose");
   app.add_flag("--devices-as-frames", options.devices_as_frames, "write devices as fixed child links");
@@ -39,26 +31,8 @@ int main(int argc, char** argv) {
   options.mesh_format = mesh_format == "dae" ? converters::MeshFormat::kDae : converters::MeshFormat::kStl;
   if (!options.package_uri.empty() && options.package_uri.back() != '/') options.package_uri += '/';
 
-  const std::string& path = front.inputs().front();
-  auto policy = front.policy_for(path);
-  if (!policy) return tools::kExitFatal;
-  CollectingSink collected;
-  DiagnosticPolicy sink(collected, policy->options);  // --strict: export-loss is an error
-  bool written = false;
-  if (auto input = front.open_input(path, sink)) {
-    auto model = front.load(*input, sink);
-    if (model && front.may_write(collected.diagnostics())) {
-      const Derived derived = compute_derived(*model, sink);
-      converters::OutputSet out(output);
-      // --strict losses and export errors stop the write, as loader errors did above.
-      if (urdf::write_urdf(*model, derived, options, out, sink) && front.may_write(collected.diagnostics()))
-        written = out.commit(sink);
-    }
-  }
-  front.print(collected.diagnostics());
-  if (!written)
-    front.print_error(
-        output + " was not written" +
-        (front.may_write(collected.diagnostics()) ? "" : ": the model has errors (--best-effort writes it anyway)"));
-  return tools::exit_code(collected.diagnostics(), policy->exit, !written);
+  return tools::run_export(
+      front, output, [&](const Model& model, const Derived& derived, converters::OutputSet& out, DiagnosticSink& sink) {
+        return urdf::write_urdf(model, derived, options, out, sink);
+      });
 }

@@ -1,0 +1,40 @@
+#include "export_run.h"
+
+#include <filesystem>
+
+namespace bodyfmt::tools {
+
+int run_export(Front& front, const std::string& output, const ExportWriter& write, const RefusalReason& refusal) {
+  const std::string& path = front.inputs().front();
+  auto policy = front.policy_for(path);
+  if (!policy) return kExitFatal;
+  CollectingSink collected;
+  DiagnosticPolicy sink(collected, policy->options);  // --strict: export-loss is an error
+  bool written = false;
+  if (auto input = front.open_input(path, sink)) {
+    auto model = front.load(*input, sink);
+    if (model && front.may_write(collected.diagnostics())) {
+      const Derived derived = compute_derived(*model, sink);
+      converters::OutputSet out(output);
+      // --strict losses and export errors stop the write, as loader errors did above.
+      if (write(*model, derived, out, sink) && front.may_write(collected.diagnostics())) written = out.commit(sink);
+    }
+  }
+  const std::vector<Diagnostic>& diagnostics = collected.diagnostics();
+  front.print(diagnostics);
+  if (!written) {
+    std::string why = refusal ? refusal(diagnostics) : std::string();
+    if (why.empty() && !front.may_write(diagnostics)) why = "the model has errors (--best-effort writes it anyway)";
+    front.print_error(output + " was not written" + (why.empty() ? "" : ": " + why));
+  }
+  return exit_code(diagnostics, policy->exit, !written);
+}
+
+std::string check_inside_output_folder(const std::string& folder) {
+  const std::filesystem::path path(folder);
+  bool inside = !folder.empty() && path.is_relative();
+  for (const auto& part : path) inside = inside && part != "..";
+  return inside ? std::string() : "the mesh folder must be a relative path inside the output file's folder";
+}
+
+}  // namespace bodyfmt::tools
