@@ -8,6 +8,8 @@
 
 #include <doctest/doctest.h>
 
+#include "support/export_helpers.h"
+
 #include <unistd.h>
 
 #include <filesystem>
@@ -20,19 +22,8 @@ using namespace bodyfmt::converters;
 
 namespace {
 
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("bodyfmt_conv_" + std::to_string(::getpid()) + "_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::string read(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using bodyfmt::test::fresh_dir;
+using bodyfmt::test::read;
 
 int count_entries(const fs::path& dir) {
   int n = 0;

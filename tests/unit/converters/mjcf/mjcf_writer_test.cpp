@@ -8,8 +8,10 @@
 #include <bodyfmt/load.h>
 
 #include <doctest/doctest.h>
+
 #include <fmt/format.h>
 #include <mujoco/mujoco.h>
+#include "support/export_helpers.h"
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -28,23 +30,14 @@ using bodyfmt::mjcf::MjcfOptions;
 
 namespace {
 
+using bodyfmt::test::fresh_dir;
+using bodyfmt::test::marked_lines;
+using bodyfmt::test::read;
+using bodyfmt::test::reported_lines;
+
 const fs::path kData = fs::path(BODYFMT_TEST_DATA_DIR) / "mjcf";
 const fs::path kCorpus = fs::path(BODYFMT_SHARED_DIR) / "corpus" / "choreonoid";
 const fs::path kSimpleTank = fs::path(BODYFMT_EXAMPLES_DIR) / "simpletank.body";
-
-std::string read(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("bodyfmt_mjcf_" + std::to_string(::getpid()) + "_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
 
 int run(const std::string& command) {
   const int status = std::system(command.c_str());
@@ -193,23 +186,6 @@ bool finite_state(const mjModel* m, const mjData* d) {
   for (int i = 0; i < m->nv; ++i)
     if (!std::isfinite(d->qvel[i])) return false;
   return true;
-}
-
-std::vector<int> marked_lines(const fs::path& file, const std::string& marker) {
-  std::vector<int> lines;
-  std::istringstream in(read(file));
-  std::string line;
-  for (int n = 1; std::getline(in, line); ++n)
-    if (line.find(marker) != std::string::npos && line.find('#') != 0) lines.push_back(n);
-  return lines;
-}
-
-std::vector<int> reported_lines(const std::vector<Diagnostic>& diagnostics, const std::string& rule) {
-  std::vector<int> lines;
-  for (const auto& d : diagnostics)
-    if (d.rule_id == rule) lines.push_back(d.location.line);
-  std::sort(lines.begin(), lines.end());
-  return lines;
 }
 
 const Diagnostic* find(const std::vector<Diagnostic>& diagnostics, const std::string& rule) {

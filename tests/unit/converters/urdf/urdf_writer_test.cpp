@@ -5,8 +5,10 @@
 #include <bodyfmt/load.h>
 
 #include <doctest/doctest.h>
+
 #include <tinyxml2.h>
 #include <urdf_parser/urdf_parser.h>
+#include "support/export_helpers.h"
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -25,6 +27,11 @@ using bodyfmt::urdf::UrdfOptions;
 
 namespace {
 
+using bodyfmt::test::fresh_dir;
+using bodyfmt::test::marked_lines;
+using bodyfmt::test::read;
+using bodyfmt::test::reported_lines;
+
 const fs::path kData = fs::path(BODYFMT_TEST_DATA_DIR) / "urdf";
 const fs::path kCorpus = fs::path(BODYFMT_SHARED_DIR) / "corpus" / "choreonoid";
 
@@ -36,20 +43,6 @@ std::vector<fs::path> corpus_bodies() {
   }
   std::sort(out.begin(), out.end());
   return out;
-}
-
-std::string read(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("bodyfmt_urdf_" + std::to_string(::getpid()) + "_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
 }
 
 struct Export {
@@ -192,25 +185,6 @@ std::string round_trip_problem(const Model& model, const Derived& derived, const
     }
   }
   return "";
-}
-
-std::vector<int> marked_lines(const fs::path& file, const std::string& marker) {
-  std::vector<int> lines;
-  std::istringstream in(read(file));
-  std::string line;
-  for (int n = 1; std::getline(in, line); ++n) {
-    if (line.find(marker) != std::string::npos && line.find('#') != 0) lines.push_back(n);
-  }
-  return lines;
-}
-
-std::vector<int> reported_lines(const std::vector<Diagnostic>& diagnostics, const std::string& rule) {
-  std::vector<int> lines;
-  for (const auto& d : diagnostics) {
-    if (d.rule_id == rule) lines.push_back(d.location.line);
-  }
-  std::sort(lines.begin(), lines.end());
-  return lines;
 }
 
 std::size_t count_children(tinyxml2::XMLDocument& doc, const std::string& link, const char* kind) {
