@@ -1,5 +1,7 @@
 #include "json.h"
 
+#include "text/text_util.h"
+
 #include <fmt/format.h>
 
 #include <cmath>
@@ -42,26 +44,9 @@ void Json::push_back(Json value) {
 
 namespace {
 
-void dump_string(std::string& out, const std::string& s) {
-  out += '"';
-  for (char ch : s) {
-    const auto c = static_cast<unsigned char>(ch);
-    switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\r': out += "\\r"; break;
-      case '\t': out += "\\t"; break;
-      default:
-        if (c < 0x20) {
-          out += fmt::format("\\u{:04x}", c);
-        } else {
-          out += ch;
-        }
-    }
-  }
-  out += '"';
-}
+// The project's one JSON string quoting (also used by the JSON and SARIF reports); invalid
+// UTF-8 becomes U+FFFD, which a glTF reader requires.
+void dump_string(std::string& out, const std::string& s) { out += text::json_quote(s); }
 
 class Parser {
  public:
