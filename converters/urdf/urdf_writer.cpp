@@ -3,6 +3,7 @@
 #include <bodyfmt/converters/loss.h>
 #include <bodyfmt/converters/names.h>
 #include <bodyfmt/converters/numbers.h>
+#include <bodyfmt/converters/preflight.h>
 #include <bodyfmt/converters/staged_files.h>
 #include <bodyfmt/converters/transforms.h>
 #include <bodyfmt/inertia.h>
@@ -575,6 +576,10 @@ bool Writer::run() {
 
 bool write_urdf(const Model& model, const Derived& derived, const UrdfOptions& options, converters::OutputSet& output,
                 DiagnosticSink& sink) {
+  if (!converters::check_joint_axes(model, sink)) {
+    output.fail();
+    return false;
+  }
   Writer writer(model, derived, options, output, sink);
   return writer.run();
 }

@@ -32,7 +32,7 @@ while IFS= read -r -d '' f; do
   case "$f" in *.body) cp "$f" "$seeds/load/$n" ;; esac
 done < <(find examples tests/data ../shared/corpus/choreonoid \( -name '*.body' -o -name '*.yaml' \) -size -64k -print0 | sort -z)
 cp tests/fuzz/seeds/* "$seeds/load/"
-for target in yaml load urdf; do
+for target in yaml load urdf mjcf gltf; do
   corpus=$build/fuzz-corpus/$target
   mkdir -p "$corpus"
   seed_dir=$seeds/load

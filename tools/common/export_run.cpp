@@ -11,19 +11,22 @@ int run_export(Front& front, const std::string& output, const ExportWriter& writ
   CollectingSink collected;
   DiagnosticPolicy sink(collected, policy->options);  // --strict: export-loss is an error
   bool written = false;
+  bool refused_by_writer = false;
   if (auto input = front.open_input(path, sink)) {
     auto model = front.load(*input, sink);
     if (model && front.may_write(collected.diagnostics())) {
       const Derived derived = compute_derived(*model, sink);
       converters::OutputSet out(output);
       // --strict losses and export errors stop the write, as loader errors did above.
-      if (write(*model, derived, out, sink) && front.may_write(collected.diagnostics())) written = out.commit(sink);
+      refused_by_writer = !write(*model, derived, out, sink);
+      if (!refused_by_writer && front.may_write(collected.diagnostics())) written = out.commit(sink);
     }
   }
   const std::vector<Diagnostic>& diagnostics = collected.diagnostics();
   front.print(diagnostics);
   if (!written) {
     std::string why = refusal ? refusal(diagnostics) : std::string();
+    if (why.empty() && refused_by_writer) why = "the model has errors this format cannot be written with";
     if (why.empty() && !front.may_write(diagnostics)) why = "the model has errors (--best-effort writes it anyway)";
     front.print_error(output + " was not written" + (why.empty() ? "" : ": " + why));
   }
