@@ -371,7 +371,14 @@ void Writer::write_joint(XMLElement* body, std::size_t index) {
   const bool lo_finite = lo > -kUnlimited, hi_finite = hi < kUnlimited;
   if (lo_finite && hi_finite) {
     j->SetAttribute("limited", "true");
-    j->SetAttribute("range", fmt::format("{} {}", format_number(lo), format_number(hi)).c_str());
+    // MuJoCo wants lower < upper; a joint that cannot move keeps its degree of freedom (joint
+    // ids and qpos stay as in the model) in the narrowest range MuJoCo accepts.
+    const double upper = lo < hi ? hi : std::nextafter(lo, kUnlimited);
+    if (upper != hi)
+      changed(index, first_known({&link.sources.joint_range, &link.source}),
+              fmt::format("the zero-width range [{0}, {0}] of '{1}' (written [{0}, {2}])", format_number(lo), link.name,
+                          format_number(upper)));
+    j->SetAttribute("range", fmt::format("{} {}", format_number(lo), format_number(upper)).c_str());
   } else {
     j->SetAttribute("limited", "false");
     if (lo_finite || hi_finite) {
@@ -790,24 +797,34 @@ void Writer::write_actuators() {
   if (order.empty()) return;
   XMLElement* actuator = element(mujoco_, "actuator");
   const bool position = options_.actuators == Actuators::kPosition;
-  auto range = [](XMLElement* e, const char* limited, const char* range, double lo, double hi) {
-    if (lo > -kUnlimited && hi < kUnlimited) {
-      e->SetAttribute(limited, "true");
-      e->SetAttribute(range, fmt::format("{} {}", format_number(lo), format_number(hi)).c_str());
-    } else {
-      e->SetAttribute(limited, "false");
-    }
-  };
   for (std::size_t i : order) {
     const Link& link = model_.links[i];
+    // MuJoCo wants lower < upper here too: an empty range is written as the narrowest one it
+    // accepts (as the joint's own range is), a reversed one as no limit, reported.
+    auto range = [&](XMLElement* e, const char* limited, const char* range, double lo, double hi,
+                     const SourceLocation& at) {
+      const bool finite = lo > -kUnlimited && hi < kUnlimited;
+      if (finite && lo > hi)
+        loss(converters::LossKind::kJoints, e, first_known({&at, &link.source}),
+             fmt::format("the reversed {} [{}, {}] of actuator '{}' (written unlimited)", range, format_number(lo),
+                         format_number(hi), link.name));
+      if (finite && lo <= hi) {
+        e->SetAttribute(limited, "true");
+        e->SetAttribute(
+            range, fmt::format("{} {}", format_number(lo), format_number(lo < hi ? hi : std::nextafter(lo, kUnlimited)))
+                       .c_str());
+      } else {
+        e->SetAttribute(limited, "false");
+      }
+    };
     XMLElement* a = element(actuator, position ? "position" : "velocity");
     a->SetAttribute("name", link.name.c_str());
     a->SetAttribute("joint", link.name.c_str());
     if (position)
-      range(a, "ctrllimited", "ctrlrange", link.joint_range_lower, link.joint_range_upper);
+      range(a, "ctrllimited", "ctrlrange", link.joint_range_lower, link.joint_range_upper, link.sources.joint_range);
     else
-      range(a, "ctrllimited", "ctrlrange", link.velocity_lower, link.velocity_upper);
-    range(a, "forcelimited", "forcerange", link.effort_lower, link.effort_upper);
+      range(a, "ctrllimited", "ctrlrange", link.velocity_lower, link.velocity_upper, link.sources.joint_velocity);
+    range(a, "forcelimited", "forcerange", link.effort_lower, link.effort_upper, link.source);
   }
 }
 
@@ -970,7 +987,7 @@ bool Writer::run() {
 
 bool write_mjcf(const Model& model, const Derived& derived, const MjcfOptions& options, converters::OutputSet& output,
                 DiagnosticSink& sink) {
-  if (!converters::check_joint_axes(model, sink)) {
+  if (!converters::check_joints(model, sink)) {
     output.fail();
     return false;
   }

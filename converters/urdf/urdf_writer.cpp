@@ -576,7 +576,7 @@ bool Writer::run() {
 
 bool write_urdf(const Model& model, const Derived& derived, const UrdfOptions& options, converters::OutputSet& output,
                 DiagnosticSink& sink) {
-  if (!converters::check_joint_axes(model, sink)) {
+  if (!converters::check_joints(model, sink)) {
     output.fail();
     return false;
   }

@@ -531,3 +531,23 @@ TEST_CASE("mjcf: body2mjcf exit codes, --strict and atomic output") {
   CHECK(run(tool + " " + quote(kData / "drop.body") + " -o " + quote(clean) + " --actuators bogus 2> /dev/null") == 2);
   fs::remove_all(dir);
 }
+
+TEST_CASE("mjcf: an empty joint or actuator range is written as the narrowest one MuJoCo accepts, with a warning") {
+  const fs::path dir = fresh_dir("mjcf_empty_ranges");
+  MjcfOptions options;
+  options.actuators = bodyfmt::mjcf::Actuators::kPosition;
+  Export e = export_file(kData / "empty_ranges.body", dir, options);
+  REQUIRE(e.ok);
+  const Diagnostic* changed = find(e.diagnostics, "export-value-changed");
+  REQUIRE(changed != nullptr);
+  CHECK(changed->location.line == 18);
+  Loaded loaded(e.xml);
+  INFO(loaded.error);
+  REQUIRE(loaded.m != nullptr);
+  const double ten_degrees = 10 * M_PI / 180;
+  CHECK(loaded.m->jnt_range[2] == ten_degrees);
+  CHECK(loaded.m->jnt_range[3] > ten_degrees);
+  CHECK(loaded.m->jnt_range[3] - ten_degrees < 1e-15);
+  CHECK(loaded.m->actuator_ctrlrange[1] - loaded.m->actuator_ctrlrange[0] < 1e-15);
+  CHECK(loaded.m->actuator_forcerange[0] == 0);
+}

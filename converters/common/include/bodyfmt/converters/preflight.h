@@ -1,14 +1,16 @@
 #pragma once
 /// What no export can write faithfully, checked by every writer before it writes anything.
 /// Choreonoid loads these models (bodycheck reports them), but a joint without a direction
-/// has no meaning in URDF or MJCF: urdfdom and MuJoCo refuse it or divide by zero.
+/// or a range whose lower bound is above its upper one has no meaning in URDF or MJCF: MuJoCo
+/// refuses both, and URDF consumers divide by the axis length or clamp to an empty interval.
 #include <bodyfmt/diagnostic.h>
 #include <bodyfmt/model.h>
 
 namespace bodyfmt::converters {
 
-/// Reports `joint-axis-zero` (an error, at the joint_axis value) for every revolute,
-/// prismatic or track joint whose axis is the zero vector; returns false if there was one.
-bool check_joint_axes(const Model& model, DiagnosticSink& sink);
+/// Reports, as errors at the value, every revolute, prismatic or track joint whose axis is the
+/// zero vector (`joint-axis-zero`) and every joint range with lower > upper
+/// (`joint-range-reversed`); returns false if there was one.
+bool check_joints(const Model& model, DiagnosticSink& sink);
 
 }  // namespace bodyfmt::converters
