@@ -90,18 +90,27 @@ bool is_moving(const Model& model, std::size_t index) {
 bool detached(const Link& link) { return link.parent >= 0 && link.joint_type == JointType::kFree; }
 
 /// Whether qhull can build the convex hull MuJoCo collides with: at least 4 distinct points
-/// that span three dimensions (a flat or sliver mesh fails with "qhull error").
+/// that span three dimensions (a flat or sliver mesh fails with "qhull error"). Only corners
+/// of triangles count: the mesh file holds no others, whatever the model's vertex list has.
 bool spans_volume(const TriangleMesh& mesh) {
-  if (mesh.vertices.size() < 4) return false;
+  std::vector<char> used(mesh.vertices.size(), 0);
+  std::vector<Eigen::Vector3d> points;
+  for (const auto& triangle : mesh.triangles)
+    for (int i : triangle)
+      if (!used[i]) {
+        used[i] = 1;
+        points.push_back(mesh.vertices[i]);
+      }
+  if (points.size() < 4) return false;
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (const auto& v : mesh.vertices) mean += v;
-  mean /= static_cast<double>(mesh.vertices.size());
+  for (const auto& v : points) mean += v;
+  mean /= static_cast<double>(points.size());
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  for (const auto& v : mesh.vertices) covariance += (v - mean) * (v - mean).transpose();
+  for (const auto& v : points) covariance += (v - mean) * (v - mean).transpose();
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::max());
   Eigen::Vector3d hi = -lo;
-  for (const auto& v : mesh.vertices) {
+  for (const auto& v : points) {
     const Eigen::Vector3d p = solver.eigenvectors().transpose() * (v - mean);
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);

@@ -551,3 +551,20 @@ TEST_CASE("mjcf: an empty joint or actuator range is written as the narrowest on
   CHECK(loaded.m->actuator_ctrlrange[1] - loaded.m->actuator_ctrlrange[0] < 1e-15);
   CHECK(loaded.m->actuator_forcerange[0] == 0);
 }
+
+TEST_CASE("mjcf: a mesh whose faces are flat has no collision geom, even when unused vertices span a volume") {
+  const fs::path dir = fresh_dir("mjcf_flat_faces");
+  Export e = export_file(kData / "flat_faces.body", dir);
+  REQUIRE(e.ok);
+  const Diagnostic* lost = find(e.diagnostics, "export-loss");
+  REQUIRE(lost != nullptr);
+  CHECK(lost->message.find("flat or degenerate IndexedFaceSet") != std::string::npos);
+  CHECK(lost->location.line == 14);
+  Loaded loaded(e.xml);
+  INFO(loaded.error);
+  REQUIRE(loaded.m != nullptr);
+  int colliding = 0;
+  for (int g = 0; g < loaded.m->ngeom; ++g)
+    colliding += loaded.m->geom_contype[g] != 0 || loaded.m->geom_conaffinity[g] != 0;
+  CHECK(colliding == 0);
+}
