@@ -1,5 +1,10 @@
 #include <bodyfmt/derived.h>
+#include <bodyfmt/rules.h>
 #include <bodyfmt/tessellate.h>
+
+#include <fmt/format.h>
+
+#include <cmath>
 
 namespace bodyfmt {
 
@@ -80,6 +85,36 @@ std::vector<LinkBounds> compute_link_bounds(const Model& model, DiagnosticSink& 
   return bounds;
 }
 
+namespace {
+
+// Every loaded number is finite, but sums and products of huge ones need not be: a RigidBody
+// 1e306 m from its link makes the parallel-axis term infinite. Said once per link, at the
+// values that combine, so that no tool writes or simulates the NaN that follows.
+void report_overflow(const Model& model, const Derived& d, DiagnosticSink& sink) {
+  for (std::size_t i = 0; i < model.links.size(); ++i) {
+    const Link& link = model.links[i];
+    const MassProperties& m = d.mass[i];
+    const bool mass_finite = std::isfinite(m.mass) && m.center_of_mass.allFinite() && m.inertia.allFinite();
+    const bool frame_finite = d.X_WL[i].matrix().allFinite() && d.X_RL[i].matrix().allFinite();
+    if (mass_finite && frame_finite) continue;
+    // The culprit of an overflowing sum is the contribution farthest out.
+    const MassContribution* farthest = nullptr;
+    for (const MassContribution& c : link.mass_contributions)
+      if (!farthest || c.center_of_mass.norm() > farthest->center_of_mass.norm()) farthest = &c;
+    const SourceLocation at = !mass_finite && farthest && farthest->source.known() ? farthest->source
+                              : !frame_finite && link.sources.translation.known()  ? link.sources.translation
+                                                                                   : link.source;
+    report_rule(sink, "derived-not-finite", at,
+                fmt::format("the {} of link \"{}\" {} to infinity or NaN",
+                            !mass_finite ? "combined mass properties" : "world frame", link.name,
+                            !mass_finite ? "overflow" : "overflows"),
+                "a translation or centre of mass this far out (beyond about 1e150 m) cannot be combined; check the "
+                "exponents");
+  }
+}
+
+}  // namespace
+
 Derived compute_derived(const Model& model, DiagnosticSink& sink) {
   Derived d;
   d.mass.reserve(model.links.size());
@@ -89,6 +124,7 @@ Derived compute_derived(const Model& model, DiagnosticSink& sink) {
   }
   d.X_RL = compute_root_relative_frames(model);
   d.X_WL = compute_world_frames(model);
+  report_overflow(model, d, sink);
   d.bounds = compute_link_bounds(model, sink);
   return d;
 }

@@ -139,6 +139,8 @@ std::vector<RuleInfo> make_table() {
       {"inertia-asymmetric", E, "a 9-element inertia is not symmetric",
        "Choreonoid uses the 9 numbers as given; engines assume a symmetric tensor and silently use a part of it",
        "|I - I^T|max > CheckOptions::inertia_symmetry_tolerance (1e-6) x |I|max, per RigidBody or link-level inertia"},
+      {"derived-not-finite", E, "a link's combined mass properties or world frame overflow to infinity or NaN",
+       "every number written or simulated from it would be NaN; each input value was finite", ""},
       {"inertia-not-positive-definite", E, "the combined inertia of a link has a negative principal moment",
        "MuJoCo, Drake and gz-math refuse it; the dynamics are unphysical",
        "smallest eigenvalue < -16*DBL_EPSILON*max(1, trace/2) (Drake's); exactly < 0 for a diagonal tensor"},
