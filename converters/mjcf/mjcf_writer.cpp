@@ -703,6 +703,13 @@ void Writer::write_devices(XMLElement* body, std::size_t index) {
                        camera->width, camera->height,
                        camera->lens_type != "NORMAL" ? fmt::format(" and {} lens", camera->lens_type) : "", label));
     } else if (const auto* light = std::get_if<LightParams>(&device.params)) {
+      if (device.type == "SpotLight" && light->direction.norm() < 1e-9) {
+        // MuJoCo refuses a light without a direction ("zero direction in light").
+        loss(converters::LossKind::kDevices, body, device.source,
+             fmt::format("spot light '{}' with the zero direction [0, 0, 0] (not written)", label),
+             "give the light a direction, e.g. direction: [0, 0, -1]");
+        continue;
+      }
       XMLElement* l = element(body, "light");
       const std::string name = unique(
           light_names_, device.name.empty() ? fmt::format("{}_light_{}", model_.links[index].name, d) : device.name);

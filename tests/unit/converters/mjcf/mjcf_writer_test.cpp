@@ -568,3 +568,17 @@ TEST_CASE("mjcf: a mesh whose faces are flat has no collision geom, even when un
     colliding += loaded.m->geom_contype[g] != 0 || loaded.m->geom_conaffinity[g] != 0;
   CHECK(colliding == 0);
 }
+
+TEST_CASE("mjcf: a spot light without a direction is reported and left out; the other lights are written") {
+  const fs::path dir = fresh_dir("mjcf_light_without_direction");
+  Export e = export_file(kData / "light_without_direction.body", dir);
+  REQUIRE(e.ok);
+  const Diagnostic* lost = find(e.diagnostics, "export-loss");
+  REQUIRE(lost != nullptr);
+  CHECK(lost->message.find("'Lamp' with the zero direction") != std::string::npos);
+  CHECK(lost->location.line == 14);
+  Loaded loaded(e.xml);
+  INFO(loaded.error);
+  REQUIRE(loaded.m != nullptr);
+  CHECK(loaded.m->nlight == 1);
+}
