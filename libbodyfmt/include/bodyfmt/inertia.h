@@ -37,7 +37,8 @@ InertiaValidity inertia_validity(const PrincipalInertia& principal);
 /// The one inertia-balancing function. Returns nullopt when the tensor is valid as it is.
 /// Otherwise the nearest valid tensor: negative principal moments are clamped to 0, then the
 /// moments are projected orthogonally onto A + B - C = s with s = 1e-7·(A + B + C) so that
-/// rounding in any consumer keeps it valid; the principal axes are kept. This is the smallest
+/// rounding in any consumer keeps it valid (when that would pass the two largest
+/// moments, they meet at their mean and the smallest becomes s); the principal axes are kept. This is the smallest
 /// change to the moments (Euclidean), which is why it is used rather than MuJoCo's
 /// `balanceinertia` (every moment replaced by their mean). An all-zero result stays nullopt.
 std::optional<Eigen::Matrix3d> balance_inertia(const Eigen::Matrix3d& inertia);

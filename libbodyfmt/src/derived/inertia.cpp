@@ -48,11 +48,20 @@ std::optional<Eigen::Matrix3d> balance_inertia(const Eigen::Matrix3d& inertia) {
   if (inertia_validity(p).valid()) return std::nullopt;
   Eigen::Vector3d m = p.moments.cwiseMax(0.0);
   std::sort(m.data(), m.data() + 3);  // clamping keeps the order; sorting states it
+  // Every balanced tensor keeps a margin s: MuJoCo re-derives the moments from what is written
+  // and checks A + B >= C without tolerance, and rounding must not undo the balance.
+  const double s = 1e-7 * m.sum();
   const double excess = m[2] - m[0] - m[1];
-  if (excess > 0) {
-    const double s = 1e-7 * m.sum();
+  if (excess + s > 0) {
     const double t = (excess + s) / 3;
     m += Eigen::Vector3d(t, t, -t);
+    // Moving the two largest towards each other can pass them (they were nearly equal, e.g.
+    // moments (-1, 1, 1)): then both inequalities that hold them are active, the nearest valid
+    // pair is their mean, and the smallest needs the whole margin.
+    if (m[1] > m[2]) {
+      m[1] = m[2] = (m[1] + m[2]) / 2;
+      m[0] = std::max(m[0], s);
+    }
   }
   if (m.isZero(0)) return std::nullopt;
   return Eigen::Matrix3d(p.axes * m.asDiagonal() * p.axes.transpose());

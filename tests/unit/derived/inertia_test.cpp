@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <Eigen/Geometry>
+#include <random>
 
 using namespace bodyfmt;
 using Eigen::Matrix3d;
@@ -64,8 +65,42 @@ TEST_CASE("inertia: balancing keeps the principal axes of a rotated tensor") {
 TEST_CASE("inertia: negative principal moments are clamped to zero first") {
   const auto balanced = balance_inertia(Vector3d(-0.1, 0.3, 0.3).asDiagonal());
   REQUIRE(balanced);
-  CHECK((*balanced)(0, 0) == 0.0);
-  CHECK((*balanced)(1, 1) == 0.3);
-  CHECK((*balanced)(2, 2) == 0.3);
+  // (0, 0.3, 0.3) after clamping sits on A + B = C; the margin s = 1e-7 * 0.6 goes to the
+  // smallest moment, the two equal ones stay put.
+  CHECK((*balanced)(0, 0) == doctest::Approx(6e-8).epsilon(1e-9));
+  CHECK((*balanced)(1, 1) == doctest::Approx(0.3).epsilon(1e-15));
+  CHECK((*balanced)(2, 2) == doctest::Approx(0.3).epsilon(1e-15));
   CHECK(inertia_validity(principal_inertia(Vector3d(-0.1, 0.3, 0.3).asDiagonal())).negative_moment);
+}
+
+TEST_CASE("inertia: a balanced tensor satisfies the triangle inequality after its own eigendecomposition") {
+  // MuJoCo re-derives principal moments from what is written and checks A + B >= C with no
+  // tolerance, so the balanced tensor must keep a positive margin through rounding. The
+  // rotated (-1, 1, 1) case (two largest moments equal) once came out as (6.7e-8, 1 - 6.7e-8,
+  // 1 + 6.7e-8): found by fuzz_mjcf.
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> moment(-1.0, 1.0);
+  int balanced_count = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const Matrix3d R =
+        Eigen::Quaterniond(Eigen::Vector4d(moment(random), moment(random), moment(random), moment(random)).normalized())
+            .toRotationMatrix();
+    Vector3d m(moment(random), moment(random), moment(random));
+    if (i % 3 == 0) m[2] = m[1];  // ties, as in (-1, 1, 1)
+    const Matrix3d I = R * m.asDiagonal() * R.transpose();
+    const auto balanced = balance_inertia(I);
+    if (!balanced) continue;
+    ++balanced_count;
+    const PrincipalInertia p = principal_inertia(*balanced);
+    INFO("moments in: " << m.transpose() << "  out: " << p.moments.transpose());
+    REQUIRE(p.moments[0] >= 0);
+    REQUIRE(p.moments[0] + p.moments[1] - p.moments[2] > 0);
+  }
+  CHECK(balanced_count > 1000);
+  const auto fuzz_case = balance_inertia((Matrix3d() << 0, 1, 0, 1, 0, 0, 0, 0, 1).finished());
+  REQUIRE(fuzz_case);
+  const Vector3d out = principal_inertia(*fuzz_case).moments;
+  CHECK(out[1] == doctest::Approx(1.0).epsilon(1e-12));
+  CHECK(out[2] == doctest::Approx(1.0).epsilon(1e-12));
+  CHECK(out[0] == doctest::Approx(2e-7).epsilon(1e-6));
 }
