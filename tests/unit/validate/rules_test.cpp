@@ -63,8 +63,9 @@ TEST_CASE("validate: inertia-not-positive-definite") {
   const auto result = bodyfmt::test::check_file(data("inertia-not-positive-definite.body"));
   const Diagnostic* d = find(result.diagnostics, "inertia-not-positive-definite");
   REQUIRE(d);
-  // The negative moment is clamped to 0: diag(0.015, 0.015, 0) is the nearest PSD tensor.
-  CHECK(d->fix_hint.find("[0.015, 0, 0, 0.015, 0, 0]") != std::string::npos);
+  // The negative moment is clamped to 0, then raised to the margin s = 1e-7 * (0.015 + 0.015)
+  // that keeps A + B >= C through rounding: diag(0.015, 0.015, 3e-9).
+  CHECK(d->fix_hint.find("[0.015, 0, 0, 0.015, 0, 3e-09]") != std::string::npos);
 }
 
 TEST_CASE("validate: inertia-triangle") {
