@@ -169,6 +169,7 @@ void BodyReader::report_upgrade(const Model& model) {
   std::string message = "format " + version_node_->scalar + " file";
   if (!ctx_.degrees)
     message += " with angles in radians (" + std::to_string(ctx_.upgrade_fixes.size()) + " angle values)";
+  message += "; 2.0 is the current format (snake_case keys, degrees)";
   std::string hint = "bodycheck --fix --upgrade rewrites it as format 2.0";
   if (!problem.empty()) {
     message += "; it cannot be upgraded automatically: " + problem;
