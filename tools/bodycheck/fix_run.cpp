@@ -58,6 +58,13 @@ struct Rewrite {
 /// targets. A read-only target or folder is refused before anything is written.
 bool write_all(const std::vector<Rewrite>& rewrites, std::string& why) {
   for (const Rewrite& r : rewrites) {
+    // A file without any write permission is read-only by intent, even for root (whom
+    // access() would let through).
+    struct stat st {};
+    if (::stat(r.path.c_str(), &st) == 0 && (st.st_mode & 0222) == 0) {
+      why = fmt::format("{}: the file is read-only (mode {:04o})", r.shown, st.st_mode & 07777);
+      return false;
+    }
     if (::access(r.path.c_str(), W_OK) != 0) {
       why = r.shown + ": the file is not writable (" + std::strerror(errno) + ")";
       return false;

@@ -57,8 +57,8 @@ std::string format_json_report(const Report& report, const ToolInfo& tool) {
       out += "{\"file\": " + json_quote(f.file.str()) + ", \"line\": " + std::to_string(f.line) +
              ", \"column\": " + std::to_string(f.column) + ", \"offset\": " + std::to_string(f.begin) +
              ", \"length\": " + std::to_string(f.end - f.begin) + ", \"original\": " + json_quote(f.original) +
-             ", \"replacement\": " + json_quote(f.replacement) + ", \"safety\": " +
-             json_quote(fix_safety_name(f.safety)) + "}";
+             ", \"replacement\": " + json_quote(f.replacement) +
+             ", \"safety\": " + json_quote(fix_safety_name(f.safety)) + "}";
     }
     out += "]}";
   }
