@@ -109,6 +109,11 @@ def main():
             for folder in {top} | siblings:
                 if os.path.isdir(os.path.join(corpus, folder)):
                     shutil.copytree(os.path.join(corpus, folder), os.path.join(work, folder))
+        # The shared corpus is read-only (mode 0444), and --fix refuses read-only files.
+        for root, _, names in os.walk(work):
+            for name in names:
+                path = os.path.join(root, name)
+                os.chmod(path, os.stat(path).st_mode | 0o200)
         original_model = os.path.join(corpus, model)
         copy_model = os.path.join(work, model)
         before = snapshot(work)

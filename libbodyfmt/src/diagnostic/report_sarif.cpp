@@ -140,8 +140,8 @@ std::string physical_location(const SourceLocation& loc, const UriMaker& uris, S
 std::string sarif_fix(const std::vector<FixIt>& fixes, const UriMaker& uris) {
   std::map<std::string, std::vector<const FixIt*>> by_file;
   for (const FixIt& f : fixes) by_file[f.file.str()].push_back(&f);
-  std::string description = "Apply " + std::to_string(fixes.size()) + " edit" + (fixes.size() == 1 ? "" : "s") +
-                            " (" + std::string(fix_safety_name(fixes.front().safety)) + ": ";
+  std::string description = "Apply " + std::to_string(fixes.size()) + " edit" + (fixes.size() == 1 ? "" : "s") + " (" +
+                            std::string(fix_safety_name(fixes.front().safety)) + ": ";
   switch (fixes.front().safety) {
     case FixSafety::kSafe: description += "bodycheck --fix applies it)."; break;
     case FixSafety::kUpgrade: description += "bodycheck --fix --upgrade applies it)."; break;
