@@ -45,4 +45,6 @@ check all-kinds defective.body warning.body suppressed.body clean.body alias.bod
 check clean clean.body
 check directory .
 check werror-quiet --werror --quiet configured
+# Fix-its as SARIF `fixes` (safe, upgrade and unsafe ones; one with 40 edits in one fix).
+check fix-its ../fix/legacy.body ../fix/radian_v1.body ../fix/include/main.body
 exit $status

@@ -2,6 +2,7 @@
 // Exit codes (tools/common/front.h): 0 nothing at or above the fail level, 1 findings,
 // 2 usage, I/O or fatal error.
 
+#include "fix_run.h"
 #include "front.h"
 
 #include <bodyfmt/derived.h>
@@ -50,6 +51,8 @@ struct Settings {
   bool stats = false;
   bool list_rules = false;
   int jobs = 0;
+  bool fix = false;
+  tools::FixSettings fixing;
 };
 
 JobResult check_file(tools::Front& front, const Job& job) {
@@ -281,6 +284,23 @@ int main(int argc, char** argv) {
   app.add_option("-o,--output", settings.output, "write the report to this file instead of stdout");
   app.add_option("-j,--jobs", settings.jobs, "worker threads (default: 2 to 4, by the cores available)")
       ->check(CLI::Range(1, 64));
+  const std::string fixing = "Fixing";
+  CLI::Option* fix_option =
+      app.add_flag("--fix", settings.fix,
+                   "apply the safe fix-its in place (docs/rules.md), after re-loading the result to prove the model "
+                   "is unchanged; then report what remains")
+          ->group(fixing);
+  app.add_flag("--dry-run", settings.fixing.dry_run, "with --fix: print a unified diff instead of writing")
+      ->needs(fix_option)
+      ->group(fixing);
+  app.add_flag("--upgrade", settings.fixing.upgrade,
+               "with --fix: also rewrite format 1.0 files as 2.0 (radian values converted to degrees, spec §3)")
+      ->needs(fix_option)
+      ->group(fixing);
+  app.add_flag("--fix-includes", settings.fixing.includes,
+               "with --fix: also edit SubBody and YAML resource files that are not named on the command line")
+      ->needs(fix_option)
+      ->group(fixing);
   if (auto code = front.parse(argc, argv)) return *code;
   if (settings.list_rules) {
     print_rules(std::cout);
@@ -294,6 +314,19 @@ int main(int argc, char** argv) {
   bool fatal = false;
   bool findings = false;
   const std::vector<std::string> files = expand_inputs(front, fatal);
+  if (settings.fix) {
+    const tools::FixSummary summary = tools::run_fixes(front, files, settings.fixing);
+    fatal = fatal || summary.failed;
+    if (settings.fixing.dry_run) {
+      std::cout << summary.diff << std::flush;
+      if (!front.quiet())
+        std::cerr << fmt::format("bodycheck: {} edit{} in {} file{} would be made\n", summary.edits,
+                                 summary.edits == 1 ? "" : "s", summary.files_changed,
+                                 summary.files_changed == 1 ? "" : "s");
+      if (fatal) return tools::kExitFatal;
+      return summary.diff.empty() ? tools::kExitClean : tools::kExitFindings;
+    }
+  }
   const std::vector<Job> jobs = make_jobs(front, files, fatal);
   std::vector<JobResult> results = run_jobs(front, jobs, settings.jobs);
   const Report report = make_report(jobs, results, front.quiet(), fatal, findings);

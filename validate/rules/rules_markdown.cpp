@@ -58,7 +58,12 @@ std::string rules_markdown() {
       "`load_body` (syntax, keys, types, references); validator rules from\n"
       "`bodyfmt::validate::check_model` (meaning). `bodycheck --enable/--disable RULE` and\n"
       "`# bodycheck: disable=RULE` take these ids. Severities: fatal (nothing usable), error,\n"
-      "warning, note.\n";
+      "warning, note.\n\n"
+      "The fix-it column says which findings carry exact edits (shown in every output format,\n"
+      "SARIF `fixes`) and how `bodycheck --fix` treats them: *safe* fixes keep the model Choreonoid\n"
+      "loads and are applied by `--fix`; *upgrade* fixes rewrite a format 1.0 file as 2.0 and are\n"
+      "applied only with `--fix --upgrade`; *unsafe* fixes change what is loaded and are never\n"
+      "applied. Every fixed file is re-loaded before it is written and must give the same model.\n";
   std::vector<std::string> order;
   for (const auto& [key, title] : kFamilies) order.push_back(key);
   for (const auto& [key, rules] : by_family)
@@ -69,11 +74,11 @@ std::string rules_markdown() {
     std::string title = key;
     for (const auto& [k, t] : kFamilies)
       if (k == key) title = t;
-    out +=
-        fmt::format("\n## {}\n\n| id | severity | summary | rationale | tolerance |\n|---|---|---|---|---|\n", title);
+    out += fmt::format(
+        "\n## {}\n\n| id | severity | summary | rationale | tolerance | fix-it |\n|---|---|---|---|---|---|\n", title);
     for (const RuleInfo* rule : it->second) {
-      out += fmt::format("| `{}` | {} | {} | {} | {} |\n", rule->id, severity_name(rule->default_severity),
-                         cell(rule->summary), cell(rule->rationale), cell(rule->tolerance));
+      out += fmt::format("| `{}` | {} | {} | {} | {} | {} |\n", rule->id, severity_name(rule->default_severity),
+                         cell(rule->summary), cell(rule->rationale), cell(rule->tolerance), cell(rule->fix));
     }
   }
   return out;

@@ -55,6 +55,32 @@ struct SourceLocation {
   friend bool operator!=(const SourceLocation& a, const SourceLocation& b) { return !(a == b); }
 };
 
+/// How far a fix-it may be applied without asking (docs/rules.md, "Fix-its").
+enum class FixSafety {
+  kSafe,     ///< the model Choreonoid loads stays the same: `bodycheck --fix` applies it
+  kUpgrade,  ///< part of the format 1.0 -> 2.0 upgrade: applied only with `--fix --upgrade`
+  kUnsafe,   ///< changes what is loaded (e.g. a typo whose key is now read): shown, never applied
+};
+
+std::string_view fix_safety_name(FixSafety safety);
+
+/// A fix-it: replace the bytes [begin, end) of `file` (which hold `original`) with
+/// `replacement`. `line` and `column` (1-based, bytes) are where `begin` is.
+struct FixIt {
+  FileName file;
+  std::size_t begin = 0;
+  std::size_t end = 0;
+  int line = 0;
+  int column = 0;
+  std::string original;
+  std::string replacement;
+  FixSafety safety = FixSafety::kSafe;
+
+  friend bool operator==(const FixIt& a, const FixIt& b) {
+    return a.file == b.file && a.begin == b.begin && a.end == b.end && a.replacement == b.replacement;
+  }
+};
+
 struct Diagnostic {
   Severity severity = Severity::kError;
   std::string rule_id;  ///< stable kebab-case id from the rule table, e.g. "yaml-duplicate-key"
@@ -65,6 +91,8 @@ struct Diagnostic {
   /// A finer kind within the rule, where the rule has kinds (an export loss's: "tracks",
   /// "devices", ...; see converters/common/loss.h); empty otherwise.
   std::string category;
+  /// Edits that fix the finding, when the rule knows them exactly (empty otherwise).
+  std::vector<FixIt> fixes;
 };
 
 /// Receives diagnostics. Implementations must not throw.

@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -24,6 +25,10 @@ struct LoadOptions {
   bool load_meshes = true;
   /// Extra roots for `package://NAME/...` URIs, searched before ROS_PACKAGE_PATH.
   std::vector<std::string> package_paths;
+  /// Texts that stand in for SubBody and YAML resource files on disk, by canonical path
+  /// (std::filesystem::weakly_canonical): `bodycheck --fix` re-loads its edits from memory
+  /// before it writes them.
+  std::map<std::string, std::string> file_texts;
 };
 
 /// Loads a .body file. Reports every problem it can find to `sink` and returns the model

@@ -17,6 +17,10 @@ struct RuleInfo {
   std::string_view summary;    ///< one line: what is wrong
   std::string_view rationale;  ///< one line: why it matters (which tool fails, what is lost)
   std::string_view tolerance;  ///< documented tolerance, empty when the rule has none
+  /// The fix-its the rule's findings carry and how safe they are (FixSafety): "safe" (applied by
+  /// `bodycheck --fix`), "upgrade" (only with `--fix --upgrade`), "unsafe" (shown, never
+  /// applied), or empty when the rule has none. Set from one list in the rule table.
+  std::string_view fix = {};
 };
 
 /// Every rule, sorted by id.

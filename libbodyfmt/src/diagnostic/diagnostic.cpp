@@ -32,6 +32,15 @@ std::string_view severity_name(Severity severity) {
   return "error";
 }
 
+std::string_view fix_safety_name(FixSafety safety) {
+  switch (safety) {
+    case FixSafety::kSafe: return "safe";
+    case FixSafety::kUpgrade: return "upgrade";
+    case FixSafety::kUnsafe: return "unsafe";
+  }
+  return "unsafe";
+}
+
 void CollectingSink::report(Diagnostic diagnostic) { diagnostics_.push_back(std::move(diagnostic)); }
 
 int CollectingSink::count(Severity severity) const {

@@ -50,7 +50,17 @@ std::string format_json_report(const Report& report, const ToolInfo& tool) {
     out += ", \"message\": " + json_quote(d.message);
     out += ", \"via\": " + (d.via ? location_json(*d.via) : std::string("null"));
     out += ", \"fix_hint\": " + (d.fix_hint.empty() ? std::string("null") : json_quote(d.fix_hint));
-    out += "}";
+    out += ", \"fixes\": [";
+    for (std::size_t k = 0; k < d.fixes.size(); ++k) {
+      const FixIt& f = d.fixes[k];
+      out += k == 0 ? "" : ", ";
+      out += "{\"file\": " + json_quote(f.file.str()) + ", \"line\": " + std::to_string(f.line) +
+             ", \"column\": " + std::to_string(f.column) + ", \"offset\": " + std::to_string(f.begin) +
+             ", \"length\": " + std::to_string(f.end - f.begin) + ", \"original\": " + json_quote(f.original) +
+             ", \"replacement\": " + json_quote(f.replacement) +
+             ", \"safety\": " + json_quote(fix_safety_name(f.safety)) + "}";
+    }
+    out += "]}";
   }
   out += report.diagnostics.empty() ? "],\n" : "\n  ],\n";
   out += "  \"summary\": {";

@@ -14,6 +14,7 @@ using bodyfmt::text::json_quote;
 
 #include <algorithm>
 #include <filesystem>
+#include <map>
 #include <system_error>
 
 namespace bodyfmt {
@@ -134,6 +135,38 @@ std::string physical_location(const SourceLocation& loc, const UriMaker& uris, S
   return out + "}";
 }
 
+/// One SARIF fix holding every edit of the diagnostic, grouped per file (artifactChanges),
+/// each a byte range (deletedRegion byteOffset/byteLength) and its new text.
+std::string sarif_fix(const std::vector<FixIt>& fixes, const UriMaker& uris) {
+  std::map<std::string, std::vector<const FixIt*>> by_file;
+  for (const FixIt& f : fixes) by_file[f.file.str()].push_back(&f);
+  std::string description = "Apply " + std::to_string(fixes.size()) + " edit" + (fixes.size() == 1 ? "" : "s") + " (" +
+                            std::string(fix_safety_name(fixes.front().safety)) + ": ";
+  switch (fixes.front().safety) {
+    case FixSafety::kSafe: description += "bodycheck --fix applies it)."; break;
+    case FixSafety::kUpgrade: description += "bodycheck --fix --upgrade applies it)."; break;
+    case FixSafety::kUnsafe: description += "it changes the loaded model; never applied automatically)."; break;
+  }
+  std::string out = "{\"description\": {\"text\": " + json_quote(description) + "}, \"artifactChanges\": [";
+  bool first_file = true;
+  for (const auto& [file, edits] : by_file) {
+    const ArtifactUri uri = uris.make(file);
+    out += first_file ? "" : ", ";
+    first_file = false;
+    out += "{\"artifactLocation\": {\"uri\": " + json_quote(uri.uri);
+    if (uri.relative) out += ", \"uriBaseId\": " + json_quote(kSrcRoot);
+    out += "}, \"replacements\": [";
+    for (std::size_t i = 0; i < edits.size(); ++i) {
+      out += i == 0 ? "" : ", ";
+      out += "{\"deletedRegion\": {\"byteOffset\": " + std::to_string(edits[i]->begin) +
+             ", \"byteLength\": " + std::to_string(edits[i]->end - edits[i]->begin) +
+             "}, \"insertedContent\": {\"text\": " + json_quote(edits[i]->replacement) + "}}";
+    }
+    out += "]}";
+  }
+  return out + "]}";
+}
+
 }  // namespace
 
 std::string format_sarif_report(const Report& report, const ToolInfo& tool, const std::string& base_dir) {
@@ -201,6 +234,7 @@ std::string format_sarif_report(const Report& report, const ToolInfo& tool, cons
       out +=
           ", \"locations\": [{\"physicalLocation\": " + physical_location(d.location, uris, sources, artifact_index) +
           "}]";
+    if (!d.fixes.empty()) out += ", \"fixes\": [" + sarif_fix(d.fixes, uris) + "]";
     if (d.via && !d.via->file.empty())
       out += ", \"relatedLocations\": [{\"id\": 1, \"physicalLocation\": " +
              physical_location(*d.via, uris, sources, artifact_index) +

@@ -165,6 +165,17 @@ std::string format_text_diagnostic(const Diagnostic& d, SourceLines& sources, co
   if (!options.notes) return text;
   if (d.via) text += paint("1", location_text(*d.via) + ":") + " " + note + " reached through this alias\n";
   if (!d.fix_hint.empty()) text += paint("1", location_text(d.location) + ":") + " " + note + " " + d.fix_hint + '\n';
+  // Fix-its: the first few as edits, the rest counted (an upgrade can carry hundreds).
+  constexpr std::size_t kShownFixes = 3;
+  for (std::size_t i = 0; i < d.fixes.size() && i < kShownFixes; ++i) {
+    const FixIt& f = d.fixes[i];
+    text += paint("1", location_text(SourceLocation{f.file, f.line, f.column}) + ":") + " " + note + " fix-it (" +
+            std::string(fix_safety_name(f.safety)) + "): replace \"" + f.original + "\" with \"" + f.replacement +
+            "\"\n";
+  }
+  if (d.fixes.size() > kShownFixes)
+    text += paint("1", location_text(d.location) + ":") + " " + note + " ... and " +
+            std::to_string(d.fixes.size() - kShownFixes) + " more fix-its\n";
   return text;
 }
 

@@ -47,6 +47,8 @@ std::vector<RuleInfo> make_table() {
        "it loads as 127 * shininess + 1; specular_exponent is the format's own key", ""},
       {"load-legacy-key", W, "a legacy camelCase key or value",
        "it loads, but the modern snake_case spelling is the documented one", ""},
+      {"load-format-upgrade", N, "a format 1.0 file; `bodycheck --fix --upgrade` rewrites it as format 2.0",
+       "2.0 is snake_case keys and degrees only; converting radian values by hand is error-prone (per-key rules)", ""},
       {"load-unknown-key", W, "an unknown key close to a known one (probable typo)",
        "Choreonoid ignores it silently, so the intended value is lost",
        "edit distance <= 1 (4-7 characters) or 2 (8+ characters), transpositions count once"},
@@ -231,6 +233,15 @@ std::vector<RuleInfo> make_table() {
       {"export-write", F, "an output file cannot be written or encoded",
        "nothing is written, so no output is left half-written", ""},
   };
+  // Fix-its (Diagnostic::fixes) and how far `bodycheck --fix` may apply them.
+  const std::vector<std::pair<std::string_view, std::string_view>> fixes = {
+      {"load-legacy-key", "safe: the snake_case spelling (key or joint type value)"},
+      {"load-format-upgrade", "upgrade: format_version 2.0, angle_unit degree, radian values in degrees (spec §3)"},
+      {"load-unknown-key", "unsafe: the did-you-mean key (the value is then read, so the model changes)"},
+  };
+  for (RuleInfo& rule : rules)
+    for (const auto& [id, fix] : fixes)
+      if (rule.id == id) rule.fix = fix;
   std::sort(rules.begin(), rules.end(), [](const RuleInfo& a, const RuleInfo& b) { return a.id < b.id; });
   return rules;
 }

@@ -81,7 +81,9 @@ Appearance read_appearance(LoadContext& ctx, const yaml::NodeRef& appearance) {
       ctx.report("load-type", t, "texture must be a mapping");
     }
   }
-  r.take({"texture_transform", "textureTransform"});
+  if (yaml::NodeRef transform = r.take({"texture_transform", "textureTransform"}); transform && transform->is_mapping())
+    if (const yaml::MapEntry* rotation = transform->find("rotation"))
+      ctx.note_angle(transform.child(rotation->value));  // a scalar angle (§8.7)
   r.report_unknown({"material", "texture", "texture_transform"});
   return result;
 }

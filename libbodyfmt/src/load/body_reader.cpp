@@ -99,6 +99,7 @@ std::optional<Model> BodyReader::read(const std::string& text, const std::string
   if (!build_tree(model, entries, r.take({"root_link", "rootLink"}))) return std::nullopt;
   if (yaml::NodeRef extra = r.take({"extra_joints", "extraJoints"})) read_extra_joints(extra, model);
   r.report_unknown(kHeaderKeys);
+  report_upgrade(model);
   if (top_level && options_.load_meshes) import_meshes(model);
   return model;
 }
@@ -146,6 +147,40 @@ void BodyReader::import_meshes(Model& model) {
   }
 }
 
+void BodyReader::report_upgrade(const Model& model) {
+  if (model.format_version >= 2.0 || !version_node_) return;
+  std::vector<FixIt> fixes;
+  std::string problem;
+  if (auto fix = edit_value(*version_node_, "2.0", FixSafety::kUpgrade))
+    fixes.push_back(std::move(*fix));
+  else
+    problem = "its format_version value is not written as a plain number";
+  if (!ctx_.degrees) {
+    if (auto fix = edit_value(*unit_node_, "degree", FixSafety::kUpgrade))
+      fixes.push_back(std::move(*fix));
+    else
+      problem = "its angle_unit value is not written as plain text";
+  }
+  if (!ctx_.upgrade_blockers.empty()) {
+    const SourceLocation& at = ctx_.upgrade_blockers.front();
+    problem = "the angle at " + at.file.str() + ":" + std::to_string(at.line) + ":" + std::to_string(at.column) +
+              " is not written as a plain number";
+  }
+  std::string message = "format " + version_node_->scalar + " file";
+  if (!ctx_.degrees)
+    message += " with angles in radians (" + std::to_string(ctx_.upgrade_fixes.size()) + " angle values)";
+  message += "; 2.0 is the current format (snake_case keys, degrees)";
+  std::string hint = "bodycheck --fix --upgrade rewrites it as format 2.0";
+  if (!problem.empty()) {
+    message += "; it cannot be upgraded automatically: " + problem;
+    hint.clear();
+    fixes.clear();
+  } else {
+    fixes.insert(fixes.end(), ctx_.upgrade_fixes.begin(), ctx_.upgrade_fixes.end());
+  }
+  ctx_.report("load-format-upgrade", version_node_, std::move(message), std::move(hint), std::move(fixes));
+}
+
 bool BodyReader::read_header(const yaml::NodeRef& root, Model& model) {
   MappingReader r(ctx_, root, "body");
   yaml::NodeRef format = r.take({"format"});
@@ -176,7 +211,9 @@ bool BodyReader::read_header(const yaml::NodeRef& root, Model& model) {
     return false;
   }
   model.format_version = *v;
+  version_node_ = version;
   if (auto unit = r.take({"angle_unit", "angleUnit"})) {
+    unit_node_ = unit;
     if (unit->scalar == "radian") {
       if (*v >= 2.0) {
         // body-format-spec §2.1: radian mode is rejected in format 2.0.

@@ -47,12 +47,16 @@ class BodyReader {
                      const std::vector<std::vector<LinkIndex>>& children);
   void read_extra_joints(const yaml::NodeRef& extra_joints, Model& model);
   void import_meshes(Model& model);
+  /// load-format-upgrade for a format < 2.0 file, carrying the upgrade fix-its (§2.1, §3).
+  void report_upgrade(const Model& model);
 
   const LoadOptions& options_;
   LoadContext ctx_;
   LoadSession& session_;
   std::unique_ptr<class ResourceReader> resources_;
   std::vector<std::unique_ptr<yaml::Document>> documents_;
+  yaml::NodeRef version_node_;  ///< format_version's value
+  yaml::NodeRef unit_node_;     ///< angle_unit's value, when given
 };
 
 }  // namespace bodyfmt::detail

@@ -29,11 +29,7 @@ constexpr std::array<std::string_view, 14> kPluginNodes = {"RotorDevice",
                                                            "AGXWireDevice",
                                                            "StdActionController"};
 
-std::optional<double> opt_angle(MappingReader& r, KeyNames names) {
-  auto v = take_optional_double(r, names);
-  if (!v) return std::nullopt;
-  return r.context().angle(*v);
-}
+std::optional<double> opt_angle(MappingReader& r, KeyNames names) { return take_optional_angle(r, names); }
 
 std::optional<Eigen::Vector3d> opt_vec3(MappingReader& r, KeyNames names) {
   yaml::NodeRef ref = r.take(names);
@@ -105,7 +101,7 @@ void read_range_sensor(MappingReader& r, Device& d) {
   assign_if(s.detection_rate, take_optional_double(r, {"detection_rate"}));
   assign_if(s.error_deviation, take_optional_double(r, {"error_deviation"}));
   r.take({"optical_frame"});
-  r.take({"optical_frame_rotation"});
+  r.context().note_rotation_angles(r.take({"optical_frame_rotation"}));
   d.type = "RangeSensor";
   d.params = s;
 }
@@ -126,6 +122,20 @@ void read_light(MappingReader& r, Device& d, bool spot) {
 }
 
 }  // namespace
+
+void note_first_angle(MappingReader& r, KeyNames names, bool rotation) {
+  // Choreonoid reads the first spelling present (§14); the model does not keep the value.
+  for (std::string_view name : names) {
+    if (const yaml::MapEntry* entry = r.node()->find(name)) {
+      const yaml::NodeRef value = r.node().child(entry->value);
+      if (rotation)
+        r.context().note_rotation_angles(value);
+      else
+        r.context().note_angle(value);
+      return;
+    }
+  }
+}
 
 bool is_core_device_type(std::string_view type) {
   return std::find(kCoreDevices.begin(), kCoreDevices.end(), type) != kCoreDevices.end();
@@ -168,6 +178,7 @@ bool read_device_params(MappingReader& r, std::string_view t, Device& d) {
     d.type = std::string(t);
     for (const auto& [node, cls] : kClassNames)
       if (node == t) d.type = std::string(cls);
+    if (t == "MarkerDevice") note_first_angle(r, {"offset_rotation", "offsetRotation"}, true);
     for (const yaml::MapEntry& e : r.node()->entries) r.ignore(e.key);
   }
   return true;

@@ -10,6 +10,10 @@
 namespace bodyfmt::detail {
 
 bool is_core_device_type(std::string_view type);
+
+/// Records the upgrade edit of an angle Choreonoid converts but the model does not keep: the
+/// first of `names` present (an axis-angle rotation when `rotation`).
+void note_first_angle(MappingReader& r, KeyNames names, bool rotation);
 bool is_plugin_node_type(std::string_view type);
 
 /// Reads the parameters of a device node whose common keys (name, id, on, transform,

@@ -184,6 +184,8 @@ void ElementReader::read_node(const yaml::NodeRef& node, const std::string& type
   if (is_core_device_type(type) || is_plugin_node_type(type)) return read_device(node, type, frame);
   if (is_scene_only_type(type)) {
     ctx_.report("load-scene-node", node, "a " + type + " node has no meaning in a body model; it is ignored");
+    if (type == "PerspectiveCamera" && node->is_mapping())  // its field_of_view is an angle (§8.8)
+      if (const yaml::MapEntry* fov = node->find("field_of_view")) ctx_.note_angle(node.child(fov->value));
     return;
   }
   // body-format-spec §7.2 rule 3.
@@ -319,6 +321,8 @@ void ElementReader::read_device(const yaml::NodeRef& node, const std::string& ty
   if (is_plugin_node_type(type)) {
     d.plugin = true;
     d.type = type;
+    // Particle devices (SceneEffects plugin): emission_range is an angle (§3).
+    note_first_angle(r, {"emission_range", "emissionRange"}, false);
     for (const yaml::MapEntry& e : node->entries) r.ignore(e.key);
     if (ctx_.reported_once.insert("plugin:" + type).second) {
       ctx_.report("load-plugin-node", node,

@@ -106,14 +106,15 @@ Geometry read_extrusion(LoadContext& ctx, MappingReader& r) {
   Extrusion e;
   e.cross_section = pairs(numbers_or_empty(ctx, r.take({"cross_section", "crossSection"})));
   e.spine = triples(numbers_or_empty(ctx, r.take({"spine"})));
-  std::vector<double> orientation = numbers_or_empty(ctx, r.take({"orientation"}));
+  yaml::NodeRef orientation_node = r.take({"orientation"});
+  std::vector<double> orientation = numbers_or_empty(ctx, orientation_node);
   for (std::size_t i = 0; i + 3 < orientation.size(); i += 4) {
     Eigen::Vector3d axis(orientation[i], orientation[i + 1], orientation[i + 2]);
-    double angle = ctx.angle(orientation[i + 3]);
+    double angle = ctx.angle(orientation[i + 3], orientation_node.child(orientation_node->items[i + 3]));
     e.orientation.emplace_back(angle, axis.norm() > 0 ? Eigen::Vector3d(axis.normalized()) : Eigen::Vector3d::UnitZ());
   }
   e.scale = pairs(numbers_or_empty(ctx, r.take({"scale"})));
-  if (auto crease = take_optional_double(r, {"crease_angle", "creaseAngle"})) e.crease_angle = ctx.angle(*crease);
+  assign_if(e.crease_angle, take_optional_angle(r, {"crease_angle", "creaseAngle"}));
   // body-format-spec §9: only the camelCase `beginCap` is read by Choreonoid.
   assign_if(e.begin_cap, take_optional_bool(r, {"beginCap"}));
   assign_if(e.end_cap, take_optional_bool(r, {"end_cap", "endCap"}));
@@ -151,7 +152,7 @@ Geometry read_elevation_grid(LoadContext& ctx, MappingReader& r) {
   assign_if(g.z_spacing, take_optional_double(r, {"z_spacing", "zSpacing"}));
   g.height = numbers_or_empty(ctx, r.take({"height"}));
   assign_if(g.ccw, take_optional_bool(r, {"ccw"}));
-  if (auto crease = take_optional_double(r, {"crease_angle", "creaseAngle"})) g.crease_angle = ctx.angle(*crease);
+  assign_if(g.crease_angle, take_optional_angle(r, {"crease_angle", "creaseAngle"}));
   r.take({"tex_coord", "texCoord"});
   r.ignore("solid");
   if (g.x_dimension < 2 || g.z_dimension < 2)
@@ -172,7 +173,7 @@ MeshGeometry read_mesh_keys(LoadContext& ctx, MappingReader& r) {
   m.faces = indices(ctx, r.take({"faces", "coordIndex"}));
   m.tex_coords = pairs(numbers_or_empty(ctx, r.take({"tex_coords", "texCoord"})));
   m.tex_coord_indices = indices(ctx, r.take({"tex_coord_indices", "texCoordIndex"}));
-  if (auto crease = take_optional_double(r, {"crease_angle", "creaseAngle"})) m.crease_angle = ctx.angle(*crease);
+  assign_if(m.crease_angle, take_optional_angle(r, {"crease_angle", "creaseAngle"}));
   for (const char* k : {"normals", "normal_indices", "solid"}) r.ignore(k);
   r.take({"remove_redundant_vertices", "removeRedundantVertices"});
   const int n = static_cast<int>(m.vertices.size());
@@ -236,7 +237,7 @@ Geometry read_resource_geometry(LoadContext& ctx, MappingReader& r) {
   }
   if (auto node = r.take({"node", "fragment"})) mesh.node = required_string(ctx, node).value_or("");
   if (auto metadata = r.take({"metadata"})) read_mesh_metadata(ctx, metadata, mesh);
-  if (auto crease = take_optional_double(r, {"crease_angle", "creaseAngle"})) mesh.crease_angle = ctx.angle(*crease);
+  if (auto crease = take_optional_angle(r, {"crease_angle", "creaseAngle"})) mesh.crease_angle = *crease;
   r.take({"remove_redundant_vertices", "removeRedundantVertices"});
   r.report_unknown({"uri", "node", "fragment", "metadata", "crease_angle", "remove_redundant_vertices", "type"});
   return mesh;

@@ -47,9 +47,13 @@ void read_joint(LoadContext& ctx, MappingReader& r, Link& link) {
     link.sources.joint_type = t.use_site();
     if (auto type = parse_joint_type(t->scalar)) {
       link.joint_type = *type;
-      if (t->scalar == "slide" || t->scalar == "pseudoContinuousTrack")
+      if (t->scalar == "slide" || t->scalar == "pseudoContinuousTrack") {
+        std::vector<FixIt> fixes;
+        if (auto fix = edit_value(*t, std::string(joint_type_name(*type)), FixSafety::kSafe))
+          fixes.push_back(std::move(*fix));
         ctx.report("load-legacy-key", t, "legacy joint type \"" + t->scalar + "\"",
-                   std::string("write ") + std::string(joint_type_name(*type)));
+                   std::string("write ") + std::string(joint_type_name(*type)), std::move(fixes));
+      }
     } else {
       std::string hint;
       if (t->scalar == "continuous" || t->scalar == "hinge")
@@ -85,10 +89,11 @@ void read_joint(LoadContext& ctx, MappingReader& r, Link& link) {
   yaml::NodeRef angle = r.take({"joint_angle", "jointAngle"});
   yaml::NodeRef displacement = r.take({"joint_displacement", "jointDisplacement"});
   if (displacement) {
-    if (auto v = required_double(ctx, displacement)) link.initial_displacement = revolute ? ctx.angle(*v) : *v;
+    if (auto v = required_double(ctx, displacement))
+      link.initial_displacement = revolute ? ctx.angle(*v, displacement) : *v;
   } else if (angle) {
     if (auto v = required_double(ctx, angle)) {
-      link.initial_displacement = ctx.angle(*v);
+      link.initial_displacement = ctx.angle(*v, angle);
       if (link.joint_type == JointType::kPrismatic && ctx.degrees)
         ctx.report("load-angle-on-prismatic", angle,
                    "joint_angle on a prismatic joint is converted from degrees by Choreonoid",

@@ -2,31 +2,106 @@
 
 #include <bodyfmt/rules.h>
 
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 namespace bodyfmt::detail {
 
-void LoadContext::report(std::string_view rule, const yaml::NodeRef& at, std::string message, std::string hint) {
+namespace {
+
+std::optional<FixIt> edit_span(const SourceLocation& at, const yaml::TextSpan& span, const std::string& original,
+                               std::string replacement, FixSafety safety) {
+  if (!span.editable()) return std::nullopt;
+  FixIt fix;
+  fix.file = at.file;
+  fix.begin = span.begin;
+  fix.end = span.end;
+  fix.line = at.line;
+  fix.column = span.column;
+  fix.original = original;
+  fix.replacement = std::move(replacement);
+  fix.safety = safety;
+  return fix;
+}
+
+}  // namespace
+
+std::optional<FixIt> edit_value(const yaml::Node& node, std::string replacement, FixSafety safety) {
+  if (!node.is_scalar()) return std::nullopt;
+  return edit_span(node.location, node.span, node.scalar, std::move(replacement), safety);
+}
+
+std::optional<FixIt> edit_key(const yaml::MapEntry& entry, std::string replacement, FixSafety safety) {
+  return edit_span(entry.key_location, entry.key_span, entry.key, std::move(replacement), safety);
+}
+
+std::string number_text(double value) {
+  if (value == 0) return "0";  // no "-0"
+  return fmt::format("{}", value);
+}
+
+void LoadContext::report(std::string_view rule, const yaml::NodeRef& at, std::string message, std::string hint,
+                         std::vector<FixIt> fixes) {
   if (!at) return report(rule, SourceLocation{}, std::move(message), std::move(hint));
   // Point at the text responsible; when it was reached through an alias (directly or as
   // part of shared text), `via` names the alias use that led to it (style.md §2.3).
   std::optional<SourceLocation> via = at.alias_site ? at.alias_site : at.enclosing_alias;
-  emit(rule, at->location, std::move(via), std::move(message), std::move(hint));
+  emit(rule, at->location, std::move(via), std::move(message), std::move(hint), std::move(fixes));
 }
 
-void LoadContext::report(std::string_view rule, const SourceLocation& at, std::string message, std::string hint) {
-  emit(rule, at, std::nullopt, std::move(message), std::move(hint));
+void LoadContext::report(std::string_view rule, const SourceLocation& at, std::string message, std::string hint,
+                         std::vector<FixIt> fixes) {
+  emit(rule, at, std::nullopt, std::move(message), std::move(hint), std::move(fixes));
 }
 
 void LoadContext::emit(std::string_view rule, const SourceLocation& at, std::optional<SourceLocation> via,
-                       std::string message, std::string hint) {
+                       std::string message, std::string hint, std::vector<FixIt> fixes) {
   if (!reported.emplace(std::string(rule), at.file, at.line, at.column, message).second) return;
   Diagnostic d = make_diagnostic(rule, at, std::move(message), std::move(hint));
   d.via = std::move(via);
+  d.fixes = std::move(fixes);
   if (d.severity >= Severity::kError) ++errors;
   sink.report(std::move(d));
 }
 
-double LoadContext::angle(double value) const { return degrees ? value * M_PI / 180.0 : value; }
+double LoadContext::angle(double value, const yaml::NodeRef& at) {
+  if (degrees) return value * M_PI / 180.0;
+  record_upgrade(at, value);
+  return value;
+}
+
+void LoadContext::record_upgrade(const yaml::NodeRef& at, double radians) {
+  if (degrees || !at) return;
+  std::optional<FixIt> fix = edit_value(*at, number_text(radians * 180.0 / M_PI), FixSafety::kUpgrade);
+  if (!fix) {
+    upgrade_blockers.push_back(at->location);
+    return;
+  }
+  // Text shared through an alias is read once per use: one edit.
+  if (std::find(upgrade_fixes.begin(), upgrade_fixes.end(), *fix) == upgrade_fixes.end())
+    upgrade_fixes.push_back(std::move(*fix));
+}
+
+void LoadContext::note_angle(const yaml::NodeRef& at) {
+  if (degrees || !at || !at->is_scalar()) return;
+  // Lenient like Choreonoid's required reads (§1.2): the numeric prefix.
+  const char* text = at->scalar.c_str();
+  char* end = nullptr;
+  const double value = std::strtod(text, &end);
+  if (end != text) record_upgrade(at, value);
+}
+
+void LoadContext::note_rotation_angles(const yaml::NodeRef& rotation) {
+  if (degrees || !rotation || !rotation->is_sequence()) return;
+  if (rotation->items.size() == 4 && rotation->items.front()->is_scalar()) {
+    note_angle(rotation.child(rotation->items[3]));
+    return;
+  }
+  for (const yaml::NodeRef& item : rotation->items)
+    if (item->is_sequence() && item->items.size() == 4) note_angle(rotation.child(item).child(item->items[3]));
+}
 
 }  // namespace bodyfmt::detail

@@ -15,6 +15,13 @@
 
 namespace bodyfmt::detail {
 
+/// A fix-it that replaces the text of scalar `node` (nullopt when it is not written verbatim).
+std::optional<FixIt> edit_value(const yaml::Node& node, std::string replacement, FixSafety safety);
+/// A fix-it that renames the key of `entry` (nullopt when it is not written verbatim).
+std::optional<FixIt> edit_key(const yaml::MapEntry& entry, std::string replacement, FixSafety safety);
+/// Shortest text that reads back as `value` (fmt's "{}"), for rewritten numbers.
+std::string number_text(double value);
+
 struct LoadContext {
   DiagnosticSink& sink;
   bool degrees = true;  ///< the file's angle unit (body-format-spec §3)
@@ -29,16 +36,31 @@ struct LoadContext {
 
   explicit LoadContext(DiagnosticSink& s) : sink(s) {}
 
-  /// Reports `rule` with the rule table's severity at the text responsible.
-  void report(std::string_view rule, const yaml::NodeRef& at, std::string message, std::string hint = {});
-  void report(std::string_view rule, const SourceLocation& at, std::string message, std::string hint = {});
+  /// Format-upgrade edits (load-format-upgrade): in a radian-mode file, every angle value the
+  /// loader converts (body-format-spec §3), rewritten in degrees; each written text once.
+  std::vector<FixIt> upgrade_fixes;
+  /// Angle values that cannot be rewritten in place (block scalars, escapes): no upgrade.
+  std::vector<SourceLocation> upgrade_blockers;
 
-  /// Converts an angle written in the file's unit to radians.
-  double angle(double value) const;
+  /// Reports `rule` with the rule table's severity at the text responsible.
+  void report(std::string_view rule, const yaml::NodeRef& at, std::string message, std::string hint = {},
+              std::vector<FixIt> fixes = {});
+  void report(std::string_view rule, const SourceLocation& at, std::string message, std::string hint = {},
+              std::vector<FixIt> fixes = {});
+
+  /// Converts the angle `value`, written at `at` in the file's unit, to radians. In a radian-mode
+  /// file, also records the upgrade edit that writes it in degrees.
+  double angle(double value, const yaml::NodeRef& at);
+  /// An angle value Choreonoid converts but the model does not keep (a texture transform's
+  /// rotation, a MarkerDevice offset_rotation...): only its upgrade edit is recorded.
+  void note_angle(const yaml::NodeRef& at);
+  /// The same for each angle (4th number) of an axis-angle rotation or a list of them.
+  void note_rotation_angles(const yaml::NodeRef& rotation);
 
  private:
   void emit(std::string_view rule, const SourceLocation& at, std::optional<SourceLocation> via, std::string message,
-            std::string hint);
+            std::string hint, std::vector<FixIt> fixes);
+  void record_upgrade(const yaml::NodeRef& at, double radians);
 };
 
 }  // namespace bodyfmt::detail

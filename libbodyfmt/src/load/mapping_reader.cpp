@@ -21,11 +21,14 @@ yaml::NodeRef MappingReader::take(KeyNames names) {
     if (const yaml::MapEntry* entry = mapping_->find(name)) {
       consumed_.emplace(name);
       if (!modern) {
-        // Located at the key: that is the text to change.
-        ctx_.report(
-            "load-legacy-key", entry->key_location,
-            "legacy key \"" + std::string(name) + "\"; the modern spelling is \"" + std::string(*names.begin()) + "\"",
-            "rename it to " + std::string(*names.begin()));
+        // Located at the key: that is the text to change. Take() found no earlier spelling in
+        // this mapping, so the rename cannot collide with a key already there.
+        const std::string modern_name(*names.begin());
+        std::vector<FixIt> fixes;
+        if (auto fix = edit_key(*entry, modern_name, FixSafety::kSafe)) fixes.push_back(std::move(*fix));
+        ctx_.report("load-legacy-key", entry->key_location,
+                    "legacy key \"" + std::string(name) + "\"; the modern spelling is \"" + modern_name + "\"",
+                    "rename it to " + modern_name, std::move(fixes));
       }
       return mapping_.child(entry->value);
     }
@@ -41,6 +44,23 @@ bool MappingReader::has(KeyNames names) const {
 
 void MappingReader::ignore(std::string_view name) { consumed_.emplace(name); }
 
+bool MappingReader::unique_guess(std::string_view key, const std::vector<std::string_view>& candidates,
+                                 std::string_view guess) const {
+  const int best = text::edit_distance(key, guess);
+  for (std::string_view candidate : candidates) {
+    std::string_view modern = candidate;
+    if (auto it = legacy_.find(candidate); it != legacy_.end()) modern = it->second;
+    if (modern != guess && text::edit_distance(key, candidate) <= best) return false;
+  }
+  return true;
+}
+
+bool MappingReader::has_spelling_of(std::string_view modern) const {
+  for (const auto& [legacy, name] : legacy_)
+    if (name == modern && mapping_->find(legacy)) return true;
+  return false;
+}
+
 void MappingReader::report_unknown(const std::vector<std::string_view>& known) {
   if (!mapping_ || !mapping_->is_mapping()) return;
   // Legacy spellings are candidates too (a typo of `jointRange` is closer to it than to
@@ -52,9 +72,14 @@ void MappingReader::report_unknown(const std::vector<std::string_view>& known) {
     std::string_view guess = text::suggest(entry.key, candidates);
     if (auto it = legacy_.find(guess); it != legacy_.end()) guess = it->second;
     if (!guess.empty()) {
+      // The rename is a fix-it only when the guess is the one candidate that close and no
+      // spelling of it is in the mapping already; it is unsafe: the value is then read.
+      std::vector<FixIt> fixes;
+      if (unique_guess(entry.key, candidates, guess) && !mapping_->find(guess) && !has_spelling_of(guess))
+        if (auto fix = edit_key(entry, std::string(guess), FixSafety::kUnsafe)) fixes.push_back(std::move(*fix));
       ctx_.report("load-unknown-key", entry.key_location,
                   "unknown key \"" + entry.key + "\" in " + what_ + "; did you mean \"" + std::string(guess) + "\"?",
-                  "Choreonoid ignores it; rename it to " + std::string(guess));
+                  "Choreonoid ignores it; rename it to " + std::string(guess), std::move(fixes));
     } else {
       ctx_.report("load-info-key", entry.key_location,
                   "key \"" + entry.key + "\" is not part of the " + what_ + " format; it is kept as info");
@@ -66,6 +91,14 @@ std::optional<double> take_optional_double(MappingReader& r, KeyNames names) {
   yaml::NodeRef ref = r.take(names);
   if (!ref) return std::nullopt;
   return optional_double(r.context(), ref);
+}
+
+std::optional<double> take_optional_angle(MappingReader& r, KeyNames names) {
+  yaml::NodeRef ref = r.take(names);
+  if (!ref) return std::nullopt;
+  auto value = optional_double(r.context(), ref);
+  if (!value) return std::nullopt;
+  return r.context().angle(*value, ref);
 }
 
 std::optional<bool> take_optional_bool(MappingReader& r, KeyNames names) {

@@ -38,6 +38,12 @@ class MappingReader {
   LoadContext& context() { return ctx_; }
 
  private:
+  /// No candidate other than a spelling of `guess` is as close to `key`.
+  bool unique_guess(std::string_view key, const std::vector<std::string_view>& candidates,
+                    std::string_view guess) const;
+  /// A legacy spelling of `modern` is a key of the mapping.
+  bool has_spelling_of(std::string_view modern) const;
+
   LoadContext& ctx_;
   yaml::NodeRef mapping_;
   std::string what_;
@@ -49,6 +55,8 @@ class MappingReader {
 /// absent, or when its value does not parse (warned, so the caller keeps its default).
 std::optional<double> take_optional_double(MappingReader& r, KeyNames names);
 std::optional<bool> take_optional_bool(MappingReader& r, KeyNames names);
+/// take_optional_double of an angle, converted to radians (LoadContext::angle).
+std::optional<double> take_optional_angle(MappingReader& r, KeyNames names);
 
 template <typename T>
 void assign_if(T& target, const std::optional<T>& value) {

@@ -19,6 +19,19 @@
 namespace bodyfmt::detail {
 namespace {
 
+// An included file's text: the stand-in of LoadOptions::file_texts, else the file on disk.
+std::optional<std::string> read_included_file(const std::string& path, const LoadOptions& options, std::string& why) {
+  if (!options.file_texts.empty()) {
+    std::error_code ec;
+    const std::string canonical = std::filesystem::weakly_canonical(path, ec).string();
+    if (auto it = options.file_texts.find(ec ? path : canonical); it != options.file_texts.end()) return it->second;
+  }
+  return read_regular_file(path, options.max_file_bytes, why);
+}
+
+}  // namespace
+namespace {
+
 std::string lower_extension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
@@ -88,7 +101,7 @@ class Resources final : public ResourceReader {
     auto it = yaml_files_.find(path);
     if (it != yaml_files_.end()) return it->second.get();
     std::string why;
-    const std::optional<std::string> text = read_regular_file(path, options_.max_file_bytes, why);
+    const std::optional<std::string> text = read_included_file(path, options_, why);
     if (!text) {
       ctx_.report("resource-missing", at, "YAML resource \"" + path + "\" cannot be read: " + why);
       yaml_files_[path] = nullptr;
@@ -144,7 +157,7 @@ class Resources final : public ResourceReader {
     if (auto it = session_.subbodies.find(canonical); it != session_.subbodies.end()) return it->second;
     std::shared_ptr<const Model> result;
     std::string why;
-    const std::optional<std::string> text = read_regular_file(path, options_.max_file_bytes, why);
+    const std::optional<std::string> text = read_included_file(path, options_, why);
     if (!text) {
       ctx_.report("subbody-missing", uri,
                   "sub-body \"" + uri->scalar + "\" cannot be read at \"" + path + "\": " + why);
@@ -263,7 +276,10 @@ class Resources final : public ResourceReader {
       link.X_PL = Eigen::Isometry3d::Identity();
       link.X_PL.translation() = *joint_offset;
       link.initial_displacement =
-          static_cast<std::size_t>(i - 1) < initial.size() ? ctx_.angle(initial[static_cast<std::size_t>(i - 1)]) : 0.0;
+          static_cast<std::size_t>(i - 1) < initial.size()
+              ? ctx_.angle(initial[static_cast<std::size_t>(i - 1)],
+                           angles->value.child(angles->value->items[static_cast<std::size_t>(i - 1)]))
+              : 0.0;
       model_.links.push_back(std::move(link));
       LinkEntry entry;
       entry.parent_name = base + std::to_string(i - 1);

@@ -99,7 +99,7 @@ std::optional<Eigen::Matrix3d> read_rotation(LoadContext& ctx, const yaml::NodeR
       ctx.report("load-rotation-axis", r, "rotation axis is the zero vector");
       return std::nullopt;
     }
-    return Eigen::AngleAxisd(ctx.angle((*v)[3]), axis.normalized()).toRotationMatrix();
+    return Eigen::AngleAxisd(ctx.angle((*v)[3], r.child(r->items[3])), axis.normalized()).toRotationMatrix();
   };
   if (!is_sequence_of_sequences(ref)) return one(ref);
   // body-format-spec §4.3: R = R1 * R2 * ... * Rn in list order.
@@ -173,7 +173,7 @@ std::optional<double> limit_value(LoadContext& ctx, const yaml::NodeRef& ref, bo
   }
   auto value = required_double(ctx, ref);
   if (!value) return std::nullopt;
-  return convert_angle ? ctx.angle(*value) : *value;
+  return convert_angle ? ctx.angle(*value, ref) : *value;
 }
 
 }  // namespace

@@ -42,9 +42,22 @@ struct NodeRef {
   const SourceLocation& use_site() const;
 };
 
+/// Where a scalar's value is written, byte for byte: `text[begin, end)` of its file is exactly
+/// the value (a plain scalar, or the inside of a quoted one without escapes), on the line of its
+/// location, starting at byte column `column`. `begin == npos` when the value is not written
+/// so (block and folded scalars, escapes, aliases): a fix-it cannot edit it in place.
+struct TextSpan {
+  static constexpr std::size_t npos = static_cast<std::size_t>(-1);
+  std::size_t begin = npos;
+  std::size_t end = npos;
+  int column = 0;
+  bool editable() const { return begin != npos; }
+};
+
 struct MapEntry {
   std::string key;
   SourceLocation key_location;
+  TextSpan key_span;  ///< the key's text (npos when written through an alias or with escapes)
   NodeRef value;
   bool merged = false;  ///< came from a `<<` merge source rather than written locally
 };
@@ -58,6 +71,7 @@ struct Node {
   // kScalar
   std::string scalar;
   bool plain = true;  ///< false for quoted or block scalars
+  TextSpan span;      ///< where `scalar` is written (fix-its edit it there)
   // kSequence
   std::vector<NodeRef> items;
   // kMapping: file order; merge keys applied (local keys win, first merge source wins);

@@ -167,6 +167,7 @@ class TreeBuilder {
     KeyState key_state = KeyState::kNormal;
     std::string key;
     SourceLocation key_location;
+    TextSpan key_span;
     std::unordered_map<std::string, std::pair<std::size_t, int>> local_keys;  // index, first line
     std::vector<MergeSlot> merges;
   };
@@ -213,6 +214,7 @@ class TreeBuilder {
     Node* node = begin_node(NodeKind::kScalar, e.start_mark, scalar.anchor, scalar.tag);
     node->scalar.assign(reinterpret_cast<const char*>(scalar.value), scalar.length);
     node->plain = scalar.style == YAML_PLAIN_SCALAR_STYLE;
+    node->span = scalar_span(*node, e.start_mark, e.end_mark, scalar.style);
     // `key:` with nothing after it: the empty value has no text of its own; it is reported at
     // its key rather than at wherever libyaml's scanner stood.
     if (node->plain && node->scalar.empty() && scalar.anchor == nullptr && scalar.tag == nullptr && !frames_.empty() &&
@@ -244,6 +246,29 @@ class TreeBuilder {
       throw ParseAborted{};
     }
     add_alias(target, e.start_mark);
+  }
+
+  // Where the scalar's value is written verbatim, for fix-its: after its properties, inside its
+  // quotes, on its first line, and only when the text equals the value (no escapes, no folding).
+  TextSpan scalar_span(const Node& node, const yaml_mark_t& start, const yaml_mark_t& end, yaml_scalar_style_t style) {
+    TextSpan span;
+    if (!utf8_ || node.scalar.empty()) return span;
+    const bool quoted = style == YAML_SINGLE_QUOTED_SCALAR_STYLE || style == YAML_DOUBLE_QUOTED_SCALAR_STYLE;
+    if (style != YAML_PLAIN_SCALAR_STYLE && !quoted) return span;
+    const std::size_t first = offset(start);
+    std::size_t begin = scan_node_text(text_, first).content;
+    std::size_t stop = offset(end);
+    if (quoted) {
+      ++begin;
+      if (stop == 0) return span;
+      --stop;
+    }
+    if (begin > stop || stop > text_.size() || text_.substr(begin, stop - begin) != node.scalar) return span;
+    if (text_.substr(first, begin - first).find('\n') != std::string_view::npos) return span;
+    span.begin = begin;
+    span.end = stop;
+    span.column = node.location.column + static_cast<int>(begin - first);
+    return span;
   }
 
   bool in_key_position() const {
@@ -371,6 +396,7 @@ class TreeBuilder {
 
   void accept_key(Frame& frame, const NodeRef& ref) {
     frame.key_location = ref.use_site();
+    frame.key_span = ref.alias_site ? TextSpan{} : ref->span;
     if (!ref->is_scalar()) {
       report("yaml-complex-key", frame.key_location,
              "a mapping key must be a scalar, not a " + std::string(ref->is_mapping() ? "mapping" : "sequence"));
@@ -396,7 +422,7 @@ class TreeBuilder {
     auto [it, inserted] =
         frame.local_keys.try_emplace(frame.key, std::make_pair(entries.size(), frame.key_location.line));
     if (inserted) {
-      entries.push_back(MapEntry{frame.key, frame.key_location, std::move(value), false});
+      entries.push_back(MapEntry{frame.key, frame.key_location, frame.key_span, std::move(value), false});
       return;
     }
     // body-format-spec §1.6: the last one wins (WAREC1's `type: Collision` then `type: Group`).
@@ -406,6 +432,7 @@ class TreeBuilder {
            "remove one of the two entries");
     MapEntry& entry = entries[it->second.first];
     entry.key_location = frame.key_location;
+    entry.key_span = frame.key_span;
     entry.value = std::move(value);
   }
 
@@ -444,7 +471,7 @@ class TreeBuilder {
       for (const NodeRef& source : slot.sources) {
         for (const MapEntry& entry : source->entries) {
           if (!present.insert(entry.key).second) continue;
-          merged.push_back(MapEntry{entry.key, entry.key_location, entry.value, true});
+          merged.push_back(MapEntry{entry.key, entry.key_location, entry.key_span, entry.value, true});
         }
       }
     }

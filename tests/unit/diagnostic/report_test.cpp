@@ -104,9 +104,9 @@ TEST_CASE("report: JSON document structure") {
   CHECK(json.find("\"files\": [\n    \"a.body\",\n    \"b \\\"q\\\".body\"\n  ]") != std::string::npos);
   CHECK(json.find("{\"file\": \"a.body\", \"line\": 4, \"column\": 9, \"severity\": \"error\", \"rule\": "
                   "\"load-joint-type\", \"message\": \"illegal \\\"x\\\"\", \"via\": {\"file\": \"a.body\", "
-                  "\"line\": 2, \"column\": 3}, \"fix_hint\": \"use revolute\"}") != std::string::npos);
+                  "\"line\": 2, \"column\": 3}, \"fix_hint\": \"use revolute\", \"fixes\": []}") != std::string::npos);
   CHECK(json.find("\"severity\": \"fatal\", \"rule\": \"yaml-syntax\", \"message\": \"bad\", \"via\": null, "
-                  "\"fix_hint\": null}") != std::string::npos);
+                  "\"fix_hint\": null, \"fixes\": []}") != std::string::npos);
   CHECK(json.find("\"summary\": {\"files\": 2, \"fatal\": 1, \"errors\": 1, \"warnings\": 0, \"notes\": 0, "
                   "\"suppressed\": 0, \"disabled\": 0, \"by_rule\": {\"load-joint-type\": 1, \"yaml-syntax\": 1}}") !=
         std::string::npos);

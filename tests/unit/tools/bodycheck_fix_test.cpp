@@ -1,0 +1,143 @@
+// bodycheck --fix on copies of tests/data/fix: what is written, what is refused, exit codes.
+#include "support/export_helpers.h"
+
+#include <doctest/doctest.h>
+
+#include <sys/stat.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+namespace fs = std::filesystem;
+using bodyfmt::test::fresh_dir;
+using bodyfmt::test::read;
+
+namespace {
+
+struct Run {
+  int status = -1;
+  std::string output;  // stdout, then stderr
+};
+
+Run bodycheck_in(const fs::path& dir, const std::string& args) {
+  const std::string command = "cd '" + dir.string() + "' && '" + BODYFMT_BODYCHECK + "' --no-config " + args + " 2>&1";
+  Run run;
+  FILE* pipe = popen(command.c_str(), "r");
+  REQUIRE(pipe != nullptr);
+  char buffer[4096];
+  std::size_t n;
+  while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) run.output.append(buffer, n);
+  const int status = pclose(pipe);
+  run.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
+}
+
+fs::path copy_data(const std::string& name) {
+  const fs::path dir = fresh_dir("fix_" + name);
+  fs::copy(fs::path(BODYFMT_TEST_DATA_DIR) / "fix", dir, fs::copy_options::recursive);
+  return dir;
+}
+
+bool contains(const std::string& text, const std::string& what) { return text.find(what) != std::string::npos; }
+
+}  // namespace
+
+TEST_CASE("bodycheck --fix: renames legacy keys in place, once in anchored text, and a second run changes nothing") {
+  const fs::path dir = copy_data("legacy");
+  const std::string before = read(dir / "legacy.body");
+  Run run = bodycheck_in(dir, "--fix legacy.body");
+  CHECK(contains(run.output, "legacy.body: fixed (13 edits)"));
+  const std::string after = read(dir / "legacy.body");
+  CHECK(contains(after, "COMMON: &COMMON { center_of_mass: [ 0, 0, 0.01 ], mass: 0.5 }   # one anchor, used twice\n"));
+  CHECK(contains(after, "format_version: 1.0   # kept comment\n"));  // --upgrade not given
+  CHECK(contains(after, "    'center_of_mass': [ 0, 0, 0 ]\n"));     // quoting kept
+  CHECK(contains(after, "    \"joint_axis\": X\n"));
+  CHECK(contains(after, "    joint_type: prismatic\n"));  // legacy value `slide`
+  // Byte for byte: the original with each legacy spelling replaced, and nothing else.
+  std::string expected = before;
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"formatVersion", "format_version"},
+                                 {"angleUnit", "angle_unit"},
+                                 {"centerOfMass", "center_of_mass"},
+                                 {"jointType: slide", "joint_type: prismatic"},
+                                 {"jointType", "joint_type"},
+                                 {"jointAxis", "joint_axis"},
+                                 {"jointRange", "joint_range"},
+                                 {"diffuseColor", "diffuse"}})
+    for (std::size_t at; (at = expected.find(from)) != std::string::npos;) expected.replace(at, from.size(), to);
+  CHECK(after == expected);
+  Run again = bodycheck_in(dir, "--fix legacy.body");
+  CHECK_FALSE(contains(again.output, "fixed ("));
+  CHECK(read(dir / "legacy.body") == after);
+  CHECK_FALSE(contains(again.output, "[load-legacy-key]"));
+}
+
+TEST_CASE("bodycheck --fix --dry-run prints a diff, writes nothing, and exits 1 only when there is a change") {
+  const fs::path dir = copy_data("dry");
+  const std::string before = read(dir / "legacy.body");
+  Run run = bodycheck_in(dir, "--fix --dry-run legacy.body");
+  CHECK(run.status == 1);
+  CHECK(contains(run.output, "--- a/legacy.body\n+++ b/legacy.body\n@@ -1,32 +1,32 @@\n"));
+  CHECK(contains(run.output,
+                 "-    jointType: slide\n-    \"jointAxis\": X\n-    jointRange: [ -0.2, 0.2 ]\n"
+                 "+    joint_type: prismatic\n+    \"joint_axis\": X\n+    joint_range: [ -0.2, 0.2 ]\n"));
+  CHECK(read(dir / "legacy.body") == before);
+  bodycheck_in(dir, "--fix legacy.body");
+  Run clean = bodycheck_in(dir, "--fix --dry-run legacy.body");
+  CHECK(clean.status == 0);
+  CHECK_FALSE(contains(clean.output, "--- a/"));
+}
+
+TEST_CASE("bodycheck --fix refuses a read-only file and a file with YAML errors: nothing written, exit 2") {
+  const fs::path dir = copy_data("refuse");
+  const std::string before = read(dir / "legacy.body");
+  fs::permissions(dir / "legacy.body", fs::perms::owner_read | fs::perms::group_read | fs::perms::others_read);
+  Run read_only = bodycheck_in(dir, "--fix legacy.body");
+  CHECK(read_only.status == 2);
+  CHECK(contains(read_only.output, "legacy.body: cannot fix: legacy.body: the file is read-only (mode 0444)"));
+  CHECK(read(dir / "legacy.body") == before);
+  for (const auto& entry : fs::directory_iterator(dir))  // no temporary file left behind
+    CHECK(entry.path().filename().string().find(".bodycheck-") == std::string::npos);
+
+  const std::string broken = read(dir / "yaml_error.body");
+  Run yaml = bodycheck_in(dir, "--fix yaml_error.body");
+  CHECK(yaml.status == 2);
+  CHECK(contains(yaml.output, "[yaml-syntax]"));
+  CHECK(contains(yaml.output, "yaml_error.body: cannot fix: the file does not load"));
+  CHECK(read(dir / "yaml_error.body") == broken);
+  CHECK(bodycheck_in(dir, "--fix - < legacy.body").status == 2);  // standard input cannot be fixed in place
+}
+
+TEST_CASE("bodycheck --fix edits a SubBody file only when it is named or with --fix-includes") {
+  const fs::path dir = copy_data("includes") / "include";
+  const std::string part = read(dir / "part.body");
+  Run main_only = bodycheck_in(dir, "--fix main.body");
+  CHECK(read(dir / "part.body") == part);
+  CHECK(contains(main_only.output, "part.body:5:5: warning: legacy key \"jointType\""));
+  bodycheck_in(dir, "--fix main.body part.body");
+  CHECK(contains(read(dir / "part.body"), "    joint_type: revolute\n"));
+  const fs::path dir2 = copy_data("includes2") / "include";
+  bodycheck_in(dir2, "--fix --fix-includes main.body");
+  CHECK(contains(read(dir2 / "part.body"), "    joint_type: revolute\n"));
+}
+
+TEST_CASE("bodycheck --fix keeps the file's permissions; --upgrade rewrites the header of a degree file") {
+  const fs::path dir = copy_data("perms");
+  fs::permissions(dir / "legacy.body", fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read);
+  bodycheck_in(dir, "--fix --upgrade legacy.body");
+  CHECK(fs::status(dir / "legacy.body").permissions() ==
+        (fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read));
+  const std::string after = read(dir / "legacy.body");
+  CHECK(contains(after, "format_version: 2.0   # kept comment\nangle_unit: degree\n"));
+}
+
+TEST_CASE("bodycheck --format json carries the fix-its with byte offsets and their safety") {
+  const fs::path dir = copy_data("json");
+  Run run = bodycheck_in(dir, "--format json legacy.body");
+  CHECK(contains(run.output,
+                 "\"fixes\": [{\"file\": \"legacy.body\", \"line\": 4, \"column\": 1, \"offset\": 196, "
+                 "\"length\": 13, \"original\": \"formatVersion\", \"replacement\": \"format_version\", "
+                 "\"safety\": \"safe\"}]"));
+  CHECK(contains(run.output, "\"original\": \"1.0\", \"replacement\": \"2.0\", \"safety\": \"upgrade\""));
+}

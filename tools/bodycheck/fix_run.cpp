@@ -1,0 +1,244 @@
+#include "fix_run.h"
+
+#include <bodyfmt/diagnostic_policy.h>
+#include <bodyfmt/fix.h>
+#include <bodyfmt/load.h>
+
+#include <fmt/format.h>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <set>
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+namespace bodyfmt::tools {
+namespace {
+
+std::string canonical(const std::string& path) {
+  std::error_code ec;
+  const fs::path p = fs::weakly_canonical(path, ec);
+  return ec ? path : p.string();
+}
+
+std::optional<std::string> read_text(const std::string& path, std::string& why) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    why = std::strerror(errno);
+    return std::nullopt;
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) {
+    why = "a read error";
+    return std::nullopt;
+  }
+  return text.str();
+}
+
+/// One file to rewrite: where, and its new text.
+struct Rewrite {
+  std::string path;  ///< canonical (a symbolic link is followed, so the link stays)
+  std::string shown;
+  std::string before;
+  std::string after;
+};
+
+/// Writes every rewrite or none: each new text goes to a temporary file beside its target
+/// (same permissions), and only when all are written and synced are they renamed over their
+/// targets. A read-only target or folder is refused before anything is written.
+bool write_all(const std::vector<Rewrite>& rewrites, std::string& why) {
+  for (const Rewrite& r : rewrites) {
+    // A file without any write permission is read-only by intent, even for root (whom
+    // access() would let through).
+    struct stat st {};
+    if (::stat(r.path.c_str(), &st) == 0 && (st.st_mode & 0222) == 0) {
+      why = fmt::format("{}: the file is read-only (mode {:04o})", r.shown, st.st_mode & 07777);
+      return false;
+    }
+    if (::access(r.path.c_str(), W_OK) != 0) {
+      why = r.shown + ": the file is not writable (" + std::strerror(errno) + ")";
+      return false;
+    }
+  }
+  std::vector<std::string> temporaries;
+  const auto abandon = [&] {
+    for (const std::string& t : temporaries) ::unlink(t.c_str());
+    return false;
+  };
+  for (const Rewrite& r : rewrites) {
+    struct stat st {};
+    if (::stat(r.path.c_str(), &st) != 0) {
+      why = r.shown + ": " + std::strerror(errno);
+      return abandon();
+    }
+    const fs::path target(r.path);
+    std::string pattern = (target.parent_path() / ("." + target.filename().string() + ".bodycheck-XXXXXX")).string();
+    const int fd = ::mkstemp(pattern.data());
+    if (fd < 0) {
+      why = r.shown + ": cannot create a temporary file in its folder (" + std::strerror(errno) + ")";
+      return abandon();
+    }
+    temporaries.push_back(pattern);
+    std::size_t written = 0;
+    bool ok = true;
+    while (ok && written < r.after.size()) {
+      const ssize_t n = ::write(fd, r.after.data() + written, r.after.size() - written);
+      if (n < 0 && errno == EINTR) continue;
+      ok = n > 0;
+      if (ok) written += static_cast<std::size_t>(n);
+    }
+    ok = ok && ::fchmod(fd, st.st_mode & 07777) == 0 && ::fsync(fd) == 0;
+    const int saved = errno;
+    ok = ::close(fd) == 0 && ok;
+    if (!ok) {
+      why = r.shown + ": cannot write the temporary file (" + std::strerror(saved) + ")";
+      return abandon();
+    }
+  }
+  for (std::size_t i = 0; i < rewrites.size(); ++i) {
+    if (::rename(temporaries[i].c_str(), rewrites[i].path.c_str()) != 0) {
+      why = rewrites[i].shown + ": cannot replace the file (" + std::strerror(errno) + ")";
+      for (std::size_t j = i; j < temporaries.size(); ++j) ::unlink(temporaries[j].c_str());
+      return false;
+    }
+  }
+  return true;
+}
+
+class ModelFixer {
+ public:
+  ModelFixer(Front& front, const std::set<std::string>& named, const FixSettings& settings, FixSummary& summary)
+      : front_(front), named_(named), settings_(settings), summary_(summary) {}
+
+  void fix(const std::string& file) {
+    if (file == "-") return fail(file, "standard input cannot be fixed in place; name the file");
+    auto policy = front_.policy_for(file);
+    if (!policy) return fail(file, "its .bodycheck.yaml is malformed");
+    LoadOptions options = front_.load_options();
+    options.load_meshes = false;  // fix-its never touch meshes; the model is compared without them
+    CollectingSink collected;
+    DiagnosticPolicy filter(collected, policy->options);
+    const std::optional<Model> original = load_body(file, options, filter);
+    bool fatal = !original;
+    for (const Diagnostic& d : collected.diagnostics()) fatal = fatal || d.severity == Severity::kFatal;
+    if (fatal) {
+      front_.print(collected.diagnostics());
+      return fail(file, "the file does not load (see the errors above); nothing is written");
+    }
+
+    std::map<std::string, std::vector<FixIt>> by_file;  // canonical path -> edits
+    std::map<std::string, std::string> shown;           // canonical path -> name to show
+    for (const Diagnostic& d : collected.diagnostics()) {
+      if (d.rule_id == "load-format-upgrade" && settings_.upgrade && allowed(d.location.file)) {
+        if (d.fixes.empty()) return fail(file, "cannot upgrade: " + d.message);
+        for (const FixIt& f : d.fixes)
+          if (!allowed(f.file))
+            return fail(file, "the upgrade also rewrites angles in \"" + f.file.str() +
+                                  "\"; name that file on the command line too, or use --fix-includes");
+      }
+      for (const FixIt& f : d.fixes) {
+        const bool wanted = f.safety == FixSafety::kSafe || (f.safety == FixSafety::kUpgrade && settings_.upgrade);
+        if (!wanted || !allowed(f.file)) continue;
+        const std::string key = canonical(f.file);
+        by_file[key].push_back(f);
+        shown.emplace(key, f.file.str());
+      }
+    }
+    if (by_file.empty()) return;
+
+    std::vector<Rewrite> rewrites;
+    LoadOptions reload_options = options;
+    const std::string main_key = canonical(file);
+    std::string main_text;
+    int edits = 0;
+    for (auto& [key, fixes] : by_file) {
+      std::string why;
+      const std::optional<std::string> before = read_text(key, why);
+      if (!before) return fail(shown[key], "cannot read it: " + why);
+      std::optional<std::string> after = apply_fixes(*before, fixes, why);
+      if (!after) return fail(file, why);
+      edits += count_edits(fixes);
+      if (key == main_key)
+        main_text = *after;
+      else
+        reload_options.file_texts[key] = *after;
+      if (*after != *before) rewrites.push_back(Rewrite{key, shown[key], *before, std::move(*after)});
+    }
+    if (rewrites.empty()) return;
+    if (!by_file.count(main_key)) {
+      std::string why;
+      auto text = read_text(file, why);
+      if (!text) return fail(file, "cannot read it: " + why);
+      main_text = std::move(*text);
+    }
+
+    // The proof: the fixed text loads to the same model.
+    CollectingSink reload_sink;
+    const std::optional<Model> fixed = load_body_string(main_text, file, reload_options, reload_sink);
+    bool reload_fatal = !fixed;
+    for (const Diagnostic& d : reload_sink.diagnostics()) reload_fatal = reload_fatal || d.severity == Severity::kFatal;
+    if (reload_fatal) {
+      front_.print(reload_sink.diagnostics());
+      return fail(file, "the fixed text does not load (a bug in a fix-it: please report it); nothing is written");
+    }
+    if (auto difference = model_difference(*original, *fixed))
+      return fail(file, "the fixed text would load a different model (" + *difference +
+                            "); nothing is written (a bug in a fix-it: please report it)");
+
+    if (settings_.dry_run) {
+      for (const Rewrite& r : rewrites) summary_.diff += unified_diff(r.before, r.after, r.shown);
+    } else {
+      std::string why;
+      if (!write_all(rewrites, why)) return fail(file, why + "; nothing is written");
+      for (const Rewrite& r : rewrites)
+        std::cerr << fmt::format("{}: fixed ({} edit{})\n", r.shown, edits_in(by_file[r.path]),
+                                 edits_in(by_file[r.path]) == 1 ? "" : "s");
+    }
+    summary_.files_changed += static_cast<int>(rewrites.size());
+    summary_.edits += edits;
+  }
+
+ private:
+  bool allowed(const std::string& path) const { return settings_.includes || named_.count(canonical(path)) != 0; }
+
+  static int count_edits(std::vector<FixIt> fixes) {
+    std::sort(fixes.begin(), fixes.end(),
+              [](const FixIt& a, const FixIt& b) { return std::tie(a.begin, a.end) < std::tie(b.begin, b.end); });
+    fixes.erase(std::unique(fixes.begin(), fixes.end()), fixes.end());
+    return static_cast<int>(fixes.size());
+  }
+  static int edits_in(const std::vector<FixIt>& fixes) { return count_edits(fixes); }
+
+  void fail(const std::string& file, const std::string& why) {
+    front_.print_error(file + ": cannot fix: " + why);
+    summary_.failed = true;
+  }
+
+  Front& front_;
+  const std::set<std::string>& named_;
+  const FixSettings& settings_;
+  FixSummary& summary_;
+};
+
+}  // namespace
+
+FixSummary run_fixes(Front& front, const std::vector<std::string>& files, const FixSettings& settings) {
+  FixSummary summary;
+  std::set<std::string> named;
+  for (const std::string& file : files) named.insert(canonical(file));
+  ModelFixer fixer(front, named, settings, summary);
+  for (const std::string& file : files) fixer.fix(file);
+  return summary;
+}
+
+}  // namespace bodyfmt::tools
