@@ -1,0 +1,56 @@
+#include "contact_points.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+namespace bodyfmt::dynamics {
+namespace {
+
+/// Directions spread evenly over the sphere (a Fibonacci lattice).
+std::vector<Eigen::Vector3d> sphere_directions(int count) {
+  std::vector<Eigen::Vector3d> out;
+  const double golden = M_PI * (3 - std::sqrt(5.0));
+  for (int i = 0; i < count; ++i) {
+    const double z = 1 - (2 * i + 1.0) / count;
+    const double r = std::sqrt(std::max(0.0, 1 - z * z));
+    out.emplace_back(r * std::cos(golden * i), r * std::sin(golden * i), z);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<ContactPoint> collect_contact_points(const Model& model, DiagnosticSink& sink) {
+  GeometryAlreadyReported quiet(sink);
+  std::vector<ContactPoint> out;
+  for (std::size_t i = 0; i < model.links.size(); ++i) {
+    const Link& link = model.links[i];
+    // Distinct vertices in a deterministic order (meshes repeat vertices per face normal).
+    std::set<std::array<double, 3>> distinct;
+    for (const Shape& shape : link.shapes) {
+      if (!shape.collision) continue;
+      const TriangleMesh mesh = compute_shape_mesh(model, shape, quiet);
+      for (const Eigen::Vector3d& v : mesh.vertices)
+        if (v.allFinite()) distinct.insert({v.x(), v.y(), v.z()});
+    }
+    std::vector<Eigen::Vector3d> vertices;
+    for (const auto& v : distinct) vertices.emplace_back(v[0], v[1], v[2]);
+    if (static_cast<int>(vertices.size()) > kMaxPointsPerLink) {
+      std::set<std::size_t> keep;
+      for (const Eigen::Vector3d& d : sphere_directions(kMaxPointsPerLink)) {
+        std::size_t best = 0;
+        for (std::size_t k = 1; k < vertices.size(); ++k)
+          if (vertices[k].dot(d) > vertices[best].dot(d)) best = k;
+        keep.insert(best);
+      }
+      std::vector<Eigen::Vector3d> kept;
+      for (std::size_t k : keep) kept.push_back(vertices[k]);
+      vertices = std::move(kept);
+    }
+    for (const Eigen::Vector3d& v : vertices) out.push_back({static_cast<LinkIndex>(i), v});
+  }
+  return out;
+}
+
+}  // namespace bodyfmt::dynamics
