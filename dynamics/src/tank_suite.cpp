@@ -409,9 +409,15 @@ std::vector<CheckResult> run_tank_suite(const Model& model, const Derived& deriv
       return v;
     };
     auto tau_g = [&](double q) { return subtree_gravity_torque(model, derived, tank.pitch, q_at(q), g); };
-    // Sag under the servo: P·(0 − q) + τ_g(q) = 0, solved by fixed-point iteration.
+    // Sag under the servo: f(q) = τ_g(q) − P·q = 0, by Newton's method from q = 0 with steps
+    // of at most 0.1 rad (the nearest root).
     double sag = 0;
-    for (int i = 0; i < 100; ++i) sag = tau_g(sag) / P;
+    for (int i = 0; i < 200; ++i) {
+      const double h = 1e-7, f = tau_g(sag) - P * sag;
+      const double df = (tau_g(sag + h) - tau_g(sag - h)) / (2 * h) - P;
+      if (df == 0) break;
+      sag -= std::clamp(f / df, -0.1, 0.1);
+    }
     const double I = subtree_axis_inertia(model, derived, tank.pitch, {}, probe->link_inertias());
 
     Scenario s(model, derived, tank, options, base, quiet);
@@ -421,11 +427,12 @@ std::vector<CheckResult> run_tank_suite(const Model& model, const Derived& deriv
     if (tank.yaw >= 0)
       results.push_back(absolute("turret: yaw holds 0", s.sim().joint_position(tank.yaw), 0, 1e-5, "rad"));
 
-    // Step to two thirds of the upper limit (at most 30°): the rigid 1-DOF response
-    // I·q̈ = P·(q_s − q) − D·q̇ + τ_g(q), integrated with RK4 from the sag.
-    const bool upper_limited = pitch.joint_range_upper < kUnlimited;
-    const double q_step = upper_limited ? std::min(30 * kDeg, 2.0 / 3 * pitch.joint_range_upper) : 30 * kDeg;
-    if (q_step > 0) {
+    // Step to two thirds of the wider side of the range (at most 30°): the rigid 1-DOF
+    // response I·q̈ = P·(q_s − q) − D·q̇ + τ_g(q), integrated with RK4 from the sag.
+    const double upper = std::min(pitch.joint_range_upper, kPi), lower = std::max(pitch.joint_range_lower, -kPi);
+    const double side = upper >= -lower ? upper : lower;
+    const double q_step = std::clamp(2.0 / 3 * side, -30 * kDeg, 30 * kDeg);
+    if (q_step != 0) {
       auto rhs = [&](const Eigen::Vector2d& x) {
         return Eigen::Vector2d(x[1], (P * (q_step - x[0]) - D * x[1] + tau_g(x[0])) / I);
       };
