@@ -141,6 +141,7 @@ std::optional<ScenarioSpec> read_scenario(const std::string& path, const Model& 
         continue;
       }
       double last = 0;
+      std::set<LinkIndex> has_gain;  // a servo keeps its gains until a later command changes them
       for (const yaml::NodeRef& item : value->items) {
         if (!r.mapping(item, "a command")) continue;
         r.keys(item, {"time", "tracks", "joints"});
@@ -172,7 +173,9 @@ std::optional<ScenarioSpec> read_scenario(const std::string& path, const Model& 
               if (field.key == "d") servo.d = v;
               if (field.key == "torque") servo.torque = v;
             }
-            if (servo.target && !servo.p) r.error(j.value, "a joint 'target' needs the gain 'p'");
+            if (servo.p) has_gain.insert(link);
+            if (servo.target && !has_gain.count(link))
+              r.error(j.value, "a joint 'target' needs the gain 'p' (here or in an earlier command)");
             if (link >= 0) command.joints[link] = servo;
           }
         }

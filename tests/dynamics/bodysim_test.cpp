@@ -4,11 +4,13 @@
 
 #include <sys/wait.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -87,4 +89,46 @@ TEST_CASE("bodysim: usage errors exit 2") {
   const Run arm = bodysim("check-tank '" + std::string(BODYFMT_EXAMPLES_DIR) + "/arm.body'");
   CHECK(arm.status == 2);
   CHECK(contains(arm.all, "the tank suite needs a free root link"));
+}
+
+TEST_CASE("bodysim: run writes the scenario's trajectory as CSV") {
+  const std::filesystem::path csv = std::filesystem::temp_directory_path() / "bodysim_test_run.csv";
+  std::filesystem::remove(csv);
+  const Run r =
+      bodysim("run --balance-inertia '" + std::string(BODYFMT_EXAMPLES_DIR) + "/simpletank.body' --scenario '" +
+              BODYFMT_EXAMPLES_DIR + "/tank_drive.scenario.yaml' --csv '" + csv.string() + "'");
+  INFO(r.all);
+  REQUIRE(r.status == 0);
+  std::ifstream in(csv);
+  std::string header, line, row_at_2_49;
+  std::getline(in, header);
+  CHECK(header.rfind("time,x,y,z,qw,qx,qy,qz,wx,wy,wz,vx,vy,vz,q:TURRET_Y,dq:TURRET_Y,q:TURRET_P,dq:TURRET_P,", 0) ==
+        0);
+  int rows = 0;
+  while (std::getline(in, line)) {
+    ++rows;
+    if (line.rfind("2.490000,", 0) == 0) row_at_2_49 = line;
+  }
+  CHECK(rows == 401);  // t = 0 .. 4 s every 10 ms
+  REQUIRE(!row_at_2_49.empty());
+  std::vector<double> v;
+  std::stringstream fields(row_at_2_49);
+  for (std::string f; std::getline(fields, f, ',');) v.push_back(std::stod(f));
+  // 2 s after both tracks were set to 1 m/s: moving at 1 m/s along +x (Choreonoid's
+  // "1.0 → forward at 1.0 m/s"); the pitch servo holds 0.3 rad less the gravity sag
+  // m·g·r/P = 4 · 9.80665 · 0.05 / 200 ≈ 0.0098 rad.
+  CHECK(v[11] == doctest::Approx(1.0).epsilon(0.01));
+  CHECK(std::abs(v[12]) < 0.01);
+  CHECK(v[16] == doctest::Approx(0.3 - 0.0098 * std::cos(0.3)).epsilon(0.01));
+}
+
+TEST_CASE("bodysim: run refuses a scenario naming an unknown link, located, and writes nothing") {
+  const std::filesystem::path csv = std::filesystem::temp_directory_path() / "bodysim_test_refused.csv";
+  std::filesystem::remove(csv);
+  const std::string scenario = std::string(BODYFMT_TEST_DATA_DIR) + "/dynamics/unknown_link.scenario.yaml";
+  const Run r = bodysim("run '" + kScoutTank + "' --scenario '" + scenario + "' --csv '" + csv.string() + "'");
+  CHECK(r.status == 2);
+  CHECK(contains(r.all,
+                 "unknown_link.scenario.yaml:5:14: error: the model has no link \"TRACK_LEFT\" [dynamics-scenario]"));
+  CHECK(!std::filesystem::exists(csv));
 }
