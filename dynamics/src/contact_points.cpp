@@ -1,8 +1,10 @@
 #include "contact_points.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <set>
+#include <variant>
 
 namespace bodyfmt::dynamics {
 namespace {
@@ -30,6 +32,24 @@ std::vector<ContactPoint> collect_contact_points(const Model& model, DiagnosticS
     std::set<std::array<double, 3>> distinct;
     for (const Shape& shape : link.shapes) {
       if (!shape.collision) continue;
+      // Spheres and capsules under a uniform scale touch a plane at one exact point: their
+      // lowest, found from the centre (a tessellated sphere would balance on a vertex and roll).
+      const Eigen::Matrix3d L = shape.X_LS.linear();
+      const double scale = L.col(0).norm();
+      const bool uniform =
+          (L.transpose() * L - scale * scale * Eigen::Matrix3d::Identity()).norm() < 1e-9 * scale * scale;
+      if (uniform && scale > 0) {
+        if (const auto* sphere = std::get_if<Sphere>(&shape.geometry)) {
+          out.push_back({static_cast<LinkIndex>(i), shape.X_LS * Eigen::Vector3d::Zero(), sphere->radius * scale});
+          continue;
+        }
+        if (const auto* capsule = std::get_if<Capsule>(&shape.geometry)) {
+          for (double end : {-0.5, 0.5})
+            out.push_back({static_cast<LinkIndex>(i), shape.X_LS * Eigen::Vector3d(0, end * capsule->height, 0),
+                           capsule->radius * scale});
+          continue;
+        }
+      }
       const TriangleMesh mesh = compute_shape_mesh(model, shape, quiet);
       for (const Eigen::Vector3d& v : mesh.vertices)
         if (v.allFinite()) distinct.insert({v.x(), v.y(), v.z()});

@@ -190,7 +190,7 @@ std::optional<ScenarioSpec> read_scenario(const std::string& path, const Model& 
 }
 
 bool run_scenario(const Model& model, const Derived& derived, const ScenarioSpec& scenario, const SimOptions& options,
-                  std::ostream& csv, DiagnosticSink& sink) {
+                  std::ostream& csv, DiagnosticSink& sink, RunStats* stats) {
   std::unique_ptr<Simulation> sim = Simulation::build(model, derived, options, sink);
   if (!sim) return false;
   const std::size_t n = model.links.size();
@@ -271,6 +271,7 @@ bool run_scenario(const Model& model, const Derived& derived, const ScenarioSpec
       }
       row();
     }
+    if (stats) *stats = {sim->steps_taken(), sim->realizations()};
   } catch (const std::exception& e) {
     report_rule(sink, "internal-error", model.source, std::string("Simbody failed: ") + e.what());
     return false;

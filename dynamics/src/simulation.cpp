@@ -54,7 +54,7 @@ struct Commands {
 
 struct PointForce {
   std::size_t point = 0;  // index into the contact points
-  Eigen::Vector3d point_world;
+  Eigen::Vector3d lever;  // from the link origin to where the force acts, world axes
   Eigen::Vector3d force;  // on the link
   double depth = 0;
 };
@@ -82,29 +82,52 @@ struct Simulation::Impl {
 
   const SimTK::MobilizedBody& body(LinkIndex link) const { return matter.getMobilizedBody(mobod[link]); }
 
-  /// Forces of every contact point touching the floor, for a state realized to Velocity.
+  /// Where contact point `p` meets the floor: the station (link frame) and its depth below z = 0.
+  std::pair<SimTK::Vec3, double> touch(const SimTK::State& s, const ContactPoint& p) const {
+    const SimTK::MobilizedBody& b = body(p.link);
+    const SimTK::Vec3 centre = vec3(p.position_in_link);
+    if (p.radius == 0) return {centre, -b.findStationLocationInGround(s, centre)[2]};
+    // A sphere touches at its lowest point, a different material point as it rolls.
+    const SimTK::Vec3 x = b.findStationLocationInGround(s, centre) - SimTK::Vec3(0, 0, p.radius);
+    return {b.findStationAtGroundPoint(s, x), -x[2]};
+  }
+
+  /// Forces of every contact point touching the floor, for a state realized to Velocity. The
+  /// link's pose and velocity are read once per link (points come grouped by link), not once
+  /// per point: Simbody's cache lookups dominated the step otherwise.
   void contact_forces(const SimTK::State& s, std::vector<PointForce>& out) const {
     out.clear();
     const ContactParams& c = options.contact_params;
+    LinkIndex current = -1;
+    Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+    Eigen::Vector3d origin = Eigen::Vector3d::Zero(), omega = origin, velocity = origin, belt = origin;
     for (std::size_t i = 0; i < points.size(); ++i) {
       const ContactPoint& p = points[i];
-      const SimTK::MobilizedBody& b = body(p.link);
-      const SimTK::Vec3 station = vec3(p.position_in_link);
-      const SimTK::Vec3 x = b.findStationLocationInGround(s, station);
-      const double depth = -x[2];
-      if (!(depth > 0)) continue;
-      const SimTK::Vec3 v = b.findStationVelocityInGround(s, station);
-      // Hunt–Crossley: k·δ·(1 + c·δ̇), never pulling the body into the floor.
-      const double fn = std::max(0.0, stiffness * depth * (1 + c.dissipation * -v[2]));
-      Eigen::Vector3d slip(v[0], v[1], 0);
-      const double dq = commands.track_speed[p.link];
-      if (dq != 0) {
-        // Belt surface velocity dq·normalize(a_w × n_out), n_out = −Z at a floor contact.
-        const Eigen::Vector3d a_w = to_eigen(b.getBodyRotation(s)) * track_axis[p.link];
-        Eigen::Vector3d d = a_w.cross(Eigen::Vector3d(0, 0, -1));
-        if (d.norm() > 1e-9) slip += dq * d.normalized();
+      if (p.link != current) {
+        current = p.link;
+        const SimTK::MobilizedBody& b = body(p.link);
+        const SimTK::Transform& X = b.getBodyTransform(s);
+        const SimTK::SpatialVec& V = b.getBodyVelocity(s);
+        R = to_eigen(X.R());
+        origin = to_eigen(X.p());
+        omega = to_eigen(V[0]);
+        velocity = to_eigen(V[1]);
+        belt.setZero();
+        if (const double dq = commands.track_speed[p.link]; dq != 0) {
+          // Belt surface velocity dq·normalize(a_w × n_out), n_out = −Z at a floor contact.
+          const Eigen::Vector3d d = (R * track_axis[p.link]).cross(Eigen::Vector3d(0, 0, -1));
+          if (d.norm() > 1e-9) belt = dq * d.normalized();
+        }
       }
-      slip.z() = 0;
+      // The touching point, from the link origin (world axes); a sphere touches at its lowest.
+      Eigen::Vector3d lever = R * p.position_in_link;
+      lever.z() -= p.radius;
+      const double depth = -(origin.z() + lever.z());
+      if (!(depth > 0)) continue;
+      const Eigen::Vector3d v = velocity + omega.cross(lever);
+      // Hunt–Crossley: k·δ·(1 + c·δ̇), never pulling the body into the floor.
+      const double fn = std::max(0.0, stiffness * depth * (1 + c.dissipation * -v.z()));
+      Eigen::Vector3d slip(v.x() + belt.x(), v.y() + belt.y(), 0);
       const double speed = slip.norm();
       Eigen::Vector3d force(0, 0, fn);
       if (speed > 0 && fn > 0) {
@@ -112,14 +135,14 @@ struct Simulation::Impl {
         const double mu = c.friction * (ratio < 1 ? ratio * (2 - ratio) : 1.0);
         force -= mu * fn * slip / speed;
       }
-      out.push_back({i, to_eigen(x), force, depth});
+      out.push_back({i, lever, force, depth});
     }
   }
 
   double contact_potential(const SimTK::State& s) const {
     double e = 0;
     for (const ContactPoint& p : points) {
-      const double depth = -body(p.link).findStationLocationInGround(s, vec3(p.position_in_link))[2];
+      const double depth = touch(s, p).second;
       if (depth > 0) e += 0.5 * stiffness * depth * depth;
     }
     return e;
@@ -135,8 +158,9 @@ class ContactForce : public SimTK::Force::Custom::Implementation {
                  SimTK::Vector&) const override {
     impl_.contact_forces(s, scratch_);
     for (const PointForce& f : scratch_) {
-      const ContactPoint& p = impl_.points[f.point];
-      impl_.body(p.link).applyForceToBodyPoint(s, vec3(p.position_in_link), vec3(f.force), body_forces);
+      // A spatial force at the link origin, world axes (what applyForceToBodyPoint adds).
+      const SimTK::Vec3 F = vec3(f.force);
+      body_forces[impl_.mobod[impl_.points[f.point].link]] += SimTK::SpatialVec(vec3(f.lever) % F, F);
     }
   }
   SimTK::Real calcPotentialEnergy(const SimTK::State& s) const override { return impl_.contact_potential(s); }
@@ -265,38 +289,40 @@ std::unique_ptr<Simulation> Simulation::build(const Model& model, const Derived&
       SimTK::MobilizedBody& parent = m.matter.updMobilizedBody(m.mobod[link.parent]);
       const Eigen::Vector3d axis =
           link.joint_axis.norm() > 0 ? Eigen::Vector3d(link.joint_axis.normalized()) : Eigen::Vector3d::UnitZ();
-      switch (link.joint_type) {
-        case JointType::kRevolute:
-        case JointType::kPrismatic: {
-          // Pin turns about Z of its frames, Slider moves along X: map that axis onto the joint
-          // axis on both sides so that the body frame is the link frame at q = 0.
-          const SimTK::CoordinateAxis along(link.joint_type == JointType::kRevolute ? 2 : 0);
-          const SimTK::Rotation R_LJ(SimTK::UnitVec3(vec3(axis)), along);
-          const SimTK::Transform X_PF(rotation(Eigen::Matrix3d(link.X_PL.linear())) * R_LJ,
-                                      vec3(Eigen::Vector3d(link.X_PL.translation())));
-          const SimTK::Transform X_BM(R_LJ, SimTK::Vec3(0));
-          if (link.joint_type == JointType::kRevolute) {
-            SimTK::MobilizedBody::Pin pin(parent, X_PF, body, X_BM);
-            m.mobod[i] = pin.getMobilizedBodyIndex();
-          } else {
-            SimTK::MobilizedBody::Slider slider(parent, X_PF, body, X_BM);
-            m.mobod[i] = slider.getMobilizedBodyIndex();
-          }
-          m.has_joint[i] = true;
-          const bool lower = link.joint_range_lower > -kUnlimited && std::isfinite(link.joint_range_lower);
-          const bool upper = link.joint_range_upper < kUnlimited && std::isfinite(link.joint_range_upper);
-          if (options.joint_stops && (lower || upper) && link.joint_range_lower <= link.joint_range_upper)
-            stops.push_back(
-                {m.mobod[i], lower ? link.joint_range_lower : -1e30, upper ? link.joint_range_upper : 1e30});
-          break;
+      const bool moving =
+          (link.joint_type == JointType::kRevolute || link.joint_type == JointType::kPrismatic) && !options.lock_joints;
+      if (moving) {
+        // Pin turns about Z of its frames, Slider moves along X: map that axis onto the joint
+        // axis on both sides so that the body frame is the link frame at q = 0.
+        const SimTK::CoordinateAxis along(link.joint_type == JointType::kRevolute ? 2 : 0);
+        const SimTK::Rotation R_LJ(SimTK::UnitVec3(vec3(axis)), along);
+        const SimTK::Transform X_PF(rotation(Eigen::Matrix3d(link.X_PL.linear())) * R_LJ,
+                                    vec3(Eigen::Vector3d(link.X_PL.translation())));
+        const SimTK::Transform X_BM(R_LJ, SimTK::Vec3(0));
+        if (link.joint_type == JointType::kRevolute) {
+          SimTK::MobilizedBody::Pin pin(parent, X_PF, body, X_BM);
+          m.mobod[i] = pin.getMobilizedBodyIndex();
+        } else {
+          SimTK::MobilizedBody::Slider slider(parent, X_PF, body, X_BM);
+          m.mobod[i] = slider.getMobilizedBodyIndex();
         }
-        case JointType::kPseudoContinuousTrack: m.track_axis[i] = axis; [[fallthrough]];
-        default: {
-          // Fixed links and pseudo tracks are welded: a track has no DOF (spec §1.1).
-          SimTK::MobilizedBody::Weld weld(parent, transform(link.X_PL), body, SimTK::Transform());
-          m.mobod[i] = weld.getMobilizedBodyIndex();
-        }
+        m.has_joint[i] = true;
+        const bool lower = link.joint_range_lower > -kUnlimited && std::isfinite(link.joint_range_lower);
+        const bool upper = link.joint_range_upper < kUnlimited && std::isfinite(link.joint_range_upper);
+        if (options.joint_stops && (lower || upper) && link.joint_range_lower <= link.joint_range_upper)
+          stops.push_back({m.mobod[i], lower ? link.joint_range_lower : -1e30, upper ? link.joint_range_upper : 1e30});
+        continue;
       }
+      // Fixed links and pseudo tracks are welded: a track has no DOF (spec §1.1). A locked
+      // joint is welded at its initial position.
+      if (link.joint_type == JointType::kPseudoContinuousTrack) m.track_axis[i] = axis;
+      Eigen::Isometry3d X_PB = link.X_PL;
+      if (link.joint_type == JointType::kRevolute)
+        X_PB.rotate(Eigen::AngleAxisd(link.initial_displacement, axis));
+      else if (link.joint_type == JointType::kPrismatic)
+        X_PB.translate(axis * link.initial_displacement);
+      SimTK::MobilizedBody::Weld weld(parent, transform(X_PB), body, SimTK::Transform());
+      m.mobod[i] = weld.getMobilizedBodyIndex();
     }
   } catch (const std::exception& e) {
     report_rule(sink, "internal-error", model.source, std::string("Simbody refused the model: ") + e.what());
@@ -464,8 +490,7 @@ double Simulation::max_penetration(LinkIndex link) const {
   double deepest = -std::numeric_limits<double>::infinity();
   for (const ContactPoint& p : impl_->points) {
     if (link >= 0 && p.link != link) continue;
-    const double depth = -impl_->body(p.link).findStationLocationInGround(impl_->state, vec3(p.position_in_link))[2];
-    deepest = std::max(deepest, depth);
+    deepest = std::max(deepest, impl_->touch(impl_->state, p).second);
   }
   return deepest;
 }
@@ -483,6 +508,8 @@ int Simulation::mobility_index(LinkIndex link) const {
   if (!impl_->has_joint[link]) return -1;
   return static_cast<int>(impl_->body(link).getFirstUIndex(impl_->state));
 }
+
+long long Simulation::realizations() const { return impl_->integrator ? impl_->integrator->getNumRealizations() : 0; }
 
 long long Simulation::steps_taken() const { return impl_->integrator ? impl_->integrator->getNumStepsTaken() : 0; }
 

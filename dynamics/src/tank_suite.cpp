@@ -144,7 +144,8 @@ std::optional<TankLayout> find_tank(const Model& model, const Derived& derived, 
   std::vector<std::vector<Eigen::Vector3d>> by_link(model.links.size());
   double lowest = std::numeric_limits<double>::infinity();
   for (const ContactPoint& p : points) {
-    const Eigen::Vector3d x = derived.X_RL[p.link] * p.position_in_link;
+    // The lowest point of a sphere contact at the file pose (root frame z is up).
+    const Eigen::Vector3d x = derived.X_RL[p.link] * p.position_in_link - Eigen::Vector3d(0, 0, p.radius);
     by_link[p.link].push_back(x);
     lowest = std::min(lowest, x.z());
   }

@@ -77,6 +77,12 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1e-12, 1e-1));
   app.add_option("--friction", sim.contact_params.friction, "Coulomb friction with the floor (default 0.5)")
       ->check(CLI::Range(0.0, 10.0));
+  app.add_option("--contact-depth", sim.contact_params.reference_depth,
+                 "contact stiffness: the depth the model's weight on four points sinks (m, default 1e-4)")
+      ->check(CLI::Range(1e-7, 1e-1));
+  app.add_option("--transition-velocity", sim.contact_params.transition_velocity,
+                 "slip speed at which friction reaches μ (m/s, default 0.05)")
+      ->check(CLI::Range(1e-5, 1.0));
   if (command == "check-tank") {
     app.add_option("--p-gain", suite.p_gain, "turret servo P gain, N·m/rad (default 200)")->check(CLI::PositiveNumber);
     app.add_option("--d-gain", suite.d_gain, "turret servo D gain, N·m·s/rad (default 50)")
@@ -113,11 +119,16 @@ int main(int argc, char** argv) {
       std::optional<dynamics::ScenarioSpec> scenario = dynamics::read_scenario(scenario_path, *model, sink);
       if (!scenario) return finish(true, "the scenario cannot be read; nothing was simulated");
       std::ostringstream csv;
-      if (!dynamics::run_scenario(*model, derived, *scenario, sim, csv, sink))
+      dynamics::RunStats stats;
+      if (!dynamics::run_scenario(*model, derived, *scenario, sim, csv, sink, &stats))
         return finish(true, csv_path + " was not written");
       converters::OutputSet out(csv_path);
       out.set_main(csv.str());
       if (!out.commit(sink)) return finish(true, csv_path + " was not written");
+      std::cout << fmt::format(
+          "bodysim run: {} s of {} simulated in {} Runge-Kutta-Merson steps, {} realizations "
+          "(accuracy {:g}); wrote {}\n",
+          number(scenario->duration), model->name, stats.steps, stats.realizations, sim.accuracy, csv_path);
       return finish(false, "");
     }
     std::vector<dynamics::CheckResult> results;

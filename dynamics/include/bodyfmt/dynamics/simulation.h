@@ -28,7 +28,7 @@ struct ContactParams {
   double stiffness = 0;
   double reference_depth = 1e-4;      ///< m
   double dissipation = 5;             ///< Hunt–Crossley c (s/m): f = k·δ·(1 + c·δ̇), never pulling
-  double transition_velocity = 0.01;  ///< m/s: friction grows as μ·x·(2 − x), x = |slip|/vt < 1
+  double transition_velocity = 0.05;  ///< m/s: friction grows as μ·x·(2 − x), x = |slip|/vt < 1
 };
 
 struct SimOptions {
@@ -39,6 +39,7 @@ struct SimOptions {
   double stop_dissipation = 1;   ///< Simbody MobilityLinearStop's c
   double accuracy = 1e-5;        ///< RungeKuttaMersonIntegrator accuracy
   bool balance_inertia = false;  ///< use bodyfmt::balance_inertia for invalid tensors
+  bool lock_joints = false;      ///< weld every joint at its initial position (a rigid body)
   ContactParams contact_params;
 };
 
@@ -51,9 +52,12 @@ struct JointServo {
   double torque = 0;
 };
 
+/// A point of a link that touches the floor: a vertex (radius 0), or the centre of a sphere
+/// (a Sphere shape, a Capsule's end) whose lowest point touches it.
 struct ContactPoint {
   LinkIndex link = -1;
   Eigen::Vector3d position_in_link = Eigen::Vector3d::Zero();
+  double radius = 0;
 };
 
 class Simulation {
@@ -124,6 +128,8 @@ class Simulation {
   int mobility_index(LinkIndex link) const;
   /// Number of integration steps taken since build.
   long long steps_taken() const;
+  /// Number of times the system was realized (force evaluations, including rejected steps).
+  long long realizations() const;
   /// True when every coordinate and speed is finite.
   bool finite() const;
   /// Sets every joint to q and the root to X and returns the mass matrix there.
