@@ -132,3 +132,15 @@ TEST_CASE("bodysim: run refuses a scenario naming an unknown link, located, and 
                  "unknown_link.scenario.yaml:5:14: error: the model has no link \"TRACK_LEFT\" [dynamics-scenario]"));
   CHECK(!std::filesystem::exists(csv));
 }
+
+#ifdef BODYFMT_HAVE_MUJOCO_CROSS_CHECK
+TEST_CASE("bodysim: --cross-check mujoco runs body2mjcf's export in MuJoCo 2.2.2 and agrees within T8") {
+  const Run r = bodysim("check-tank --balance-inertia --cross-check mujoco '" + kScoutTank + "'");
+  INFO(r.all);
+  CHECK(r.status == 0);
+  CHECK(contains(r.out, "MuJoCo vs Simbody: drive 1 m/s: speed"));
+  CHECK(contains(r.out, "MuJoCo vs Simbody: spin L+0.5 R-0.5"));
+  CHECK(contains(r.out, "MuJoCo vs Simbody: turret: pitch step"));
+  CHECK(contains(r.out, "40 of 40 checks passed"));
+}
+#endif

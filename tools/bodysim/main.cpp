@@ -84,6 +84,9 @@ int main(int argc, char** argv) {
                  "slip speed at which friction reaches μ (m/s, default 0.05)")
       ->check(CLI::Range(1e-5, 1.0));
   if (command == "check-tank") {
+    app.add_option("--cross-check", cross_check,
+                   "also run the drive, spin and turret scenarios in MuJoCo 2.2.2 on body2mjcf's export")
+        ->check(CLI::IsMember({"mujoco"}));
     app.add_option("--p-gain", suite.p_gain, "turret servo P gain, N·m/rad (default 200)")->check(CLI::PositiveNumber);
     app.add_option("--d-gain", suite.d_gain, "turret servo D gain, N·m·s/rad (default 50)")
         ->check(CLI::NonNegativeNumber);
@@ -133,9 +136,18 @@ int main(int argc, char** argv) {
     }
     std::vector<dynamics::CheckResult> results;
     dynamics::TankLayout tank;
-    if (command == "check-tank")
+    if (command == "check-tank") {
       results = dynamics::run_tank_suite(*model, derived, suite, sink, why, &tank);
-    else
+      if (!results.empty() && !cross_check.empty()) {
+#ifdef BODYFMT_HAVE_MUJOCO_CROSS_CHECK
+        std::vector<dynamics::CheckResult> cross = dynamics::run_mujoco_cross_check(*model, derived, suite, sink, why);
+        if (cross.empty()) return finish(true, why.empty() ? "the MuJoCo cross-check failed" : why);
+        results.insert(results.end(), cross.begin(), cross.end());
+#else
+        return finish(true, "this bodysim was built without MuJoCo: --cross-check mujoco is unavailable");
+#endif
+      }
+    } else
       results = dynamics::run_generic_checks(*model, derived, sim, sink, why);
     if (results.empty()) return finish(true, why.empty() ? "nothing was simulated" : why + "; nothing was simulated");
     std::cout << fmt::format("bodysim {}: {} ({}), total mass {} kg\n", command, model->name, path,
@@ -152,6 +164,9 @@ int main(int argc, char** argv) {
           "\"{}\", servo P = {:g}, D = {:g}\n",
           link(tank.left), link(tank.right), number(tank.spacing), link(tank.yaw), link(tank.pitch), suite.p_gain,
           suite.d_gain);
+      if (!cross_check.empty())
+        std::cout << "  cross-check: MuJoCo 2.2.2 on body2mjcf's export (elliptic cones, Euler 1 ms, belt velocity "
+                     "through mjcb_control); its lines: measured = MuJoCo, expected = Simbody\n";
     }
     print_results(results);
     bool failed = false;

@@ -61,6 +61,14 @@ struct TankSuiteOptions {
 std::vector<CheckResult> run_tank_suite(const Model& model, const Derived& derived, const TankSuiteOptions& options,
                                         DiagnosticSink& sink, std::string& why, TankLayout* layout = nullptr);
 
+/// The Simbody–MuJoCo cross-check (spec §4 T8): settle, drive, spin and turret scenarios in
+/// both engines, MuJoCo 2.2.2 running body2mjcf's export with the belt velocity injected through
+/// mjcb_control (spec §3.2). Results: measured = MuJoCo, expected = Simbody. Built only with
+/// MuJoCo (BODYFMT_HAVE_MUJOCO_CROSS_CHECK). Not thread-safe (mjcb_control is global).
+std::vector<CheckResult> run_mujoco_cross_check(const Model& model, const Derived& derived,
+                                                const TankSuiteOptions& options, DiagnosticSink& sink,
+                                                std::string& why);
+
 /// The generic checks for any model (spec §4 "Generic checks"): mass matrix symmetric positive
 /// definite at random poses, drop onto the floor (no NaN, energy never grows, settles).
 std::vector<CheckResult> run_generic_checks(const Model& model, const Derived& derived, const SimOptions& options,
