@@ -31,7 +31,7 @@ commands:
   - time: 8
     tracks: {TRACK_L: 0, TRACK_R: 0}
 YAML
-echo "| accuracy | transition velocity | steps | realizations | CPU s (median of $runs) | ratio sim/real | speed at 4.99 s (m/s) | yaw rate at 7.99 s (rad/s) |"
+echo "| accuracy | transition velocity | steps | force evaluations | CPU s (median of $runs) | ratio sim/real | speed at 4.99 s (m/s) | yaw rate at 7.99 s (rad/s) |"
 echo "|---|---|---|---|---|---|---|---|"
 for setting in "1e-3 0.05" "1e-4 0.05" "1e-5 0.05" "1e-6 0.05" "1e-7 0.05" "1e-5 0.01" "1e-6 0.01"; do
   read -r accuracy vt <<< "$setting"
@@ -43,9 +43,9 @@ for setting in "1e-3 0.05" "1e-4 0.05" "1e-5 0.05" "1e-6 0.05" "1e-7 0.05" "1e-5
   done
   median=$(printf '%s\n' "${times[@]}" | sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}')
   steps=$(sed -n 's/.* in \([0-9]*\) Runge-Kutta-Merson steps.*/\1/p' "$work/stdout")
-  realizations=$(sed -n 's/.* steps, \([0-9]*\) realizations.*/\1/p' "$work/stdout")
+  evaluations=$(sed -n 's/.* steps, \([0-9]*\) force evaluations.*/\1/p' "$work/stdout")
   speed=$(awk -F, '$1 == "4.990000" {print $12}' "$work/out.csv")
   yaw=$(awk -F, '$1 == "7.990000" {print $11}' "$work/out.csv")
   ratio=$(awk -v t="$median" 'BEGIN {printf "%.1f", 10 / t}')
-  echo "| $accuracy | $vt | $steps | $realizations | $median | $ratio | $speed | $yaw |"
+  echo "| $accuracy | $vt | $steps | $evaluations | $median | $ratio | $speed | $yaw |"
 done

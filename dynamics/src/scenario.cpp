@@ -271,7 +271,7 @@ bool run_scenario(const Model& model, const Derived& derived, const ScenarioSpec
       }
       row();
     }
-    if (stats) *stats = {sim->steps_taken(), sim->realizations()};
+    if (stats) *stats = {sim->steps_taken(), sim->force_evaluations()};
   } catch (const std::exception& e) {
     report_rule(sink, "internal-error", model.source, std::string("Simbody failed: ") + e.what());
     return false;

@@ -79,6 +79,8 @@ struct Simulation::Impl {
   std::unique_ptr<SimTK::RungeKuttaMersonIntegrator> integrator;
   std::unique_ptr<SimTK::TimeStepper> stepper;
   bool running = false;
+  long long earlier_steps = 0;
+  mutable long long evaluations = 0;  // force evaluations (calls of the servo force element)
 
   const SimTK::MobilizedBody& body(LinkIndex link) const { return matter.getMobilizedBody(mobod[link]); }
 
@@ -177,6 +179,7 @@ class ServoForce : public SimTK::Force::Custom::Implementation {
   void calcForce(const SimTK::State& s, SimTK::Vector_<SimTK::SpatialVec>&, SimTK::Vector_<SimTK::Vec3>&,
                  SimTK::Vector& mobility_forces) const override {
     const double t = s.getTime();
+    ++impl_.evaluations;
     for (std::size_t i = 0; i < impl_.commands.servo.size(); ++i) {
       const std::optional<JointServo>& servo = impl_.commands.servo[i];
       if (!servo || !impl_.has_joint[i]) continue;
@@ -422,6 +425,9 @@ void Simulation::restart() {
     m.integrator->setAccuracy(m.options.accuracy);
     m.stepper = std::make_unique<SimTK::TimeStepper>(m.system, *m.integrator);
   }
+  // Statistics across restarts: the integrator's own counters restart with it.
+  m.earlier_steps += m.integrator->getNumStepsTaken();
+  m.integrator->resetAllStatistics();
   m.stepper->initialize(m.state);
   m.running = true;
 }
@@ -509,9 +515,11 @@ int Simulation::mobility_index(LinkIndex link) const {
   return static_cast<int>(impl_->body(link).getFirstUIndex(impl_->state));
 }
 
-long long Simulation::realizations() const { return impl_->integrator ? impl_->integrator->getNumRealizations() : 0; }
+long long Simulation::force_evaluations() const { return impl_->evaluations; }
 
-long long Simulation::steps_taken() const { return impl_->integrator ? impl_->integrator->getNumStepsTaken() : 0; }
+long long Simulation::steps_taken() const {
+  return impl_->earlier_steps + (impl_->integrator ? impl_->integrator->getNumStepsTaken() : 0);
+}
 
 bool Simulation::finite() const {
   const SimTK::Vector& q = impl_->state.getQ();

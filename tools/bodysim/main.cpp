@@ -129,9 +129,9 @@ int main(int argc, char** argv) {
       out.set_main(csv.str());
       if (!out.commit(sink)) return finish(true, csv_path + " was not written");
       std::cout << fmt::format(
-          "bodysim run: {} s of {} simulated in {} Runge-Kutta-Merson steps, {} realizations "
+          "bodysim run: {} s of {} simulated in {} Runge-Kutta-Merson steps, {} force evaluations "
           "(accuracy {:g}); wrote {}\n",
-          number(scenario->duration), model->name, stats.steps, stats.realizations, sim.accuracy, csv_path);
+          number(scenario->duration), model->name, stats.steps, stats.evaluations, sim.accuracy, csv_path);
       return finish(false, "");
     }
     std::vector<dynamics::CheckResult> results;

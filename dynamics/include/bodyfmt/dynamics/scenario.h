@@ -56,10 +56,10 @@ std::optional<ScenarioSpec> read_scenario(const std::string& path, const Model& 
 /// root pose (position, quaternion w x y z) and twist (ω, v; world axes), each joint's
 /// position and velocity, the total floor contact force and each contacting link's.
 /// Returns false (with a diagnostic) when the system cannot be built or the state diverges.
-/// `stats`, when given, receives the integration steps taken and the system realizations.
+/// `stats`, when given, receives the integration steps taken and the force evaluations.
 struct RunStats {
   long long steps = 0;
-  long long realizations = 0;
+  long long evaluations = 0;
 };
 bool run_scenario(const Model& model, const Derived& derived, const ScenarioSpec& scenario, const SimOptions& options,
                   std::ostream& csv, DiagnosticSink& sink, RunStats* stats = nullptr);

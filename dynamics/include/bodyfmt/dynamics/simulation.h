@@ -128,8 +128,8 @@ class Simulation {
   int mobility_index(LinkIndex link) const;
   /// Number of integration steps taken since build.
   long long steps_taken() const;
-  /// Number of times the system was realized (force evaluations, including rejected steps).
-  long long realizations() const;
+  /// Number of force evaluations (the integrator's derivative calls, rejected steps included).
+  long long force_evaluations() const;
   /// True when every coordinate and speed is finite.
   bool finite() const;
   /// Sets every joint to q and the root to X and returns the mass matrix there.
