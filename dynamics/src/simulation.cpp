@@ -79,6 +79,7 @@ struct Simulation::Impl {
   std::unique_ptr<SimTK::RungeKuttaMersonIntegrator> integrator;
   std::unique_ptr<SimTK::TimeStepper> stepper;
   bool running = false;
+  bool initialized = false;  // the integrator was initialized once (its statistics exist)
   long long earlier_steps = 0;
   mutable long long evaluations = 0;  // force evaluations (calls of the servo force element)
 
@@ -426,9 +427,12 @@ void Simulation::restart() {
     m.stepper = std::make_unique<SimTK::TimeStepper>(m.system, *m.integrator);
   }
   // Statistics across restarts: the integrator's own counters restart with it.
-  m.earlier_steps += m.integrator->getNumStepsTaken();
-  m.integrator->resetAllStatistics();
+  if (m.initialized) {
+    m.earlier_steps += m.integrator->getNumStepsTaken();
+    m.integrator->resetAllStatistics();
+  }
   m.stepper->initialize(m.state);
+  m.initialized = true;
   m.running = true;
 }
 
@@ -518,7 +522,7 @@ int Simulation::mobility_index(LinkIndex link) const {
 long long Simulation::force_evaluations() const { return impl_->evaluations; }
 
 long long Simulation::steps_taken() const {
-  return impl_->earlier_steps + (impl_->integrator ? impl_->integrator->getNumStepsTaken() : 0);
+  return impl_->earlier_steps + (impl_->initialized ? impl_->integrator->getNumStepsTaken() : 0);
 }
 
 bool Simulation::finite() const {
