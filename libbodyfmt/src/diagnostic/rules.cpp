@@ -227,6 +227,13 @@ std::vector<RuleInfo> make_table() {
        "the exported body simulates differently from the model as written unless this is reported; --strict does not "
        "refuse it",
        ""},
+      // Dynamics checker (dynamics/, bodysim)
+      {"dynamics-inertia-balanced", W,
+       "bodysim --balance-inertia simulated a link with the balanced tensor instead of its unphysical inertia, with "
+       "the old and new values",
+       "the simulated body differs from the model as written unless this is reported", ""},
+      {"dynamics-scenario", E, "a bodysim scenario file is malformed (syntax, unknown key, bad value or link name)",
+       "nothing is simulated from a scenario that cannot be read as written", ""},
       {"export-xml-text", F,
        "a name or text that XML cannot hold (control characters, non-characters or invalid UTF-8)",
        "no XML parser would read the output, so nothing is written", ""},

@@ -1,0 +1,67 @@
+#pragma once
+/// `bodysim run`: a scenario file (YAML) sets the initial pose, the duration and commands over
+/// time; the run writes one CSV row per sample. Format (dynamics/README.md):
+///
+///   duration: 4            # s
+///   sample: 0.01           # s between CSV rows (default 0.01)
+///   initial:
+///     on_floor: true       # lower the root until the lowest collision point touches z = 0
+///     position: [0, 0, 0.1]  # root position (default: the file's); z ignored with on_floor
+///     yaw: 0               # rad about world Z (default: the file's orientation)
+///     joints: {TURRET_P: 0.2}  # rad or m
+///   commands:              # in time order; each holds until a later one changes it
+///     - time: 0
+///       tracks: {TRACK_L: 1.0, TRACK_R: 1.0}           # belt speeds, m/s
+///       joints: {TURRET_P: {target: 0.5, p: 200, d: 50}} # PD servo (rad, N·m/rad, N·m·s/rad)
+///     - time: 2
+///       joints: {TURRET_Y: {torque: 1.5}}              # a constant torque instead
+///
+/// Angles are radians. Link names are the model's.
+
+#include <bodyfmt/dynamics/simulation.h>
+
+#include <map>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace bodyfmt::dynamics {
+
+struct ScenarioServo {
+  std::optional<double> target, p, d, torque;
+};
+
+struct ScenarioCommand {
+  double time = 0;
+  std::map<LinkIndex, double> tracks;
+  std::map<LinkIndex, ScenarioServo> joints;
+};
+
+struct ScenarioSpec {
+  double duration = 1;
+  double sample = 0.01;
+  bool on_floor = false;
+  std::optional<Eigen::Vector3d> position;
+  std::optional<double> yaw;
+  std::map<LinkIndex, double> joints;
+  std::vector<ScenarioCommand> commands;
+};
+
+/// Reads a scenario for `model`; reports `dynamics-scenario` (or yaml-*/io-read) located in
+/// the scenario file and returns nullopt when it is malformed.
+std::optional<ScenarioSpec> read_scenario(const std::string& path, const Model& model, DiagnosticSink& sink);
+
+/// Runs the scenario and writes the CSV (header, then one row per sample from t = 0): time,
+/// root pose (position, quaternion w x y z) and twist (ω, v; world axes), each joint's
+/// position and velocity, the total floor contact force and each contacting link's.
+/// Returns false (with a diagnostic) when the system cannot be built or the state diverges.
+/// `stats`, when given, receives the integration steps taken and the force evaluations.
+struct RunStats {
+  long long steps = 0;
+  long long evaluations = 0;
+};
+bool run_scenario(const Model& model, const Derived& derived, const ScenarioSpec& scenario, const SimOptions& options,
+                  std::ostream& csv, DiagnosticSink& sink, RunStats* stats = nullptr);
+
+}  // namespace bodyfmt::dynamics

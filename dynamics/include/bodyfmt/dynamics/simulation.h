@@ -1,0 +1,156 @@
+#pragma once
+/// A Simbody multibody system built from a loaded Model: one mobilized body per link (Free,
+/// Pin, Slider, Weld), mass properties from compute_derived, point contacts of every collision
+/// shape's tessellated vertices against the floor z = 0 with regularized Coulomb friction, belt
+/// surface velocity for pseudo_continuous_track links (dynamics-checker.md §1.4), joint-range
+/// stops and PD joint servos. Simbody stays behind this interface: nothing else in the project
+/// includes its headers.
+
+#include <bodyfmt/derived.h>
+#include <bodyfmt/diagnostic.h>
+#include <bodyfmt/model.h>
+
+#include <Eigen/Geometry>
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace bodyfmt::dynamics {
+
+/// Ground contact: a compliant floor z = 0 touched by contact points (README of dynamics/).
+struct ContactParams {
+  double friction = 0.5;  ///< Coulomb μ (Choreonoid's default material pair, spec §1.1)
+  /// Normal stiffness per contact point (N/m). 0: chosen from the model so that its weight on
+  /// four points sinks `reference_depth`: k = m·g / (4·reference_depth).
+  double stiffness = 0;
+  double reference_depth = 1e-4;      ///< m
+  double dissipation = 5;             ///< Hunt–Crossley c (s/m): f = k·δ·(1 + c·δ̇), never pulling
+  double transition_velocity = 0.05;  ///< m/s: friction grows as μ·x·(2 − x), x = |slip|/vt < 1
+};
+
+struct SimOptions {
+  double gravity = 9.80665;  ///< along −Z of the world
+  bool contact = true;
+  bool joint_stops = true;       ///< enforce joint_range (our choice; AIST does not, spec §0.7)
+  double stop_stiffness = 1e4;   ///< N·m/rad or N/m
+  double stop_dissipation = 1;   ///< Simbody MobilityLinearStop's c
+  double accuracy = 1e-5;        ///< RungeKuttaMersonIntegrator accuracy
+  bool balance_inertia = false;  ///< use bodyfmt::balance_inertia for invalid tensors
+  bool lock_joints = false;      ///< weld every joint at its initial position (a rigid body)
+  ContactParams contact_params;
+};
+
+/// A joint servo: τ = P·(q_ref(t) − q) + D·(q̇_ref(t) − q̇) + feed-forward torque.
+struct JointServo {
+  double p_gain = 0;
+  double d_gain = 0;
+  std::function<double(double)> q_ref;   ///< of time; null: 0
+  std::function<double(double)> qd_ref;  ///< of time; null: 0
+  double torque = 0;
+};
+
+/// A point of a link that touches the floor: a vertex (radius 0), or the centre of a sphere
+/// (a Sphere shape, a Capsule's end) whose lowest point touches it.
+struct ContactPoint {
+  LinkIndex link = -1;
+  Eigen::Vector3d position_in_link = Eigen::Vector3d::Zero();
+  double radius = 0;
+};
+
+class Simulation {
+ public:
+  /// Builds the system. Reports invalid inertias with the bodycheck rule ids
+  /// (inertia-triangle, inertia-not-positive-definite) and returns nullptr unless
+  /// options.balance_inertia, in which case the balanced tensor is used and reported
+  /// (dynamics-inertia-balanced). Also nullptr (with a diagnostic) for what Simbody cannot
+  /// build: a negative or non-finite mass, a massless moving link.
+  static std::unique_ptr<Simulation> build(const Model& model, const Derived& derived, const SimOptions& options,
+                                           DiagnosticSink& sink);
+  ~Simulation();
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
+
+  const Model& model() const;
+  /// The contact points of every link (collision-shape vertices in the link frame).
+  const std::vector<ContactPoint>& contact_points() const;
+  /// The stiffness per contact point actually used (N/m).
+  double contact_stiffness() const;
+  /// The inertia about the centre of mass used for each link (after balancing).
+  const std::vector<Eigen::Matrix3d>& link_inertias() const;
+
+  // --- Initial state (before start(), or followed by restart()) ---------------------------
+  /// Root pose in the world (free roots only; a fixed root stays at its file pose).
+  void set_root_pose(const Eigen::Isometry3d& X_WR);
+  /// Root twist: angular and linear velocity of the root origin, both in world axes.
+  void set_root_velocity(const Eigen::Vector3d& omega, const Eigen::Vector3d& v);
+  void set_joint_position(LinkIndex link, double q);
+  void set_joint_velocity(LinkIndex link, double qd);
+  void set_time(double t);
+
+  // --- Commands (take effect at the current time; the integrator restarts) ---------------
+  void set_track_speed(LinkIndex link, double dq);
+  void set_servo(LinkIndex link, JointServo servo);
+  void clear_servo(LinkIndex link);
+
+  /// Starts or restarts integration from the current state (after commands changed).
+  void restart();
+  /// Integrates to time t (restart() first when commands changed since the last step).
+  void advance_to(double t);
+
+  // --- Queries on the current state ------------------------------------------------------
+  double time() const;
+  Eigen::Isometry3d link_pose(LinkIndex link) const;
+  /// Spatial velocity of the link frame: angular and linear (origin), both in world axes.
+  std::pair<Eigen::Vector3d, Eigen::Vector3d> link_velocity(LinkIndex link) const;
+  double joint_position(LinkIndex link) const;
+  double joint_velocity(LinkIndex link) const;
+  bool has_joint(LinkIndex link) const;  ///< revolute or prismatic
+  double total_mass() const;
+  Eigen::Vector3d center_of_mass() const;
+  Eigen::Vector3d center_of_mass_velocity() const;
+  /// Angular momentum about the centre of mass and linear momentum, world axes.
+  std::pair<Eigen::Vector3d, Eigen::Vector3d> central_momentum() const;
+  double kinetic_energy() const;
+  /// Kinetic plus potential (gravity about z = 0, contact and stop springs).
+  double energy() const;
+  /// Sum of the floor contact forces on `link`, or on the whole model (-1), world axes.
+  Eigen::Vector3d total_contact_force(LinkIndex link = -1) const;
+  /// Deepest penetration of any contact point of `link` (or of all links: -1) into the floor
+  /// (m; negative when above it).
+  double max_penetration(LinkIndex link = -1) const;
+  /// The joint-space mass matrix at the current positions (generalized speeds: the root's six,
+  /// angular first, then one per joint in link order).
+  Eigen::MatrixXd mass_matrix() const;
+  /// Index of a link's joint speed in mass_matrix(), or -1.
+  int mobility_index(LinkIndex link) const;
+  /// Number of integration steps taken since build.
+  long long steps_taken() const;
+  /// Number of force evaluations (the integrator's derivative calls, rejected steps included).
+  long long force_evaluations() const;
+  /// True when every coordinate and speed is finite.
+  bool finite() const;
+  /// Sets every joint to q and the root to X and returns the mass matrix there.
+  Eigen::MatrixXd mass_matrix_at(const std::vector<double>& q_by_link);
+
+  struct Impl;  ///< the Simbody system (simulation.cpp); public only for its force elements
+
+ private:
+  Simulation();
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Inertia of the subtree rooted at `link` about the joint axis of `link`, at joint positions
+/// `q` (by link), computed from the model's derived data alone (an independent reference for
+/// the simulated mass matrix). `inertias` overrides the per-link inertia when not empty.
+double subtree_axis_inertia(const Model& model, const Derived& derived, LinkIndex link, const std::vector<double>& q,
+                            const std::vector<Eigen::Matrix3d>& inertias = {});
+
+/// Gravity torque (or force, for a prismatic joint) on joint `link` along +q, from the
+/// subtree's weight at joint positions `q`, with the root at its file pose.
+double subtree_gravity_torque(const Model& model, const Derived& derived, LinkIndex link, const std::vector<double>& q,
+                              double gravity);
+
+}  // namespace bodyfmt::dynamics

@@ -1,0 +1,546 @@
+#include <bodyfmt/dynamics/simulation.h>
+
+#include "contact_points.h"
+
+#include <bodyfmt/inertia.h>
+#include <bodyfmt/rules.h>
+
+#include <Simbody.h>
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace bodyfmt::dynamics {
+
+namespace {
+
+SimTK::Vec3 vec3(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+Eigen::Vector3d to_eigen(const SimTK::Vec3& v) { return {v[0], v[1], v[2]}; }
+
+SimTK::Rotation rotation(const Eigen::Matrix3d& R) {
+  SimTK::Mat33 m;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) m(i, j) = R(i, j);
+  return SimTK::Rotation(m, true);
+}
+Eigen::Matrix3d to_eigen(const SimTK::Rotation& R) {
+  Eigen::Matrix3d m;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) m(i, j) = R.asMat33()(i, j);
+  return m;
+}
+SimTK::Transform transform(const Eigen::Isometry3d& X) {
+  return {rotation(Eigen::Matrix3d(X.linear())), vec3(Eigen::Vector3d(X.translation()))};
+}
+
+std::string matrix_text(const Eigen::Matrix3d& I) {
+  return fmt::format("[{:g}, {:g}, {:g}, {:g}, {:g}, {:g}]", I(0, 0), I(0, 1), I(0, 2), I(1, 1), I(1, 2), I(2, 2));
+}
+
+SourceLocation inertia_location(const Link& link) {
+  if (link.sources.inertia.known()) return link.sources.inertia;
+  for (const MassContribution& c : link.mass_contributions)
+    if (!c.from_link_keys && c.source.known()) return c.source;
+  if (link.sources.mass.known()) return link.sources.mass;
+  return link.source;
+}
+
+/// The state the contact and servo forces read besides Simbody's State: commands that live
+/// outside it (spec §2.3 "Policy for track commands": the integrator restarts when they change).
+struct Commands {
+  std::vector<double> track_speed;               // by link
+  std::vector<std::optional<JointServo>> servo;  // by link
+};
+
+struct PointForce {
+  std::size_t point = 0;  // index into the contact points
+  Eigen::Vector3d lever;  // from the link origin to where the force acts, world axes
+  Eigen::Vector3d force;  // on the link
+  double depth = 0;
+};
+
+}  // namespace
+
+struct Simulation::Impl {
+  const Model* model = nullptr;
+  SimOptions options;
+  double stiffness = 0;
+  std::vector<ContactPoint> points;
+  std::vector<Eigen::Matrix3d> inertias;
+  std::vector<Eigen::Vector3d> track_axis;  // link frame, unit; zero when not a track
+  Commands commands;
+
+  SimTK::MultibodySystem system;
+  SimTK::SimbodyMatterSubsystem matter{system};
+  SimTK::GeneralForceSubsystem forces{system};
+  std::vector<SimTK::MobilizedBodyIndex> mobod;  // by link
+  std::vector<bool> has_joint;
+  SimTK::State state;
+  std::unique_ptr<SimTK::RungeKuttaMersonIntegrator> integrator;
+  std::unique_ptr<SimTK::TimeStepper> stepper;
+  bool running = false;
+  bool initialized = false;  // the integrator was initialized once (its statistics exist)
+  long long earlier_steps = 0;
+  mutable long long evaluations = 0;  // force evaluations (calls of the servo force element)
+
+  const SimTK::MobilizedBody& body(LinkIndex link) const { return matter.getMobilizedBody(mobod[link]); }
+
+  /// Where contact point `p` meets the floor: the station (link frame) and its depth below z = 0.
+  std::pair<SimTK::Vec3, double> touch(const SimTK::State& s, const ContactPoint& p) const {
+    const SimTK::MobilizedBody& b = body(p.link);
+    const SimTK::Vec3 centre = vec3(p.position_in_link);
+    if (p.radius == 0) return {centre, -b.findStationLocationInGround(s, centre)[2]};
+    // A sphere touches at its lowest point, a different material point as it rolls.
+    const SimTK::Vec3 x = b.findStationLocationInGround(s, centre) - SimTK::Vec3(0, 0, p.radius);
+    return {b.findStationAtGroundPoint(s, x), -x[2]};
+  }
+
+  /// Forces of every contact point touching the floor, for a state realized to Velocity. The
+  /// link's pose and velocity are read once per link (points come grouped by link), not once
+  /// per point: Simbody's cache lookups dominated the step otherwise.
+  void contact_forces(const SimTK::State& s, std::vector<PointForce>& out) const {
+    out.clear();
+    const ContactParams& c = options.contact_params;
+    LinkIndex current = -1;
+    Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+    Eigen::Vector3d origin = Eigen::Vector3d::Zero(), omega = origin, velocity = origin, belt = origin;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const ContactPoint& p = points[i];
+      if (p.link != current) {
+        current = p.link;
+        const SimTK::MobilizedBody& b = body(p.link);
+        const SimTK::Transform& X = b.getBodyTransform(s);
+        const SimTK::SpatialVec& V = b.getBodyVelocity(s);
+        R = to_eigen(X.R());
+        origin = to_eigen(X.p());
+        omega = to_eigen(V[0]);
+        velocity = to_eigen(V[1]);
+        belt.setZero();
+        if (const double dq = commands.track_speed[p.link]; dq != 0) {
+          // Belt surface velocity dq·normalize(a_w × n_out), n_out = −Z at a floor contact.
+          const Eigen::Vector3d d = (R * track_axis[p.link]).cross(Eigen::Vector3d(0, 0, -1));
+          if (d.norm() > 1e-9) belt = dq * d.normalized();
+        }
+      }
+      // The touching point, from the link origin (world axes); a sphere touches at its lowest.
+      Eigen::Vector3d lever = R * p.position_in_link;
+      lever.z() -= p.radius;
+      const double depth = -(origin.z() + lever.z());
+      if (!(depth > 0)) continue;
+      const Eigen::Vector3d v = velocity + omega.cross(lever);
+      // Hunt–Crossley: k·δ·(1 + c·δ̇), never pulling the body into the floor.
+      const double fn = std::max(0.0, stiffness * depth * (1 + c.dissipation * -v.z()));
+      Eigen::Vector3d slip(v.x() + belt.x(), v.y() + belt.y(), 0);
+      const double speed = slip.norm();
+      Eigen::Vector3d force(0, 0, fn);
+      if (speed > 0 && fn > 0) {
+        const double ratio = speed / c.transition_velocity;
+        const double mu = c.friction * (ratio < 1 ? ratio * (2 - ratio) : 1.0);
+        force -= mu * fn * slip / speed;
+      }
+      out.push_back({i, lever, force, depth});
+    }
+  }
+
+  double contact_potential(const SimTK::State& s) const {
+    double e = 0;
+    for (const ContactPoint& p : points) {
+      const double depth = touch(s, p).second;
+      if (depth > 0) e += 0.5 * stiffness * depth * depth;
+    }
+    return e;
+  }
+};
+
+namespace {
+
+class ContactForce : public SimTK::Force::Custom::Implementation {
+ public:
+  explicit ContactForce(const Simulation::Impl& impl) : impl_(impl) {}
+  void calcForce(const SimTK::State& s, SimTK::Vector_<SimTK::SpatialVec>& body_forces, SimTK::Vector_<SimTK::Vec3>&,
+                 SimTK::Vector&) const override {
+    impl_.contact_forces(s, scratch_);
+    for (const PointForce& f : scratch_) {
+      // A spatial force at the link origin, world axes (what applyForceToBodyPoint adds).
+      const SimTK::Vec3 F = vec3(f.force);
+      body_forces[impl_.mobod[impl_.points[f.point].link]] += SimTK::SpatialVec(vec3(f.lever) % F, F);
+    }
+  }
+  SimTK::Real calcPotentialEnergy(const SimTK::State& s) const override { return impl_.contact_potential(s); }
+  bool dependsOnlyOnPositions() const override { return false; }
+
+ private:
+  const Simulation::Impl& impl_;
+  mutable std::vector<PointForce> scratch_;
+};
+
+class ServoForce : public SimTK::Force::Custom::Implementation {
+ public:
+  explicit ServoForce(const Simulation::Impl& impl) : impl_(impl) {}
+  void calcForce(const SimTK::State& s, SimTK::Vector_<SimTK::SpatialVec>&, SimTK::Vector_<SimTK::Vec3>&,
+                 SimTK::Vector& mobility_forces) const override {
+    const double t = s.getTime();
+    ++impl_.evaluations;
+    for (std::size_t i = 0; i < impl_.commands.servo.size(); ++i) {
+      const std::optional<JointServo>& servo = impl_.commands.servo[i];
+      if (!servo || !impl_.has_joint[i]) continue;
+      const SimTK::MobilizedBody& b = impl_.body(static_cast<LinkIndex>(i));
+      const double q_ref = servo->q_ref ? servo->q_ref(t) : 0.0;
+      const double qd_ref = servo->qd_ref ? servo->qd_ref(t) : 0.0;
+      const double tau =
+          servo->p_gain * (q_ref - b.getOneQ(s, 0)) + servo->d_gain * (qd_ref - b.getOneU(s, 0)) + servo->torque;
+      b.applyOneMobilityForce(s, 0, tau, mobility_forces);
+    }
+  }
+  SimTK::Real calcPotentialEnergy(const SimTK::State&) const override { return 0; }
+  bool dependsOnlyOnPositions() const override { return false; }
+
+ private:
+  const Simulation::Impl& impl_;
+};
+
+}  // namespace
+
+Simulation::Simulation() : impl_(std::make_unique<Impl>()) {}
+Simulation::~Simulation() = default;
+
+std::unique_ptr<Simulation> Simulation::build(const Model& model, const Derived& derived, const SimOptions& options,
+                                              DiagnosticSink& sink) {
+  std::unique_ptr<Simulation> sim(new Simulation());
+  Impl& m = *sim->impl_;
+  m.model = &model;
+  m.options = options;
+  const std::size_t n = model.links.size();
+  if (n == 0 || derived.mass.size() != n) return nullptr;
+
+  // Mass properties: refuse what Simbody would throw on, unless asked to balance.
+  bool ok = true;
+  m.inertias.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Link& link = model.links[i];
+    const MassProperties& mp = derived.mass[i];
+    if (!std::isfinite(mp.mass) || mp.mass < 0 || !mp.center_of_mass.allFinite() || !mp.inertia.allFinite()) {
+      report_rule(sink, "inertia-nonpositive-mass", link.sources.mass.known() ? link.sources.mass : link.source,
+                  fmt::format("link \"{}\" has mass {:g} kg; Simbody cannot simulate it", link.name, mp.mass));
+      ok = false;
+      continue;
+    }
+    const Eigen::Matrix3d inertia = symmetrized_inertia(mp.inertia);
+    m.inertias[i] = inertia;
+    const PrincipalInertia p = principal_inertia(inertia);
+    const InertiaValidity validity = inertia_validity(p);
+    if (validity.valid()) continue;
+    const std::optional<Eigen::Matrix3d> balanced = balance_inertia(inertia);
+    const std::string moments = fmt::format("({:g}, {:g}, {:g})", p.moments[0], p.moments[1], p.moments[2]);
+    if (!options.balance_inertia) {
+      const char* rule = validity.negative_moment ? "inertia-not-positive-definite" : "inertia-triangle";
+      report_rule(
+          sink, rule, inertia_location(link),
+          fmt::format("principal moments {} of link \"{}\" are not physical ({}); Simbody refuses them, so "
+                      "nothing was simulated",
+                      moments, link.name,
+                      validity.negative_moment ? std::string("a negative moment")
+                                               : fmt::format("A + B - C = {:g} < 0", validity.triangle_margin)),
+          (balanced ? "nearest valid inertia (link axes, about the centre of mass): " + matrix_text(*balanced) + "; "
+                    : std::string()) +
+              "--balance-inertia simulates with it");
+      ok = false;
+      continue;
+    }
+    m.inertias[i] = balanced ? *balanced : Eigen::Matrix3d::Zero();
+    report_rule(sink, "dynamics-inertia-balanced", inertia_location(link),
+                fmt::format("link \"{}\": inertia {} (principal moments {}) is not physical; simulated with the "
+                            "balanced tensor {} (--balance-inertia, bodyfmt::balance_inertia, as body2mjcf writes it)",
+                            link.name, matrix_text(inertia), moments, matrix_text(m.inertias[i])));
+  }
+  if (!ok) return nullptr;
+
+  // Mobilized bodies in link order (parents come first).
+  m.mobod.resize(n);
+  m.has_joint.assign(n, false);
+  m.track_axis.assign(n, Eigen::Vector3d::Zero());
+  m.commands.track_speed.assign(n, 0.0);
+  m.commands.servo.assign(n, std::nullopt);
+  struct Stop {
+    SimTK::MobilizedBodyIndex body;
+    double lower, upper;
+  };
+  std::vector<Stop> stops;
+  try {
+    for (std::size_t i = 0; i < n; ++i) {
+      const Link& link = model.links[i];
+      const MassProperties& mp = derived.mass[i];
+      const SimTK::Vec3 com = vec3(mp.center_of_mass);
+      const SimTK::Mat33 Ic = [&] {
+        SimTK::Mat33 r;
+        for (int a = 0; a < 3; ++a)
+          for (int b = 0; b < 3; ++b) r(a, b) = m.inertias[i](a, b);
+        return r;
+      }();
+      // MassProperties wants the inertia about the body origin (spec §2.1).
+      const SimTK::Inertia I_origin = SimTK::Inertia(Ic).shiftFromMassCenter(-com, mp.mass);
+      SimTK::Body::Rigid body(SimTK::MassProperties(mp.mass, com, I_origin));
+      if (i == 0) {
+        if (link.joint_type == JointType::kFree) {
+          SimTK::MobilizedBody::Free root(m.matter.Ground(), SimTK::Transform(), body, SimTK::Transform());
+          m.mobod[i] = root.getMobilizedBodyIndex();
+        } else {
+          SimTK::MobilizedBody::Weld root(m.matter.Ground(), transform(link.X_PL), body, SimTK::Transform());
+          m.mobod[i] = root.getMobilizedBodyIndex();
+        }
+        continue;
+      }
+      SimTK::MobilizedBody& parent = m.matter.updMobilizedBody(m.mobod[link.parent]);
+      const Eigen::Vector3d axis =
+          link.joint_axis.norm() > 0 ? Eigen::Vector3d(link.joint_axis.normalized()) : Eigen::Vector3d::UnitZ();
+      const bool moving =
+          (link.joint_type == JointType::kRevolute || link.joint_type == JointType::kPrismatic) && !options.lock_joints;
+      if (moving) {
+        // Pin turns about Z of its frames, Slider moves along X: map that axis onto the joint
+        // axis on both sides so that the body frame is the link frame at q = 0.
+        const SimTK::CoordinateAxis along(link.joint_type == JointType::kRevolute ? 2 : 0);
+        const SimTK::Rotation R_LJ(SimTK::UnitVec3(vec3(axis)), along);
+        const SimTK::Transform X_PF(rotation(Eigen::Matrix3d(link.X_PL.linear())) * R_LJ,
+                                    vec3(Eigen::Vector3d(link.X_PL.translation())));
+        const SimTK::Transform X_BM(R_LJ, SimTK::Vec3(0));
+        if (link.joint_type == JointType::kRevolute) {
+          SimTK::MobilizedBody::Pin pin(parent, X_PF, body, X_BM);
+          m.mobod[i] = pin.getMobilizedBodyIndex();
+        } else {
+          SimTK::MobilizedBody::Slider slider(parent, X_PF, body, X_BM);
+          m.mobod[i] = slider.getMobilizedBodyIndex();
+        }
+        m.has_joint[i] = true;
+        const bool lower = link.joint_range_lower > -kUnlimited && std::isfinite(link.joint_range_lower);
+        const bool upper = link.joint_range_upper < kUnlimited && std::isfinite(link.joint_range_upper);
+        if (options.joint_stops && (lower || upper) && link.joint_range_lower <= link.joint_range_upper)
+          stops.push_back({m.mobod[i], lower ? link.joint_range_lower : -1e30, upper ? link.joint_range_upper : 1e30});
+        continue;
+      }
+      // Fixed links and pseudo tracks are welded: a track has no DOF (spec §1.1). A locked
+      // joint is welded at its initial position.
+      if (link.joint_type == JointType::kPseudoContinuousTrack) m.track_axis[i] = axis;
+      Eigen::Isometry3d X_PB = link.X_PL;
+      if (link.joint_type == JointType::kRevolute)
+        X_PB.rotate(Eigen::AngleAxisd(link.initial_displacement, axis));
+      else if (link.joint_type == JointType::kPrismatic)
+        X_PB.translate(axis * link.initial_displacement);
+      SimTK::MobilizedBody::Weld weld(parent, transform(X_PB), body, SimTK::Transform());
+      m.mobod[i] = weld.getMobilizedBodyIndex();
+    }
+  } catch (const std::exception& e) {
+    report_rule(sink, "internal-error", model.source, std::string("Simbody refused the model: ") + e.what());
+    return nullptr;
+  }
+
+  if (options.gravity != 0) SimTK::Force::Gravity(m.forces, m.matter, SimTK::UnitVec3(-SimTK::ZAxis), options.gravity);
+  for (const Stop& stop : stops)
+    SimTK::Force::MobilityLinearStop(m.forces, m.matter.updMobilizedBody(stop.body), SimTK::MobilizerQIndex(0),
+                                     options.stop_stiffness, options.stop_dissipation, stop.lower, stop.upper);
+  if (options.contact) {
+    m.points = collect_contact_points(model, sink);
+    m.stiffness = options.contact_params.stiffness > 0
+                      ? options.contact_params.stiffness
+                      : std::max(derived.total_mass, 1e-3) * std::max(options.gravity, 1.0) /
+                            (4 * options.contact_params.reference_depth);
+    SimTK::Force::Custom(m.forces, new ContactForce(m));
+  }
+  SimTK::Force::Custom(m.forces, new ServoForce(m));
+
+  try {
+    m.system.realizeTopology();
+    m.state = m.system.getDefaultState();
+    // The root at its file pose.
+    if (model.links[0].joint_type == JointType::kFree)
+      m.body(0).setQToFitTransform(m.state, transform(model.links[0].X_PL));
+    for (std::size_t i = 1; i < n; ++i)
+      if (m.has_joint[i] && model.links[i].initial_displacement != 0)
+        m.body(static_cast<LinkIndex>(i)).setOneQ(m.state, 0, model.links[i].initial_displacement);
+    m.system.realize(m.state, SimTK::Stage::Velocity);
+  } catch (const std::exception& e) {
+    report_rule(sink, "internal-error", model.source, std::string("Simbody refused the model: ") + e.what());
+    return nullptr;
+  }
+  return sim;
+}
+
+const Model& Simulation::model() const { return *impl_->model; }
+const std::vector<ContactPoint>& Simulation::contact_points() const { return impl_->points; }
+double Simulation::contact_stiffness() const { return impl_->stiffness; }
+const std::vector<Eigen::Matrix3d>& Simulation::link_inertias() const { return impl_->inertias; }
+
+void Simulation::set_root_pose(const Eigen::Isometry3d& X_WR) {
+  impl_->running = false;
+  if (impl_->model->links[0].joint_type != JointType::kFree) return;
+  impl_->body(0).setQToFitTransform(impl_->state, transform(X_WR));
+  impl_->system.realize(impl_->state, SimTK::Stage::Velocity);
+}
+
+void Simulation::set_root_velocity(const Eigen::Vector3d& omega, const Eigen::Vector3d& v) {
+  impl_->running = false;
+  if (impl_->model->links[0].joint_type != JointType::kFree) return;
+  const SimTK::MobilizedBody& root = impl_->body(0);
+  root.setUToFitAngularVelocity(impl_->state, vec3(omega));
+  root.setUToFitLinearVelocity(impl_->state, vec3(v));
+  impl_->system.realize(impl_->state, SimTK::Stage::Velocity);
+}
+
+void Simulation::set_joint_position(LinkIndex link, double q) {
+  impl_->running = false;
+  if (!impl_->has_joint[link]) return;
+  impl_->body(link).setOneQ(impl_->state, 0, q);
+  impl_->system.realize(impl_->state, SimTK::Stage::Velocity);
+}
+
+void Simulation::set_joint_velocity(LinkIndex link, double qd) {
+  impl_->running = false;
+  if (!impl_->has_joint[link]) return;
+  impl_->body(link).setOneU(impl_->state, 0, qd);
+  impl_->system.realize(impl_->state, SimTK::Stage::Velocity);
+}
+
+void Simulation::set_time(double t) {
+  impl_->running = false;
+  impl_->state.setTime(t);
+}
+
+void Simulation::set_track_speed(LinkIndex link, double dq) {
+  impl_->running = false;
+  impl_->commands.track_speed[link] = dq;
+}
+
+void Simulation::set_servo(LinkIndex link, JointServo servo) {
+  impl_->running = false;
+  impl_->commands.servo[link] = std::move(servo);
+}
+
+void Simulation::clear_servo(LinkIndex link) {
+  impl_->running = false;
+  impl_->commands.servo[link].reset();
+}
+
+void Simulation::restart() {
+  Impl& m = *impl_;
+  if (!m.integrator) {
+    m.integrator = std::make_unique<SimTK::RungeKuttaMersonIntegrator>(m.system);
+    m.integrator->setAccuracy(m.options.accuracy);
+    m.stepper = std::make_unique<SimTK::TimeStepper>(m.system, *m.integrator);
+  }
+  // Statistics across restarts: the integrator's own counters restart with it.
+  if (m.initialized) {
+    m.earlier_steps += m.integrator->getNumStepsTaken();
+    m.integrator->resetAllStatistics();
+  }
+  m.stepper->initialize(m.state);
+  m.initialized = true;
+  m.running = true;
+}
+
+void Simulation::advance_to(double t) {
+  Impl& m = *impl_;
+  if (!m.running) restart();
+  if (t > m.state.getTime()) m.stepper->stepTo(t);
+  m.state = m.integrator->getState();
+  m.system.realize(m.state, SimTK::Stage::Velocity);
+}
+
+double Simulation::time() const { return impl_->state.getTime(); }
+
+Eigen::Isometry3d Simulation::link_pose(LinkIndex link) const {
+  const SimTK::Transform& X = impl_->body(link).getBodyTransform(impl_->state);
+  Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
+  out.linear() = to_eigen(X.R());
+  out.translation() = to_eigen(X.p());
+  return out;
+}
+
+std::pair<Eigen::Vector3d, Eigen::Vector3d> Simulation::link_velocity(LinkIndex link) const {
+  const SimTK::SpatialVec& V = impl_->body(link).getBodyVelocity(impl_->state);
+  return {to_eigen(V[0]), to_eigen(V[1])};
+}
+
+double Simulation::joint_position(LinkIndex link) const {
+  return impl_->has_joint[link] ? impl_->body(link).getOneQ(impl_->state, 0) : 0.0;
+}
+double Simulation::joint_velocity(LinkIndex link) const {
+  return impl_->has_joint[link] ? impl_->body(link).getOneU(impl_->state, 0) : 0.0;
+}
+bool Simulation::has_joint(LinkIndex link) const { return impl_->has_joint[link]; }
+
+double Simulation::total_mass() const { return impl_->matter.calcSystemMass(impl_->state); }
+Eigen::Vector3d Simulation::center_of_mass() const {
+  return to_eigen(impl_->matter.calcSystemMassCenterLocationInGround(impl_->state));
+}
+Eigen::Vector3d Simulation::center_of_mass_velocity() const {
+  return to_eigen(impl_->matter.calcSystemMassCenterVelocityInGround(impl_->state));
+}
+std::pair<Eigen::Vector3d, Eigen::Vector3d> Simulation::central_momentum() const {
+  const SimTK::SpatialVec H = impl_->matter.calcSystemCentralMomentum(impl_->state);
+  return {to_eigen(H[0]), to_eigen(H[1])};
+}
+
+double Simulation::kinetic_energy() const { return impl_->system.calcKineticEnergy(impl_->state); }
+
+double Simulation::energy() const {
+  SimTK::State s = impl_->state;
+  impl_->system.realize(s, SimTK::Stage::Dynamics);
+  return impl_->system.calcEnergy(s);
+}
+
+Eigen::Vector3d Simulation::total_contact_force(LinkIndex link) const {
+  std::vector<PointForce> forces;
+  impl_->contact_forces(impl_->state, forces);
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (const PointForce& f : forces)
+    if (link < 0 || impl_->points[f.point].link == link) sum += f.force;
+  return sum;
+}
+
+double Simulation::max_penetration(LinkIndex link) const {
+  double deepest = -std::numeric_limits<double>::infinity();
+  for (const ContactPoint& p : impl_->points) {
+    if (link >= 0 && p.link != link) continue;
+    deepest = std::max(deepest, impl_->touch(impl_->state, p).second);
+  }
+  return deepest;
+}
+
+Eigen::MatrixXd Simulation::mass_matrix() const {
+  SimTK::Matrix M;
+  impl_->matter.calcM(impl_->state, M);
+  Eigen::MatrixXd out(M.nrow(), M.ncol());
+  for (int i = 0; i < M.nrow(); ++i)
+    for (int j = 0; j < M.ncol(); ++j) out(i, j) = M(i, j);
+  return out;
+}
+
+int Simulation::mobility_index(LinkIndex link) const {
+  if (!impl_->has_joint[link]) return -1;
+  return static_cast<int>(impl_->body(link).getFirstUIndex(impl_->state));
+}
+
+long long Simulation::force_evaluations() const { return impl_->evaluations; }
+
+long long Simulation::steps_taken() const {
+  return impl_->earlier_steps + (impl_->initialized ? impl_->integrator->getNumStepsTaken() : 0);
+}
+
+bool Simulation::finite() const {
+  const SimTK::Vector& q = impl_->state.getQ();
+  const SimTK::Vector& u = impl_->state.getU();
+  for (int i = 0; i < q.size(); ++i)
+    if (!std::isfinite(q[i])) return false;
+  for (int i = 0; i < u.size(); ++i)
+    if (!std::isfinite(u[i])) return false;
+  return true;
+}
+
+Eigen::MatrixXd Simulation::mass_matrix_at(const std::vector<double>& q_by_link) {
+  for (std::size_t i = 0; i < q_by_link.size() && i < impl_->has_joint.size(); ++i)
+    if (impl_->has_joint[i]) impl_->body(static_cast<LinkIndex>(i)).setOneQ(impl_->state, 0, q_by_link[i]);
+  impl_->running = false;
+  impl_->system.realize(impl_->state, SimTK::Stage::Velocity);
+  return mass_matrix();
+}
+
+}  // namespace bodyfmt::dynamics

@@ -1,0 +1,146 @@
+// The bodysim command line: check-tank on SimpleTank (refused as written, passing with
+// --balance-inertia) and on examples/scouttank.body, the exit-code contract, and `run`.
+#include <doctest/doctest.h>
+
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+struct Run {
+  int status = -1;
+  std::string out;  // stdout
+  std::string all;  // stdout, then stderr
+};
+
+Run bodysim(const std::string& args) {
+  const std::filesystem::path err = std::filesystem::temp_directory_path() / "bodysim_test_stderr.txt";
+  const std::string command = std::string("'") + BODYFMT_BODYSIM + "' " + args + " 2>'" + err.string() + "'";
+  Run run;
+  FILE* pipe = popen(command.c_str(), "r");
+  REQUIRE(pipe != nullptr);
+  char buffer[4096];
+  std::size_t n;
+  while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) run.out.append(buffer, n);
+  const int status = pclose(pipe);
+  run.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream in(err);
+  std::stringstream text;
+  text << in.rdbuf();
+  run.all = run.out + text.str();
+  return run;
+}
+
+bool contains(const std::string& text, const std::string& what) { return text.find(what) != std::string::npos; }
+
+const std::string kSimpleTank = std::string(BODYFMT_SHARED_DIR) + "/corpus/choreonoid/Tank/SimpleTank.body";
+const std::string kScoutTank = std::string(BODYFMT_EXAMPLES_DIR) + "/scouttank.body";
+
+}  // namespace
+
+TEST_CASE("bodysim: check-tank refuses SimpleTank as written, naming the chassis inertia finding (exit 2)") {
+  const Run r = bodysim("check-tank '" + kSimpleTank + "'");
+  CHECK(r.status == 2);
+  CHECK(contains(r.all, "SimpleTank.body:12:14: error: principal moments (0.1, 0.1, 0.5) of link \"CHASSIS\""));
+  CHECK(contains(r.all, "[inertia-triangle]"));
+  CHECK(contains(r.all, "--balance-inertia"));
+  CHECK(!contains(r.out, "PASS"));
+}
+
+TEST_CASE("bodysim: check-tank passes every check on SimpleTank with --balance-inertia (exit 0)") {
+  const Run r = bodysim("check-tank --balance-inertia '" + kSimpleTank + "'");
+  INFO(r.all);
+  CHECK(r.status == 0);
+  CHECK(contains(r.all, "[dynamics-inertia-balanced]"));
+  CHECK(contains(r.out, "tracks: left \"TRACK_L\", right \"TRACK_R\" (found by position), spacing B = 0.4 m"));
+  CHECK(!contains(r.out, "FAIL"));
+  CHECK(contains(r.out, "30 of 30 checks passed"));
+}
+
+TEST_CASE("bodysim: check-tank passes every check on examples/scouttank.body (exit 0)") {
+  const Run r = bodysim("check-tank '" + kScoutTank + "'");
+  INFO(r.all);
+  CHECK(r.status == 0);
+  // Left and right by position: BELT_B (y = +0.31) is left although listed second.
+  CHECK(contains(r.out, "tracks: left \"BELT_B\", right \"BELT_A\" (found by position), spacing B = 0.62 m"));
+  CHECK(contains(r.out, "30 of 30 checks passed"));
+}
+
+TEST_CASE("bodysim: a failing check exits 1") {
+  // A pitch P gain of 1 N·m/rad cannot hold the cannon: the gravity torque (2.5 kg · g ·
+  // 0.25 m ≈ 6.1 N·m) would sag it to about 1.35 rad, far beyond its 5° stop, so the measured
+  // sag (at the stop) differs from the servo's equilibrium and the check fails.
+  const Run r = bodysim("check-tank --p-gain 1 '" + kScoutTank + "'");
+  CHECK(r.status == 1);
+  CHECK(contains(r.out, "FAIL  turret: pitch sag under gravity"));
+}
+
+TEST_CASE("bodysim: usage errors exit 2") {
+  CHECK(bodysim("").status == 2);
+  CHECK(bodysim("frobnicate x.body").status == 2);
+  CHECK(bodysim("check-tank").status == 2);
+  const Run arm = bodysim("check-tank '" + std::string(BODYFMT_EXAMPLES_DIR) + "/arm.body'");
+  CHECK(arm.status == 2);
+  CHECK(contains(arm.all, "the tank suite needs a free root link"));
+}
+
+TEST_CASE("bodysim: run writes the scenario's trajectory as CSV") {
+  const std::filesystem::path csv = std::filesystem::temp_directory_path() / "bodysim_test_run.csv";
+  std::filesystem::remove(csv);
+  const Run r =
+      bodysim("run --balance-inertia '" + std::string(BODYFMT_EXAMPLES_DIR) + "/simpletank.body' --scenario '" +
+              BODYFMT_EXAMPLES_DIR + "/tank_drive.scenario.yaml' --csv '" + csv.string() + "'");
+  INFO(r.all);
+  REQUIRE(r.status == 0);
+  std::ifstream in(csv);
+  std::string header, line, row_at_2_49;
+  std::getline(in, header);
+  CHECK(header.rfind("time,x,y,z,qw,qx,qy,qz,wx,wy,wz,vx,vy,vz,q:TURRET_Y,dq:TURRET_Y,q:TURRET_P,dq:TURRET_P,", 0) ==
+        0);
+  int rows = 0;
+  while (std::getline(in, line)) {
+    ++rows;
+    if (line.rfind("2.490000,", 0) == 0) row_at_2_49 = line;
+  }
+  CHECK(rows == 401);  // t = 0 .. 4 s every 10 ms
+  REQUIRE(!row_at_2_49.empty());
+  std::vector<double> v;
+  std::stringstream fields(row_at_2_49);
+  for (std::string f; std::getline(fields, f, ',');) v.push_back(std::stod(f));
+  // 2 s after both tracks were set to 1 m/s: moving at 1 m/s along +x (Choreonoid's
+  // "1.0 → forward at 1.0 m/s"); the pitch servo holds 0.3 rad less the gravity sag
+  // m·g·r/P = 4 · 9.80665 · 0.05 / 200 ≈ 0.0098 rad.
+  CHECK(v[11] == doctest::Approx(1.0).epsilon(0.01));
+  CHECK(std::abs(v[12]) < 0.01);
+  CHECK(v[16] == doctest::Approx(0.3 - 0.0098 * std::cos(0.3)).epsilon(0.01));
+}
+
+TEST_CASE("bodysim: run refuses a scenario naming an unknown link, located, and writes nothing") {
+  const std::filesystem::path csv = std::filesystem::temp_directory_path() / "bodysim_test_refused.csv";
+  std::filesystem::remove(csv);
+  const std::string scenario = std::string(BODYFMT_TEST_DATA_DIR) + "/dynamics/unknown_link.scenario.yaml";
+  const Run r = bodysim("run '" + kScoutTank + "' --scenario '" + scenario + "' --csv '" + csv.string() + "'");
+  CHECK(r.status == 2);
+  CHECK(contains(r.all,
+                 "unknown_link.scenario.yaml:5:14: error: the model has no link \"TRACK_LEFT\" [dynamics-scenario]"));
+  CHECK(!std::filesystem::exists(csv));
+}
+
+#ifdef BODYFMT_HAVE_MUJOCO_CROSS_CHECK
+TEST_CASE("bodysim: --cross-check mujoco runs body2mjcf's export in MuJoCo 2.2.2 and agrees within T8") {
+  const Run r = bodysim("check-tank --balance-inertia --cross-check mujoco '" + kScoutTank + "'");
+  INFO(r.all);
+  CHECK(r.status == 0);
+  CHECK(contains(r.out, "MuJoCo vs Simbody: drive 1 m/s: speed"));
+  CHECK(contains(r.out, "MuJoCo vs Simbody: spin L+0.5 R-0.5"));
+  CHECK(contains(r.out, "MuJoCo vs Simbody: turret: pitch step"));
+  CHECK(contains(r.out, "40 of 40 checks passed"));
+}
+#endif

@@ -1,0 +1,179 @@
+// bodysim: the Simbody dynamics checker (dynamics/README.md).
+//   bodysim check-tank MODEL [--balance-inertia]    the tank suite; one line per check
+//   bodysim check MODEL [--balance-inertia]         generic checks for any model
+//   bodysim run MODEL --scenario S.yaml --csv out.csv
+// Exit codes (tools/common/front.h): 0 every check passed (run: the CSV was written); 1 a check
+// failed or findings at the fail level; 2 usage, I/O, a model that cannot be simulated
+// (an unphysical inertia without --balance-inertia, not a tank for check-tank) or a fatal error.
+
+#include "front.h"
+
+#include <bodyfmt/converters/output_set.h>
+#include <bodyfmt/derived.h>
+#include <bodyfmt/dynamics/checks.h>
+#include <bodyfmt/dynamics/scenario.h>
+
+#include <fmt/format.h>
+
+#include <cstring>
+#include <iostream>
+#include <sstream>
+
+namespace {
+
+using namespace bodyfmt;
+
+constexpr const char* kUsage =
+    "bodysim: the Simbody dynamics checker for Choreonoid .body models\n"
+    "usage:\n"
+    "  bodysim check-tank MODEL [--balance-inertia]   the tracked-vehicle suite (two pseudo_continuous_track links)\n"
+    "  bodysim check MODEL [--balance-inertia]        generic checks: mass matrix, drop and settle\n"
+    "  bodysim run MODEL --scenario S.yaml --csv OUT  run a scenario, write trajectories as CSV\n"
+    "  bodysim SUBCOMMAND --help                      options of a subcommand\n";
+
+std::string number(double v) { return fmt::format("{:.6g}", v); }
+
+void print_results(const std::vector<dynamics::CheckResult>& results) {
+  std::size_t width = 0;
+  for (const auto& r : results) width = std::max(width, r.name.size());
+  for (const auto& r : results) {
+    const std::string unit = r.unit.empty() ? "" : " " + r.unit;
+    std::cout << fmt::format("{}  {:<{}}  measured {:>12}{:<6}  expected {:>12}  tolerance {}\n",
+                             r.passed ? "PASS" : "FAIL", r.name, width, number(r.measured), unit, number(r.expected),
+                             r.tolerance);
+  }
+  int failed = 0;
+  for (const auto& r : results) failed += r.passed ? 0 : 1;
+  std::cout << fmt::format("{} of {} checks passed\n", results.size() - failed, results.size());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2 || std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0) {
+    (argc < 2 ? std::cerr : std::cout) << kUsage;
+    return argc < 2 ? tools::kExitFatal : tools::kExitClean;
+  }
+  const std::string command = argv[1];
+  if (command == "--version") {
+    std::cout << "bodysim " << BODYFMT_VERSION << "\n";
+    return tools::kExitClean;
+  }
+  if (command != "check-tank" && command != "check" && command != "run") {
+    std::cerr << "bodysim: error: unknown subcommand \"" << command << "\"\n" << kUsage;
+    return tools::kExitFatal;
+  }
+  const std::string description = command == "check-tank" ? "Run the tracked-vehicle dynamics suite (Simbody)"
+                                  : command == "check"    ? "Run the generic dynamics checks (Simbody)"
+                                                          : "Run a scenario and write trajectories as CSV (Simbody)";
+  tools::Front front("bodysim " + command, description, {false, false});
+  CLI::App& app = front.app();
+  dynamics::TankSuiteOptions suite;
+  dynamics::SimOptions& sim = suite.sim;
+  std::string scenario_path, csv_path, cross_check;
+  app.add_flag("--balance-inertia", sim.balance_inertia,
+               "simulate links with an unphysical inertia with the nearest valid one (a warning per link)");
+  app.add_option("--accuracy", sim.accuracy, "Runge-Kutta-Merson accuracy (default 1e-5)")
+      ->check(CLI::Range(1e-12, 1e-1));
+  app.add_option("--friction", sim.contact_params.friction, "Coulomb friction with the floor (default 0.5)")
+      ->check(CLI::Range(0.0, 10.0));
+  app.add_option("--contact-depth", sim.contact_params.reference_depth,
+                 "contact stiffness: the depth the model's weight on four points sinks (m, default 1e-4)")
+      ->check(CLI::Range(1e-7, 1e-1));
+  app.add_option("--transition-velocity", sim.contact_params.transition_velocity,
+                 "slip speed at which friction reaches μ (m/s, default 0.05)")
+      ->check(CLI::Range(1e-5, 1.0));
+  if (command == "check-tank") {
+    app.add_option("--cross-check", cross_check,
+                   "also run the drive, spin and turret scenarios in MuJoCo 2.2.2 on body2mjcf's export")
+        ->check(CLI::IsMember({"mujoco"}));
+    app.add_option("--p-gain", suite.p_gain, "turret servo P gain, N·m/rad (default 200)")->check(CLI::PositiveNumber);
+    app.add_option("--d-gain", suite.d_gain, "turret servo D gain, N·m·s/rad (default 50)")
+        ->check(CLI::NonNegativeNumber);
+  }
+  if (command == "run") {
+    app.add_option("--scenario", scenario_path, "the scenario file (YAML; see dynamics/README.md)")->required();
+    app.add_option("--csv", csv_path, "the CSV file to write")->required();
+  }
+  std::vector<char*> args(argv + 1, argv + argc);
+  std::string name = "bodysim " + command;
+  args[0] = name.data();
+  if (auto code = front.parse(static_cast<int>(args.size()), args.data())) return *code;
+
+  const std::string& path = front.inputs().front();
+  auto policy = front.policy_for(path);
+  if (!policy) return tools::kExitFatal;
+  CollectingSink collected;
+  DiagnosticPolicy sink(collected, policy->options);
+  std::optional<Model> model;
+  if (auto input = front.open_input(path, sink)) model = front.load(*input, sink);
+  auto finish = [&](bool fatal, const std::string& why) {
+    front.print(collected.diagnostics());
+    if (!why.empty()) front.print_error(why);
+    return tools::exit_code(collected.diagnostics(), policy->exit, fatal);
+  };
+  if (!model) return finish(true, "");
+  if (collected.error_count() > 0) return finish(true, "the model has errors; nothing was simulated");
+  const Derived derived = compute_derived(*model, sink);
+
+  std::string why;
+  try {
+    if (command == "run") {
+      std::optional<dynamics::ScenarioSpec> scenario = dynamics::read_scenario(scenario_path, *model, sink);
+      if (!scenario) return finish(true, "the scenario cannot be read; nothing was simulated");
+      std::ostringstream csv;
+      dynamics::RunStats stats;
+      if (!dynamics::run_scenario(*model, derived, *scenario, sim, csv, sink, &stats))
+        return finish(true, csv_path + " was not written");
+      converters::OutputSet out(csv_path);
+      out.set_main(csv.str());
+      if (!out.commit(sink)) return finish(true, csv_path + " was not written");
+      std::cout << fmt::format(
+          "bodysim run: {} s of {} simulated in {} Runge-Kutta-Merson steps, {} force evaluations "
+          "(accuracy {:g}); wrote {}\n",
+          number(scenario->duration), model->name, stats.steps, stats.evaluations, sim.accuracy, csv_path);
+      return finish(false, "");
+    }
+    std::vector<dynamics::CheckResult> results;
+    dynamics::TankLayout tank;
+    if (command == "check-tank") {
+      results = dynamics::run_tank_suite(*model, derived, suite, sink, why, &tank);
+      if (!results.empty() && !cross_check.empty()) {
+#ifdef BODYFMT_HAVE_MUJOCO_CROSS_CHECK
+        std::vector<dynamics::CheckResult> cross = dynamics::run_mujoco_cross_check(*model, derived, suite, sink, why);
+        if (cross.empty()) return finish(true, why.empty() ? "the MuJoCo cross-check failed" : why);
+        results.insert(results.end(), cross.begin(), cross.end());
+#else
+        return finish(true, "this bodysim was built without MuJoCo: --cross-check mujoco is unavailable");
+#endif
+      }
+    } else
+      results = dynamics::run_generic_checks(*model, derived, sim, sink, why);
+    if (results.empty()) return finish(true, why.empty() ? "nothing was simulated" : why + "; nothing was simulated");
+    std::cout << fmt::format("bodysim {}: {} ({}), total mass {} kg\n", command, model->name, path,
+                             number(derived.total_mass));
+    std::cout << fmt::format(
+        "  Simbody 3.7, Runge-Kutta-Merson accuracy {:g}; floor contact at collision vertices, friction {:g}, "
+        "dissipation {:g} s/m, transition {:g} m/s; joint ranges enforced by stops ({:g} per rad or m)\n",
+        sim.accuracy, sim.contact_params.friction, sim.contact_params.dissipation,
+        sim.contact_params.transition_velocity, sim.stop_stiffness);
+    if (command == "check-tank") {
+      auto link = [&](LinkIndex i) { return i >= 0 ? model->links[i].name : std::string("none"); };
+      std::cout << fmt::format(
+          "  tracks: left \"{}\", right \"{}\" (found by position), spacing B = {} m; turret yaw \"{}\", pitch "
+          "\"{}\", servo P = {:g}, D = {:g}\n",
+          link(tank.left), link(tank.right), number(tank.spacing), link(tank.yaw), link(tank.pitch), suite.p_gain,
+          suite.d_gain);
+      if (!cross_check.empty())
+        std::cout << "  cross-check: MuJoCo 2.2.2 on body2mjcf's export (elliptic cones, Euler 1 ms, belt velocity "
+                     "through mjcb_control); its lines: measured = MuJoCo, expected = Simbody\n";
+    }
+    print_results(results);
+    bool failed = false;
+    for (const auto& r : results) failed = failed || !r.passed;
+    const int code = finish(false, "");
+    return code == tools::kExitFatal ? code : (failed ? tools::kExitFindings : code);
+  } catch (const std::exception& e) {
+    return finish(true, std::string("the simulation failed: ") + e.what());
+  }
+}
