@@ -7,8 +7,10 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <optional>
 
@@ -192,23 +194,36 @@ class Parser {
     if (axis.norm() < 1e-12) return Eigen::AngleAxisd(0, Eigen::Vector3d::UnitZ());
     return Eigen::AngleAxisd(angle, axis.normalized());
   }
-  /// MF numeric field: `[ n n ... ]` or a bare run of numbers.
-  std::vector<double> read_numbers() {
-    std::vector<double> values;
+  /// MF numeric field: `[ n n ... ]` or a bare run of numbers, each read by `read_one`.
+  template <typename T, typename ReadOne>
+  std::vector<T> read_list(ReadOne read_one) {
+    std::vector<T> values;
     if (lexer_.peek().kind == TokenKind::kOpenBracket) {
       lexer_.next();
-      while (!failed_ && lexer_.peek().kind != TokenKind::kCloseBracket) values.push_back(read_number());
+      while (!failed_ && lexer_.peek().kind != TokenKind::kCloseBracket) values.push_back(read_one());
       if (!failed_) lexer_.next();
     } else {
-      values.push_back(read_number());
-      while (!failed_ && lexer_.peek().kind == TokenKind::kNumber) values.push_back(read_number());
+      values.push_back(read_one());
+      while (!failed_ && lexer_.peek().kind == TokenKind::kNumber) values.push_back(read_one());
     }
     return values;
   }
+  std::vector<double> read_numbers() {
+    return read_list<double>([this] { return read_number(); });
+  }
+  /// MFInt32 (indices): a number that is not an integer within int range is an error at it,
+  /// not a wrapped or undefined conversion.
   std::vector<int> read_ints() {
-    std::vector<int> values;
-    for (double v : read_numbers()) values.push_back(static_cast<int>(v));
-    return values;
+    return read_list<int>([this] {
+      const Token t = lexer_.peek();
+      const double v = read_number();
+      if (failed_) return 0;
+      if (!(v == std::floor(v) && std::abs(v) <= std::numeric_limits<int>::max())) {
+        fail(t, "expected a 32-bit integer, found " + describe(t));
+        return 0;
+      }
+      return static_cast<int>(v);
+    });
   }
   std::vector<std::string> read_strings() {
     std::vector<std::string> values;

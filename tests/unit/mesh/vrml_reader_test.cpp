@@ -158,6 +158,9 @@ TEST_CASE("vrml: malformed input gives a located mesh-parse error and no scene")
       {"Group { children [ Shape { appearance \"x\" } ] }", 1, 39},  // string as a node
       {"Viewpoint { description \"unterminated }", 1, 25},           // unterminated string
       {"Group { children [ Foo { a [ 1 2 } ] }", 1, 34},             // unbalanced skip
+      // An index beyond int (fuzz_load: UBSan on the conversion) and one that is not whole.
+      {"Shape { geometry IndexedFaceSet { coordIndex [ 0 1 313e13 -1 ] } }", 1, 52},
+      {"Shape { geometry IndexedFaceSet { coordIndex [ 0 1.5 2 -1 ] } }", 1, 50},
   };
   for (const Case& c : cases) {
     CAPTURE(std::string(c.text));
