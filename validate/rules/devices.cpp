@@ -23,22 +23,24 @@ void check_camera(const RuleContext& ctx, const Device& d, const CameraParams& c
   const bool fov_ok =
       fisheye ? c.field_of_view > 0 && c.field_of_view <= 2 * kPi : c.field_of_view > 0 && c.field_of_view < kPi;
   if (!fov_ok) {
-    ctx.report("device-fov", d.source,
+    ctx.report("device-fov", d.key_source({"field_of_view", "fieldOfView"}),
                fmt::format("{} has field_of_view {}, outside {}", device_name(d), deg(c.field_of_view),
                            fisheye ? "(0, 360] degrees for a fisheye lens" : "(0, 180) degrees"),
                "field_of_view is an angle in the file's angle unit (degrees in format 2.0), e.g. 45");
   }
   if (c.width <= 0 || c.height <= 0) {
-    ctx.report("device-resolution", d.source,
+    ctx.report("device-resolution", c.width <= 0 ? d.key_source({"width"}) : d.key_source({"height"}),
                fmt::format("{} has a non-positive resolution {} x {}", device_name(d), c.width, c.height),
                "width and height are positive pixel counts");
   }
   if (c.near_clip_distance <= 0 || c.near_clip_distance >= c.far_clip_distance) {
-    ctx.report("device-clip", d.source,
+    ctx.report("device-clip",
+               c.near_clip_distance <= 0 ? d.key_source({"near_clip_distance", "nearClipDistance"})
+                                         : d.key_source({"far_clip_distance", "farClipDistance"}),
                fmt::format("{} has near_clip_distance {} and far_clip_distance {}: need 0 < near < far", device_name(d),
                            num(c.near_clip_distance), num(c.far_clip_distance)));
   } else if (d.type == "RangeCamera" && c.min_distance >= c.max_distance) {
-    ctx.report("device-clip", d.source,
+    ctx.report("device-clip", d.key_source({"max_distance"}),
                fmt::format("{} has min_distance {} >= max_distance {}", device_name(d), num(c.min_distance),
                            num(c.max_distance)));
   }
@@ -46,12 +48,16 @@ void check_camera(const RuleContext& ctx, const Device& d, const CameraParams& c
 
 void check_range_sensor(const RuleContext& ctx, const Device& d, const RangeSensorParams& r) {
   if (r.min_distance >= r.max_distance || r.min_distance < 0) {
-    ctx.report("device-clip", d.source,
+    ctx.report("device-clip",
+               r.min_distance < 0 ? d.key_source({"min_distance", "minDistance"})
+                                  : d.key_source({"max_distance", "maxDistance"}),
                fmt::format("{} has min_distance {} and max_distance {}: need 0 <= min < max", device_name(d),
                            num(r.min_distance), num(r.max_distance)));
   }
   if ((r.yaw_range > 0 && r.yaw_step <= 0) || (r.pitch_range > 0 && r.pitch_step <= 0)) {
-    ctx.report("device-resolution", d.source,
+    ctx.report("device-resolution",
+               r.yaw_range > 0 && r.yaw_step <= 0 ? d.key_source({"yaw_step", "yawStep", "scanStep"})
+                                                  : d.key_source({"pitch_step", "pitchStep"}),
                fmt::format("{} has a non-positive scan step (yaw_step {}, pitch_step {})", device_name(d),
                            deg(r.yaw_step), deg(r.pitch_step)));
   }
@@ -59,22 +65,30 @@ void check_range_sensor(const RuleContext& ctx, const Device& d, const RangeSens
 
 void check_light(const RuleContext& ctx, const Device& d, const LightParams& l) {
   std::vector<std::string> problems;
-  if (l.intensity < 0) problems.push_back(fmt::format("intensity {} < 0", num(l.intensity)));
+  const SourceLocation* at = nullptr;  // the value of the first problem
+  auto problem = [&](std::initializer_list<std::string_view> key, std::string text) {
+    if (!at) at = &d.key_source(key);
+    problems.push_back(std::move(text));
+  };
+  if (l.intensity < 0) problem({"intensity"}, fmt::format("intensity {} < 0", num(l.intensity)));
   if ((l.color.array() < 0).any() || (l.color.array() > 1).any())
-    problems.push_back(fmt::format("color {} outside [0, 1]", vec(l.color)));
+    problem({"color"}, fmt::format("color {} outside [0, 1]", vec(l.color)));
   if ((l.attenuation.array() < 0).any())
-    problems.push_back(fmt::format("attenuation {} has a negative term", vec(l.attenuation)));
+    problem({"attenuation"}, fmt::format("attenuation {} has a negative term", vec(l.attenuation)));
   else if (l.attenuation.isZero(0))
-    problems.push_back("attenuation [0, 0, 0] divides by zero");
+    problem({"attenuation"}, "attenuation [0, 0, 0] divides by zero");
   if (d.type == "SpotLight") {
     if (!(l.cut_off_angle > 0 && l.cut_off_angle <= kPi))
-      problems.push_back(fmt::format("cut_off_angle {} outside (0, 180] degrees", deg(l.cut_off_angle)));
-    if (!(l.beam_width > 0)) problems.push_back(fmt::format("beam_width {} is not positive", deg(l.beam_width)));
-    if (l.cut_off_exponent < 0) problems.push_back(fmt::format("cut_off_exponent {} < 0", num(l.cut_off_exponent)));
-    if (l.direction.norm() < 1e-9) problems.push_back("direction is the zero vector");
+      problem({"cut_off_angle", "cutOffAngle"},
+              fmt::format("cut_off_angle {} outside (0, 180] degrees", deg(l.cut_off_angle)));
+    if (!(l.beam_width > 0))
+      problem({"beam_width", "beamWidth"}, fmt::format("beam_width {} is not positive", deg(l.beam_width)));
+    if (l.cut_off_exponent < 0)
+      problem({"cut_off_exponent", "cutOffExponent"}, fmt::format("cut_off_exponent {} < 0", num(l.cut_off_exponent)));
+    if (l.direction.norm() < 1e-9) problem({"direction"}, "direction is the zero vector");
   }
   if (problems.empty()) return;
-  ctx.report("device-light", d.source, fmt::format("{}: {}", device_name(d), fmt::join(problems, "; ")));
+  ctx.report("device-light", *at, fmt::format("{}: {}", device_name(d), fmt::join(problems, "; ")));
 }
 
 }  // namespace

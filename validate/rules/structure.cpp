@@ -25,9 +25,9 @@ void check_structure(const RuleContext& ctx) {
     if (inserted) continue;
     const Device& other = ctx.model.devices[it->second];
     const bool same_type = other.type == d.type;
-    ctx.report("structure-duplicate-device", d.source,
+    ctx.report("structure-duplicate-device", d.key_source({"name"}),
                fmt::format("device name \"{}\" ({}) is already used by a {} device (line {}){}", d.name, d.type,
-                           other.type, other.source.line,
+                           other.type, other.key_source({"name"}).line,
                            same_type ? ": look-ups by name only ever find the first one"
                                      : ": only look-ups by type can tell them apart"),
                "give every device its own name");

@@ -10,6 +10,7 @@
 
 #include <Eigen/Geometry>
 
+#include <initializer_list>
 #include <limits>
 #include <map>
 #include <optional>
@@ -270,7 +271,17 @@ struct Device {
   DeviceParams params;
   /// Every scalar key of the node as written (for opaque devices and exporters' comments).
   std::map<std::string, std::string> keys;
+  /// Where the value of every key of the node is written, under the key as written (either
+  /// spelling), so that a finding about one parameter points at it.
+  std::map<std::string, SourceLocation, std::less<>> key_sources;
   SourceLocation source;
+
+  /// The location of the first of `spellings` that the node has, else `source`.
+  const SourceLocation& key_source(std::initializer_list<std::string_view> spellings) const {
+    for (std::string_view key : spellings)
+      if (auto it = key_sources.find(key); it != key_sources.end() && it->second.known()) return it->second;
+    return source;
+  }
 };
 
 // ---------------------------------------------------------------------------------------

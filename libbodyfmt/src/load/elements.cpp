@@ -302,8 +302,10 @@ void ElementReader::read_device(const yaml::NodeRef& node, const std::string& ty
   d.node_type = type;
   d.link = link_;
   d.source = node.use_site();
-  for (const yaml::MapEntry& e : node->entries)
+  for (const yaml::MapEntry& e : node->entries) {
     if (e.value->is_scalar()) d.keys[e.key] = e.value->scalar;
+    d.key_sources[e.key] = node.child(e.value).use_site();
+  }
   if (auto name = r.take({"name"})) d.name = name->scalar;
   if (auto id = r.take({"id"})) {
     if (auto v = optional_int(ctx_, id)) d.id = static_cast<int>(*v);

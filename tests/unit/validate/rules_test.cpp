@@ -190,7 +190,8 @@ TEST_CASE("validate: units-radian-in-2.0 (loader)") {
 // ---- Structure
 
 TEST_CASE("validate: structure-duplicate-device") {
-  expect_finding("structure-duplicate-device.body", "structure-duplicate-device", {17, 9});
+  // At the second device's name: value (issue 15), not at its node.
+  expect_finding("structure-duplicate-device.body", "structure-duplicate-device", {18, 15});
 }
 TEST_CASE("validate: structure-duplicate-link (loader)") {
   expect_finding("structure-duplicate-link.body", "structure-duplicate-link", {9, 11});
@@ -267,10 +268,12 @@ TEST_CASE("validate: resource-case-mismatch") {
 
 // ---- Devices
 
-TEST_CASE("validate: device-fov") { expect_finding("device-fov.body", "device-fov", {14, 9}); }
-TEST_CASE("validate: device-resolution") { expect_finding("device-resolution.body", "device-resolution", {14, 9}); }
-TEST_CASE("validate: device-clip") { expect_finding("device-clip.body", "device-clip", {14, 9}); }
-TEST_CASE("validate: device-light") { expect_finding("device-light.body", "device-light", {14, 9}); }
+// Device findings point at the value of the parameter that is wrong (issue 15): field_of_view,
+// width, far_clip_distance (near 10 >= far 1) and intensity, not at the device's node (14:9).
+TEST_CASE("validate: device-fov") { expect_finding("device-fov.body", "device-fov", {17, 24}); }
+TEST_CASE("validate: device-resolution") { expect_finding("device-resolution.body", "device-resolution", {17, 16}); }
+TEST_CASE("validate: device-clip") { expect_finding("device-clip.body", "device-clip", {18, 28}); }
+TEST_CASE("validate: device-light") { expect_finding("device-light.body", "device-light", {16, 20}); }
 
 namespace {
 bodyfmt::CollectingSink check_text(std::string_view text) {
