@@ -65,6 +65,8 @@ JobResult check_file(tools::Front& front, const Job& job) {
     if (model) {
       Derived derived = compute_derived(*model, policy);
       validate::check_model(*model, derived, {}, policy);
+      // Only bodycheck runs every rule, so only it can tell that a suppression is unused.
+      if (job.input.path != "-") policy.report_suppression_problems(job.input.name);
     }
   } catch (const std::exception& e) {
     policy.report(make_diagnostic("internal-error", SourceLocation{job.input.name, 0, 0},

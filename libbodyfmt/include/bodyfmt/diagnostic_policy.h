@@ -46,14 +46,26 @@ std::string check_rule_pattern(std::string_view pattern);
 /// the next line that is not itself such a comment line (so several can be stacked).
 class Suppressions {
  public:
+  /// One rule id (or `prefix*`) of one comment, where it is written, and whether it has
+  /// suppressed a finding yet.
+  struct Directive {
+    std::string id;
+    int line = 0;
+    int column = 0;
+    bool used = false;
+  };
+
   Suppressions() = default;
   static Suppressions from_text(std::string_view text);
-  /// True when `rule_id` is suppressed on 1-based `line`.
-  bool suppresses(int line, std::string_view rule_id) const;
+  /// True when `rule_id` is suppressed on 1-based `line`; the directives that match are
+  /// marked used.
+  bool suppresses(int line, std::string_view rule_id);
   bool empty() const { return by_line_.empty(); }
+  const std::vector<Directive>& directives() const { return directives_; }
 
  private:
-  std::map<int, std::vector<std::string>> by_line_;
+  std::vector<Directive> directives_;
+  std::map<int, std::vector<std::size_t>> by_line_;  ///< covered line -> directives_ indices
 };
 
 /// A sink wrapping a sink; see the file comment. Suppression comments are read from the
@@ -79,8 +91,13 @@ class DiagnosticPolicy : public DiagnosticSink {
   int disabled_count() const { return disabled_; }
   int suppressed_count() const { return suppressed_; }
 
+  /// After every check of `file` has reported: `suppression-unknown-rule` for each id of its
+  /// `# bodycheck: disable=` comments that names no rule (with a did-you-mean) and
+  /// `suppression-unused` for each that suppressed nothing (enabled rules only).
+  void report_suppression_problems(const std::string& file);
+
  private:
-  const Suppressions& suppressions_for(const std::string& file);
+  Suppressions& suppressions_for(const std::string& file);
 
   DiagnosticSink& inner_;
   PolicyOptions options_;

@@ -76,9 +76,10 @@ std::string_view trim(std::string_view s) {
   return s;
 }
 
-/// The rule ids of a `bodycheck: disable=A,B` comment body (after `#`), or empty.
-std::vector<std::string> parse_directive(std::string_view comment) {
-  comment = trim(comment);
+/// The rule ids of a `bodycheck: disable=A,B` comment body (after `#`), each with its offset
+/// in `comment`, or empty.
+std::vector<std::pair<std::string, std::size_t>> parse_directive(const std::string_view body) {
+  std::string_view comment = trim(body);
   constexpr std::string_view kTag = "bodycheck:";
   if (comment.substr(0, kTag.size()) != kTag) return {};
   comment = trim(comment.substr(kTag.size()));
@@ -87,7 +88,10 @@ std::vector<std::string> parse_directive(std::string_view comment) {
   comment = trim(comment.substr(kDisable.size()));
   if (comment.empty() || comment.front() != '=') return {};
   comment = comment.substr(1);
-  std::vector<std::string> ids;
+  std::vector<std::pair<std::string, std::size_t>> ids;
+  auto add = [&](std::string_view id) {
+    ids.emplace_back(std::string(id), static_cast<std::size_t>(id.data() - body.data()));
+  };
   std::size_t start = 0;
   while (start <= comment.size()) {
     std::size_t comma = comment.find(',', start);
@@ -96,10 +100,10 @@ std::vector<std::string> parse_directive(std::string_view comment) {
     // Anything after the id list (a blank and free text) is an explanation, not an id.
     std::size_t blank = id.find_first_of(" \t");
     if (blank != std::string_view::npos) {
-      ids.emplace_back(id.substr(0, blank));
+      add(id.substr(0, blank));
       break;
     }
-    if (!id.empty()) ids.emplace_back(id);
+    if (!id.empty()) add(id);
     start = comma + 1;
   }
   return ids;
@@ -109,15 +113,20 @@ std::vector<std::string> parse_directive(std::string_view comment) {
 
 Suppressions Suppressions::from_text(std::string_view text) {
   Suppressions result;
-  std::vector<std::string> pending;  // from comment-only lines, for the next content line
+  std::vector<std::size_t> pending;  // from comment-only lines, for the next content line
   int line_number = 0;
   for (const std::string& text_line : text::split_lines(text)) {
     const std::string_view line = text_line;
     ++line_number;
 
     const std::size_t hash = comment_start(line);
-    std::vector<std::string> ids;
-    if (hash != std::string_view::npos) ids = parse_directive(line.substr(hash + 1));
+    std::vector<std::size_t> ids;
+    if (hash != std::string_view::npos) {
+      for (auto& [id, offset] : parse_directive(line.substr(hash + 1))) {
+        ids.push_back(result.directives_.size());
+        result.directives_.push_back({std::move(id), line_number, static_cast<int>(hash + 1 + offset) + 1});
+      }
+    }
     const bool comment_only = hash != std::string_view::npos && trim(line.substr(0, hash)).empty();
     if (comment_only && !ids.empty()) {
       pending.insert(pending.end(), ids.begin(), ids.end());
@@ -133,11 +142,16 @@ Suppressions Suppressions::from_text(std::string_view text) {
   return result;
 }
 
-bool Suppressions::suppresses(int line, std::string_view rule_id) const {
+bool Suppressions::suppresses(int line, std::string_view rule_id) {
   auto it = by_line_.find(line);
   if (it == by_line_.end()) return false;
-  return std::any_of(it->second.begin(), it->second.end(),
-                     [&](const std::string& p) { return rule_pattern_matches(p, rule_id); });
+  bool suppressed = false;
+  for (std::size_t i : it->second) {
+    if (!rule_pattern_matches(directives_[i].id, rule_id)) continue;
+    directives_[i].used = true;
+    suppressed = true;
+  }
+  return suppressed;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -158,7 +172,7 @@ void DiagnosticPolicy::set_suppressions(const std::string& file, Suppressions su
   suppressions_[file] = std::move(suppressions);
 }
 
-const Suppressions& DiagnosticPolicy::suppressions_for(const std::string& file) {
+Suppressions& DiagnosticPolicy::suppressions_for(const std::string& file) {
   auto it = suppressions_.find(file);
   if (it != suppressions_.end()) return it->second;
   Suppressions s;
@@ -205,6 +219,24 @@ void DiagnosticPolicy::report(Diagnostic d) {
     // Out of memory in the bookkeeping: still forward the diagnostic.
   }
   inner_.report(std::move(d));
+}
+
+void DiagnosticPolicy::report_suppression_problems(const std::string& file) {
+  if (!options_.inline_suppressions) return;
+  // Copied: reporting below may itself consult (and mark) this file's suppressions.
+  const std::vector<Suppressions::Directive> directives = suppressions_for(file).directives();
+  for (const Suppressions::Directive& d : directives) {
+    const SourceLocation at{file, d.line, d.column};
+    const std::string unknown = check_rule_pattern(d.id);
+    if (!unknown.empty()) {
+      report(make_diagnostic("suppression-unknown-rule", at, "this suppression comment names an " + unknown,
+                             "a mistyped id suppresses nothing; bodycheck --list-rules lists the ids"));
+    } else if (!d.used && enabled(d.id)) {
+      report(make_diagnostic("suppression-unused", at,
+                             "'# bodycheck: disable=" + d.id + "' suppresses nothing on the line it covers",
+                             "remove it: a stale suppression would hide a new finding on that line"));
+    }
+  }
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -127,3 +127,13 @@ TEST_CASE("policy: rule patterns are checked against the rule table with did-you
   CHECK(!rule_pattern_matches("a-*", "ab"));
   CHECK(rule_pattern_matches("a", "a"));
 }
+
+TEST_CASE("policy: suppressions remember where each id is written and whether it was used") {
+  Suppressions s = Suppressions::from_text("a: 1  # bodycheck: disable=rule-a, rule-b\n");
+  REQUIRE(s.directives().size() == 2);
+  CHECK(s.directives()[0].column == 28);
+  CHECK(s.directives()[1].column == 36);
+  CHECK(s.suppresses(1, "rule-b"));
+  CHECK(!s.directives()[0].used);
+  CHECK(s.directives()[1].used);
+}

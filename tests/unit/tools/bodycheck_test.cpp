@@ -166,3 +166,20 @@ TEST_CASE("bodycheck: a report that cannot be written says why") {
   CHECK(r.status == 2);
   CHECK(contains(r.output, "/no/such/folder/report.txt: cannot write the report: No such file or directory"));
 }
+
+TEST_CASE("bodycheck: a misspelt or stale inline suppression is a warning at its rule id") {
+  Run r = bodycheck("stale_suppressions.body");
+  CHECK(r.status == 1);  // the misspelt suppression did not suppress inertia-triangle
+  CHECK(contains(r.output, "stale_suppressions.body:12:14: error: principal moments"));
+  CHECK(contains(r.output,
+                 "stale_suppressions.body:12:61: warning: this suppression comment names an unknown rule id "
+                 "'inertia-triangel'; did you mean 'inertia-triangle'? [suppression-unknown-rule]"));
+  CHECK(contains(r.output,
+                 "stale_suppressions.body:14:28: warning: '# bodycheck: disable=geometry-invalid-size' "
+                 "suppresses nothing on the line it covers [suppression-unused]"));
+  CHECK(contains(r.output, "stale_suppressions.body:14:51: warning: '# bodycheck: disable=inertia-com-outside'"));
+  // A used suppression is not reported, and --disable of the rule silences the check.
+  CHECK(!contains(bodycheck("suppressed.body").output, "suppression-"));
+  CHECK(!contains(bodycheck("--disable suppression-unused,suppression-unknown-rule stale_suppressions.body").output,
+                  "[suppression-"));
+}
