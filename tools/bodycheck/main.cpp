@@ -8,6 +8,7 @@
 #include <bodyfmt/derived.h>
 #include <bodyfmt/rules.h>
 #include <bodyfmt/validate.h>
+#include <cstdio>
 
 #include <fmt/format.h>
 
@@ -16,6 +17,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -52,8 +54,29 @@ struct Settings {
   bool list_rules = false;
   int jobs = 0;
   bool fix = false;
+  bool git_models = false;
   tools::FixSettings fixing;
 };
+
+/// The .body files in the git index of the current directory's repository (as paths from the
+/// current directory), for a pre-commit hook: with every model checked, a mesh or an included
+/// file that changed or was deleted fails the model that uses it. False if git fails.
+bool git_models(std::vector<std::string>& files) {
+  FILE* pipe = ::popen("git ls-files -z --cached -- '*.body' 2>/dev/null", "r");
+  if (!pipe) return false;
+  std::string out;
+  char buffer[4096];
+  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) out.append(buffer, n);
+  if (::pclose(pipe) != 0) return false;
+  for (std::size_t begin = 0, end; begin < out.size(); begin = end + 1) {
+    end = out.find('\0', begin);
+    if (end == std::string::npos) end = out.size();
+    const std::string path = out.substr(begin, end - begin);
+    std::error_code ec;
+    if (!path.empty() && fs::is_regular_file(path, ec)) files.push_back(path);
+  }
+  return true;
+}
 
 JobResult check_file(tools::Front& front, const Job& job) {
   JobResult result;
@@ -86,10 +109,9 @@ void print_rules(std::ostream& out) {
     out << fmt::format("{:<{}}  {:<11}  {}\n", rule.id, width, severity_name(rule.default_severity), rule.summary);
 }
 
-/// The files to check: each named file, and every *.body below each named directory, in a
-/// stable order, each once. Missing paths are reported and make the run fail.
-std::vector<std::string> expand_inputs(const tools::Front& front, bool& fatal) {
-  std::vector<std::string> files;
+/// The files to check: `files` (from --git-models), each named file, and every *.body below each
+/// named directory, in a stable order, each once. Missing paths are reported and fail the run.
+std::vector<std::string> expand_inputs(const tools::Front& front, std::vector<std::string> files, bool& fatal) {
   for (const std::string& input : front.inputs()) {
     std::error_code ec;
     if (input == "-") {
@@ -286,6 +308,9 @@ int main(int argc, char** argv) {
   app.add_option("-o,--output", settings.output, "write the report to this file instead of stdout");
   app.add_option("-j,--jobs", settings.jobs, "worker threads (default: 2 to 4, by the cores available)")
       ->check(CLI::Range(1, 64));
+  app.add_flag("--git-models", settings.git_models,
+               "also check every .body file in the git index (the pre-commit hook: a changed or deleted mesh or "
+               "included file fails the models that use it)");
   const std::string fixing = "Fixing";
   CLI::Option* fix_option =
       app.add_flag("--fix", settings.fix,
@@ -308,14 +333,24 @@ int main(int argc, char** argv) {
     print_rules(std::cout);
     return tools::kExitClean;
   }
-  if (front.inputs().empty()) {
+  std::vector<std::string> tracked;
+  if (settings.git_models) {
+    if (!git_models(tracked)) {
+      front.print_error("--git-models: `git ls-files` failed; run it inside a git work tree");
+      return tools::kExitFatal;
+    }
+    if (tracked.empty() && front.inputs().empty()) {
+      if (!front.quiet()) std::cerr << "bodycheck: no .body files in the git index; nothing to check\n";
+      return tools::kExitClean;
+    }
+  } else if (front.inputs().empty()) {
     front.print_error("no input files (bodycheck --help)");
     return tools::kExitFatal;
   }
 
   bool fatal = false;
   bool findings = false;
-  const std::vector<std::string> files = expand_inputs(front, fatal);
+  const std::vector<std::string> files = expand_inputs(front, tracked, fatal);
   if (settings.fix) {
     const tools::FixSummary summary = tools::run_fixes(front, files, settings.fixing);
     fatal = fatal || summary.failed;
