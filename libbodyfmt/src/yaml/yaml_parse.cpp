@@ -498,8 +498,29 @@ class TreeBuilder {
 
 }  // namespace
 
+namespace {
+
+/// The offset of a NUL byte near the start of `text`, which no YAML text in UTF-8 holds (UTF-16
+/// and UTF-32 start with a byte-order mark, and libyaml transcodes them), or npos.
+std::size_t binary_marker(std::string_view text) {
+  const bool utf16_or_32 =
+      text.size() >= 2 && ((text[0] == '\xFF' && text[1] == '\xFE') || (text[0] == '\xFE' && text[1] == '\xFF') ||
+                           (text.size() >= 4 && text.substr(0, 4) == std::string_view("\0\0\xFE\xFF", 4)));
+  if (utf16_or_32) return std::string_view::npos;
+  return text.substr(0, 8192).find('\0');
+}
+
+}  // namespace
+
 std::unique_ptr<Document> parse_yaml(std::string_view text, const std::string& file_name, const ParseOptions& options,
                                      DiagnosticSink& sink) {
+  if (const std::size_t nul = binary_marker(text); nul != std::string_view::npos) {
+    // One line, without an excerpt: the "source line" of a binary file is noise.
+    sink.report(make_diagnostic("yaml-syntax", SourceLocation{file_name, 0, 0},
+                                "this is a binary file, not YAML text (a NUL byte at byte " + std::to_string(nul) +
+                                    "); a .body model is a YAML text file"));
+    return nullptr;
+  }
   auto document = std::make_unique<Document>();
   document->file = file_name;
   std::vector<Diagnostic> diagnostics;

@@ -183,3 +183,14 @@ TEST_CASE("bodycheck: a misspelt or stale inline suppression is a warning at its
   CHECK(!contains(bodycheck("--disable suppression-unused,suppression-unknown-rule stale_suppressions.body").output,
                   "[suppression-"));
 }
+
+TEST_CASE("bodycheck: a binary file given as a model gets one line, not its bytes as a source line") {
+  Run r = bodycheck("../hostile/binary_garbage.body");
+  CHECK(r.status == 2);
+  CHECK(r.output ==
+        "../hostile/binary_garbage.body: fatal error: this is a binary file, not YAML text (a NUL byte at byte 7); "
+        "a .body model is a YAML text file [yaml-syntax]\n"
+        "bodycheck: 1 file checked: 1 error, 0 warnings, 0 notes\n");
+  // UTF-16 text with its byte-order mark is text (libyaml transcodes it), not binary.
+  CHECK(bodycheck("../hostile/utf16.body").status == 0);
+}
