@@ -1,6 +1,7 @@
 #include <bodyfmt/dynamics/simulation.h>
 
 #include "contact_points.h"
+#include "simbody_contact.h"
 
 #include <bodyfmt/inertia.h>
 #include <bodyfmt/rules.h>
@@ -75,6 +76,7 @@ struct Simulation::Impl {
   SimTK::GeneralForceSubsystem forces{system};
   std::vector<SimTK::MobilizedBodyIndex> mobod;  // by link
   std::vector<bool> has_joint;
+  std::unique_ptr<SimbodyContact> simbody_contact;  // --contact simbody
   SimTK::State state;
   std::unique_ptr<SimTK::RungeKuttaMersonIntegrator> integrator;
   std::unique_ptr<SimTK::TimeStepper> stepper;
@@ -337,7 +339,12 @@ std::unique_ptr<Simulation> Simulation::build(const Model& model, const Derived&
   for (const Stop& stop : stops)
     SimTK::Force::MobilityLinearStop(m.forces, m.matter.updMobilizedBody(stop.body), SimTK::MobilizerQIndex(0),
                                      options.stop_stiffness, options.stop_dissipation, stop.lower, stop.upper);
-  if (options.contact) {
+  if (options.contact && options.contact_model == ContactModel::kSimbody) {
+    m.simbody_contact = SimbodyContact::build(m.system, m.matter, model, m.mobod, options.contact_params,
+                                              std::max(derived.total_mass, 1e-3) * std::max(options.gravity, 1.0),
+                                              {&m.commands.track_speed, &m.track_axis}, sink, m.points);
+    m.stiffness = m.simbody_contact->brick_stiffness();
+  } else if (options.contact) {
     m.points = collect_contact_points(model, sink);
     m.stiffness = options.contact_params.stiffness > 0
                       ? options.contact_params.stiffness
@@ -487,7 +494,15 @@ double Simulation::energy() const {
   return impl_->system.calcEnergy(s);
 }
 
+double Simulation::mesh_stiffness() const {
+  return impl_->simbody_contact ? impl_->simbody_contact->mesh_stiffness() : 0.0;
+}
+int Simulation::contact_bricks() const { return impl_->simbody_contact ? impl_->simbody_contact->bricks() : 0; }
+int Simulation::contact_meshes() const { return impl_->simbody_contact ? impl_->simbody_contact->meshes() : 0; }
+int Simulation::contact_mesh_faces() const { return impl_->simbody_contact ? impl_->simbody_contact->mesh_faces() : 0; }
+
 Eigen::Vector3d Simulation::total_contact_force(LinkIndex link) const {
+  if (impl_->simbody_contact) return impl_->simbody_contact->total_force(impl_->state, link);
   std::vector<PointForce> forces;
   impl_->contact_forces(impl_->state, forces);
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();

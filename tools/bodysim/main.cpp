@@ -17,6 +17,7 @@
 
 #include <cstring>
 #include <iostream>
+#include <map>
 #include <sstream>
 
 namespace {
@@ -75,6 +76,11 @@ int main(int argc, char** argv) {
                "simulate links with an unphysical inertia with the nearest valid one (a warning per link)");
   app.add_option("--accuracy", sim.accuracy, "Runge-Kutta-Merson accuracy (default 1e-5)")
       ->check(CLI::Range(1e-12, 1e-1));
+  app.add_option("--contact", sim.contact_model,
+                 "floor contact: points (collision-shape vertices, the default) or simbody (Simbody's compliant "
+                 "contact: Bricks and elastic-foundation meshes against a half-space)")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, dynamics::ContactModel>{
+          {"points", dynamics::ContactModel::kPoints}, {"simbody", dynamics::ContactModel::kSimbody}}));
   app.add_option("--friction", sim.contact_params.friction, "Coulomb friction with the floor (default 0.5)")
       ->check(CLI::Range(0.0, 10.0));
   app.add_option("--contact-depth", sim.contact_params.reference_depth,
@@ -153,10 +159,15 @@ int main(int argc, char** argv) {
     std::cout << fmt::format("bodysim {}: {} ({}), total mass {} kg\n", command, model->name, path,
                              number(derived.total_mass));
     std::cout << fmt::format(
-        "  Simbody 3.7, Runge-Kutta-Merson accuracy {:g}; floor contact at collision vertices, friction {:g}, "
+        "  Simbody 3.7, Runge-Kutta-Merson accuracy {:g}; floor contact {}, friction {:g}, "
         "dissipation {:g} s/m, transition {:g} m/s; joint ranges enforced by stops ({:g} per rad or m)\n",
-        sim.accuracy, sim.contact_params.friction, sim.contact_params.dissipation,
-        sim.contact_params.transition_velocity, sim.stop_stiffness);
+        sim.accuracy,
+        sim.contact_model == dynamics::ContactModel::kSimbody
+            ? "by Simbody's CompliantContactSubsystem (HalfSpace floor; Box shapes as Bricks, other shapes as "
+              "elastic-foundation triangle meshes)"
+            : "at collision vertices",
+        sim.contact_params.friction, sim.contact_params.dissipation, sim.contact_params.transition_velocity,
+        sim.stop_stiffness);
     if (command == "check-tank") {
       auto link = [&](LinkIndex i) { return i >= 0 ? model->links[i].name : std::string("none"); };
       std::cout << fmt::format(

@@ -232,6 +232,10 @@ std::vector<RuleInfo> make_table() {
        "refuse it",
        ""},
       // Dynamics checker (dynamics/, bodysim)
+      {"dynamics-contact-geometry", W,
+       "bodysim --contact simbody could not turn a collision shape into Simbody contact geometry (a Brick needs a "
+       "rigid placement, a TriangleMesh a closed surface), so that shape does not touch the floor",
+       "a shape without floor contact changes the simulation; it must not vanish silently", ""},
       {"dynamics-inertia-balanced", W,
        "bodysim --balance-inertia simulated a link with the balanced tensor instead of its unphysical inertia, with "
        "the old and new values",

@@ -31,9 +31,16 @@ struct ContactParams {
   double transition_velocity = 0.05;  ///< m/s: friction grows as μ·x·(2 − x), x = |slip|/vt < 1
 };
 
+/// Which floor contact model carries the model (dynamics/README.md "Floor contact").
+enum class ContactModel {
+  kPoints,   ///< Force::Custom point contact at the collision shapes' vertices (the default)
+  kSimbody,  ///< Simbody's CompliantContactSubsystem: HalfSpace floor, Bricks, elastic-foundation meshes
+};
+
 struct SimOptions {
   double gravity = 9.80665;  ///< along −Z of the world
   bool contact = true;
+  ContactModel contact_model = ContactModel::kPoints;
   bool joint_stops = true;       ///< enforce joint_range (our choice; AIST does not, spec §0.7)
   double stop_stiffness = 1e4;   ///< N·m/rad or N/m
   double stop_dissipation = 1;   ///< Simbody MobilityLinearStop's c
@@ -74,10 +81,17 @@ class Simulation {
   Simulation& operator=(const Simulation&) = delete;
 
   const Model& model() const;
-  /// The contact points of every link (collision-shape vertices in the link frame).
+  /// Where each link touches the floor, in the link frame: collision-shape vertices (points
+  /// model), or Brick corners and elastic-foundation springs (face centroids; simbody model).
   const std::vector<ContactPoint>& contact_points() const;
-  /// The stiffness per contact point actually used (N/m).
+  /// The stiffness per contact point (or Brick vertex) actually used (N/m).
   double contact_stiffness() const;
+  /// simbody model: the elastic-foundation stiffness (N/m³), the numbers of Bricks, meshes and
+  /// mesh faces; zeros otherwise.
+  double mesh_stiffness() const;
+  int contact_bricks() const;
+  int contact_meshes() const;
+  int contact_mesh_faces() const;
   /// The inertia about the centre of mass used for each link (after balancing).
   const std::vector<Eigen::Matrix3d>& link_inertias() const;
 
