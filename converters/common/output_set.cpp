@@ -106,8 +106,10 @@ bool OutputSet::commit(DiagnosticSink& sink) {
   std::stable_partition(staged.begin(), staged.end(), [&](const Staged& s) {
     return s.target.filename() != main_path_.filename() || s.target.parent_path() != dir;
   });
-  // Each existing target is first moved aside; if any rename fails, every target renamed so far
-  // gets its old file back, so a failed commit leaves the earlier output exactly as it was.
+  // Each existing target is first kept under a hard link (a copy where the file system has no
+  // links); the rename then replaces it in one step, so a reader or a concurrent export never
+  // sees the destination missing. If any rename fails, every target renamed so far gets its old
+  // file back, so a failed commit leaves the earlier output exactly as it was.
   std::vector<std::pair<fs::path, fs::path>> moved_aside;  // backup, target
   std::vector<fs::path> placed;
   auto undo = [&] {
@@ -122,13 +124,18 @@ bool OutputSet::commit(DiagnosticSink& sink) {
     if (fs::is_regular_file(s.target, ec)) {
       const fs::path backup = s.target.parent_path() / fmt::format(".{}.old-{}-{}", s.target.filename().string(),
                                                                    static_cast<long>(::getpid()), i);
-      fs::rename(s.target, backup, ec);
-      if (ec) {
+      fs::create_hard_link(s.target, backup, ec);
+      if (ec && ec != std::errc::no_such_file_or_directory) {
+        ec.clear();
+        fs::copy_file(s.target, backup, ec);
+      }
+      // A destination that vanished meanwhile (a concurrent export moving it) needs no backup.
+      if (ec && ec != std::errc::no_such_file_or_directory) {
         report_write(sink, s.target, ec.message());
         undo();
         return false;
       }
-      moved_aside.emplace_back(backup, s.target);
+      if (!ec) moved_aside.emplace_back(backup, s.target);
     }
     fs::rename(s.temp, s.target, ec);
     if (ec) {

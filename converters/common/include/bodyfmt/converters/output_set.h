@@ -4,8 +4,9 @@
 /// Files are staged in memory with add() and written by commit(): each goes to a temporary
 /// file in its destination folder, and only when every temporary file has been written are
 /// they all renamed over their destinations, the main file last, each existing destination
-/// moved aside first. A failure at any point removes the temporary files and puts every
-/// moved destination back, so an existing output stays as it was and no partial file is left.
+/// kept under a hard link first. A failure at any point removes the temporary files and puts
+/// every replaced destination back, so an existing output stays as it was and no partial file
+/// is left. Concurrent exports to one destination each write a whole file; the last one wins.
 /// After fail() (a fatal diagnostic during the export) commit() writes nothing.
 #include <bodyfmt/diagnostic.h>
 
