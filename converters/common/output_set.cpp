@@ -6,8 +6,10 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cassert>
 #include <fstream>
+#include <iostream>
+#include <set>
+#include <sstream>
 #include <system_error>
 #include <utility>
 #include <vector>
@@ -19,8 +21,13 @@ namespace fs = std::filesystem;
 OutputSet::OutputSet(fs::path main_path) : main_path_(std::move(main_path)) {}
 
 fs::path OutputSet::directory() const {
+  if (to_stdout()) return ".";
   fs::path dir = main_path_.parent_path();
   return dir.empty() ? fs::path(".") : dir;
+}
+
+void OutputSet::protect(const std::string& path, std::string what) {
+  if (!path.empty()) protected_.emplace_back(path, std::move(what));
 }
 
 void OutputSet::add(const std::string& relative, std::string contents) {
@@ -34,18 +41,72 @@ void OutputSet::add(const std::string& relative, std::string contents) {
   files_[relative] = std::move(contents);
 }
 
-void OutputSet::set_main(std::string contents) { files_[main_path_.filename().string()] = std::move(contents); }
+std::string OutputSet::main_key() const { return to_stdout() ? std::string("-") : main_path_.filename().string(); }
+
+void OutputSet::set_main(std::string contents) { files_[main_key()] = std::move(contents); }
 
 namespace {
-
-struct Staged {
-  fs::path temp;
-  fs::path target;
-};
 
 void report_write(DiagnosticSink& sink, const fs::path& path, const std::string& why) {
   report_rule(sink, "export-write", SourceLocation{path.string(), 0, 0},
               fmt::format("cannot write '{}': {}", path.string(), why));
+}
+
+/// The file a path finally names, following symbolic links (also dangling ones) but not
+/// resolving anything else, so that a link is written through rather than replaced.
+fs::path follow_links(fs::path path) {
+  std::error_code ec;
+  for (int hops = 0; hops < 40 && fs::is_symlink(path, ec); ++hops) {
+    const fs::path target = fs::read_symlink(path, ec);
+    if (ec) break;
+    path = target.is_absolute() ? target : path.parent_path() / target;
+  }
+  return path.lexically_normal();
+}
+
+std::string read_all(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+/// A folder's record of generated files: file name -> the export (its main file, relative to
+/// the folder) that wrote it. One "name<TAB>owner" line per file, sorted.
+using Record = std::map<std::string, std::string>;
+
+Record read_record(const fs::path& folder) {
+  Record record;
+  std::istringstream in(read_all(folder / OutputSet::kRecordName));
+  std::string line;
+  while (std::getline(in, line)) {
+    const auto tab = line.find('\t');
+    if (tab != std::string::npos) record[line.substr(0, tab)] = line.substr(tab + 1);
+  }
+  return record;
+}
+
+std::string format_record(const Record& record) {
+  std::string text;
+  for (const auto& [name, owner] : record) text += name + '\t' + owner + '\n';
+  return text;
+}
+
+/// One file to write: where the writer put it, where it really goes, and how.
+struct Destination {
+  std::string relative;  ///< key in files_
+  fs::path given;        ///< as the writer named it (below directory())
+  fs::path target;       ///< after following symbolic links
+  bool direct = false;   ///< a device, FIFO or socket: written in place
+  bool unchanged = false;
+  fs::path temp;
+};
+
+bool write_direct(const fs::path& path, const std::string& contents) {
+  std::ofstream out(path, std::ios::binary);
+  out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
+  out.close();
+  return static_cast<bool>(out);
 }
 
 }  // namespace
@@ -57,13 +118,77 @@ bool OutputSet::commit(DiagnosticSink& sink) {
   }
   if (failed_) return false;
   const fs::path dir = directory();
-  std::vector<Staged> staged;
-  std::vector<fs::path> created_dirs;
   std::error_code ec;
+  auto refuse = [&](const fs::path& path, const std::string& why) {
+    report_write(sink, path, why + "; nothing was written");
+    failed_ = true;
+    return false;
+  };
 
+  // What is at each destination decides how it is written, or whether anything is.
+  std::vector<Destination> destinations;
+  std::map<fs::path, Record> records;  // subfolder -> its updated record
+  const std::string main = main_key();
+  for (auto& [relative, contents] : files_) {
+    const bool is_main = relative == main;
+    if (is_main && to_stdout()) continue;
+    Destination d;
+    d.relative = relative;
+    d.given = is_main ? main_path_ : dir / fs::path(relative);
+    d.target = follow_links(d.given);
+    const fs::file_status status = fs::status(d.target, ec);
+    if (fs::is_directory(status)) return refuse(d.given, "it is a folder");
+    const bool exists = fs::exists(status);
+    d.direct = exists && !fs::is_regular_file(status);
+    if (exists) {
+      for (const auto& [input, what] : protected_) {
+        if (fs::equivalent(d.target, input, ec) && !ec)
+          return refuse(d.given, fmt::format("it is {} of this run ('{}')", what, input));
+      }
+    }
+    // A generated file in a subfolder belongs to the export that wrote it.
+    if (!is_main && fs::path(relative).has_parent_path() && !d.direct) {
+      const fs::path folder = d.given.parent_path();
+      auto [it, fresh] = records.try_emplace(folder);
+      if (fresh && fs::is_directory(folder, ec)) it->second = read_record(folder);
+      Record& record = it->second;
+      const std::string name = d.given.filename().string();
+      const std::string self =
+          to_stdout() ? std::string("-")
+                      : fs::absolute(main_path_, ec).lexically_relative(fs::absolute(folder, ec)).generic_string();
+      const auto owner = record.find(name);
+      if (exists && read_all(d.target) == contents) {
+        d.unchanged = true;
+      } else if (exists && (owner == record.end() || owner->second != self)) {
+        return refuse(d.given, owner == record.end()
+                                   ? std::string("a file of that name exists that this export did not write "
+                                                 "(choose another --mesh-folder, or remove the file)")
+                                   : fmt::format("it was written by the export to '{}' (choose another "
+                                                 "--mesh-folder or output name, or remove the file)",
+                                                 (folder / owner->second).lexically_normal().string()));
+      }
+      if (owner == record.end() || !d.unchanged) record[name] = self;
+    }
+    destinations.push_back(std::move(d));
+  }
+  for (const auto& [folder, record] : records) {
+    Destination d;
+    d.relative = (folder.lexically_relative(dir) / kRecordName).generic_string();
+    d.given = d.target = folder / kRecordName;
+    files_[d.relative] = format_record(record);
+    d.unchanged = fs::is_regular_file(d.target, ec) && read_all(d.target) == files_[d.relative];
+    destinations.push_back(std::move(d));
+  }
+
+  std::vector<fs::path> created_dirs;
+  auto remove_temps = [&] {
+    std::error_code ignored;
+    for (const Destination& d : destinations)
+      if (!d.temp.empty()) fs::remove(d.temp, ignored);
+  };
   auto roll_back = [&] {
     std::error_code ignored;
-    for (const Staged& s : staged) fs::remove(s.temp, ignored);
+    remove_temps();
     // Remove the folders this commit created, innermost first, if they are empty.
     for (auto it = created_dirs.rbegin(); it != created_dirs.rend(); ++it) {
       if (fs::is_empty(*it, ignored)) fs::remove(*it, ignored);
@@ -73,9 +198,9 @@ bool OutputSet::commit(DiagnosticSink& sink) {
 
   // The process id and a counter keep concurrent exports into one folder apart.
   int counter = 0;
-  for (const auto& [relative, contents] : files_) {
-    const fs::path target = dir / fs::path(relative);
-    const fs::path parent = target.parent_path();
+  for (Destination& d : destinations) {
+    if (d.direct || d.unchanged) continue;
+    const fs::path parent = d.target.parent_path().empty() ? fs::path(".") : d.target.parent_path();
     if (!fs::is_directory(parent, ec)) {
       // Record each folder level that does not exist yet, outermost first.
       std::vector<fs::path> missing;
@@ -84,69 +209,83 @@ bool OutputSet::commit(DiagnosticSink& sink) {
         if (p == p.parent_path()) break;
       }
       if (!fs::create_directories(parent, ec) && ec) {
-        report_write(sink, target, ec.message());
+        report_write(sink, d.given, ec.message());
         roll_back();
         return false;
       }
       created_dirs.insert(created_dirs.end(), missing.begin(), missing.end());
     }
-    const fs::path temp =
-        parent / fmt::format(".{}.tmp-{}-{}", target.filename().string(), static_cast<long>(::getpid()), counter++);
-    staged.push_back({temp, target});
-    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-    out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
-    out.close();
-    if (!out) {
-      report_write(sink, target, "the temporary file could not be written");
+    d.temp =
+        parent / fmt::format(".{}.tmp-{}-{}", d.target.filename().string(), static_cast<long>(::getpid()), counter++);
+    if (!write_direct(d.temp, files_[d.relative])) {
+      report_write(sink, d.given, "the temporary file could not be written");
       roll_back();
       return false;
     }
   }
   // The main file goes last: if a rename fails, no new main file refers to missing parts.
-  std::stable_partition(staged.begin(), staged.end(), [&](const Staged& s) {
-    return s.target.filename() != main_path_.filename() || s.target.parent_path() != dir;
-  });
+  std::stable_partition(destinations.begin(), destinations.end(),
+                        [&](const Destination& d) { return d.relative != main; });
   // Each existing target is first kept under a hard link (a copy where the file system has no
   // links); the rename then replaces it in one step, so a reader or a concurrent export never
-  // sees the destination missing. If any rename fails, every target renamed so far gets its old
+  // sees the destination missing. If any step fails, every target replaced so far gets its old
   // file back, so a failed commit leaves the earlier output exactly as it was.
-  std::vector<std::pair<fs::path, fs::path>> moved_aside;  // backup, target
+  std::vector<std::pair<fs::path, fs::path>> kept;  // backup, target
   std::vector<fs::path> placed;
   auto undo = [&] {
     std::error_code ignored;
     for (const fs::path& target : placed) fs::remove(target, ignored);
-    for (const auto& [backup, target] : moved_aside) fs::rename(backup, target, ignored);
-    for (const Staged& s : staged) fs::remove(s.temp, ignored);
+    for (const auto& [backup, target] : kept) fs::rename(backup, target, ignored);
+    remove_temps();
     failed_ = true;
   };
-  for (std::size_t i = 0; i < staged.size(); ++i) {
-    const Staged& s = staged[i];
-    if (fs::is_regular_file(s.target, ec)) {
-      const fs::path backup = s.target.parent_path() / fmt::format(".{}.old-{}-{}", s.target.filename().string(),
+  for (std::size_t i = 0; i < destinations.size(); ++i) {
+    const Destination& d = destinations[i];
+    if (d.unchanged || d.direct) continue;
+    if (fs::is_regular_file(d.target, ec)) {
+      const fs::path backup = d.target.parent_path() / fmt::format(".{}.old-{}-{}", d.target.filename().string(),
                                                                    static_cast<long>(::getpid()), i);
-      fs::create_hard_link(s.target, backup, ec);
+      fs::create_hard_link(d.target, backup, ec);
       if (ec && ec != std::errc::no_such_file_or_directory) {
         ec.clear();
-        fs::copy_file(s.target, backup, ec);
+        fs::copy_file(d.target, backup, ec);
       }
       // A destination that vanished meanwhile (a concurrent export moving it) needs no backup.
       if (ec && ec != std::errc::no_such_file_or_directory) {
-        report_write(sink, s.target, ec.message());
+        report_write(sink, d.given, ec.message());
         undo();
         return false;
       }
-      if (!ec) moved_aside.emplace_back(backup, s.target);
+      if (!ec) kept.emplace_back(backup, d.target);
     }
-    fs::rename(s.temp, s.target, ec);
+    fs::rename(d.temp, d.target, ec);
     if (ec) {
-      report_write(sink, s.target, ec.message());
+      report_write(sink, d.given, ec.message());
       undo();
       return false;
     }
-    placed.push_back(s.target);
+    placed.push_back(d.target);
+  }
+  // Devices and FIFOs cannot be replaced in one step: they are written in place, last.
+  for (const Destination& d : destinations) {
+    if (d.direct && !write_direct(d.target, files_[d.relative])) {
+      report_write(sink, d.given, "writing to it failed");
+      undo();
+      return false;
+    }
+  }
+  if (to_stdout()) {
+    const std::string& contents = files_[main];
+    std::cout.write(contents.data(), static_cast<std::streamsize>(contents.size()));
+    std::cout.flush();
+    if (!std::cout) {
+      report_write(sink, "-", "writing to standard output failed");
+      undo();
+      return false;
+    }
   }
   std::error_code ignored;
-  for (const auto& [backup, target] : moved_aside) fs::remove(backup, ignored);
+  for (const auto& [backup, target] : kept) fs::remove(backup, ignored);
   return true;
 }
 

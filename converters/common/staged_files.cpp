@@ -9,6 +9,13 @@
 
 namespace bodyfmt::converters {
 
+std::string generated_folder(const std::string& option, const std::string& base, const OutputSet& output,
+                             const std::string& model_name) {
+  if (!option.empty()) return option;
+  const std::string stem = output.to_stdout() ? model_name : output.main_path().stem().string();
+  return base + "/" + file_stem(stem.empty() ? std::string("model") : stem);
+}
+
 std::string StagedFiles::unique_path(const std::string& base, const std::string& dot_extension) {
   std::string relative = folder_ + "/" + base + dot_extension;
   for (int n = 2; used_.count(relative); ++n) relative = fmt::format("{}/{}_{}{}", folder_, base, n, dot_extension);

@@ -4,6 +4,7 @@
 #include "json.h"
 
 #include <bodyfmt/converters/loss.h>
+#include <bodyfmt/converters/staged_files.h>
 #include <bodyfmt/converters/transforms.h>
 #include <bodyfmt/rules.h>
 #include <bodyfmt/tessellate.h>
@@ -135,6 +136,8 @@ class Writer {
   std::map<std::string, int> texture_keys_;  ///< resolved path + wrap modes -> texture
   std::map<std::string, int> image_keys_;    ///< resolved path -> image
   std::set<std::string> image_names_;
+  /// Texture files of a .gltf export, in a folder of their own so that exports never share one.
+  const std::string texture_folder_ = converters::generated_folder("", "textures", output_, model_.name);
   std::unordered_map<aiNode*, std::vector<aiNode*>> children_;
 
   void attach_children() {
@@ -213,8 +216,9 @@ int Writer::texture_index(const Texture& texture, const SourceLocation& at) {
       name = fmt::format("{}_{}{}", fs::path(texture.resolved_path).stem().string(), n, png_magic ? ".png" : ".jpg");
     image_names_.insert(name);
     image = static_cast<int>(tables_.images.size());
-    tables_.images.push_back({name, png_magic ? "image/png" : "image/jpeg", data});
-    if (!options_.binary) output_.add(name, data);
+    const std::string file = texture_folder_ + "/" + name;
+    tables_.images.push_back({file, png_magic ? "image/png" : "image/jpeg", data});
+    if (!options_.binary) output_.add(file, data);
     image_keys_.emplace(texture.resolved_path, image);
   }
   Json sampler = Json::object();

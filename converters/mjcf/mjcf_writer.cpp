@@ -220,7 +220,8 @@ class Writer {
   std::map<std::string, std::string> material_by_key_;
   std::map<std::string, std::string> mesh_by_key_;
   std::vector<std::tuple<std::string, std::string, Eigen::Vector3d>> mesh_assets_;  // name, file, scale
-  converters::StagedFiles staged_{output_, options_.mesh_folder};
+  const std::string mesh_folder_ = converters::generated_folder(options_.mesh_folder, "assets", output_, model_.name);
+  converters::StagedFiles staged_{output_, mesh_folder_};
   std::set<std::string> site_names_, sensor_names_, camera_names_, light_names_, numeric_names_;
   // Sensors in device-id order: (sort key, element).
   std::vector<std::pair<std::pair<int, std::size_t>, XMLElement*>> sensors_;
@@ -468,7 +469,7 @@ void Writer::add_mesh_piece(std::vector<Piece>& out, const std::string& key, con
     return;
   }
   // <mesh file> is relative to the compiler's meshdir (the staging folder).
-  const std::string prefix = options_.mesh_folder + "/";
+  const std::string prefix = mesh_folder_ + "/";
   const std::string file = relative->rfind(prefix, 0) == 0 ? relative->substr(prefix.size()) : *relative;
   const std::string name = mesh_asset(file, scale);
   piece.geometry = [name](XMLElement* g) {
@@ -911,7 +912,7 @@ bool Writer::run() {
   XMLElement* compiler = element(mujoco_, "compiler");
   compiler->SetAttribute("angle", "radian");
   compiler->SetAttribute("autolimits", "false");
-  compiler->SetAttribute("meshdir", options_.mesh_folder.c_str());
+  compiler->SetAttribute("meshdir", mesh_folder_.c_str());
   compiler->SetAttribute("inertiafromgeom", "false");
   compiler->SetAttribute("boundmass", 0);
   compiler->SetAttribute("boundinertia", 0);

@@ -19,8 +19,9 @@ struct MjcfOptions {
   bool balance_inertia = false;
   /// One actuator per revolute and prismatic joint, in joint-id order.
   Actuators actuators = Actuators::kNone;
-  /// Folder for written meshes, relative to the MJCF file (the compiler's meshdir).
-  std::string mesh_folder = "meshes";
+  /// Folder for written meshes, relative to the MJCF file (the compiler's meshdir). Empty: the
+  /// per-export default (assets/STEM, STEM the output file's stem).
+  std::string mesh_folder;
 };
 
 /// The smallest mass and principal moment written for a moving link whose own values MuJoCo

@@ -112,7 +112,8 @@ class Writer {
   bool failed_ = false;
   std::vector<std::pair<std::string, std::string>> materials_;  // name, rgba; first-use order
   std::map<std::string, std::string> material_by_rgba_;
-  converters::StagedFiles staged_{output_, options_.mesh_folder};
+  const std::string mesh_folder_ = converters::generated_folder(options_.mesh_folder, "meshes", output_, model_.name);
+  converters::StagedFiles staged_{output_, mesh_folder_};
   std::set<std::string> link_names_;
   std::vector<XMLElement*> pending_joints_;
 };

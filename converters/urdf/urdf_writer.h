@@ -23,8 +23,9 @@ struct UrdfOptions {
   /// "package://NAME/" prefix for mesh URIs (implies copying); empty = URIs relative to the
   /// URDF file.
   std::string package_uri;
-  /// Folder for written meshes, relative to the URDF file.
-  std::string mesh_folder = "meshes";
+  /// Folder for written meshes, relative to the URDF file. Empty: the
+  /// per-export default (meshes/STEM, STEM the output file's stem).
+  std::string mesh_folder;
   /// Adds a `world` link joined to the root by a floating joint (a fixed joint for a fixed
   /// root) placed at the root's initial pose.
   bool floating_base = false;

@@ -10,6 +10,8 @@
 #include <bodyfmt/converters/output_set.h>
 #include <bodyfmt/derived.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 
 int main(int argc, char** argv) {
@@ -18,7 +20,9 @@ int main(int argc, char** argv) {
   std::string output;
   bool collision = false, both = false;
   CLI::App& app = front.app();
-  app.add_option("-o,--output", output, "the .glb (binary) or .gltf (JSON + .bin + textures) file to write")
+  app.add_option("-o,--output", output,
+                 "the .glb (binary) or .gltf (JSON + .bin + textures) file to write; '-', a pipe or a device "
+                 "gets GLB")
       ->required();
   auto* c = app.add_flag("--collision", collision, "export the collision model instead of the visual one");
   app.add_flag("--both", both, "export visual and collision models under separate nodes (collision hidden)")
@@ -27,12 +31,21 @@ int main(int argc, char** argv) {
   std::string ext = std::filesystem::path(output).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
-  if (ext != ".glb" && ext != ".gltf") {
+  // A stream (standard output, a FIFO, a device) takes the one self-contained form, GLB.
+  std::error_code ec;
+  const bool stream =
+      output == "-" || (std::filesystem::exists(output, ec) && !std::filesystem::is_regular_file(output, ec) &&
+                        !std::filesystem::is_directory(output, ec));
+  if (ext != ".glb" && ext != ".gltf" && !stream) {
     front.print_error("-o must name a .glb or .gltf file: " + output);
     return tools::kExitFatal;
   }
+  if (output == "-" && ::isatty(STDOUT_FILENO)) {
+    front.print_error("-o - would write binary GLB to a terminal; redirect standard output or name a file");
+    return tools::kExitFatal;
+  }
   gltf::GltfOptions options;
-  options.binary = ext == ".glb";
+  options.binary = ext == ".glb" || stream;
   options.geometry = both        ? gltf::GeometrySet::kBoth
                      : collision ? gltf::GeometrySet::kCollision
                                  : gltf::GeometrySet::kVisual;

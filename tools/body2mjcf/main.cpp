@@ -19,7 +19,7 @@ int main(int argc, char** argv) {
   std::string actuators = "none";
   mjcf::MjcfOptions options;
   CLI::App& app = front.app();
-  app.add_option("-o,--output", output, "the MJCF file to write")->required();
+  app.add_option("-o,--output", output, "the MJCF file to write ('-': standard output)")->required();
   app.add_flag("--balance-inertia", options.balance_inertia,
                "write the nearest valid inertia for links MuJoCo refuses (a warning per link)");
   app.add_option("--actuators", actuators, "one actuator per revolute and prismatic joint")

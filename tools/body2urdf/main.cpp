@@ -17,7 +17,7 @@ int main(int argc, char** argv) {
   std::string mesh_format = "stl";
   urdf::UrdfOptions options;
   CLI::App& app = front.app();
-  app.add_option("-o,--output", output, "the URDF file to write")->required();
+  app.add_option("-o,--output", output, "the URDF file to write ('-': standard output)")->required();
   app.add_option("--mesh-format", mesh_format, "format of written meshes")->check(CLI::IsMember({"stl", "dae"}));
   app.add_flag("--copy-meshes", options.copy_meshes,
                "copy external mesh files next to the URDF instead of referencing them");

@@ -9,6 +9,7 @@
 #include "front.h"
 
 #include <bodyfmt/converters/output_set.h>
+#include <bodyfmt/converters/protect_inputs.h>
 #include <bodyfmt/derived.h>
 #include <bodyfmt/dynamics/checks.h>
 #include <bodyfmt/dynamics/scenario.h>
@@ -149,9 +150,12 @@ int main(int argc, char** argv) {
       if (!dynamics::run_scenario(*model, derived, *scenario, sim, csv, sink, &stats))
         return finish(true, csv_path + " was not written");
       converters::OutputSet out(csv_path);
+      converters::protect_inputs(out, *model);
+      out.protect(scenario_path, "the scenario");
       out.set_main(csv.str());
       if (!out.commit(sink)) return finish(true, csv_path + " was not written");
-      std::cout << fmt::format(
+      // With the table on standard output (-o -), the summary goes beside the diagnostics.
+      (out.to_stdout() ? std::cerr : std::cout) << fmt::format(
           "bodysim run: {} s of {} simulated in {} Runge-Kutta-Merson steps, {} force evaluations "
           "(accuracy {:g}); wrote {}\n",
           number(scenario->duration), model->name, stats.steps, stats.evaluations, sim.accuracy, csv_path);

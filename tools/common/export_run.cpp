@@ -1,5 +1,7 @@
 #include "export_run.h"
 
+#include <bodyfmt/converters/protect_inputs.h>
+
 #include <filesystem>
 
 namespace bodyfmt::tools {
@@ -12,22 +14,28 @@ int run_export(Front& front, const std::string& output, const ExportWriter& writ
   DiagnosticPolicy sink(collected, policy->options);  // --strict: export-loss is an error
   bool written = false;
   bool refused_by_writer = false;
+  bool commit_failed = false;
   if (auto input = front.open_input(path, sink)) {
     auto model = front.load(*input, sink);
     if (model && front.may_write(collected.diagnostics())) {
       const Derived derived = compute_derived(*model, sink);
       converters::OutputSet out(output);
+      converters::protect_inputs(out, *model);
       // --strict losses and export errors stop the write, as loader errors did above.
       refused_by_writer = !write(*model, derived, out, sink);
-      if (!refused_by_writer && front.may_write(collected.diagnostics())) written = out.commit(sink);
+      if (!refused_by_writer && front.may_write(collected.diagnostics())) {
+        written = out.commit(sink);
+        commit_failed = !written;  // reported with its reason (export-write)
+      }
     }
   }
   const std::vector<Diagnostic>& diagnostics = collected.diagnostics();
   front.print(diagnostics);
   if (!written) {
-    std::string why = refusal ? refusal(diagnostics) : std::string();
+    std::string why = refusal && !commit_failed ? refusal(diagnostics) : std::string();
     if (why.empty() && refused_by_writer) why = "the model has errors this format cannot be written with";
-    if (why.empty() && !front.may_write(diagnostics)) why = "the model has errors (--best-effort writes it anyway)";
+    if (why.empty() && !commit_failed && !front.may_write(diagnostics))
+      why = "the model has errors (--best-effort writes it anyway)";
     front.print_error(output + " was not written" + (why.empty() ? "" : ": " + why));
   }
   return exit_code(diagnostics, policy->exit, !written);

@@ -43,7 +43,9 @@ TEST_CASE("converters: OutputSet writes every staged file on commit and nothing 
   REQUIRE(out.commit(sink));
   CHECK(read(dir / "robot.urdf") == "<robot/>");
   CHECK(read(dir / "meshes/a.stl") == "abc");
-  CHECK(count_entries(dir) == 3);  // robot.urdf, meshes/, meshes/a.stl: no temporary files left
+  CHECK(read(dir / "meshes" / OutputSet::kRecordName) == "a.stl\t../robot.urdf\n");
+  // robot.urdf, meshes/, meshes/a.stl, the record: no temporary files left
+  CHECK(count_entries(dir) == 4);
   fs::remove_all(dir);
 }
 

@@ -251,7 +251,7 @@ TEST_CASE("gltf: body2gltf exit codes, --strict, .gltf files and atomic output")
   CHECK(run(tool + " " + quote(kData / "textured.body") + " -o " + quote(gltf) + " -q 2> /dev/null") == 0);
   const std::string first = slurp(gltf), bin = slurp(dir / "tex.bin");
   CHECK(!bin.empty());
-  CHECK(fs::exists(dir / "checker.png"));
+  CHECK(fs::exists(dir / "textures" / "tex" / "checker.png"));  // in a folder of its own per export
   CHECK(run(tool + " " + quote(kData / "textured.body") + " -o " + quote(gltf) + " -q 2> /dev/null") == 0);
   CHECK(slurp(gltf) == first);
   CHECK(slurp(dir / "tex.bin") == bin);
@@ -281,7 +281,7 @@ TEST_CASE("gltf: output is byte-identical across runs, GLB and .gltf") {
   // .gltf: the JSON, one .bin and the texture, all staged in the same OutputSet.
   CHECK(a->files.size() == 3);
   CHECK(a->files.count("t.bin"));
-  CHECK(a->files.count("checker.png"));
+  CHECK(a->files.count("textures/t/checker.png"));
 }
 
 TEST_CASE("gltf: link extras, root Y-up node, materials and the textured mesh") {

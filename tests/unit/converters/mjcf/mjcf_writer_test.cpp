@@ -463,11 +463,12 @@ TEST_CASE("mjcf: mesh files are found through meshdir from any working directory
       if (f.is_regular_file()) fb[fs::relative(f.path(), b).string()] = read(f.path());
     CHECK(fa == fb);
   }
-  // The tank's meshes live in meshes/ beside the XML; MuJoCo finds them from elsewhere.
+  // The tank's meshes live in assets/model/ (named after the output) beside the XML; MuJoCo
+  // finds them from elsewhere.
   Export tank = export_file(kSimpleTank, a, options);
   REQUIRE(tank.ok);
-  CHECK(tank.text.find("meshdir=\"meshes\"") != std::string::npos);
-  CHECK(fs::exists(a / "meshes" / "TRACK_L_shape0.stl"));
+  CHECK(tank.text.find("meshdir=\"assets/model\"") != std::string::npos);
+  CHECK(fs::exists(a / "assets" / "model" / "TRACK_L_shape0.stl"));
   const fs::path cwd = fs::current_path();
   fs::current_path(fs::temp_directory_path());
   {

@@ -346,7 +346,7 @@ TEST_CASE("urdf: materials, visual/collision split, cylinder axis and defaults")
   CHECK(slider->inertial->ixx == 1);
   CHECK(slider->inertial->iyy == 1);
   CHECK(slider->inertial->izz == 1);
-  CHECK(e.files.count("meshes/ARM_shape1.stl") == 1);
+  CHECK(e.files.count("meshes/model/ARM_shape1.stl") == 1);
 }
 
 TEST_CASE("urdf: output is deterministic (STL and DAE)") {

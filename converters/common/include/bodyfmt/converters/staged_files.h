@@ -11,6 +11,12 @@
 
 namespace bodyfmt::converters {
 
+/// The folder for an export's generated files: `option` when the user gave one, else
+/// `base/STEM` with the output's file stem (the model's name for standard output), so that
+/// exports into one folder never share generated file names.
+std::string generated_folder(const std::string& option, const std::string& base, const OutputSet& output,
+                             const std::string& model_name);
+
 class StagedFiles {
  public:
   /// Files go to `folder` (relative to the output's directory) in `output`.
