@@ -33,7 +33,14 @@ void OutputSet::protect(const std::string& path, std::string what) {
 void OutputSet::add(const std::string& relative, std::string contents) {
   const fs::path path(relative);
   bool inside = !relative.empty() && path.is_relative();
-  for (const fs::path& part : path) inside = inside && part != "..";
+  bool climbs = false;
+  for (const fs::path& part : path) climbs = climbs || part == "..";
+  if (inside && climbs) {
+    std::error_code ec;
+    const fs::path within =
+        (fs::absolute(directory(), ec) / path).lexically_normal().lexically_relative(root_.lexically_normal());
+    inside = !root_.empty() && !within.empty() && *within.begin() != "..";
+  }
   if (!inside) {
     if (outside_.empty()) outside_ = relative;
     return;

@@ -9,6 +9,7 @@
 #include <bodyfmt/diagnostic.h>
 #include <bodyfmt/model.h>
 
+#include <filesystem>
 #include <string>
 
 namespace bodyfmt::urdf {
@@ -23,6 +24,12 @@ struct UrdfOptions {
   /// "package://NAME/" prefix for mesh URIs (implies copying); empty = URIs relative to the
   /// URDF file.
   std::string package_uri;
+  /// The folder of the package (its package.xml): package URIs are relative to it, and mesh
+  /// folders may lie anywhere inside it. Empty: relative to the URDF's folder.
+  std::filesystem::path package_root;
+  /// Writes `<mujoco><compiler strippath="false"/></mujoco>` so that MuJoCo keeps the folders
+  /// of mesh paths (it strips them by default, and then finds no mesh in a subfolder).
+  bool mujoco_compiler = true;
   /// Folder for written meshes, relative to the URDF file. Empty: the
   /// per-export default (meshes/STEM, STEM the output file's stem).
   std::string mesh_folder;

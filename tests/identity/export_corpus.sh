@@ -17,6 +17,7 @@ while IFS= read -r -d '' model; do
     mkdir -p "$dir"
     args=()
     [ "$variant" = dae ] && args=(--mesh-format dae --copy-meshes --package-uri package://corpus)
+    [ "$variant" = dae ] && [ ! -e "$out/dae/package.xml" ] && mkdir -p "$out/dae" && printf '<package format="3"><name>corpus</name></package>\n' > "$out/dae/package.xml"
     set +e
     "$body2urdf" -q "${args[@]}" "$model" -o "$dir/$(basename "$stem").urdf" 2>/dev/null
     code=$?

@@ -5,10 +5,28 @@
 
 #include "export_run.h"
 #include "front.h"
+#include "ros_package.h"
 #include "urdf_writer.h"
 
 #include <bodyfmt/converters/output_set.h>
 #include <bodyfmt/derived.h>
+
+#include <filesystem>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// "package://NAME" or "package://NAME/": NAME, else empty.
+std::string package_name(const std::string& uri) {
+  const std::string scheme = "package://";
+  if (uri.rfind(scheme, 0) != 0) return {};
+  std::string name = uri.substr(scheme.size());
+  if (!name.empty() && name.back() == '/') name.pop_back();
+  return name.find('/') == std::string::npos ? name : std::string();
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace bodyfmt;
@@ -18,21 +36,66 @@ int main(int argc, char** argv) {
   urdf::UrdfOptions options;
   CLI::App& app = front.app();
   app.add_option("-o,--output", output, "the URDF file to write ('-': standard output)")->required();
-  app.add_option("--mesh-format", mesh_format, "format of written meshes")->check(CLI::IsMember({"stl", "dae"}));
+  app.add_option("--mesh-format", mesh_format, "format of written and copied meshes")
+      ->check(CLI::IsMember({"stl", "dae"}));
   app.add_flag("--copy-meshes", options.copy_meshes,
-               "copy external mesh files next to the URDF instead of referencing them");
-  app.add_option("--package-uri", options.package_uri, "prefix mesh URIs with package://NAME/ (meshes are copied)");
-  app.add_option("--mesh-folder", options.mesh_folder, "folder for meshes, relative to the URDF (inside its folder)")
-      ->check(tools::check_inside_output_folder, "FOLDER");
+               "copy external mesh files next to the URDF instead of referencing them (converted to --mesh-format)");
+  app.add_option("--package-uri", options.package_uri,
+                 "package://NAME: mesh URIs relative to the ROS package that holds the URDF (the nearest "
+                 "package.xml above it); meshes are copied")
+      ->check(
+          [](const std::string& value) {
+            return package_name(value).empty() ? std::string("must be package://NAME (a ROS package name)")
+                                               : std::string();
+          },
+          "package://NAME");
+  app.add_option("--mesh-folder", options.mesh_folder,
+                 "folder for meshes, relative to the URDF: inside its folder, or anywhere inside the ROS package "
+                 "with --package-uri (default meshes/STEM)");
+  app.add_flag("--mujoco,!--no-mujoco", options.mujoco_compiler,
+               "write <mujoco><compiler strippath=\"false\"/></mujoco> so that MuJoCo finds meshes in folders "
+               "(default on)");
   app.add_flag("--floating-base", options.floating_base,
                "add a 'world' link and a floating joint at the root's initial pose");
   app.add_flag("--devices-as-frames", options.devices_as_frames, "write devices as fixed child links");
   if (auto code = front.parse(argc, argv)) return *code;
   options.mesh_format = mesh_format == "dae" ? converters::MeshFormat::kDae : converters::MeshFormat::kStl;
-  if (!options.package_uri.empty() && options.package_uri.back() != '/') options.package_uri += '/';
+
+  std::error_code ec;
+  const fs::path given_dir = output == "-" ? fs::path(".") : fs::path(output).parent_path();
+  const fs::path out_dir = fs::absolute(given_dir.empty() ? fs::path(".") : given_dir, ec).lexically_normal();
+  std::optional<urdf::RosPackage> package;
+  if (!options.package_uri.empty()) {
+    const std::string name = package_name(options.package_uri);
+    std::string why;
+    package = urdf::find_ros_package(out_dir, why);
+    if (!package) {
+      front.print_error("--package-uri needs the URDF inside a ROS package: " + why);
+      return tools::kExitFatal;
+    }
+    if (package->name != name) {
+      front.print_error("--package-uri names the package '" + name + "', but " +
+                        (package->root / "package.xml").string() + " declares '" + package->name + "'");
+      return tools::kExitFatal;
+    }
+    options.package_uri = "package://" + name + "/";
+    options.package_root = package->root;
+  }
+  if (!options.mesh_folder.empty()) {
+    std::string why = tools::check_inside_output_folder(options.mesh_folder);
+    if (!why.empty() && package && fs::path(options.mesh_folder).is_relative() &&
+        urdf::path_in_package(*package, out_dir / options.mesh_folder))
+      why.clear();
+    if (!why.empty()) {
+      front.print_error("--mesh-folder " + options.mesh_folder + ": " + why +
+                        (package ? " (or inside the ROS package " + package->root.string() + ")" : ""));
+      return tools::kExitFatal;
+    }
+  }
 
   return tools::run_export(
       front, output, [&](const Model& model, const Derived& derived, converters::OutputSet& out, DiagnosticSink& sink) {
+        if (package) out.allow_root(package->root);
         return urdf::write_urdf(model, derived, options, out, sink);
       });
 }

@@ -43,9 +43,14 @@ class OutputSet {
   /// write over it, however the path is spelled (links, "..", hard links).
   void protect(const std::string& path, std::string what);
 
+  /// Lets staged paths climb out of the output folder with ".." as far as `root` (a ROS
+  /// package's folder), and no further.
+  void allow_root(std::filesystem::path root) { root_ = std::move(root); }
+
   /// Stages `contents` for `relative` (relative to directory(), '/'-separated). A path that
-  /// is absolute or climbs out with ".." would write outside the output folder: commit()
-  /// then reports it and writes nothing (writers make names with StagedFiles and file_stem).
+  /// is absolute or climbs out with ".." would write outside the output folder (or the root
+  /// of allow_root()): commit() then reports it and writes nothing (writers make names with
+  /// StagedFiles and file_stem).
   void add(const std::string& relative, std::string contents);
   /// Stages the main file.
   void set_main(std::string contents);
@@ -70,6 +75,7 @@ class OutputSet {
   std::filesystem::path main_path_;
   std::map<std::string, std::string> files_;
   std::vector<std::pair<std::string, std::string>> protected_;  ///< path, what
+  std::filesystem::path root_;                                  ///< see allow_root(); empty: the output folder
   std::string outside_;                                         ///< the first staged path that leaves the output folder
   bool failed_ = false;
 };
