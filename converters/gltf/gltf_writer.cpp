@@ -163,8 +163,10 @@ std::vector<Writer::Part> Writer::parts_of(const Shape& shape) {
     }
   } else {
     GeometryAlreadyReported filtered(sink_);
+    // Texture coordinates only for a textured shape: they split vertices along seams.
+    const TexCoords uv = shape.appearance.texture ? TexCoords::kGenerate : TexCoords::kNone;
     parts.push_back(
-        {compute_shape_local_mesh(model_, shape, filtered), shape.appearance.material, shape.appearance.texture});
+        {compute_shape_local_mesh(model_, shape, filtered, uv), shape.appearance.material, shape.appearance.texture});
   }
   const std::optional<double> crease = crease_angle_of(shape.geometry);
   for (Part& p : parts) {
