@@ -457,7 +457,12 @@ void Writer::write_devices(aiNode* link_node, std::size_t link_index) {
       l["name"] = t.name;
       l["type"] = spot ? "spot" : "point";
       l["color"] = vec3(light->color.unaryExpr([](double v) { return clamp01(v); }));
-      l["intensity"] = std::max(0.0, light->intensity);
+      // KHR's intensity is in candela; Choreonoid's is a unitless factor (0..1 in practice).
+      // It is written as is, 1 cd per unit (SUPPORT.md "Cameras and lights"). A light that is
+      // off shines with 0, as in Choreonoid, and keeps its factor in extras.
+      const double intensity = std::isfinite(light->intensity) ? std::max(0.0, light->intensity) : 0.0;
+      l["intensity"] = device.on ? intensity : 0.0;
+      if (!device.on) t.extras["intensity"] = intensity;
       if (spot) {
         // A KHR light shines along its node's -Z: turn -Z onto `direction`.
         const Eigen::Vector3d dir = light->direction.normalized();
