@@ -4,7 +4,7 @@
 usage: textured_shapes_test.py BODY2GLTF NPM_PREFIX WORK_DIR
 
 Writes a 4 x 4 PNG (made here with zlib, no image library) and a .body with a textured Box,
-Sphere, Cylinder, Cone, Capsule, ElevationGrid, IndexedFaceSet (with and without texCoord) and
+Sphere, Cylinder, Cone, Capsule, Extrusion, ElevationGrid, IndexedFaceSet (with and without texCoord) and
 TriangleMesh, plus one untextured Box. Exports GLB and .gltf, then asserts:
   * body2gltf exits 0 and reports no export-loss (every texture is embedded);
   * the Khronos glTF validator (npm gltf-validator in NPM_PREFIX) finds 0 errors in both files;
@@ -23,7 +23,7 @@ def png(width, height, rgb_of):
     return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0))
             + chunk(b"IDAT", zlib.compress(rows)) + chunk(b"IEND", b""))
 
-TEXTURED = ["box", "sphere", "cylinder", "cone", "capsule", "grid", "faces", "faces_default", "triangles"]
+TEXTURED = ["box", "sphere", "cylinder", "cone", "capsule", "extrusion", "grid", "faces", "faces_default", "triangles"]
 
 BODY = """# Every tessellated geometry with a texture (tests/gltf/textured_shapes_test.py writes this).
 format: ChoreonoidBody
@@ -58,6 +58,12 @@ links:
         name: capsule
         translation: [1.2, 0, 0]
         geometry: { type: Capsule, radius: 0.05, height: 0.1 }
+        appearance: *tex
+      - type: Shape
+        name: extrusion
+        translation: [1.5, 0, 0]
+        geometry: { type: Extrusion, cross_section: [0.05, 0.05, 0.05, -0.05, -0.05, -0.05, -0.05, 0.05, 0.05, 0.05],
+                    spine: [0, 0, 0, 0, 0.1, 0, 0.05, 0.2, 0] }
         appearance: *tex
       - type: Shape
         name: grid

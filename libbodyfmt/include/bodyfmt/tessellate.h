@@ -63,7 +63,9 @@ enum class TexCoords { kNone, kGenerate };
 ///   vertex indices when those are empty); without tex_coords the VRML97 default, which
 ///   projects onto the two largest extents of the bounding box (u 0..1 along the largest, v at
 ///   the same scale). Indices out of range give no texture coordinates at all.
-/// * Extrusion: none yet (the caller reports the texture it cannot map).
+/// * Extrusion sides: u the length along the cross-section, v along the spine, as fractions
+///   of the whole; caps: the cross-section's bounding box stretched to the image, the end cap
+///   mirrored in u.
 TriangleMesh tessellate(const Geometry& geometry, int division_number, DiagnosticSink& sink,
                         const SourceLocation& where, TexCoords tex_coords = TexCoords::kNone);
 

@@ -178,6 +178,61 @@ CornerTexCoords elevation_grid_tex_coords(const TriangleMesh& mesh, const Elevat
   return out;
 }
 
+/// Cumulative lengths along a polyline, from 0 at its first point, as fractions of the whole
+/// (all 0 for a polyline of no length).
+template <typename Point>
+std::vector<double> length_fractions(const std::vector<Point>& points) {
+  std::vector<double> at(points.size(), 0.0);
+  for (std::size_t k = 1; k < points.size(); ++k) at[k] = at[k - 1] + (points[k] - points[k - 1]).norm();
+  const double total = at.empty() ? 0.0 : at.back();
+  for (double& a : at) a = total > 0 ? a / total : 0.0;
+  return at;
+}
+
+/// Extrusion, laid out as tessellate_extrusion.cpp does: vertex (i, j) of spine point i and
+/// cross-section point j at i * nc + j (closing points dropped), the side triangles first (two
+/// per segment pair, spine-major), then the begin cap (row 0) and the end cap (last row).
+/// Sides: u is the length along the cross-section, v the length along the spine, each as a
+/// fraction of the whole (so a closed cross-section or spine ends at 1 on a seam). Caps: the
+/// cross-section's bounding box stretched to the image, the end cap mirrored in u (as
+/// Choreonoid's generateTextureCoordinateForExtrusion).
+CornerTexCoords extrusion_tex_coords(const TriangleMesh& mesh, const Extrusion& e) {
+  const bool spine_closed = e.spine.front() == e.spine.back();
+  const bool cs_closed = e.cross_section.front() == e.cross_section.back();
+  const int ns = static_cast<int>(e.spine.size()) - (spine_closed ? 1 : 0);
+  const int nc = static_cast<int>(e.cross_section.size()) - (cs_closed ? 1 : 0);
+  const std::size_t cs_segments = static_cast<std::size_t>(cs_closed ? nc : nc - 1);
+  const std::size_t sides = 2 * static_cast<std::size_t>(spine_closed ? ns : ns - 1) * cs_segments;
+  const std::vector<double> s = length_fractions(e.cross_section), t = length_fractions(e.spine);
+  Eigen::Vector2d lo = e.cross_section.front(), hi = e.cross_section.front();
+  for (const auto& c : e.cross_section) {
+    lo = lo.cwiseMin(c);
+    hi = hi.cwiseMax(c);
+  }
+  const Eigen::Vector2d size = hi - lo;
+  auto fraction = [](double x, double extent) { return extent > 0 ? x / extent : 0.0; };
+  CornerTexCoords out(mesh.triangles.size());
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      const int v = mesh.triangles[f][k];
+      const int row = v / nc, col = v % nc;
+      if (f < sides) {
+        // Segment (i, j) spans rows i, i + 1 and columns j, j + 1 (wrapping to 0 on a closed
+        // list, whose closing point carries the full length 1).
+        const int i = static_cast<int>(f / (2 * cs_segments)), j = static_cast<int>(f % (2 * cs_segments) / 2);
+        const std::size_t u_at = static_cast<std::size_t>(col == j ? j : j + 1);
+        const std::size_t v_at = static_cast<std::size_t>(row == i ? i : i + 1);
+        out[f][k] = {s[u_at], t[v_at]};
+      } else {
+        const Eigen::Vector2d& c = e.cross_section[static_cast<std::size_t>(col)];
+        const double u = fraction(c.x() - lo.x(), size.x());
+        out[f][k] = {row == 0 ? u : 1 - u, fraction(c.y() - lo.y(), size.y())};
+      }
+    }
+  }
+  return out;
+}
+
 /// VRML97's default for a face set without texCoord: the largest extent of the bounding box
 /// of all points carries u from 0 to 1, the second largest v at the same scale (ties prefer
 /// X, then Y, then Z).
@@ -268,6 +323,8 @@ TriangleMesh with_tex_coords(const TriangleMesh& mesh, const Geometry& geometry,
     corners = cylinder_tex_coords(mesh, n);
   else if (std::holds_alternative<Cone>(geometry))
     corners = cone_tex_coords(mesh, n);
+  else if (const auto* extrusion = std::get_if<Extrusion>(&geometry))
+    corners = extrusion_tex_coords(mesh, *extrusion);
   else if (const auto* grid = std::get_if<ElevationGrid>(&geometry))
     corners = elevation_grid_tex_coords(mesh, *grid);
   else if (const auto* face_set = std::get_if<IndexedFaceSet>(&geometry))

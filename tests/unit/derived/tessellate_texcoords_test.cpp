@@ -305,14 +305,50 @@ TEST_CASE("tex coords: elevation grid u along x, v along z; cone apex and base")
   CHECK(apexes == 1);
 }
 
-TEST_CASE("tex coords: extrusion has none yet; a capsule runs v over its whole height") {
-  Extrusion e;  // a unit square swept 1 up the Y axis
+TEST_CASE("tex coords: extrusion sides by length along cross-section and spine, caps by its box") {
+  // A 2 x 2 square cross-section (closed: the first point repeats) swept from y = 0 to 1 up +Y,
+  // so cross-section point (x, z) sits at (x, y, z). Sides: the perimeter is 8 in four edges of
+  // 2, so u = 0, 0.25, 0.5, 0.75 at (1, 1), (1, -1), (-1, -1), (-1, 1) and 1 where the last edge
+  // closes at (1, 1); v = y. Caps: the cross-section's box [-1, 1]^2 stretched to the image:
+  // begin cap (y = 0) ((x + 1) / 2, (z + 1) / 2), end cap (y = 1) mirrored in u.
+  Extrusion e;
   e.cross_section = {{1, 1}, {1, -1}, {-1, -1}, {-1, 1}, {1, 1}};
   e.spine = {{0, 0, 0}, {0, 1, 0}};
-  const TriangleMesh prism = textured(e);
-  CHECK(prism.triangles.size() == 12);
-  CHECK(prism.tex_coords.empty());
-  // Capsule radius 1, height 2: from y = -2 to 2; the equator rings at y = +-1 -> v = 0.75, 0.25.
+  const TriangleMesh m = textured(e);
+  REQUIRE(m.triangles.size() == 12);
+  REQUIRE(m.tex_coords.size() == m.vertices.size());
+  // Sides: 2 rows x (4 + the seam copy); caps: 4 each; less one, as corner (1, 1) at y = 1 is
+  // (0, 1) both on the side and on the end cap (1 - (1 + 1) / 2 = 0, (1 + 1) / 2 = 1).
+  CHECK(m.vertices.size() == 10 + 8 - 1);
+  const std::map<std::pair<long, long>, double> side_u = {{{1, -1}, 0.25}, {{-1, -1}, 0.5}, {{-1, 1}, 0.75}};
+  int side = 0, caps = 0;
+  for (const auto& t : m.triangles) {
+    const Vector3d n = normal_of(m, t);
+    std::set<std::pair<long, long>> xz;
+    for (int v : t) xz.insert({std::lround(at(m, v).x()), std::lround(at(m, v).z())});
+    for (int v : t) {
+      const Vector3d& p = at(m, v);
+      const std::pair<long, long> key{std::lround(p.x()), std::lround(p.z())};
+      Vector2d expected;
+      if (std::abs(n.y()) < 1e-9) {
+        ++side;
+        // (1, 1) is u 0 on the first edge, 1 on the closing edge from (-1, 1).
+        const double u = side_u.count(key) ? side_u.at(key) : (xz.count({-1, 1}) ? 1.0 : 0.0);
+        expected = {u, p.y()};
+      } else {
+        ++caps;
+        const double u = (p.x() + 1) / 2;
+        expected = {p.y() < 0.5 ? u : 1 - u, (p.z() + 1) / 2};
+      }
+      CHECK_MESSAGE(uv(m, v).isApprox(expected, 1e-12), p.transpose(), " -> ", uv(m, v).transpose());
+    }
+  }
+  CHECK(side == 8 * 3);
+  CHECK(caps == 4 * 3);
+}
+
+TEST_CASE("tex coords: a capsule runs v over its whole height") {
+  // Capsule radius 1, height 2: from y = -2 to 2, so v = (y + 2) / 4.
   const TriangleMesh m = textured(Capsule{1, 2}, 8);
   REQUIRE(m.tex_coords.size() == m.vertices.size());
   for (std::size_t v = 0; v < m.vertices.size(); ++v)
