@@ -343,7 +343,9 @@ void Writer::write_shape(aiNode* parent, const Link& link, std::size_t s, const 
       } else if (report) {
         loss(converters::LossKind::kTextures, shape.source,
              fmt::format("the texture '{}' on a {}", part.texture->uri, geometry_type_name(shape.geometry)),
-             "the geometry has no texture coordinates; the colour is kept");
+             std::holds_alternative<MeshResource>(shape.geometry)
+                 ? "the mesh has no texture coordinates; the colour is kept"
+                 : "its texture coordinate indices point past its tex_coords; the colour is kept");
       }
     }
     const int material = material_index(part.material.value_or(Material{}), texture);
