@@ -166,8 +166,10 @@ std::vector<Writer::Part> Writer::parts_of(const Shape& shape) {
     }
   } else {
     GeometryAlreadyReported filtered(sink_);
+    // Texture coordinates only for a textured shape: they split vertices along seams.
+    const TexCoords uv = shape.appearance.texture ? TexCoords::kGenerate : TexCoords::kNone;
     parts.push_back(
-        {compute_shape_local_mesh(model_, shape, filtered), shape.appearance.material, shape.appearance.texture});
+        {compute_shape_local_mesh(model_, shape, filtered, uv), shape.appearance.material, shape.appearance.texture});
   }
   const std::optional<double> crease = crease_angle_of(shape.geometry);
   for (Part& p : parts) {
@@ -345,7 +347,9 @@ void Writer::write_shape(aiNode* parent, const Link& link, std::size_t s, const 
       } else if (report) {
         loss(converters::LossKind::kTextures, shape.source,
              fmt::format("the texture '{}' on a {}", part.texture->uri, geometry_type_name(shape.geometry)),
-             "the geometry has no texture coordinates; the colour is kept");
+             std::holds_alternative<MeshResource>(shape.geometry)
+                 ? "the mesh has no texture coordinates; the colour is kept"
+                 : "its texture coordinate indices point past its tex_coords; the colour is kept");
       }
     }
     const int material = material_index(part.material.value_or(Material{}), texture);
@@ -459,7 +463,12 @@ void Writer::write_devices(aiNode* link_node, std::size_t link_index) {
       l["name"] = t.name;
       l["type"] = spot ? "spot" : "point";
       l["color"] = vec3(light->color.unaryExpr([](double v) { return clamp01(v); }));
-      l["intensity"] = std::max(0.0, light->intensity);
+      // KHR's intensity is in candela; Choreonoid's is a unitless factor (0..1 in practice).
+      // It is written as is, 1 cd per unit (SUPPORT.md "Cameras and lights"). A light that is
+      // off shines with 0, as in Choreonoid, and keeps its factor in extras.
+      const double intensity = std::isfinite(light->intensity) ? std::max(0.0, light->intensity) : 0.0;
+      l["intensity"] = device.on ? intensity : 0.0;
+      if (!device.on) t.extras["intensity"] = intensity;
       if (spot) {
         // A KHR light shines along its node's -Z: turn -Z onto `direction`.
         const Eigen::Vector3d dir = light->direction.normalized();

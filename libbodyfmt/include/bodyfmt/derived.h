@@ -3,6 +3,7 @@
 
 #include <bodyfmt/diagnostic.h>
 #include <bodyfmt/model.h>
+#include <bodyfmt/tessellate.h>
 
 #include <vector>
 
@@ -34,7 +35,9 @@ class GeometryAlreadyReported : public DiagnosticSink {
 
 /// Triangle mesh of one shape in its own frame (before Shape::X_LS): tessellated primitives
 /// or the imported mesh parts.
-TriangleMesh compute_shape_local_mesh(const Model& model, const Shape& shape, DiagnosticSink& sink);
+/// `tex_coords` as in tessellate(); imported meshes keep what their file gives.
+TriangleMesh compute_shape_local_mesh(const Model& model, const Shape& shape, DiagnosticSink& sink,
+                                      TexCoords tex_coords = TexCoords::kNone);
 /// The same, placed in its link's frame.
 TriangleMesh compute_shape_mesh(const Model& model, const Shape& shape, DiagnosticSink& sink);
 

@@ -31,6 +31,10 @@ constexpr int kMaxDivisionNumber = 1024;
 /// (Not clamped to kMaxDivisionNumber; tessellate() does that and reports it.)
 int effective_division_number(int division_number);
 
+/// Whether tessellate() adds texture coordinates. Only textured shapes ask for them: the
+/// vertices are split along texture seams, so the mesh differs from the untextured one.
+enum class TexCoords { kNone, kGenerate };
+
 /// Triangulates `geometry` in the shape's local frame (before Shape::X_LS).
 ///
 /// * Box: centred, full edge lengths. Sphere: centred, n longitudes x n/2 latitude bands.
@@ -43,12 +47,30 @@ int effective_division_number(int division_number);
 ///   Choreonoid does), triangulated by ear clipping. TriangleMeshGeometry: flat triangles.
 /// * MeshResource: empty (meshes are imported elsewhere).
 ///
-/// Normals and texture coordinates are left empty (see with_vertex_normals()).
+/// Normals are left empty (see with_vertex_normals()). Texture coordinates are empty unless
+/// `tex_coords` is kGenerate; then every vertex gets one, by Choreonoid's MeshGenerator
+/// conventions (VRML97), and vertices are duplicated where one position needs two:
+/// * Box: each face maps the whole image, upright seen from outside (top: +X right, -Z up).
+/// * Sphere, Cylinder side, Cone side, Capsule: u runs around the Y axis, 0 at -Z, through -X,
+///   +Z (0.5) and +X; v runs from 0 at the bottom to 1 at the top (Capsule: over its whole
+///   height). Where the division number does not put a vertex at -Z, the triangle across the
+///   seam gets u slightly above 1 (drawn right with repeat_s, the default). A pole or apex
+///   corner takes the mean u of its triangle's other two corners.
+/// * Cylinder and Cone caps: the disc inscribed in the image, (0.5 + 0.5 cos a, 0.5 -+ 0.5 sin a)
+///   at circle angle a (top cap minus, bottom plus).
+/// * ElevationGrid: u = i / (x_dimension - 1), v = j / (z_dimension - 1).
+/// * IndexedFaceSet, TriangleMeshGeometry: their tex_coords via tex_coord_indices (or via the
+///   vertex indices when those are empty); without tex_coords the VRML97 default, which
+///   projects onto the two largest extents of the bounding box (u 0..1 along the largest, v at
+///   the same scale). Indices out of range give no texture coordinates at all.
+/// * Extrusion sides: u the length along the cross-section, v along the spine, as fractions
+///   of the whole; caps: the cross-section's bounding box stretched to the image, the end cap
+///   mirrored in u.
 TriangleMesh tessellate(const Geometry& geometry, int division_number, DiagnosticSink& sink,
-                        const SourceLocation& where);
+                        const SourceLocation& where, TexCoords tex_coords = TexCoords::kNone);
 
-/// tessellate(shape.geometry, shape.division_number, sink, shape.source).
-TriangleMesh tessellate(const Shape& shape, DiagnosticSink& sink);
+/// tessellate(shape.geometry, shape.division_number, sink, shape.source, tex_coords).
+TriangleMesh tessellate(const Shape& shape, DiagnosticSink& sink, TexCoords tex_coords = TexCoords::kNone);
 
 /// A copy of `mesh` with per-vertex normals by the VRML97 creaseAngle rule: at each corner,
 /// the normal averages (area-weighted) the normals of the faces around the vertex that differ
@@ -56,7 +78,9 @@ TriangleMesh tessellate(const Shape& shape, DiagnosticSink& sink);
 /// smooths everything. Vertices are split where corners get different normals, so the result
 /// may have more vertices than `mesh`; vertices no triangle uses are dropped, and so are
 /// triangles with out-of-range indices. Triangles otherwise keep their order and winding.
-/// Existing normals are replaced; texture coordinates follow their vertex.
+/// Existing normals are replaced; texture coordinates follow their vertex. With texture
+/// coordinates, vertices at the same position are smoothed as one (a texture seam is no
+/// shading seam); without them, only by index, as before.
 TriangleMesh with_vertex_normals(const TriangleMesh& mesh, double crease_angle);
 
 /// Triangulates one polygon given as indices into `vertices` (all indices must be valid) by

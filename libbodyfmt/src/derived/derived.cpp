@@ -8,7 +8,8 @@
 
 namespace bodyfmt {
 
-TriangleMesh compute_shape_local_mesh(const Model& model, const Shape& shape, DiagnosticSink& sink) {
+TriangleMesh compute_shape_local_mesh(const Model& model, const Shape& shape, DiagnosticSink& sink,
+                                      TexCoords tex_coords) {
   TriangleMesh local;
   if (const auto* resource = std::get_if<MeshResource>(&shape.geometry)) {
     if (resource->mesh >= 0 && resource->mesh < static_cast<MeshIndex>(model.meshes.size())) {
@@ -16,7 +17,7 @@ TriangleMesh compute_shape_local_mesh(const Model& model, const Shape& shape, Di
         append_mesh(local, part.mesh);
     }
   } else {
-    local = tessellate(shape.geometry, shape.division_number, sink, shape.source);
+    local = tessellate(shape.geometry, shape.division_number, sink, shape.source, tex_coords);
   }
   return local;
 }

@@ -255,15 +255,18 @@ TriangleMesh elevation_grid_mesh(const ElevationGrid& grid, Reporter& reporter) 
 }
 
 // IndexedFaceSet: coordIndex polygons terminated by -1 (§9). Polygons with a bad index are
-// skipped whole; the rest of the mesh is still produced.
-TriangleMesh face_set_mesh(const IndexedFaceSet& face_set, Reporter& reporter) {
+// skipped whole; the rest of the mesh is still produced. `origins` gets, per triangle, the
+// position in `faces` where its polygon starts.
+TriangleMesh face_set_mesh(const IndexedFaceSet& face_set, Reporter& reporter, std::vector<std::size_t>& origins) {
   TriangleMesh mesh;
   mesh.vertices = face_set.vertices;
   const std::size_t num_vertices = face_set.vertices.size();
   std::vector<int> polygon;
   int polygon_number = 0;
   bool reported = false;
-  for (int index : face_set.faces) {
+  std::size_t polygon_start = 0;
+  for (std::size_t position = 0; position < face_set.faces.size(); ++position) {
+    const int index = face_set.faces[position];
     if (index != -1) {
       polygon.push_back(index);
       continue;
@@ -290,6 +293,8 @@ TriangleMesh face_set_mesh(const IndexedFaceSet& face_set, Reporter& reporter) {
                                                 polygon_number, polygon.size()));
       reported = true;
     }
+    origins.resize(mesh.triangles.size(), polygon_start);
+    polygon_start = position + 1;
     polygon.clear();
     ++polygon_number;
   }
@@ -302,8 +307,10 @@ TriangleMesh face_set_mesh(const IndexedFaceSet& face_set, Reporter& reporter) {
 }
 
 // TriangleMesh geometry: `faces` is a flat list of triangles (§9). Kept as given, including
-// zero-area triangles, so that indices match the file.
-TriangleMesh triangle_list_mesh(const TriangleMeshGeometry& geometry, Reporter& reporter) {
+// zero-area triangles, so that indices match the file. `origins` gets, per triangle, the
+// position of its first index in `faces`.
+TriangleMesh triangle_list_mesh(const TriangleMeshGeometry& geometry, Reporter& reporter,
+                                std::vector<std::size_t>& origins) {
   TriangleMesh mesh;
   mesh.vertices = geometry.vertices;
   const std::size_t num_vertices = geometry.vertices.size();
@@ -321,7 +328,10 @@ TriangleMesh triangle_list_mesh(const TriangleMeshGeometry& geometry, Reporter& 
         break;
       }
     }
-    if (ok) mesh.triangles.push_back(t);
+    if (ok) {
+      mesh.triangles.push_back(t);
+      origins.push_back(k);
+    }
   }
   if (num_full != geometry.faces.size()) {
     reporter.report(kRuleDegenerate, fmt::format("TriangleMesh faces has {} indices, not a multiple of 3; the "
@@ -339,7 +349,7 @@ int effective_division_number(int division_number) {
 }
 
 TriangleMesh tessellate(const Geometry& geometry, int division_number, DiagnosticSink& sink,
-                        const SourceLocation& where) {
+                        const SourceLocation& where, TexCoords tex_coords) {
   Reporter reporter(sink, where);
   int n = effective_division_number(division_number);
   const bool uses_division = std::holds_alternative<Sphere>(geometry) || std::holds_alternative<Cylinder>(geometry) ||
@@ -351,9 +361,11 @@ TriangleMesh tessellate(const Geometry& geometry, int division_number, Diagnosti
                                 n, kMaxDivisionNumber, kMaxDivisionNumber));
     n = kMaxDivisionNumber;
   }
+  std::vector<std::size_t> origins;  // per triangle of a face list: where it comes from
   struct Visitor {
     int n;
     Reporter& reporter;
+    std::vector<std::size_t>& origins;
     TriangleMesh operator()(const Box& g) const { return box_mesh(g, reporter); }
     TriangleMesh operator()(const Sphere& g) const { return sphere_mesh(g, n, reporter); }
     TriangleMesh operator()(const Cylinder& g) const { return cylinder_mesh(g, n, reporter); }
@@ -361,15 +373,17 @@ TriangleMesh tessellate(const Geometry& geometry, int division_number, Diagnosti
     TriangleMesh operator()(const Capsule& g) const { return capsule_mesh(g, n, reporter); }
     TriangleMesh operator()(const Extrusion& g) const { return detail::tessellate_extrusion(g, reporter); }
     TriangleMesh operator()(const ElevationGrid& g) const { return elevation_grid_mesh(g, reporter); }
-    TriangleMesh operator()(const IndexedFaceSet& g) const { return face_set_mesh(g, reporter); }
-    TriangleMesh operator()(const TriangleMeshGeometry& g) const { return triangle_list_mesh(g, reporter); }
+    TriangleMesh operator()(const IndexedFaceSet& g) const { return face_set_mesh(g, reporter, origins); }
+    TriangleMesh operator()(const TriangleMeshGeometry& g) const { return triangle_list_mesh(g, reporter, origins); }
     TriangleMesh operator()(const MeshResource&) const { return {}; }
   };
-  return std::visit(Visitor{n, reporter}, geometry);
+  TriangleMesh mesh = std::visit(Visitor{n, reporter, origins}, geometry);
+  if (tex_coords == TexCoords::kGenerate && !mesh.empty()) return detail::with_tex_coords(mesh, geometry, n, origins);
+  return mesh;
 }
 
-TriangleMesh tessellate(const Shape& shape, DiagnosticSink& sink) {
-  return tessellate(shape.geometry, shape.division_number, sink, shape.source);
+TriangleMesh tessellate(const Shape& shape, DiagnosticSink& sink, TexCoords tex_coords) {
+  return tessellate(shape.geometry, shape.division_number, sink, shape.source, tex_coords);
 }
 
 }  // namespace bodyfmt

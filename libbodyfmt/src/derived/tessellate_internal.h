@@ -3,7 +3,9 @@
 
 #include <bodyfmt/tessellate.h>
 
+#include <cstddef>
 #include <string>
+#include <vector>
 
 namespace bodyfmt::detail {
 
@@ -32,6 +34,13 @@ constexpr const char* kRuleDegenerate = "geometry-degenerate";
 constexpr const char* kRuleIndexOutOfRange = "geometry-index-out-of-range";
 
 TriangleMesh tessellate_extrusion(const Extrusion& extrusion, Reporter& reporter);
+
+/// `mesh`, tessellated from `geometry` with `n` divisions, with texture coordinates as
+/// tessellate() documents them; vertices are split where corners need different ones. For a
+/// face list, `origins` holds per triangle where in `faces` its polygon (or triangle) starts.
+/// Returns `mesh` unchanged where no texture coordinates can be given.
+TriangleMesh with_tex_coords(const TriangleMesh& mesh, const Geometry& geometry, int n,
+                             const std::vector<std::size_t>& origins);
 
 /// Reverses every triangle (inside-out -> outside-out).
 void flip_triangles(TriangleMesh& mesh);

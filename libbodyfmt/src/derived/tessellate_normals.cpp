@@ -20,6 +20,20 @@ TriangleMesh with_vertex_normals(const TriangleMesh& mesh, double crease_angle) 
     return true;
   };
 
+  // Which faces meet at a vertex. With texture coordinates, the vertices at one position are
+  // taken together: a texture seam splits vertices that one smooth surface shares.
+  const bool has_tex = mesh.tex_coords.size() == nv && nv > 0;
+  std::vector<std::size_t> place(nv);
+  if (has_tex) {
+    std::map<std::array<double, 3>, std::size_t> first;
+    for (std::size_t v = 0; v < nv; ++v) {
+      const Eigen::Vector3d& p = mesh.vertices[v];
+      place[v] = first.emplace(std::array<double, 3>{p.x(), p.y(), p.z()}, v).first->second;
+    }
+  } else {
+    for (std::size_t v = 0; v < nv; ++v) place[v] = v;
+  }
+
   // Area-weighted face normals (twice the area) and unit directions for the angle test.
   std::vector<Eigen::Vector3d> weighted(nt, Eigen::Vector3d::Zero());
   std::vector<Eigen::Vector3d> unit(nt, Eigen::Vector3d::Zero());
@@ -34,7 +48,7 @@ TriangleMesh with_vertex_normals(const TriangleMesh& mesh, double crease_angle) 
     const double norm = weighted[f].norm();
     if (norm > 0 && std::isfinite(norm)) unit[f] = weighted[f] / norm;
     for (int i : t) {
-      auto& list = faces_at[static_cast<std::size_t>(i)];
+      auto& list = faces_at[place[static_cast<std::size_t>(i)]];
       if (list.empty() || list.back() != f) list.push_back(f);
     }
   }
@@ -55,7 +69,6 @@ TriangleMesh with_vertex_normals(const TriangleMesh& mesh, double crease_angle) 
   for (const auto& t : mesh.triangles) {
     if (valid(t)) out.triangles.push_back(t);  // bad indices cannot be given a normal
   }
-  const bool has_tex = mesh.tex_coords.size() == nv && nv > 0;
   // (original vertex, normal) -> new vertex; normals are compared exactly because corners
   // sharing the same set of smoothed faces compute bit-identical sums.
   std::vector<std::map<std::array<double, 3>, int>> split(nv);
@@ -66,7 +79,7 @@ TriangleMesh with_vertex_normals(const TriangleMesh& mesh, double crease_angle) 
     for (int& corner : t) {
       const std::size_t v = static_cast<std::size_t>(corner);
       Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-      for (std::size_t g : faces_at[v]) {
+      for (std::size_t g : faces_at[place[v]]) {
         if (smoothed_together(f, g)) sum += weighted[g];
       }
       const double norm = sum.norm();

@@ -362,6 +362,35 @@ TEST_CASE("gltf: a spot light shines along its direction with its cone angles") 
   CHECK((camera_forward(tank->main, "Light") - Eigen::Vector3d(1, 0, 0)).norm() < 1e-6);
 }
 
+TEST_CASE("gltf: light intensity is Choreonoid's factor in candela; a light that is off gives 0") {
+  auto e = export_model(kData / "lights.body");
+  Json doc = json_of(e->main);
+  const Json& lights = doc["extensions"]["KHR_lights_punctual"]["lights"];
+  std::map<std::string, const Json*> light_of, node_of;
+  for (const Json& n : doc["nodes"].items()) {
+    if (const Json* ext = n.find("extensions")) {
+      const auto index = static_cast<std::size_t>(ext->find("KHR_lights_punctual")->find("light")->number());
+      light_of[n.find("name")->string()] = &lights.items()[index];
+      node_of[n.find("name")->string()] = &n;
+    }
+  }
+  REQUIRE(light_of.size() == 2);
+  // lights.body: Bulb intensity 0.6, colour (1, 0.5, 0.25) -> 0.6 cd, the same colour.
+  const Json& bulb = *light_of.at("Bulb");
+  CHECK(bulb.find("type")->string() == "point");
+  CHECK(bulb.find("intensity")->number() == 0.6);
+  CHECK(bulb.find("color")->items()[1].number() == 0.5);
+  CHECK(bulb.find("color")->items()[2].number() == 0.25);
+  CHECK(!node_of.at("Bulb")->find("extras")->find("intensity"));
+  // Torch is off: Choreonoid does not light with it, so neither does the viewer; extras keep 0.8.
+  const Json& torch = *light_of.at("Torch");
+  CHECK(torch.find("type")->string() == "spot");
+  CHECK(torch.find("intensity")->number() == 0.0);
+  const Json& extras = *node_of.at("Torch")->find("extras");
+  CHECK(extras.find("on")->boolean() == false);
+  CHECK(extras.find("intensity")->number() == 0.8);
+}
+
 TEST_CASE("gltf: --both puts a hidden collision group beside the visual one") {
   GltfOptions both;
   both.geometry = GeometrySet::kBoth;
