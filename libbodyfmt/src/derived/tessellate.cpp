@@ -340,6 +340,11 @@ int effective_division_number(int division_number) {
 
 TriangleMesh tessellate(const Geometry& geometry, int division_number, DiagnosticSink& sink,
                         const SourceLocation& where) {
+  return tessellate(geometry, division_number, sink, where, ExtrusionFrames::kRigid);
+}
+
+TriangleMesh tessellate(const Geometry& geometry, int division_number, DiagnosticSink& sink,
+                        const SourceLocation& where, ExtrusionFrames frames) {
   Reporter reporter(sink, where);
   int n = effective_division_number(division_number);
   const bool uses_division = std::holds_alternative<Sphere>(geometry) || std::holds_alternative<Cylinder>(geometry) ||
@@ -353,19 +358,20 @@ TriangleMesh tessellate(const Geometry& geometry, int division_number, Diagnosti
   }
   struct Visitor {
     int n;
+    ExtrusionFrames frames;
     Reporter& reporter;
     TriangleMesh operator()(const Box& g) const { return box_mesh(g, reporter); }
     TriangleMesh operator()(const Sphere& g) const { return sphere_mesh(g, n, reporter); }
     TriangleMesh operator()(const Cylinder& g) const { return cylinder_mesh(g, n, reporter); }
     TriangleMesh operator()(const Cone& g) const { return cone_mesh(g, n, reporter); }
     TriangleMesh operator()(const Capsule& g) const { return capsule_mesh(g, n, reporter); }
-    TriangleMesh operator()(const Extrusion& g) const { return detail::tessellate_extrusion(g, reporter); }
+    TriangleMesh operator()(const Extrusion& g) const { return detail::tessellate_extrusion(g, frames, reporter); }
     TriangleMesh operator()(const ElevationGrid& g) const { return elevation_grid_mesh(g, reporter); }
     TriangleMesh operator()(const IndexedFaceSet& g) const { return face_set_mesh(g, reporter); }
     TriangleMesh operator()(const TriangleMeshGeometry& g) const { return triangle_list_mesh(g, reporter); }
     TriangleMesh operator()(const MeshResource&) const { return {}; }
   };
-  return std::visit(Visitor{n, reporter}, geometry);
+  return std::visit(Visitor{n, frames, reporter}, geometry);
 }
 
 TriangleMesh tessellate(const Shape& shape, DiagnosticSink& sink) {

@@ -31,7 +31,7 @@ constexpr const char* kRuleInvalidSize = "geometry-invalid-size";
 constexpr const char* kRuleDegenerate = "geometry-degenerate";
 constexpr const char* kRuleIndexOutOfRange = "geometry-index-out-of-range";
 
-TriangleMesh tessellate_extrusion(const Extrusion& extrusion, Reporter& reporter);
+TriangleMesh tessellate_extrusion(const Extrusion& extrusion, ExtrusionFrames frames, Reporter& reporter);
 
 /// Reverses every triangle (inside-out -> outside-out).
 void flip_triangles(TriangleMesh& mesh);
