@@ -27,8 +27,8 @@ namespace bodyfmt {
 /// sin(angle)): for a spine along a coordinate axis that is a rotation, for any other
 /// direction the cross-section is shrunk and skewed, and for a spine along -Y it is -I, a
 /// reflection. Elsewhere its cross-section plane takes the spine's Z axis as it is, without
-/// making it perpendicular to the spine tangent, and only an exactly zero Z counts as
-/// collinear.
+/// making it perpendicular to the spine tangent, only an exactly zero Z counts as collinear,
+/// and an `orientation` axis is used as written, not normalised.
 enum class ExtrusionFrames {
   /// Proper rotations (the meshes every exporter writes: the cross-section keeps its shape).
   kRigid,

@@ -7,10 +7,11 @@
 //    sin(angle), which only gives a rotation for spines along a coordinate axis), and a spine
 //    along -Y turns by pi about +Z (Choreonoid builds -I there, a reflection);
 //  * a Z axis taken over from a previous spine point is made perpendicular to the local Y;
+//  * an `orientation` axis is normalised (Choreonoid uses it as written);
 //  * a zero-length spine segment reuses the neighbouring direction instead of producing NaN;
 //  * the result is oriented outward (see orient_outward).
 // ExtrusionFrames::kChoreonoid keeps Choreonoid's own matrices and its exact collinearity test
-// (the first two items), so that its vertices, and the boxes Choreonoid reports, are
+// (the first three items), so that its vertices, and the boxes Choreonoid reports, are
 // reproduced.
 
 #include "derived/tessellate_internal.h"
@@ -41,18 +42,22 @@ Eigen::Matrix3d rotation_from_y(const Eigen::Vector3d& y) {
   return Eigen::AngleAxisd(kPi, Eigen::Vector3d::UnitZ()).toRotationMatrix();
 }
 
-/// Choreonoid's matrix for a collinear spine along the unit direction `y`: the axis-angle
-/// formula c I + (1 - c) a a^T + sin(angle) [a]x with angle = acos(y.y) and the axis
-/// a = +Y x y = (y.z, 0, -y.x) left unnormalised, |a| = sin(angle). Equal to
-/// rotation_from_y() when y lies along +X, -X, +Z, -Z or +Y; -I along -Y; for other
-/// directions not orthogonal (it shortens the cross-section's extent along a).
-Eigen::Matrix3d choreonoid_matrix_from_y(const Eigen::Vector3d& y) {
-  const double angle = std::acos(std::clamp(y.y(), -1.0, 1.0));
-  const Eigen::Vector3d a(y.z(), 0, -y.x());
+/// The axis-angle formula cos(angle) I + (1 - cos(angle)) a a^T + sin(angle) [a]x for any
+/// `a`: the rotation about `a` when |a| = 1, and what Choreonoid gets from an unnormalised
+/// axis otherwise.
+Eigen::Matrix3d axis_angle_formula(double angle, const Eigen::Vector3d& a) {
   Eigen::Matrix3d skew;
   skew << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
   const double c = std::cos(angle);
   return c * Eigen::Matrix3d::Identity() + (1 - c) * a * a.transpose() + std::sin(angle) * skew;
+}
+
+/// Choreonoid's matrix for a collinear spine along the unit direction `y`: the formula with
+/// angle = acos(y.y) and the axis a = +Y x y = (y.z, 0, -y.x) left unnormalised,
+/// |a| = sin(angle). Equal to rotation_from_y() when y lies along +X, -X, +Z, -Z or +Y; -I
+/// along -Y; for other directions not orthogonal (it shortens the cross-section along a).
+Eigen::Matrix3d choreonoid_matrix_from_y(const Eigen::Vector3d& y) {
+  return axis_angle_formula(std::acos(std::clamp(y.y(), -1.0, 1.0)), Eigen::Vector3d(y.z(), 0, -y.x()));
 }
 
 /// Twice the signed area of the cross-section in (x, z) coordinates. Positive (counter-
@@ -208,15 +213,17 @@ Eigen::Matrix3d section_rotation(SpineAxes& axes, int i, ExtrusionFrames frames)
   return as_choreonoid ? choreonoid_matrix_from_y(y) : rotation_from_y(y);
 }
 
-/// The orientation entry of cross-section `i` as a rotation (identity when absent or when
-/// its axis is zero).
-Eigen::Matrix3d section_orientation(const Extrusion& extrusion, std::size_t i) {
+/// The orientation entry of cross-section `i` (identity when absent). kRigid: the rotation
+/// about the normalised axis (a zero axis reads as +Z). kChoreonoid: the axis-angle formula
+/// with the axis as written, as Choreonoid evaluates it (not a rotation unless |axis| = 1).
+Eigen::Matrix3d section_orientation(const Extrusion& extrusion, std::size_t i, ExtrusionFrames frames) {
   const std::size_t n = extrusion.orientation.size();
   if (n == 0) return Eigen::Matrix3d::Identity();
   const Eigen::AngleAxisd& o = extrusion.orientation[n == 1 ? 0 : i];
+  if (frames == ExtrusionFrames::kChoreonoid) return axis_angle_formula(o.angle(), o.axis());
   const double axis_norm = o.axis().norm();
-  if (axis_norm == 0) return Eigen::Matrix3d::Identity();
-  return Eigen::AngleAxisd(o.angle(), o.axis() / axis_norm).toRotationMatrix();
+  const Eigen::Vector3d axis = axis_norm > 0 ? Eigen::Vector3d(o.axis() / axis_norm) : Eigen::Vector3d::UnitZ();
+  return Eigen::AngleAxisd(o.angle(), axis).toRotationMatrix();
 }
 
 Eigen::Vector2d section_scale(const Extrusion& extrusion, std::size_t i) {
@@ -231,7 +238,7 @@ void add_vertices(const Extrusion& extrusion, const Layout& l, SpineAxes& axes, 
   mesh.vertices.reserve(static_cast<std::size_t>(l.ns) * static_cast<std::size_t>(l.nc));
   for (int i = 0; i < l.ns; ++i) {
     const std::size_t ui = static_cast<std::size_t>(i);
-    const Eigen::Matrix3d m = section_rotation(axes, i, frames) * section_orientation(extrusion, ui);
+    const Eigen::Matrix3d m = section_rotation(axes, i, frames) * section_orientation(extrusion, ui, frames);
     const Eigen::Vector2d scale = section_scale(extrusion, ui);
     for (int j = 0; j < l.nc; ++j) {
       const Eigen::Vector2d& c = extrusion.cross_section[static_cast<std::size_t>(j)];

@@ -179,3 +179,23 @@ TEST_CASE("choreonoid bounds: an Extrusion along -Y is mirrored as Choreonoid's 
   check_box(tight[0].collision, {-0.1, -0.4, 0, 0, 0, 0.3});
   CHECK(sink.diagnostics().empty());
 }
+
+TEST_CASE("choreonoid bounds: an Extrusion orientation axis counts as written, not normalised") {
+  // Spine along +Y: the section plane is I. Orientation (0, 2, 0) by 90 degrees, by the
+  // axis-angle formula with a = (0, 2, 0), cos = 0, sin = 1: M = a a^T + [a]x, which maps
+  // (x, 0, z) to (2 z, 0, -2 x). The section (0,0) (0.1,0) (0.1,0.3) (0,0.3) becomes
+  // (0,0,0) (0,0,-0.2) (0.6,0,-0.2) (0.6,0,0): box x [0, 0.6], y [0, 0.4], z [-0.2, 0].
+  // The rotation by 90 degrees about the unit axis, (x, 0, z) -> (z, 0, -x), gives x [0, 0.3],
+  // z [-0.1, 0]: the tight box.
+  const Model model = load(std::string(kHeader) + R"(      - type: Shape
+        geometry:
+          type: Extrusion
+          cross_section: [0, 0, 0.1, 0, 0.1, 0.3, 0, 0.3, 0, 0]
+          spine: [0, 0, 0, 0, 0.4, 0]
+          orientation: [0, 2, 0, 90]
+)");
+  CollectingSink sink;
+  check_box(compute_choreonoid_bounds(model, sink)[0].collision, {0, 0, -0.2, 0.6, 0.4, 0});
+  check_box(compute_link_bounds(model, sink)[0].collision, {0, 0, -0.1, 0.3, 0.4, 0});
+  CHECK(sink.diagnostics().empty());
+}
