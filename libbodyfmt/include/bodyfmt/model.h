@@ -53,8 +53,9 @@ struct Capsule {
 struct Extrusion {
   std::vector<Eigen::Vector2d> cross_section;
   std::vector<Eigen::Vector3d> spine;
-  std::vector<Eigen::AngleAxisd> orientation;  ///< 1 entry or one per spine point
-  std::vector<Eigen::Vector2d> scale;          ///< 1 entry or one per spine point
+  /// 1 entry or one per spine point; each axis as written (not normalised, may be zero).
+  std::vector<Eigen::AngleAxisd> orientation;
+  std::vector<Eigen::Vector2d> scale;  ///< 1 entry or one per spine point
   double crease_angle = 0;
   bool begin_cap = true;
   bool end_cap = true;

@@ -21,6 +21,23 @@
 
 namespace bodyfmt {
 
+/// How an Extrusion's cross-sections are placed where Choreonoid's MeshGenerator does not
+/// build a rotation. A spine whose points are all collinear is turned by Choreonoid with the
+/// axis-angle formula applied to the axis +Y x dir left unnormalised (its length is
+/// sin(angle)): for a spine along a coordinate axis that is a rotation, for any other
+/// direction the cross-section is shrunk and skewed, and for a spine along -Y it is -I, a
+/// reflection. Elsewhere its cross-section plane takes the spine's Z axis as it is, without
+/// making it perpendicular to the spine tangent, only an exactly zero Z counts as collinear,
+/// and an `orientation` axis is used as written, not normalised.
+enum class ExtrusionFrames {
+  /// Proper rotations (the meshes every exporter writes: the cross-section keeps its shape).
+  kRigid,
+  /// Choreonoid's matrices, distortion and reflection included: the vertices Choreonoid
+  /// generates, for reproducing the boxes it reports (compute_choreonoid_bounds). The
+  /// triangles are still made to face outward for closed solids.
+  kChoreonoid,
+};
+
 /// Choreonoid's default circle division (body-format-spec §9).
 constexpr int kDefaultDivisionNumber = 20;
 /// Upper bound applied by the tessellator so that a huge `division_number` cannot exhaust
@@ -66,6 +83,11 @@ enum class TexCoords { kNone, kGenerate };
 /// * Extrusion sides: u the length along the cross-section, v along the spine, as fractions
 ///   of the whole; caps: the cross-section's bounding box stretched to the image, the end cap
 ///   mirrored in u.
+///
+/// `frames` matters for Extrusion only (see ExtrusionFrames); the overload without it is kRigid.
+/// It generates no texture coordinates (it serves Choreonoid's bounding boxes).
+TriangleMesh tessellate(const Geometry& geometry, int division_number, DiagnosticSink& sink,
+                        const SourceLocation& where, ExtrusionFrames frames);
 TriangleMesh tessellate(const Geometry& geometry, int division_number, DiagnosticSink& sink,
                         const SourceLocation& where, TexCoords tex_coords = TexCoords::kNone);
 

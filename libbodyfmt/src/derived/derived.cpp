@@ -58,8 +58,11 @@ std::vector<LinkBounds> compute_choreonoid_bounds(const Model& model, Diagnostic
         const auto* resource = std::get_if<MeshResource>(&shape.geometry);
         const bool has_asset =
             resource && resource->mesh >= 0 && resource->mesh < static_cast<MeshIndex>(model.meshes.size());
+        // Primitives are boxed from the vertices Choreonoid generates, Extrusion's skewed
+        // cross-sections included (ExtrusionFrames::kChoreonoid).
         const BoundingBox box = has_asset ? model.meshes[static_cast<std::size_t>(resource->mesh)].scene_bounds
-                                          : bounding_box(compute_shape_local_mesh(model, shape, sink));
+                                          : bounding_box(tessellate(shape.geometry, shape.division_number, sink,
+                                                                    shape.source, ExtrusionFrames::kChoreonoid));
         (shape.frame >= 0 ? in_frame[static_cast<std::size_t>(shape.frame)] : in_link).add(box);
       }
       for (std::size_t f = link.frames.size(); f-- > 0;) {

@@ -38,7 +38,21 @@ void flip_triangles(TriangleMesh& mesh) {
   for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
 }
 
+/// tessellate() with both choices (defined below, after the shape generators).
+TriangleMesh tessellate_with(const Geometry& geometry, int division_number, DiagnosticSink& sink,
+                             const SourceLocation& where, TexCoords tex_coords, ExtrusionFrames frames);
+
 }  // namespace detail
+
+TriangleMesh tessellate(const Geometry& geometry, int division_number, DiagnosticSink& sink,
+                        const SourceLocation& where, TexCoords tex_coords) {
+  return detail::tessellate_with(geometry, division_number, sink, where, tex_coords, ExtrusionFrames::kRigid);
+}
+
+TriangleMesh tessellate(const Geometry& geometry, int division_number, DiagnosticSink& sink,
+                        const SourceLocation& where, ExtrusionFrames frames) {
+  return detail::tessellate_with(geometry, division_number, sink, where, TexCoords::kNone, frames);
+}
 
 namespace {
 
@@ -348,8 +362,10 @@ int effective_division_number(int division_number) {
   return division_number < 4 ? kDefaultDivisionNumber : division_number;
 }
 
-TriangleMesh tessellate(const Geometry& geometry, int division_number, DiagnosticSink& sink,
-                        const SourceLocation& where, TexCoords tex_coords) {
+namespace detail {
+
+TriangleMesh tessellate_with(const Geometry& geometry, int division_number, DiagnosticSink& sink,
+                             const SourceLocation& where, TexCoords tex_coords, ExtrusionFrames frames) {
   Reporter reporter(sink, where);
   int n = effective_division_number(division_number);
   const bool uses_division = std::holds_alternative<Sphere>(geometry) || std::holds_alternative<Cylinder>(geometry) ||
@@ -364,6 +380,7 @@ TriangleMesh tessellate(const Geometry& geometry, int division_number, Diagnosti
   std::vector<std::size_t> origins;  // per triangle of a face list: where it comes from
   struct Visitor {
     int n;
+    ExtrusionFrames frames;
     Reporter& reporter;
     std::vector<std::size_t>& origins;
     TriangleMesh operator()(const Box& g) const { return box_mesh(g, reporter); }
@@ -371,16 +388,18 @@ TriangleMesh tessellate(const Geometry& geometry, int division_number, Diagnosti
     TriangleMesh operator()(const Cylinder& g) const { return cylinder_mesh(g, n, reporter); }
     TriangleMesh operator()(const Cone& g) const { return cone_mesh(g, n, reporter); }
     TriangleMesh operator()(const Capsule& g) const { return capsule_mesh(g, n, reporter); }
-    TriangleMesh operator()(const Extrusion& g) const { return detail::tessellate_extrusion(g, reporter); }
+    TriangleMesh operator()(const Extrusion& g) const { return detail::tessellate_extrusion(g, frames, reporter); }
     TriangleMesh operator()(const ElevationGrid& g) const { return elevation_grid_mesh(g, reporter); }
     TriangleMesh operator()(const IndexedFaceSet& g) const { return face_set_mesh(g, reporter, origins); }
     TriangleMesh operator()(const TriangleMeshGeometry& g) const { return triangle_list_mesh(g, reporter, origins); }
     TriangleMesh operator()(const MeshResource&) const { return {}; }
   };
-  TriangleMesh mesh = std::visit(Visitor{n, reporter, origins}, geometry);
+  TriangleMesh mesh = std::visit(Visitor{n, frames, reporter, origins}, geometry);
   if (tex_coords == TexCoords::kGenerate && !mesh.empty()) return detail::with_tex_coords(mesh, geometry, n, origins);
   return mesh;
 }
+
+}  // namespace detail
 
 TriangleMesh tessellate(const Shape& shape, DiagnosticSink& sink, TexCoords tex_coords) {
   return tessellate(shape.geometry, shape.division_number, sink, shape.source, tex_coords);

@@ -1,14 +1,18 @@
 // VRML97 Extrusion (body-format-spec §9), following Choreonoid's
 // MeshGenerator::generateExtrusion: the same vertex layout (spine-major, cross-section-minor,
 // closing points dropped), the same spine-aligned cross-section planes (SCP) and the same
-// side/cap triangles. Deliberate differences, all where Choreonoid's result is not a proper
-// rotation or is inside-out:
+// side/cap triangles. Deliberate differences with ExtrusionFrames::kRigid (every exported
+// mesh), all where Choreonoid's result is not a proper rotation or is inside-out:
 //  * the collinear-spine rotation uses a normalised axis (Choreonoid's axis has length
 //    sin(angle), which only gives a rotation for spines along a coordinate axis), and a spine
 //    along -Y turns by pi about +Z (Choreonoid builds -I there, a reflection);
 //  * a Z axis taken over from a previous spine point is made perpendicular to the local Y;
+//  * an `orientation` axis is normalised (Choreonoid uses it as written);
 //  * a zero-length spine segment reuses the neighbouring direction instead of producing NaN;
 //  * the result is oriented outward (see orient_outward).
+// ExtrusionFrames::kChoreonoid keeps Choreonoid's own matrices and its exact collinearity test
+// (the first three items), so that its vertices, and the boxes Choreonoid reports, are
+// reproduced.
 
 #include "derived/tessellate_internal.h"
 
@@ -36,6 +40,24 @@ Eigen::Matrix3d rotation_from_y(const Eigen::Vector3d& y) {
   }
   if (y.y() > 0) return Eigen::Matrix3d::Identity();
   return Eigen::AngleAxisd(kPi, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+}
+
+/// The axis-angle formula cos(angle) I + (1 - cos(angle)) a a^T + sin(angle) [a]x for any
+/// `a`: the rotation about `a` when |a| = 1, and what Choreonoid gets from an unnormalised
+/// axis otherwise.
+Eigen::Matrix3d axis_angle_formula(double angle, const Eigen::Vector3d& a) {
+  Eigen::Matrix3d skew;
+  skew << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
+  const double c = std::cos(angle);
+  return c * Eigen::Matrix3d::Identity() + (1 - c) * a * a.transpose() + std::sin(angle) * skew;
+}
+
+/// Choreonoid's matrix for a collinear spine along the unit direction `y`: the formula with
+/// angle = acos(y.y) and the axis a = +Y x y = (y.z, 0, -y.x) left unnormalised,
+/// |a| = sin(angle). Equal to rotation_from_y() when y lies along +X, -X, +Z, -Z or +Y; -I
+/// along -Y; for other directions not orthogonal (it shortens the cross-section along a).
+Eigen::Matrix3d choreonoid_matrix_from_y(const Eigen::Vector3d& y) {
+  return axis_angle_formula(std::acos(std::clamp(y.y(), -1.0, 1.0)), Eigen::Vector3d(y.z(), 0, -y.x()));
 }
 
 /// Twice the signed area of the cross-section in (x, z) coordinates. Positive (counter-
@@ -110,7 +132,7 @@ struct SpineAxes {
   int defined_z = -1;
 };
 
-SpineAxes spine_axes(const std::vector<Eigen::Vector3d>& spine, const Layout& l) {
+SpineAxes spine_axes(const std::vector<Eigen::Vector3d>& spine, const Layout& l, ExtrusionFrames frames) {
   const int ns = l.ns;
   auto S = [&](int k) -> const Eigen::Vector3d& { return spine[static_cast<std::size_t>(k)]; };
   SpineAxes axes;
@@ -138,7 +160,8 @@ SpineAxes spine_axes(const std::vector<Eigen::Vector3d>& spine, const Layout& l)
     Eigen::Vector3d z = a.cross(b);
     // Collinear points: VRML97 takes the previous Z. A relative tolerance instead of
     // Choreonoid's exact zero test keeps rounding noise from defining a random Z.
-    if (z.norm() <= 1e-12 * a.norm() * b.norm()) {
+    const double tolerance = frames == ExtrusionFrames::kChoreonoid ? 0.0 : 1e-12 * a.norm() * b.norm();
+    if (z.norm() <= tolerance) {
       z = axes.defined_z != -1 ? previous_z : Eigen::Vector3d::Zero();
     } else {
       if (axes.defined_z == -1) axes.defined_z = i;
@@ -168,14 +191,16 @@ bool fill_zero_tangents(std::vector<Eigen::Vector3d>& y_axes) {
 
 /// The rotation of cross-section `i`: its SCP, or the collinear-spine rotation where no Z is
 /// defined. Updates `axes.z[i]` as Choreonoid does (inherited, then kept from flipping).
-Eigen::Matrix3d section_rotation(SpineAxes& axes, int i) {
+/// With kChoreonoid, Choreonoid's matrices (see ExtrusionFrames) where they differ.
+Eigen::Matrix3d section_rotation(SpineAxes& axes, int i, ExtrusionFrames frames) {
+  const bool as_choreonoid = frames == ExtrusionFrames::kChoreonoid;
   const std::size_t ui = static_cast<std::size_t>(i);
   const Eigen::Vector3d y = axes.y[ui].normalized();
   if (axes.defined_z != -1) {
     if (i < axes.defined_z) axes.z[ui] = axes.z[static_cast<std::size_t>(axes.defined_z)];
     // Keep Z from flipping between neighbours (Choreonoid does the same).
     if (i > 0 && axes.z[ui].dot(axes.z[ui - 1]) < 0) axes.z[ui] = -axes.z[ui];
-    Eigen::Vector3d z = axes.z[ui] - axes.z[ui].dot(y) * y;
+    Eigen::Vector3d z = as_choreonoid ? axes.z[ui] : Eigen::Vector3d(axes.z[ui] - axes.z[ui].dot(y) * y);
     if (z.norm() > 1e-12 * axes.z[ui].norm()) {
       z.normalize();
       Eigen::Matrix3d scp;
@@ -185,18 +210,20 @@ Eigen::Matrix3d section_rotation(SpineAxes& axes, int i) {
       return scp;
     }
   }
-  return rotation_from_y(y);
+  return as_choreonoid ? choreonoid_matrix_from_y(y) : rotation_from_y(y);
 }
 
-/// The orientation entry of cross-section `i` as a rotation (identity when absent or when
-/// its axis is zero).
-Eigen::Matrix3d section_orientation(const Extrusion& extrusion, std::size_t i) {
+/// The orientation entry of cross-section `i` (identity when absent). kRigid: the rotation
+/// about the normalised axis (a zero axis reads as +Z). kChoreonoid: the axis-angle formula
+/// with the axis as written, as Choreonoid evaluates it (not a rotation unless |axis| = 1).
+Eigen::Matrix3d section_orientation(const Extrusion& extrusion, std::size_t i, ExtrusionFrames frames) {
   const std::size_t n = extrusion.orientation.size();
   if (n == 0) return Eigen::Matrix3d::Identity();
   const Eigen::AngleAxisd& o = extrusion.orientation[n == 1 ? 0 : i];
+  if (frames == ExtrusionFrames::kChoreonoid) return axis_angle_formula(o.angle(), o.axis());
   const double axis_norm = o.axis().norm();
-  if (axis_norm == 0) return Eigen::Matrix3d::Identity();
-  return Eigen::AngleAxisd(o.angle(), o.axis() / axis_norm).toRotationMatrix();
+  const Eigen::Vector3d axis = axis_norm > 0 ? Eigen::Vector3d(o.axis() / axis_norm) : Eigen::Vector3d::UnitZ();
+  return Eigen::AngleAxisd(o.angle(), axis).toRotationMatrix();
 }
 
 Eigen::Vector2d section_scale(const Extrusion& extrusion, std::size_t i) {
@@ -206,11 +233,12 @@ Eigen::Vector2d section_scale(const Extrusion& extrusion, std::size_t i) {
 }
 
 /// Spine-major, cross-section-minor vertices, as Choreonoid lays them out.
-void add_vertices(const Extrusion& extrusion, const Layout& l, SpineAxes& axes, TriangleMesh& mesh) {
+void add_vertices(const Extrusion& extrusion, const Layout& l, SpineAxes& axes, ExtrusionFrames frames,
+                  TriangleMesh& mesh) {
   mesh.vertices.reserve(static_cast<std::size_t>(l.ns) * static_cast<std::size_t>(l.nc));
   for (int i = 0; i < l.ns; ++i) {
     const std::size_t ui = static_cast<std::size_t>(i);
-    const Eigen::Matrix3d m = section_rotation(axes, i) * section_orientation(extrusion, ui);
+    const Eigen::Matrix3d m = section_rotation(axes, i, frames) * section_orientation(extrusion, ui, frames);
     const Eigen::Vector2d scale = section_scale(extrusion, ui);
     for (int j = 0; j < l.nc; ++j) {
       const Eigen::Vector2d& c = extrusion.cross_section[static_cast<std::size_t>(j)];
@@ -274,17 +302,17 @@ void orient_outward(const Extrusion& extrusion, const Layout& l, TriangleMesh& m
 
 }  // namespace
 
-TriangleMesh tessellate_extrusion(const Extrusion& extrusion, Reporter& reporter) {
+TriangleMesh tessellate_extrusion(const Extrusion& extrusion, ExtrusionFrames frames, Reporter& reporter) {
   if (!check_list_sizes(extrusion, reporter)) return {};
   const std::optional<Layout> layout = layout_of(extrusion, reporter);
   if (!layout) return {};
-  SpineAxes axes = spine_axes(extrusion.spine, *layout);
+  SpineAxes axes = spine_axes(extrusion.spine, *layout, frames);
   if (!fill_zero_tangents(axes.y)) {
     reporter.report(kRuleDegenerate, "Extrusion spine points all coincide");
     return {};
   }
   TriangleMesh mesh;
-  add_vertices(extrusion, *layout, axes, mesh);
+  add_vertices(extrusion, *layout, axes, frames, mesh);
   add_sides(*layout, mesh);
   add_caps(extrusion, *layout, mesh, reporter);
   orient_outward(extrusion, *layout, mesh);

@@ -33,7 +33,7 @@ constexpr const char* kRuleInvalidSize = "geometry-invalid-size";
 constexpr const char* kRuleDegenerate = "geometry-degenerate";
 constexpr const char* kRuleIndexOutOfRange = "geometry-index-out-of-range";
 
-TriangleMesh tessellate_extrusion(const Extrusion& extrusion, Reporter& reporter);
+TriangleMesh tessellate_extrusion(const Extrusion& extrusion, ExtrusionFrames frames, Reporter& reporter);
 
 /// `mesh`, tessellated from `geometry` with `n` divisions, with texture coordinates as
 /// tessellate() documents them; vertices are split where corners need different ones. For a

@@ -111,7 +111,8 @@ Geometry read_extrusion(LoadContext& ctx, MappingReader& r) {
   for (std::size_t i = 0; i + 3 < orientation.size(); i += 4) {
     Eigen::Vector3d axis(orientation[i], orientation[i + 1], orientation[i + 2]);
     double angle = ctx.angle(orientation[i + 3], orientation_node.child(orientation_node->items[i + 3]));
-    e.orientation.emplace_back(angle, axis.norm() > 0 ? Eigen::Vector3d(axis.normalized()) : Eigen::Vector3d::UnitZ());
+    // The axis as written: Choreonoid does not normalise it (see ExtrusionFrames).
+    e.orientation.emplace_back(angle, axis);
   }
   e.scale = pairs(numbers_or_empty(ctx, r.take({"scale"})));
   assign_if(e.crease_angle, take_optional_angle(r, {"crease_angle", "creaseAngle"}));

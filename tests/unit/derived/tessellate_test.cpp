@@ -314,6 +314,39 @@ TEST_CASE("tessellate: extrusion spine along other directions turns the cross-se
   CHECK(sink.diagnostics().empty());
 }
 
+TEST_CASE("tessellate: ExtrusionFrames::kChoreonoid keeps Choreonoid's matrices for collinear spines") {
+  CollectingSink sink;
+  auto as_choreonoid = [&](const Extrusion& e) {
+    return tessellate(Geometry{e}, 20, sink, kWhere, ExtrusionFrames::kChoreonoid);
+  };
+  SUBCASE("+Y, +X and -Z: the unnormalised axis has length 1 or 0, so both modes give the same vertices") {
+    for (const Vector3d& end : {Vector3d(0, 0.05, 0), Vector3d(0.3, -0.05, 0), Vector3d(0, -0.05, -0.2)}) {
+      Extrusion e = simple_tank_track();
+      e.spine[1] = end;
+      const TriangleMesh rigid = run(e, 20, sink), skewed = as_choreonoid(e);
+      REQUIRE(rigid.vertices.size() == skewed.vertices.size());
+      for (std::size_t k = 0; k < rigid.vertices.size(); ++k)
+        CHECK((rigid.vertices[k] - skewed.vertices[k]).norm() < 1e-15);
+    }
+  }
+  SUBCASE("a spine along (1, 1, 0)/sqrt(2): the section is shrunk, not rotated") {
+    // y = (s, s, 0) with s = 1/sqrt(2): angle 45 degrees, cos = sin = s, a = (0, 0, -s).
+    // M = s I + (1 - s) a a^T + s [a]x = [[s, 1/2, 0], [-1/2, s, 0], [0, 0, s + (1 - s)/2]],
+    // so (x, 0, 0) -> x (s, -1/2, 0), of length x sqrt(3)/2 (a rotation would keep x), and
+    // (0, 0, z) -> z (0, 0, s + (1 - s)/2).
+    Extrusion e;
+    e.cross_section = {{-0.5, -0.25}, {0.5, -0.25}, {0.5, 0.25}, {-0.5, 0.25}, {-0.5, -0.25}};
+    e.spine = {{0, 0, 0}, {1, 1, 0}};
+    const TriangleMesh m = as_choreonoid(e);
+    REQUIRE(m.vertices.size() == 8);
+    const double s = 1 / std::sqrt(2.0);
+    CHECK((m.vertices[1] - m.vertices[0]).norm() == doctest::Approx(std::sqrt(3.0) / 2).epsilon(1e-12));
+    CHECK((m.vertices[2] - m.vertices[1]).norm() == doctest::Approx(0.5 * (s + (1 - s) / 2)).epsilon(1e-12));
+    CHECK(closed_and_consistent(m));
+  }
+  CHECK(sink.diagnostics().empty());
+}
+
 TEST_CASE("tessellate: torus-like extrusion with orientation and scale lists") {
   // Spine: a closed regular N-gon of radius R in the XZ plane (last point = first). At each
   // spine point the SCP has Y along the tangent and Z along the world Y axis (perpendicular to
