@@ -1,5 +1,6 @@
 #include "gltf_writer.h"
 
+#include "deep_stack.h"
 #include "gltf_finish.h"
 #include "json.h"
 
@@ -16,6 +17,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -69,6 +72,39 @@ std::optional<double> crease_angle_of(const Geometry& g) {
   return kPrimitiveCreaseAngle;
 }
 
+/// FNV-1a over the bytes of a mesh's arrays and its material.
+std::uint64_t mesh_hash(const aiMesh& m) {
+  std::uint64_t h = 1469598103934665603ull;
+  auto mix = [&h](const void* data, std::size_t bytes) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < bytes; ++i) h = (h ^ p[i]) * 1099511628211ull;
+  };
+  mix(&m.mMaterialIndex, sizeof m.mMaterialIndex);
+  mix(&m.mNumVertices, sizeof m.mNumVertices);
+  mix(m.mVertices, sizeof(aiVector3D) * m.mNumVertices);
+  mix(m.mNormals, sizeof(aiVector3D) * m.mNumVertices);
+  if (m.mTextureCoords[0]) mix(m.mTextureCoords[0], sizeof(aiVector3D) * m.mNumVertices);
+  for (unsigned f = 0; f < m.mNumFaces; ++f) mix(m.mFaces[f].mIndices, sizeof(unsigned) * m.mFaces[f].mNumIndices);
+  return h;
+}
+
+bool same_mesh(const aiMesh& a, const aiMesh& b) {
+  const std::size_t n = a.mNumVertices;
+  auto same = [n](const aiVector3D* x, const aiVector3D* y) {
+    return (x == nullptr) == (y == nullptr) && (!x || std::memcmp(x, y, sizeof(aiVector3D) * n) == 0);
+  };
+  if (a.mMaterialIndex != b.mMaterialIndex || a.mNumVertices != b.mNumVertices || a.mNumFaces != b.mNumFaces ||
+      !same(a.mVertices, b.mVertices) || !same(a.mNormals, b.mNormals) ||
+      !same(a.mTextureCoords[0], b.mTextureCoords[0]))
+    return false;
+  for (unsigned f = 0; f < a.mNumFaces; ++f) {
+    if (a.mFaces[f].mNumIndices != b.mFaces[f].mNumIndices ||
+        std::memcmp(a.mFaces[f].mIndices, b.mFaces[f].mIndices, sizeof(unsigned) * a.mFaces[f].mNumIndices) != 0)
+      return false;
+  }
+  return true;
+}
+
 class Writer {
  public:
   Writer(const Model& model, const Derived& derived, const GltfOptions& options, converters::OutputSet& output,
@@ -113,7 +149,7 @@ class Writer {
     converters::report_loss(sink_, at, kTarget, kind, what, hint);
   }
 
-  void write_link(aiNode* parent, std::size_t index);
+  aiNode* write_link(aiNode* parent, std::size_t index);
   void write_geometry(aiNode* link_node, const Link& link, bool visual);
   void write_shape(aiNode* parent, const Link& link, std::size_t s, const Eigen::Affine3d& X, bool report);
   void write_devices(aiNode* link_node, std::size_t link_index);
@@ -132,6 +168,7 @@ class Writer {
   aiNode* root_ = nullptr;
   std::unique_ptr<aiScene> scene_;
   std::vector<aiMesh*> meshes_;
+  std::unordered_map<std::uint64_t, std::vector<unsigned>> meshes_by_hash_;
   std::map<std::string, int> material_keys_;
   std::map<std::string, int> texture_keys_;  ///< resolved path + wrap modes -> texture
   std::map<std::string, int> image_keys_;    ///< resolved path -> image
@@ -265,8 +302,6 @@ int Writer::material_index(const Material& m, int texture) {
 
 unsigned Writer::add_mesh(const TriangleMesh& mesh, int material, const std::string& name) {
   auto* m = new aiMesh();
-  m->mName = aiString(fmt::format("{}{}", kMarker, tables_.mesh_names.size()));
-  tables_.mesh_names.push_back(name);
   m->mPrimitiveTypes = aiPrimitiveType_TRIANGLE;
   m->mMaterialIndex = static_cast<unsigned>(material);
   m->mNumVertices = static_cast<unsigned>(mesh.vertices.size());
@@ -296,7 +331,19 @@ unsigned Writer::add_mesh(const TriangleMesh& mesh, int material, const std::str
     for (int k = 0; k < 3; ++k)
       face.mIndices[k] = static_cast<unsigned>(mesh.triangles[f][static_cast<std::size_t>(k)]);
   }
+  // Identical meshes are written once and shared by their nodes: glTF instancing, and assimp's
+  // exporter copies its whole buffer for every mesh it appends (quadratic in the mesh count).
+  const std::uint64_t key = mesh_hash(*m);
+  for (unsigned index : meshes_by_hash_[key]) {
+    if (same_mesh(*meshes_[index], *m)) {
+      delete m;
+      return index;
+    }
+  }
+  m->mName = aiString(fmt::format("{}{}", kMarker, tables_.mesh_names.size()));
+  tables_.mesh_names.push_back(name);
   meshes_.push_back(m);
+  meshes_by_hash_[key].push_back(static_cast<unsigned>(meshes_.size() - 1));
   return static_cast<unsigned>(meshes_.size() - 1);
 }
 
@@ -498,7 +545,7 @@ void Writer::write_devices(aiNode* link_node, std::size_t link_index) {
   }
 }
 
-void Writer::write_link(aiNode* parent, std::size_t index) {
+aiNode* Writer::write_link(aiNode* parent, std::size_t index) {
   const Link& link = model_.links[index];
   NodeTable t;
   t.name = link.name;
@@ -540,7 +587,7 @@ void Writer::write_link(aiNode* parent, std::size_t index) {
   if (options_.geometry != GeometrySet::kCollision) write_geometry(n, link, true);
   if (options_.geometry != GeometrySet::kVisual) write_geometry(n, link, false);
   write_devices(n, index);
-  for (LinkIndex child : link.children) write_link(n, static_cast<std::size_t>(child));
+  return n;
 }
 
 bool Writer::run() {
@@ -553,7 +600,12 @@ bool Writer::run() {
   top.extras = Json::object();
   top.extras["up_axis_converted_from"] = "Z";
   root_ = node(nullptr, std::move(top));
-  if (!model_.links.empty()) write_link(root_, 0);
+  // Links are in depth-first pre-order, parents first: one pass, no recursion per tree level.
+  std::vector<aiNode*> link_nodes(model_.links.size(), nullptr);
+  for (std::size_t i = 0; i < model_.links.size(); ++i) {
+    const LinkIndex parent = model_.links[i].parent;
+    link_nodes[i] = write_link(parent >= 0 ? link_nodes[static_cast<std::size_t>(parent)] : root_, i);
+  }
 
   for (const ExtraJoint& ej : model_.extra_joints) {
     const std::string l1 = ej.link1 >= 0 ? model_.links[static_cast<std::size_t>(ej.link1)].name : "?";
@@ -607,8 +659,27 @@ bool Writer::run() {
 
 bool write_gltf(const Model& model, const Derived& derived, const GltfOptions& options, converters::OutputSet& output,
                 DiagnosticSink& sink) {
-  Writer writer(model, derived, options, output, sink);
-  return writer.run();
+  std::size_t depth = 0;
+  std::vector<std::size_t> depths(model.links.size(), 0);
+  for (std::size_t i = 0; i < model.links.size(); ++i) {
+    const LinkIndex parent = model.links[i].parent;
+    depths[i] = parent >= 0 ? depths[static_cast<std::size_t>(parent)] + 1 : 0;
+    depth = std::max(depth, depths[i]);
+  }
+  bool written = false;
+  // Each link adds a node level, and its frames and shapes a few more (frames nest at most as
+  // deep as the YAML depth limit).
+  const bool ran = run_with_stack(stack_for_depth(4 * depth + 512), [&] {
+    Writer writer(model, derived, options, output, sink);
+    written = writer.run();
+  });
+  if (!ran) {
+    report_rule(sink, "export-write", model.source,
+                fmt::format("no thread with a {} MB stack for a {}-level link tree could be started",
+                            stack_for_depth(4 * depth + 512) >> 20, depth));
+    output.fail();
+  }
+  return written;
 }
 
 }  // namespace bodyfmt::gltf

@@ -29,7 +29,8 @@ def tree(path, name, n, chain, expect):
 def main():
     out = sys.argv[1]
     os.makedirs(out, exist_ok=True)
-    clean = "# expect: bodyinfo exit=0\n# expect: bodycheck exit=0\n# expect: body2urdf exit=0\n"
+    clean = ("# expect: bodyinfo exit=0\n# expect: bodycheck exit=0\n# expect: body2urdf exit=0\n"
+             "# expect: body2gltf exit=0\n# limit: cpu=20\n")
     tree(os.path.join(out, "chain_100k.body"), "Chain", 100_000, True, "# A 100,000-link chain.\n" + clean)
     tree(os.path.join(out, "star_100k.body"), "Star", 100_000, False, "# A 100,000-link star.\n" + clean)
     with open(os.path.join(out, "multi_megabyte_scalar.body"), "w") as f:
