@@ -87,20 +87,34 @@ Front::Front(std::string tool_name, std::string description, Features features)
                   "the file name used for standard input in locations and to resolve its relative URIs");
 
   const std::string loading = "Loading";
+  // A limit of 0 or less would switch its guard off: a usage error, said in words (CLI11's
+  // PositiveNumber prints its range as a 300-digit double).
+  const CLI::Validator positive(
+      [](const std::string& value) {
+        std::size_t used = 0;
+        long long n = 0;
+        try {
+          n = std::stoll(value, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        return used == value.size() && n > 0 ? std::string() : "must be a whole number above 0, not " + value;
+      },
+      "N > 0");
   app_.add_option("--package-path", package_paths_, "a folder holding ROS packages for package:// URIs (repeatable)")
       ->allow_extra_args(false)
       ->group(loading);
   app_.add_flag("--no-meshes", no_meshes_, "do not import external mesh files")->group(loading);
   app_.add_option("--max-yaml-nodes", load_options_.max_expanded_yaml_nodes,
                   "limit on YAML nodes after alias expansion")
-      ->check(CLI::PositiveNumber)
+      ->check(positive)
       ->group(loading);
   app_.add_option("--max-yaml-depth", load_options_.max_yaml_depth, "limit on YAML nesting depth")
-      ->check(CLI::PositiveNumber)
+      ->check(positive)
       ->group(loading);
   app_.add_option("--max-file-size", load_options_.max_file_bytes,
                   "largest file read, in bytes (the model, SubBody and YAML resources, meshes; default 256 MiB)")
-      ->check(CLI::PositiveNumber)
+      ->check(positive)
       ->group(loading);
 
   const std::string policy = "Diagnostics";

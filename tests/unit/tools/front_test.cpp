@@ -207,6 +207,14 @@ TEST_CASE("front: usage errors and unreadable inputs exit 2, in every tool") {
   for (const Tool& tool : tools()) {
     CAPTURE(tool.name);
     CHECK(run(invoke(tool, "--max-yaml-depth many warning.body")).status == 2);
+    // A limit of 0 or less would switch its guard off: refused, in words.
+    for (const char* limit :
+         {"--max-yaml-nodes -5", "--max-yaml-nodes 0", "--max-yaml-depth 0", "--max-file-size -1"}) {
+      CAPTURE(limit);
+      const Run r = run(invoke(tool, std::string(limit) + " warning.body"));
+      CHECK(r.status == 2);
+      CHECK(contains(r.output, "must be a whole number above 0, not "));
+    }
     CHECK(run(invoke(tool, "--color sometimes warning.body")).status == 2);
     CHECK(run(invoke(tool, "no-such-file.body")).status == 2);
     if (std::string(tool.name) == "bodycheck") continue;  // bodycheck searches directories
