@@ -3,10 +3,10 @@
 
 #include <doctest/doctest.h>
 
-#include <sys/stat.h>
-#include <sys/wait.h>
+#include "support/run_command.h"
 
-#include <cstdio>
+#include <sys/stat.h>
+
 #include <filesystem>
 #include <string>
 
@@ -16,22 +16,10 @@ using bodyfmt::test::read;
 
 namespace {
 
-struct Run {
-  int status = -1;
-  std::string output;  // stdout, then stderr
-};
+using Run = bodyfmt::test::CommandResult;  // stdout, then stderr
 
 Run bodycheck_in(const fs::path& dir, const std::string& args) {
-  const std::string command = "cd '" + dir.string() + "' && '" + BODYFMT_BODYCHECK + "' --no-config " + args + " 2>&1";
-  Run run;
-  FILE* pipe = popen(command.c_str(), "r");
-  REQUIRE(pipe != nullptr);
-  char buffer[4096];
-  std::size_t n;
-  while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) run.output.append(buffer, n);
-  const int status = pclose(pipe);
-  run.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
+  return bodyfmt::test::run_command("'" + std::string(BODYFMT_BODYCHECK) + "' --no-config " + args, dir.string());
 }
 
 fs::path copy_data(const std::string& name) {

@@ -3,30 +3,17 @@
 // the output are relative and stable.
 #include <doctest/doctest.h>
 
-#include <sys/wait.h>
+#include "support/run_command.h"
 
-#include <cstdio>
 #include <string>
 
 namespace {
 
-struct Run {
-  int status = -1;
-  std::string output;  // stdout, then stderr when `merge`
-};
+using Run = bodyfmt::test::CommandResult;  // stdout, then stderr when merged
 
 Run bodycheck(const std::string& args, bool merge = true) {
-  const std::string command = std::string("cd '") + BODYFMT_TEST_DATA_DIR + "/bodycheck' && '" + BODYFMT_BODYCHECK +
-                              "' " + args + (merge ? " 2>&1" : " 2>/dev/null");
-  Run run;
-  FILE* pipe = popen(command.c_str(), "r");
-  REQUIRE(pipe != nullptr);
-  char buffer[4096];
-  std::size_t n;
-  while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) run.output.append(buffer, n);
-  const int status = pclose(pipe);
-  run.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
+  return bodyfmt::test::run_command("'" + std::string(BODYFMT_BODYCHECK) + "' " + args + (merge ? "" : " 2>/dev/null"),
+                                    std::string(BODYFMT_TEST_DATA_DIR) + "/bodycheck", merge);
 }
 
 bool contains(const std::string& text, const std::string& what) { return text.find(what) != std::string::npos; }

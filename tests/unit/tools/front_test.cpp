@@ -3,9 +3,8 @@
 // same --disable, the source line and caret, colour, usage errors and exit codes.
 #include <doctest/doctest.h>
 
-#include <sys/wait.h>
+#include "support/run_command.h"
 
-#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -34,28 +33,11 @@ std::vector<Tool> tools() {
   };
 }
 
-struct Run {
-  int status = -1;
-  std::string output;  // stdout and stderr
-};
+using Run = bodyfmt::test::CommandResult;  // stdout and stderr
 
 /// Runs `command` with bash (for <(...)) in tests/data/bodycheck, stdout and stderr merged.
 Run run(const std::string& command) {
-  const std::string script = std::string("cd '") + BODYFMT_TEST_DATA_DIR + "/bodycheck' && " + command + " 2>&1";
-  const std::string quoted = "bash -c '" + [&] {
-    std::string s;
-    for (char c : script) s += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return s;
-  }() + "'";
-  Run r;
-  FILE* pipe = popen(quoted.c_str(), "r");
-  REQUIRE(pipe != nullptr);
-  char buffer[4096];
-  std::size_t n;
-  while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) r.output.append(buffer, n);
-  const int status = pclose(pipe);
-  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  return bodyfmt::test::run_command(command, std::string(BODYFMT_TEST_DATA_DIR) + "/bodycheck");
 }
 
 std::string invoke(const Tool& tool, const std::string& args) {
