@@ -89,7 +89,9 @@ TEST_CASE("outputs: no exporter writes over an input of its run: the model, a Su
       targets.emplace_back("sub.body", "it is a model file it includes of this run ('");
       targets.emplace_back("parts/plate.stl", "it is a mesh of the model of this run ('");
     }
-    for (const auto& [target, why] : targets) {
+    for (const auto& entry : targets) {
+      const std::string& target = entry.first;  // not a structured binding: CAPTURE's lambda takes it
+      const std::string& why = entry.second;
       CAPTURE(target);
       const auto r = run_command("'" + tool.binary + "' -q main.body -o " + target, dir.string());
       CHECK(r.status == 2);
