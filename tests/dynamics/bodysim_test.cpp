@@ -91,6 +91,29 @@ TEST_CASE("bodysim: usage errors exit 2") {
   CHECK(contains(arm.all, "the tank suite needs a free root link"));
 }
 
+TEST_CASE("bodysim: a model over --max-links is refused at its first link over the limit, before any work") {
+  // A 6-link chain, one line per link: with --max-links 4, link 5 (L4: line 9, its name at column
+  // 12) is the first over.
+  const std::filesystem::path model = std::filesystem::temp_directory_path() / "bodysim_test_chain.body";
+  {
+    std::ofstream out(model);
+    out << "format: ChoreonoidBody\nformat_version: 2.0\nname: Chain\nlinks:\n"
+           "  - {name: L0, joint_type: free, mass: 1, inertia: [0.1, 0, 0, 0, 0.1, 0, 0, 0, 0.1]}\n";
+    for (int i = 1; i < 6; ++i)
+      out << "  - {name: L" << i << ", parent: L" << i - 1
+          << ", joint_type: revolute, joint_axis: Z, joint_id: " << i - 1
+          << ", translation: [0.1, 0, 0], mass: 1, inertia: [0.1, 0, 0, 0, 0.1, 0, 0, 0, 0.1]}\n";
+  }
+  const Run over = bodysim("check --max-links 4 '" + model.string() + "'");
+  CHECK(over.status == 2);
+  CHECK(contains(over.all,
+                 "bodysim_test_chain.body:9:12: fatal error: the model has 6 links, more than bodysim "
+                 "simulates (--max-links 4); this is link 5, the first over the limit [dynamics-model-size]"));
+  CHECK(contains(over.all, "nothing was simulated"));
+  CHECK(bodysim("check --max-links 0 '" + model.string() + "'").status == 2);  // a usage error
+  std::filesystem::remove(model);
+}
+
 TEST_CASE("bodysim: run writes the scenario's trajectory as CSV") {
   const std::filesystem::path csv = std::filesystem::temp_directory_path() / "bodysim_test_run.csv";
   std::filesystem::remove(csv);

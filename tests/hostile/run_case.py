@@ -26,7 +26,7 @@ import subprocess
 import sys
 import tempfile
 
-TOOLS = ["bodyinfo", "bodycheck", "body2urdf", "body2mjcf", "body2gltf"]
+TOOLS = ["bodyinfo", "bodycheck", "body2urdf", "body2mjcf", "body2gltf", "bodysim"]
 # "Within a few seconds": CPU seconds per tool run, so that a loaded machine does not fail a
 # fast tool; the wall-clock limit only catches hangs. Sanitizer builds run several times
 # slower: tests/fuzz/run.sh scales both with BODYFMT_TIME_SCALE.
@@ -52,6 +52,8 @@ def main():
     with tempfile.TemporaryDirectory() as out:
         for tool in TOOLS:
             args = [os.path.join(bin_dir, tool), model]
+            if tool == "bodysim":
+                args = [os.path.join(bin_dir, tool), "check", model]  # the generic dynamics checks
             if tool.startswith("body2"):
                 extension = {"body2gltf": "glb"}.get(tool, tool[len("body2"):])
                 args += ["-o", os.path.join(out, "out." + extension)]

@@ -74,6 +74,7 @@ int main(int argc, char** argv) {
   dynamics::TankSuiteOptions suite;
   dynamics::SimOptions& sim = suite.sim;
   std::string scenario_path, csv_path, cross_check;
+  std::size_t max_links = 200;
   app.add_flag("--balance-inertia", sim.balance_inertia,
                "simulate links with an unphysical inertia with the nearest valid one (a warning per link)");
   app.add_option("--accuracy", sim.accuracy, "Runge-Kutta-Merson accuracy (default 1e-5)")
@@ -91,6 +92,9 @@ int main(int argc, char** argv) {
   app.add_option("--transition-velocity", sim.contact_params.transition_velocity,
                  "slip speed at which friction reaches μ (m/s, default 0.05)")
       ->check(CLI::Range(1e-5, 1.0));
+  app.add_option("--max-links", max_links,
+                 "refuse models with more links (default 200; integration time grows faster than the link count)")
+      ->check(CLI::PositiveNumber);
   if (command == "check-tank") {
     app.add_option("--cross-check", cross_check,
                    "also run the drive, spin and turret scenarios in MuJoCo 2.2.2 on body2mjcf's export")
@@ -122,6 +126,16 @@ int main(int argc, char** argv) {
   };
   if (!model) return finish(true, "");
   if (collected.error_count() > 0) return finish(true, "the model has errors; nothing was simulated");
+  if (model->links.size() > max_links) {
+    const Link& first_over = model->links[max_links];
+    report_rule(sink, "dynamics-model-size",
+                first_over.sources.name.known() ? first_over.sources.name : first_over.source,
+                fmt::format("the model has {} links, more than bodysim simulates (--max-links {}); this is link {}, "
+                            "the first over the limit",
+                            model->links.size(), max_links, max_links + 1),
+                "raise --max-links to simulate it anyway; 100 links take seconds, 300 links about half a minute");
+    return finish(true, "the model is too large to simulate; nothing was simulated");
+  }
   const Derived derived = compute_derived(*model, sink);
   if (sim.contact_model == dynamics::ContactModel::kSimbody) {
     // Simbody's elastic-foundation meshes did not finish 1 simulated second of SimpleTank (its
