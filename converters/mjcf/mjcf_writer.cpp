@@ -972,7 +972,11 @@ bool Writer::run() {
   for (const auto& [name, m] : materials_) {
     XMLElement* e = element(asset_, "material");
     e->SetAttribute("name", name.c_str());
-    const Eigen::Vector4d rgba(m.diffuse_color.x(), m.diffuse_color.y(), m.diffuse_color.z(), 1.0 - m.transparency);
+    // Colours are fractions (appearance-value-range reports others); MuJoCo refuses a float overflow.
+    const Eigen::Vector4d rgba =
+        Eigen::Vector4d(m.diffuse_color.x(), m.diffuse_color.y(), m.diffuse_color.z(), 1.0 - m.transparency)
+            .cwiseMax(0.0)
+            .cwiseMin(1.0);
     e->SetAttribute("rgba", converters::format_vector(rgba).c_str());
     // MuJoCo has scalar specular, shininess and emission (emission scales rgba): the colours'
     // means, and the exponent back on VRML's 0..1 shininess (exponent = 127 shininess + 1).

@@ -179,8 +179,11 @@ void Writer::write_inertial(XMLElement* link_el, std::size_t index) {
 }
 
 std::string Writer::material_name(const Material& material) {
-  const Eigen::Vector4d rgba(material.diffuse_color.x(), material.diffuse_color.y(), material.diffuse_color.z(),
-                             1.0 - material.transparency);
+  // Colours are fractions (appearance-value-range reports others): written clamped.
+  const Eigen::Vector4d rgba = Eigen::Vector4d(material.diffuse_color.x(), material.diffuse_color.y(),
+                                               material.diffuse_color.z(), 1.0 - material.transparency)
+                                   .cwiseMax(0.0)
+                                   .cwiseMin(1.0);
   const std::string key = format_vector(rgba);
   auto it = material_by_rgba_.find(key);
   if (it != material_by_rgba_.end()) return it->second;

@@ -231,6 +231,10 @@ std::vector<RuleInfo> make_table() {
        "the exported body simulates differently from the model as written unless this is reported; --strict does not "
        "refuse it",
        ""},
+      {"appearance-value-range", W,
+       "a material colour component or transparency is outside 0..1; Choreonoid keeps it and its renderer clamps it",
+       "exporters must write the clamped value (MuJoCo refuses a colour of 4e68), and the author likely mistyped it",
+       ""},
       // Dynamics checker (dynamics/, bodysim)
       {"dynamics-contact-geometry", W,
        "bodysim --contact simbody could not turn a collision shape into Simbody contact geometry (a Brick needs a "

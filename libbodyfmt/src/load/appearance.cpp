@@ -5,6 +5,8 @@
 #include "load/uri.h"
 #include "load/values.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 
 namespace bodyfmt::detail {
@@ -27,11 +29,29 @@ Appearance read_appearance(LoadContext& ctx, const yaml::NodeRef& appearance) {
       Material material;
       MappingReader mr(ctx, m, "material");
       assign_if(material.ambient_intensity, take_optional_double(mr, {"ambient", "ambientIntensity"}));
-      if (auto v = mr.take({"diffuse", "diffuseColor"})) assign_if(material.diffuse_color, read_optional_vec3(ctx, v));
-      if (auto v = mr.take({"emissive", "emissiveColor"}))
-        assign_if(material.emissive_color, read_optional_vec3(ctx, v));
-      if (auto v = mr.take({"specular", "specularColor"}))
-        assign_if(material.specular_color, read_optional_vec3(ctx, v));
+      // Colours and transparency are fractions: Choreonoid keeps any number and the renderer
+      // clamps it, so the model keeps it too and the exporters write the clamped value.
+      auto fraction = [&](const yaml::NodeRef& at, const char* key, double value) {
+        if (value >= 0.0 && value <= 1.0) return;
+        ctx.report("appearance-value-range", at,
+                   fmt::format("{} {:g} is outside 0..1; renderers and exporters use {:g}", key, value,
+                               std::clamp(value, 0.0, 1.0)),
+                   "write a value from 0 to 1");
+      };
+      auto colour = [&](const yaml::NodeRef& v, const char* key, Eigen::Vector3d& into) {
+        const std::optional<Eigen::Vector3d> c = read_optional_vec3(ctx, v);
+        if (!c) return;
+        into = *c;
+        for (int i = 0; i < 3; ++i) {
+          if ((*c)[i] < 0.0 || (*c)[i] > 1.0) {
+            fraction(v, key, (*c)[i]);
+            break;
+          }
+        }
+      };
+      if (auto v = mr.take({"diffuse", "diffuseColor"})) colour(v, "diffuse", material.diffuse_color);
+      if (auto v = mr.take({"emissive", "emissiveColor"})) colour(v, "emissive", material.emissive_color);
+      if (auto v = mr.take({"specular", "specularColor"})) colour(v, "specular", material.specular_color);
       if (auto v = mr.take({"specular_exponent"})) {
         assign_if(material.specular_exponent, optional_double(ctx, v));
         if (auto shininess = mr.take({"shininess"}))
@@ -46,7 +66,12 @@ Appearance read_appearance(LoadContext& ctx, const yaml::NodeRef& appearance) {
                      "write specular_exponent: " + std::to_string(material.specular_exponent));
         }
       }
-      assign_if(material.transparency, take_optional_double(mr, {"transparency"}));
+      if (auto v = mr.take({"transparency"})) {
+        if (auto t = optional_double(ctx, v)) {
+          material.transparency = *t;
+          fraction(v, "transparency", *t);
+        }
+      }
       mr.report_unknown(
           {"ambient", "diffuse", "emissive", "specular", "specular_exponent", "shininess", "transparency"});
       result.material = material;

@@ -7,6 +7,10 @@
 #include "unit/validate/validate_support.h"
 
 #include <doctest/doctest.h>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include <algorithm>
 #include <initializer_list>
@@ -226,6 +230,19 @@ TEST_CASE("validate: load-plugin-node (loader)") {
 }
 TEST_CASE("validate: yaml-undefined-alias (loader)") {
   expect_finding("yaml-undefined-alias.body", "yaml-undefined-alias", {9, 21});
+}
+TEST_CASE("validate: appearance-value-range (loader), and MuJoCo reads the clamped export") {
+  expect_finding("appearance-value-range.body", "appearance-value-range", {13, 44});
+  // Found by fuzz_mjcf: a diffuse of 4e68 was written as rgba="4e+68 ..." and MuJoCo refused the
+  // whole file ("problem reading attribute 'rgba'"). The exports now write 1 and alpha 1.
+  const std::string body = std::string(BODYFMT_TEST_DATA_DIR) + "/validate/appearance-value-range.body";
+  const std::string xml = (std::filesystem::temp_directory_path() / "bodyfmt_colour_range.xml").string();
+  REQUIRE(std::system(
+              ("'" + std::string(BODYFMT_BODY2MJCF) + "' -q '" + body + "' -o '" + xml + "' 2>/dev/null").c_str()) ==
+          0);
+  std::ifstream in(xml);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  CHECK(text.find("rgba=\"1 0.9 0.5 1\"") != std::string::npos);
 }
 TEST_CASE("validate: yaml-anchor-redefined (loader)") {
   expect_finding("yaml-anchor-redefined.body", "yaml-anchor-redefined", {5, 4});
