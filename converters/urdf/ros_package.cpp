@@ -38,8 +38,8 @@ std::optional<RosPackage> find_ros_package(const fs::path& start, std::string& w
   return std::nullopt;
 }
 
-std::optional<std::string> path_in_package(const RosPackage& package, const fs::path& path) {
-  const fs::path inside = path.lexically_normal().lexically_relative(package.root);
+std::optional<std::string> path_in_package(const fs::path& root, const fs::path& path) {
+  const fs::path inside = path.lexically_normal().lexically_relative(root.lexically_normal());
   if (inside.empty() || *inside.begin() == "..") return std::nullopt;
   return inside.generic_string();
 }

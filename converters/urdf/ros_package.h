@@ -17,7 +17,8 @@ struct RosPackage {
 /// none, or when it cannot be read or declares no name.
 std::optional<RosPackage> find_ros_package(const std::filesystem::path& start, std::string& why);
 
-/// `path` (absolute) as a path inside `package`, '/'-separated; nullopt when it is outside.
-std::optional<std::string> path_in_package(const RosPackage& package, const std::filesystem::path& path);
+/// `path` (absolute) as a path inside the package folder `root`, '/'-separated (what follows
+/// `package://NAME/`); nullopt when it is outside.
+std::optional<std::string> path_in_package(const std::filesystem::path& root, const std::filesystem::path& path);
 
 }  // namespace bodyfmt::urdf

@@ -1,5 +1,7 @@
 #include "urdf_writer.h"
 
+#include "ros_package.h"
+
 #include <bodyfmt/converters/loss.h>
 #include <bodyfmt/converters/names.h>
 #include <bodyfmt/converters/numbers.h>
@@ -108,10 +110,9 @@ class Writer {
     if (options_.package_uri.empty()) return relative;
     if (options_.package_root.empty()) return options_.package_uri + relative;
     std::error_code ec;
-    const fs::path inside = (fs::absolute(output_.directory(), ec) / relative)
-                                .lexically_normal()
-                                .lexically_relative(options_.package_root.lexically_normal());
-    return options_.package_uri + inside.generic_string();
+    // Staged paths stay inside the package (OutputSet::allow_root), so this always has a value.
+    return options_.package_uri +
+           path_in_package(options_.package_root, fs::absolute(output_.directory(), ec) / relative).value_or(relative);
   }
   std::string material_name(const Material& material);
   void write_joint(std::size_t index, const std::string& joint_name);

@@ -84,7 +84,7 @@ int main(int argc, char** argv) {
   if (!options.mesh_folder.empty()) {
     std::string why = tools::check_inside_output_folder(options.mesh_folder);
     if (!why.empty() && package && fs::path(options.mesh_folder).is_relative() &&
-        urdf::path_in_package(*package, out_dir / options.mesh_folder))
+        urdf::path_in_package(package->root, out_dir / options.mesh_folder))
       why.clear();
     if (!why.empty()) {
       front.print_error("--mesh-folder " + options.mesh_folder + ": " + why +
