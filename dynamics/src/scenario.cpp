@@ -105,8 +105,8 @@ std::optional<ScenarioSpec> read_scenario(const std::string& path, const Model& 
   for (const yaml::MapEntry& entry : root->entries) {
     const yaml::NodeRef& value = entry.value;
     if (entry.key == "duration" || entry.key == "sample") {
-      if (std::optional<double> v = r.number(value, "'" + entry.key + "'")) {
-        if (!(*v > 0)) r.error(value, "'" + entry.key + "' must be positive");
+      if (std::optional<double> v = r.number(value, "'" + std::string(entry.key) + "'")) {
+        if (!(*v > 0)) r.error(value, "'" + std::string(entry.key) + "' must be positive");
         (entry.key == "duration" ? spec.duration : spec.sample) = *v;
         has_duration = has_duration || entry.key == "duration";
       }
@@ -167,7 +167,7 @@ std::optional<ScenarioSpec> read_scenario(const std::string& path, const Model& 
             r.keys(j.value, {"target", "p", "d", "torque"});
             ScenarioServo servo;
             for (const yaml::MapEntry& field : j.value->entries) {
-              std::optional<double> v = r.number(field.value, "'" + field.key + "'");
+              std::optional<double> v = r.number(field.value, "'" + std::string(field.key) + "'");
               if (field.key == "target") servo.target = v;
               if (field.key == "p") servo.p = v;
               if (field.key == "d") servo.d = v;

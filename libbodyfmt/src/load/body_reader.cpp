@@ -166,7 +166,7 @@ void BodyReader::report_upgrade(const Model& model) {
     problem = "the angle at " + at.file.str() + ":" + std::to_string(at.line) + ":" + std::to_string(at.column) +
               " is not written as a plain number";
   }
-  std::string message = "format " + version_node_->scalar + " file";
+  std::string message = "format " + std::string(version_node_->scalar) + " file";
   if (!ctx_.degrees)
     message += " with angles in radians (" + std::to_string(ctx_.upgrade_fixes.size()) + " angle values)";
   message += "; 2.0 is the current format (snake_case keys, degrees)";
@@ -194,7 +194,7 @@ bool BodyReader::read_header(const yaml::NodeRef& root, Model& model) {
   }
   if (format->scalar != "ChoreonoidBody") {
     ctx_.report("load-format", format.use_site(),
-                "the format \"" + format->scalar + "\" cannot be loaded as a Choreonoid body model");
+                "the format \"" + std::string(format->scalar) + "\" cannot be loaded as a Choreonoid body model");
     return false;
   }
   yaml::NodeRef version = r.take({"format_version", "formatVersion"});
@@ -207,7 +207,7 @@ bool BodyReader::read_header(const yaml::NodeRef& root, Model& model) {
   if (!v) return false;
   if (*v >= 2.1) {
     ctx_.report("load-format-version", version.use_site(),
-                "version " + version->scalar + " of the Choreonoid body format is not supported");
+                "version " + std::string(version->scalar) + " of the Choreonoid body format is not supported");
     return false;
   }
   model.format_version = *v;
@@ -231,10 +231,10 @@ bool BodyReader::read_header(const yaml::NodeRef& root, Model& model) {
   if (auto name = r.take({"name"})) model.name = name->scalar;
   if (auto handlers = r.take({"body_handlers"})) {
     if (handlers->is_scalar())
-      model.body_handlers.push_back(handlers->scalar);
+      model.body_handlers.emplace_back(handlers->scalar);
     else if (handlers->is_sequence())
       for (const auto& h : handlers->items)
-        if (h->is_scalar()) model.body_handlers.push_back(h->scalar);
+        if (h->is_scalar()) model.body_handlers.emplace_back(h->scalar);
   }
   return true;
 }
@@ -261,13 +261,13 @@ void BodyReader::read_links(const yaml::NodeRef& links, Model& model, std::vecto
     if (links->items.empty()) ctx_.report("load-no-links", links, "no link is contained in the \"links\" listing");
     for (const yaml::NodeRef& item : links->items) {
       const yaml::MapEntry* type = item->is_mapping() ? item->find("type") : nullptr;
-      read_one(item, type ? type->value->scalar : std::string());
+      read_one(item, type ? std::string(type->value->scalar) : std::string());
     }
   } else if (links->is_mapping()) {
     std::vector<const yaml::MapEntry*> sorted;
     for (const auto& e : links->entries) sorted.push_back(&e);
     std::sort(sorted.begin(), sorted.end(), [](auto* a, auto* b) { return a->key < b->key; });
-    for (const yaml::MapEntry* e : sorted) read_one(e->value, e->key);
+    for (const yaml::MapEntry* e : sorted) read_one(e->value, std::string(e->key));
   } else {
     ctx_.report("load-no-links", links, "invalid value specified in the \"links\" key");
   }
@@ -434,10 +434,10 @@ bool BodyReader::build_tree(Model& model, const std::vector<LinkEntry>& entries,
   const LinkNames names = index_link_names(model);
   LinkIndex root = 0;
   if (root_link) {
-    auto it = names.by_name.find(root_link->scalar);
+    auto it = names.by_name.find(std::string(root_link->scalar));
     if (it == names.by_name.end()) {
       ctx_.report("structure-root-link", root_link.use_site(),
-                  "link \"" + root_link->scalar + "\" specified in root_link is not defined");
+                  "link \"" + std::string(root_link->scalar) + "\" specified in root_link is not defined");
       return false;
     }
     root = it->second;
@@ -476,7 +476,7 @@ void BodyReader::read_extra_joints(const yaml::NodeRef& extra_joints, Model& mod
       LinkIndex index = model.find_link(name->scalar);
       if (index < 0) {
         ctx_.report("extra-joint-link", name,
-                    "the link \"" + name->scalar + "\" specified in " + snake + " is not found");
+                    "the link \"" + std::string(name->scalar) + "\" specified in " + snake + " is not found");
         ok = false;
       }
       (k == 1 ? joint.link1 : joint.link2) = index;
@@ -487,7 +487,7 @@ void BodyReader::read_extra_joints(const yaml::NodeRef& extra_joints, Model& mod
       ok = false;
     } else if (type->scalar != "fixed" && type->scalar != "hinge" && type->scalar != "ball" &&
                type->scalar != "piston") {
-      ctx_.report("extra-joint-type", type, "joint type \"" + type->scalar + "\" is not available",
+      ctx_.report("extra-joint-type", type, "joint type \"" + std::string(type->scalar) + "\" is not available",
                   "use fixed, hinge, ball or piston");
       ok = false;
     } else {

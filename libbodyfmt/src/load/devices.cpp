@@ -39,7 +39,7 @@ std::optional<Eigen::Vector3d> opt_vec3(MappingReader& r, KeyNames names) {
 
 std::string opt_string(MappingReader& r, KeyNames names, std::string fallback) {
   yaml::NodeRef ref = r.take(names);
-  if (ref && ref->is_scalar()) return ref->scalar;
+  if (ref && ref->is_scalar()) return std::string(ref->scalar);
   return fallback;
 }
 

@@ -75,13 +75,13 @@ void ElementReader::read_elements(const yaml::NodeRef& elements, const ElementFr
         ctx_.report("load-missing-key", item, "key \"type\" is not found in this element");
         continue;
       }
-      read_node(item, type->value->scalar, frame);
+      read_node(item, std::string(type->value->scalar), frame);
     }
     return;
   }
   if (elements->is_mapping()) {
     if (const yaml::MapEntry* type = elements->find("type")) {
-      read_node(elements, type->value->scalar, frame);
+      read_node(elements, std::string(type->value->scalar), frame);
       return;
     }
     // body-format-spec §7.1 form 3: keys are node types, visited in byte-wise order.
@@ -91,16 +91,16 @@ void ElementReader::read_elements(const yaml::NodeRef& elements, const ElementFr
               [](const yaml::MapEntry* a, const yaml::MapEntry* b) { return a->key < b->key; });
     for (const yaml::MapEntry* e : entries) {
       if (!e->value->is_mapping()) {
-        ctx_.report("load-type", e->value, "the \"" + e->key + "\" element must be a mapping");
+        ctx_.report("load-type", e->value, "the \"" + std::string(e->key) + "\" element must be a mapping");
         continue;
       }
       if (const yaml::MapEntry* inner = e->value->find("type"); inner && inner->value->scalar != e->key) {
         ctx_.report("load-type-mismatch", inner->value,
-                    "the node type \"" + inner->value->scalar + "\" is different from the type \"" + e->key +
-                        "\" specified in the parent node");
+                    "the node type \"" + std::string(inner->value->scalar) + "\" is different from the type \"" +
+                        std::string(e->key) + "\" specified in the parent node");
         continue;
       }
-      read_node(elements.child(e->value), e->key, frame);
+      read_node(elements.child(e->value), std::string(e->key), frame);
     }
     return;
   }
@@ -303,8 +303,8 @@ void ElementReader::read_device(const yaml::NodeRef& node, const std::string& ty
   d.link = link_;
   d.source = node.use_site();
   for (const yaml::MapEntry& e : node->entries) {
-    if (e.value->is_scalar()) d.keys[e.key] = e.value->scalar;
-    d.key_sources[e.key] = node.child(e.value).use_site();
+    if (e.value->is_scalar()) d.keys[std::string(e.key)] = e.value->scalar;
+    d.key_sources[std::string(e.key)] = node.child(e.value).use_site();
   }
   if (auto name = r.take({"name"})) d.name = name->scalar;
   if (auto id = r.take({"id"})) {

@@ -268,7 +268,7 @@ std::optional<Geometry> read_geometry(LoadContext& ctx, const yaml::NodeRef& geo
   }
   r.take({"extra_division_number"});
   r.take({"extra_division_mode"});
-  const std::string& t = type->scalar;
+  const std::string_view t = type->scalar;
   if (t == "Box") return read_box(ctx, r);
   if (t == "Sphere") return read_sphere(ctx, r);
   if (t == "Cylinder") return read_cylinder(ctx, r);
@@ -283,7 +283,7 @@ std::optional<Geometry> read_geometry(LoadContext& ctx, const yaml::NodeRef& geo
                                                        "Capsule",      "Extrusion", "ElevationGrid", "IndexedFaceSet",
                                                        "TriangleMesh", "Resource"};
   std::string_view guess = text::suggest(t, kTypes);
-  ctx.report("geometry-unknown-type", type, "unknown geometry \"" + t + "\"",
+  ctx.report("geometry-unknown-type", type, "unknown geometry \"" + std::string(t) + "\"",
              guess.empty() ? std::string() : "did you mean " + std::string(guess) + "?");
   return std::nullopt;
 }

@@ -33,7 +33,7 @@ const std::vector<std::string_view> kLinkKeys = {"type",
                                                  "elements",
                                                  "import"};
 
-std::optional<JointType> parse_joint_type(const std::string& s) {
+std::optional<JointType> parse_joint_type(std::string_view s) {
   if (s == "fixed") return JointType::kFixed;
   if (s == "free") return JointType::kFree;
   if (s == "revolute") return JointType::kRevolute;
@@ -51,14 +51,14 @@ void read_joint(LoadContext& ctx, MappingReader& r, Link& link) {
         std::vector<FixIt> fixes;
         if (auto fix = edit_value(*t, std::string(joint_type_name(*type)), FixSafety::kSafe))
           fixes.push_back(std::move(*fix));
-        ctx.report("load-legacy-key", t, "legacy joint type \"" + t->scalar + "\"",
+        ctx.report("load-legacy-key", t, "legacy joint type \"" + std::string(t->scalar) + "\"",
                    std::string("write ") + std::string(joint_type_name(*type)), std::move(fixes));
       }
     } else {
       std::string hint;
       if (t->scalar == "continuous" || t->scalar == "hinge")
         hint = "use revolute (with joint_range: unlimited for a continuous joint)";
-      ctx.report("load-joint-type", t, "illegal joint type \"" + t->scalar + "\"", hint);
+      ctx.report("load-joint-type", t, "illegal joint type \"" + std::string(t->scalar) + "\"", hint);
     }
   }
   if (auto mode = r.take({"actuation_mode", "actuationMode"})) {
@@ -73,7 +73,7 @@ void read_joint(LoadContext& ctx, MappingReader& r, Link& link) {
       ctx.report("load-legacy-key", mode, "actuation mode \"jointSurfaceVelocity\" is deprecated",
                  "write joint_type: pseudo_continuous_track");
     } else if (std::find(kModes.begin(), kModes.end(), mode->scalar) == kModes.end()) {
-      ctx.report("load-actuation-mode", mode, "illegal actuation mode \"" + mode->scalar + "\"");
+      ctx.report("load-actuation-mode", mode, "illegal actuation mode \"" + std::string(mode->scalar) + "\"");
     }
   }
   const bool revolute = link.joint_type == JointType::kRevolute;

@@ -12,7 +12,7 @@ namespace bodyfmt::detail {
 
 namespace {
 
-std::optional<FixIt> edit_span(const SourceLocation& at, const yaml::TextSpan& span, const std::string& original,
+std::optional<FixIt> edit_span(const SourceLocation& at, const yaml::TextSpan& span, std::string_view original,
                                std::string replacement, FixSafety safety) {
   if (!span.editable()) return std::nullopt;
   FixIt fix;
@@ -48,7 +48,9 @@ void LoadContext::report(std::string_view rule, const yaml::NodeRef& at, std::st
   if (!at) return report(rule, SourceLocation{}, std::move(message), std::move(hint));
   // Point at the text responsible; when it was reached through an alias (directly or as
   // part of shared text), `via` names the alias use that led to it (style.md §2.3).
-  std::optional<SourceLocation> via = at.alias_site ? at.alias_site : at.enclosing_alias;
+  const SourceLocation* via_site = at.alias_site != nullptr ? at.alias_site : at.enclosing_alias;
+  std::optional<SourceLocation> via;
+  if (via_site != nullptr) via = *via_site;
   emit(rule, at->location, std::move(via), std::move(message), std::move(hint), std::move(fixes));
 }
 
@@ -88,7 +90,7 @@ void LoadContext::record_upgrade(const yaml::NodeRef& at, double radians) {
 void LoadContext::note_angle(const yaml::NodeRef& at) {
   if (degrees || !at || !at->is_scalar()) return;
   // Lenient like Choreonoid's required reads (§1.2): the numeric prefix.
-  const char* text = at->scalar.c_str();
+  const char* text = at->scalar.data();  // NUL-terminated
   char* end = nullptr;
   const double value = std::strtod(text, &end);
   if (end != text) record_upgrade(at, value);

@@ -78,11 +78,12 @@ void MappingReader::report_unknown(const std::vector<std::string_view>& known) {
       if (unique_guess(entry.key, candidates, guess) && !mapping_->find(guess) && !has_spelling_of(guess))
         if (auto fix = edit_key(entry, std::string(guess), FixSafety::kUnsafe)) fixes.push_back(std::move(*fix));
       ctx_.report("load-unknown-key", entry.key_location,
-                  "unknown key \"" + entry.key + "\" in " + what_ + "; did you mean \"" + std::string(guess) + "\"?",
+                  "unknown key \"" + std::string(entry.key) + "\" in " + what_ + "; did you mean \"" +
+                      std::string(guess) + "\"?",
                   "Choreonoid ignores it; rename it to " + std::string(guess), std::move(fixes));
     } else {
       ctx_.report("load-info-key", entry.key_location,
-                  "key \"" + entry.key + "\" is not part of the " + what_ + " format; it is kept as info");
+                  "key \"" + std::string(entry.key) + "\" is not part of the " + what_ + " format; it is kept as info");
     }
   }
 }

@@ -69,7 +69,7 @@ class Resources final : public ResourceReader {
       ctx_.report("load-missing-key", node, "key \"uri\" is not found in a Resource node");
       return;
     }
-    std::string path = resolve_uri(ctx_, uri, uri->scalar, uri->location.file);
+    std::string path = resolve_uri(ctx_, uri, std::string(uri->scalar), uri->location.file);
     if (path.empty()) return;
     std::string ext = lower_extension(path);
     if (ext == ".yaml" || ext == ".yml") {
@@ -126,7 +126,7 @@ class Resources final : public ResourceReader {
       reader.read_elements(doc->root, frame);
       return;
     }
-    const std::string& name = fragment->scalar;
+    const std::string name(fragment->scalar);
     const yaml::Node* target = nullptr;
     if (auto it = doc->anchors.find(name); it != doc->anchors.end())
       target = it->second;
@@ -134,14 +134,15 @@ class Resources final : public ResourceReader {
       if (auto m = main_->anchors.find(name); m != main_->anchors.end()) target = m->second;
     }
     if (!target) {
-      ctx_.report("resource-fragment", fragment, "fragment \"" + name + "\" is not found in \"" + uri->scalar + "\"");
+      ctx_.report("resource-fragment", fragment,
+                  "fragment \"" + name + "\" is not found in \"" + std::string(uri->scalar) + "\"");
       return;
     }
     // The fragment is used like an alias: its findings point into the library file and name
     // the Resource node's `node:` as the use site.
     yaml::NodeRef ref;
     ref.node = target;
-    ref.alias_site = fragment.use_site();
+    ref.alias_site = &fragment.use_site();
     reader.read_elements(ref, frame);
   }
 
@@ -160,13 +161,13 @@ class Resources final : public ResourceReader {
     const std::optional<std::string> text = read_included_file(path, options_, why);
     if (!text) {
       ctx_.report("subbody-missing", uri,
-                  "sub-body \"" + uri->scalar + "\" cannot be read at \"" + path + "\": " + why);
+                  "sub-body \"" + std::string(uri->scalar) + "\" cannot be read at \"" + path + "\": " + why);
     } else {
       BodyReader reader(options_, ctx_.sink, session_);
       if (auto model = reader.read(*text, path, false))
         result = std::make_shared<const Model>(std::move(*model));
       else
-        ctx_.report("subbody-load", uri, "the sub-body \"" + uri->scalar + "\" cannot be loaded");
+        ctx_.report("subbody-load", uri, "the sub-body \"" + std::string(uri->scalar) + "\" cannot be loaded");
     }
     session_.subbodies[canonical] = result;
     return result;
@@ -180,7 +181,7 @@ class Resources final : public ResourceReader {
       ctx_.report("load-missing-key", node, "uri must be specified for a SubBody");
       return;
     }
-    std::string path = resolve_uri(ctx_, uri, uri->scalar, uri->location.file);
+    std::string path = resolve_uri(ctx_, uri, std::string(uri->scalar), uri->location.file);
     if (path.empty()) return;
     std::shared_ptr<const Model> sub = load_subbody(uri, path);
     if (!sub || sub->links.empty()) return;

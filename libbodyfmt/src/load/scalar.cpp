@@ -36,16 +36,16 @@ bool is_yaml_special_float(std::string_view text) {
 bool report_if_not_finite(LoadContext& ctx, const yaml::NodeRef& ref, double value) {
   if (std::isfinite(value)) return false;
   ctx.report("load-number", ref,
-             "the value \"" + ref->scalar + "\" is not finite (" + (std::isnan(value) ? "NaN" : "infinite") +
-                 "); masses, lengths and angles must be finite numbers");
+             "the value \"" + std::string(ref->scalar) + "\" is not finite (" +
+                 (std::isnan(value) ? "NaN" : "infinite") + "); masses, lengths and angles must be finite numbers");
   return true;
 }
 
 }  // namespace
 
-std::optional<double> parse_double_exact(const std::string& text) {
+std::optional<double> parse_double_exact(std::string_view text) {
   if (text.empty()) return std::nullopt;
-  const char* begin = text.c_str();
+  const char* begin = text.data();
   char* end = nullptr;
   double value = std::strtod(begin, &end);
   if (end == begin || !only_trailing_space(end)) return std::nullopt;
@@ -54,19 +54,19 @@ std::optional<double> parse_double_exact(const std::string& text) {
 
 std::optional<double> required_double(LoadContext& ctx, const yaml::NodeRef& ref) {
   if (!is_scalar(ctx, ref, "a number")) return std::nullopt;
-  const std::string& text = ref->scalar;
-  const char* begin = text.c_str();
+  const std::string_view text = ref->scalar;
+  const char* begin = text.data();  // NUL-terminated
   char* end = nullptr;
   double value = std::strtod(begin, &end);
   if (is_yaml_special_float(text)) {
     ctx.report("load-number", ref,
-               "the value \"" + text + "\" is not finite (YAML's " +
+               "the value \"" + std::string(text) + "\" is not finite (YAML's " +
                    (text.find('n') != std::string::npos || text.find('N') != std::string::npos ? "NaN" : "infinity") +
                    "); Choreonoid cannot read it, and masses, lengths and angles must be finite numbers");
     return std::nullopt;
   }
   if (end == begin) {
-    ctx.report("load-number", ref, "the value \"" + text + "\" must be a floating point number");
+    ctx.report("load-number", ref, "the value \"" + std::string(text) + "\" must be a floating point number");
     return std::nullopt;
   }
   if (!only_trailing_space(end)) {
@@ -74,8 +74,8 @@ std::optional<double> required_double(LoadContext& ctx, const yaml::NodeRef& ref
     // value and warn, since the text is almost certainly a typo.
     const std::string prefix(begin, static_cast<std::size_t>(end - begin));
     ctx.report("load-lenient-number", ref,
-               "\"" + text + "\" is not a number; Choreonoid reads its prefix " + prefix + " and ignores \"" +
-                   std::string(end) + "\"",
+               "\"" + std::string(text) + "\" is not a number; Choreonoid reads its prefix " + prefix +
+                   " and ignores \"" + std::string(end) + "\"",
                "write the number in full, e.g. " + prefix);
   }
   if (report_if_not_finite(ctx, ref, value)) return std::nullopt;
@@ -84,18 +84,18 @@ std::optional<double> required_double(LoadContext& ctx, const yaml::NodeRef& ref
 
 std::optional<long> required_int(LoadContext& ctx, const yaml::NodeRef& ref) {
   if (!is_scalar(ctx, ref, "an integer")) return std::nullopt;
-  const std::string& text = ref->scalar;
-  const char* begin = text.c_str();
+  const std::string_view text = ref->scalar;
+  const char* begin = text.data();  // NUL-terminated
   char* end = nullptr;
   errno = 0;
   long value = std::strtol(begin, &end, 10);
   if (end == begin) {
-    ctx.report("load-number", ref, "the value \"" + text + "\" must be an integer value");
+    ctx.report("load-number", ref, "the value \"" + std::string(text) + "\" must be an integer value");
     return std::nullopt;
   }
   if (!only_trailing_space(end)) {
     ctx.report("load-lenient-number", ref,
-               "\"" + text + "\" is not an integer; Choreonoid reads it as " + std::to_string(value),
+               "\"" + std::string(text) + "\" is not an integer; Choreonoid reads it as " + std::to_string(value),
                "write " + std::to_string(value));
   }
   return value;
@@ -104,13 +104,13 @@ std::optional<long> required_int(LoadContext& ctx, const yaml::NodeRef& ref) {
 std::optional<bool> required_bool(LoadContext& ctx, const yaml::NodeRef& ref) {
   if (!is_scalar(ctx, ref, "a boolean")) return std::nullopt;
   auto value = text::parse_bool_word(ref->scalar);
-  if (!value) ctx.report("load-bool", ref, "the value \"" + ref->scalar + "\" must be a boolean value");
+  if (!value) ctx.report("load-bool", ref, "the value \"" + std::string(ref->scalar) + "\" must be a boolean value");
   return value;
 }
 
 std::optional<std::string> required_string(LoadContext& ctx, const yaml::NodeRef& ref) {
   if (!is_scalar(ctx, ref, "a string")) return std::nullopt;
-  return ref->scalar;
+  return std::string(ref->scalar);
 }
 
 std::optional<double> optional_double(LoadContext& ctx, const yaml::NodeRef& ref) {
@@ -120,9 +120,9 @@ std::optional<double> optional_double(LoadContext& ctx, const yaml::NodeRef& ref
       return value;
     }
     if (is_yaml_special_float(ref->scalar)) {
-      ctx.report(
-          "load-number", ref,
-          "the value \"" + ref->scalar + "\" is not finite; Choreonoid cannot read it and silently uses the default");
+      ctx.report("load-number", ref,
+                 "the value \"" + std::string(ref->scalar) +
+                     "\" is not finite; Choreonoid cannot read it and silently uses the default");
       return std::nullopt;
     }
   }
@@ -132,10 +132,10 @@ std::optional<double> optional_double(LoadContext& ctx, const yaml::NodeRef& ref
 
 std::optional<long> optional_int(LoadContext& ctx, const yaml::NodeRef& ref) {
   if (ref && ref->is_scalar()) {
-    const std::string& text = ref->scalar;
+    const char* text = ref->scalar.data();  // NUL-terminated
     char* end = nullptr;
-    long value = std::strtol(text.c_str(), &end, 10);
-    if (end != text.c_str() && only_trailing_space(end)) return value;
+    long value = std::strtol(text, &end, 10);
+    if (end != text && only_trailing_space(end)) return value;
   }
   ctx.report("load-ignored-value", ref, "this value is not an integer; Choreonoid ignores it and uses the default");
   return std::nullopt;

@@ -21,7 +21,8 @@ std::optional<double> optional_double(LoadContext& ctx, const yaml::NodeRef& ref
 std::optional<long> optional_int(LoadContext& ctx, const yaml::NodeRef& ref);
 std::optional<bool> optional_bool(LoadContext& ctx, const yaml::NodeRef& ref);
 
-/// Parses a whole scalar as a double, nothing else (no diagnostics).
-std::optional<double> parse_double_exact(const std::string& text);
+/// Parses a whole scalar as a double, nothing else (no diagnostics). `text.data()` must be
+/// NUL-terminated, as a yaml::Node's scalar is.
+std::optional<double> parse_double_exact(std::string_view text);
 
 }  // namespace bodyfmt::detail

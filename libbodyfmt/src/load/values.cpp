@@ -134,7 +134,7 @@ std::optional<Eigen::Matrix3d> read_inertia(LoadContext& ctx, const yaml::NodeRe
 
 std::optional<Eigen::Vector3d> read_joint_axis(LoadContext& ctx, const yaml::NodeRef& ref) {
   if (ref && ref->is_scalar()) {
-    std::string s = ref->scalar;
+    std::string s(ref->scalar);
     std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::toupper(c); });
     double sign = 1;
     if (!s.empty() && s[0] == '-') {
@@ -144,7 +144,8 @@ std::optional<Eigen::Vector3d> read_joint_axis(LoadContext& ctx, const yaml::Nod
     if (s == "X") return Eigen::Vector3d(sign, 0, 0);
     if (s == "Y") return Eigen::Vector3d(0, sign, 0);
     if (s == "Z") return Eigen::Vector3d(0, 0, sign);
-    ctx.report("load-axis", ref, "illegal axis value \"" + ref->scalar + "\"", "use X, Y, Z, -X, -Y, -Z or [x, y, z]");
+    ctx.report("load-axis", ref, "illegal axis value \"" + std::string(ref->scalar) + "\"",
+               "use X, Y, Z, -X, -Y, -Z or [x, y, z]");
     return std::nullopt;
   }
   return read_vec3(ctx, ref);
@@ -162,11 +163,11 @@ std::optional<double> limit_value(LoadContext& ctx, const yaml::NodeRef& ref, bo
   if (ref->scalar == "unlimited") return unlimited_value;
   if (!parse_double_exact(ref->scalar)) {
     // Choreonoid rejects any other symbol here (§3 "Unknown symbol is used as a jointRange value").
-    const char* b = ref->scalar.c_str();
+    const char* b = ref->scalar.data();  // NUL-terminated
     char* e = nullptr;
     std::strtod(b, &e);
     if (e == b) {
-      ctx.report("load-range", ref, "unknown symbol \"" + ref->scalar + "\" is used as a range value",
+      ctx.report("load-range", ref, "unknown symbol \"" + std::string(ref->scalar) + "\" is used as a range value",
                  "use a number or unlimited");
       return std::nullopt;
     }

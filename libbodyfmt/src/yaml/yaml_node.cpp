@@ -1,8 +1,15 @@
 #include "yaml/yaml_node.h"
 
+#include <type_traits>
+
 namespace bodyfmt::yaml {
 
-const SourceLocation& NodeRef::use_site() const { return alias_site ? *alias_site : node->location; }
+// The arena never runs destructors: everything it holds must be plain data.
+static_assert(std::is_trivially_destructible_v<Node>);
+static_assert(std::is_trivially_destructible_v<MapEntry>);
+static_assert(std::is_trivially_destructible_v<NodeRef>);
+
+const SourceLocation& NodeRef::use_site() const { return alias_site != nullptr ? *alias_site : node->location; }
 
 bool Node::is_null() const {
   // The YAML core-schema null spellings; only plain scalars, so `""` and `'null'` stay strings.
@@ -18,6 +25,30 @@ const MapEntry* Node::find(std::string_view key) const {
   return nullptr;
 }
 
-Node* Document::make_node() { return &nodes_.emplace_back(); }
+Node* Document::make_node() { return new (arena_.allocate(sizeof(Node), alignof(Node))) Node(); }
+
+std::string_view Document::store(std::string_view text) {
+  if (text.empty()) return std::string_view("", 0);
+  char* copy = static_cast<char*>(arena_.allocate(text.size() + 1, 1));
+  std::copy(text.begin(), text.end(), copy);
+  copy[text.size()] = '\0';
+  return std::string_view(copy, text.size());
+}
+
+const SourceLocation* Document::store(const SourceLocation& location) {
+  return new (arena_.allocate(sizeof(SourceLocation), alignof(SourceLocation))) SourceLocation(location);
+}
+
+std::string_view Document::anchor_of(const Node* node) const {
+  for (const auto& [name, anchored] : anchors) {
+    if (anchored == node) return name;
+  }
+  return {};
+}
+
+std::string_view Document::tag_of(const Node* node) const {
+  auto it = tags_.find(node);
+  return it == tags_.end() ? std::string_view() : it->second;
+}
 
 }  // namespace bodyfmt::yaml

@@ -1,37 +1,42 @@
 #pragma once
 // The project's own YAML tree: every node keeps its position, every scalar stays a string
 // (body-format-spec §1.1), aliases share one node, merge keys are already applied.
+//
+// The tree is compact and owned by its Document's arena: a 100,000-link file has about three
+// million nodes, so a node is a fixed 96 bytes with its text and its children in one
+// monotonic buffer, nothing is freed one by one, and mapping keys are not nodes of their own.
 
 #include <bodyfmt/diagnostic.h>
 
-#include <deque>
+#include <cstdint>
 #include <map>
 #include <memory>
-#include <optional>
+#include <memory_resource>
 #include <string>
 #include <string_view>
-#include <vector>
+#include <unordered_map>
 
 namespace bodyfmt::yaml {
 
-enum class NodeKind { kScalar, kSequence, kMapping };
+enum class NodeKind : std::uint8_t { kScalar, kSequence, kMapping };
 
 struct Node;
 
 /// An edge to a node. When the node was reached through `*alias`, `alias_site` is where the
-/// alias was written; `node->location` is always the anchor's (definition) site.
+/// alias was written; `node->location` is always the anchor's (definition) site. Both sites
+/// point into a Document (or into a node), which outlives every NodeRef read from it.
 struct NodeRef {
   const Node* node = nullptr;
-  std::optional<SourceLocation> alias_site;
+  const SourceLocation* alias_site = nullptr;
   /// Set by readers on the children of a node reached through an alias: the alias use site
   /// of the nearest such ancestor, so that a finding inside shared text can name the use
   /// that led to it.
-  std::optional<SourceLocation> enclosing_alias;
+  const SourceLocation* enclosing_alias = nullptr;
 
   /// `child` as seen through this node: it inherits this node's alias context.
   NodeRef child(const NodeRef& child) const {
     NodeRef result = child;
-    if (!result.alias_site) result.enclosing_alias = alias_site ? alias_site : enclosing_alias;
+    if (result.alias_site == nullptr) result.enclosing_alias = alias_site != nullptr ? alias_site : enclosing_alias;
     return result;
   }
 
@@ -45,43 +50,61 @@ struct NodeRef {
 /// Where a scalar's value is written, byte for byte: `text[begin, end)` of its file is exactly
 /// the value (a plain scalar, or the inside of a quoted one without escapes), on the line of its
 /// location, starting at byte column `column`. `begin == npos` when the value is not written
-/// so (block and folded scalars, escapes, aliases): a fix-it cannot edit it in place.
+/// so (block and folded scalars, escapes, aliases, beyond the first 4 GiB of a file): a fix-it
+/// cannot edit it in place.
 struct TextSpan {
-  static constexpr std::size_t npos = static_cast<std::size_t>(-1);
-  std::size_t begin = npos;
-  std::size_t end = npos;
+  static constexpr std::uint32_t npos = UINT32_MAX;
+  std::uint32_t begin = npos;
+  std::uint32_t end = npos;
   int column = 0;
   bool editable() const { return begin != npos; }
 };
 
+/// A node's children: a view of an array in the Document's arena.
+template <typename T>
+class Children {
+ public:
+  Children() = default;
+  Children(const T* data, std::size_t size) : data_(data), size_(size) {}
+  const T* begin() const { return data_; }
+  const T* end() const { return data_ + size_; }
+  std::size_t size() const { return size_; }
+  bool empty() const { return size_ == 0; }
+  const T& operator[](std::size_t i) const { return data_[i]; }
+  const T& front() const { return data_[0]; }
+  const T& back() const { return data_[size_ - 1]; }
+
+ private:
+  const T* data_ = nullptr;
+  std::size_t size_ = 0;
+};
+
 struct MapEntry {
-  std::string key;
+  std::string_view key;
   SourceLocation key_location;
-  TextSpan key_span;  ///< the key's text (npos when written through an alias or with escapes)
-  NodeRef value;
+  TextSpan key_span;    ///< the key's text (npos when written through an alias or with escapes)
   bool merged = false;  ///< came from a `<<` merge source rather than written locally
+  NodeRef value;
 };
 
 struct Node {
   NodeKind kind = NodeKind::kScalar;
+  bool plain = true;        ///< kScalar: false for quoted or block scalars
+  int expanded_depth = 0;   ///< 0 for a scalar, 1 + deepest child for a collection
   SourceLocation location;  ///< 1-based position of the node's first character (or its anchor)
-  std::string anchor;       ///< empty when not anchored
-  std::string tag;          ///< as written ("!!str"), ignored by the loader
 
   // kScalar
-  std::string scalar;
-  bool plain = true;  ///< false for quoted or block scalars
-  TextSpan span;      ///< where `scalar` is written (fix-its edit it there)
+  std::string_view scalar;  ///< the value, in the Document's arena; `scalar.data()` is NUL-terminated
+  TextSpan span;            ///< where `scalar` is written (fix-its edit it there)
   // kSequence
-  std::vector<NodeRef> items;
+  Children<NodeRef> items;
   // kMapping: file order; merge keys applied (local keys win, first merge source wins);
   // duplicate keys collapsed (the last one wins, as in Choreonoid). The `<<` key is removed.
-  std::vector<MapEntry> entries;
+  Children<MapEntry> entries;
 
   // Filled by parse_yaml when the node is finished, so that a document reaching this node through
   // any number of aliases is measured in O(1) per alias (billion-laughs guard, toolchain.md §3).
   std::size_t expanded_size = 0;  ///< 1 + sum over children, aliases in full; 0 = not finished
-  int expanded_depth = 0;         ///< 0 for a scalar, 1 + deepest child for a collection
 
   bool is_scalar() const { return kind == NodeKind::kScalar; }
   bool is_sequence() const { return kind == NodeKind::kSequence; }
@@ -103,18 +126,38 @@ struct ParseOptions {
   const std::map<std::string, const Node*>* imported_anchors = nullptr;
 };
 
-/// A parsed document. Owns every node; NodeRefs point into it.
+/// A parsed document. Owns every node, scalar and child array in one arena; NodeRefs point into it.
 class Document {
  public:
+  Document() = default;
+  Document(const Document&) = delete;
+  Document& operator=(const Document&) = delete;
+
   NodeRef root;
   std::string file;
   std::map<std::string, const Node*> anchors;  ///< defined in this document
   std::size_t expanded_node_count = 0;
 
   Node* make_node();
+  /// A copy of `text` in the arena, followed by a NUL (C parsers such as strtod read it in place).
+  std::string_view store(std::string_view text);
+  const SourceLocation* store(const SourceLocation& location);
+  template <typename T>
+  Children<T> store(const T* data, std::size_t size) {
+    if (size == 0) return {};
+    T* copy = static_cast<T*>(arena_.allocate(size * sizeof(T), alignof(T)));
+    std::uninitialized_copy(data, data + size, copy);
+    return Children<T>(copy, size);
+  }
+  /// The anchor a node was defined with ("" when none).
+  std::string_view anchor_of(const Node* node) const;
+  /// The tag as written ("!!str"; "" when none). Tags are kept, not used: the loader ignores them.
+  std::string_view tag_of(const Node* node) const;
+  void set_tag(const Node* node, std::string_view tag) { tags_[node] = store(tag); }
 
  private:
-  std::deque<Node> nodes_;  ///< chunked: stable addresses without one allocation per node
+  std::pmr::monotonic_buffer_resource arena_;
+  std::unordered_map<const Node*, std::string_view> tags_;
 };
 
 /// Parses the first YAML document of `text`. Reports `yaml-*` diagnostics located in

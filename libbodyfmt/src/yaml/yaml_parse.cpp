@@ -158,17 +158,26 @@ class TreeBuilder {
     std::vector<NodeRef> sources;
   };
   enum class KeyState { kNormal, kMerge, kSkip };
+  // A mapping key as read: a plain scalar straight from its event, or any node through a ref.
+  struct Key {
+    std::string_view text;
+    SourceLocation location;
+    TextSpan span;
+    const Node* complex = nullptr;  // a collection written as a key
+  };
+  // An open collection. Its children wait on the builder's shared stacks from `first_child` on
+  // and move to the arena, in one piece, when it closes.
   struct Frame {
     Node* node = nullptr;
     bool is_key = false;             // the collection itself is a (complex) mapping key
     std::size_t count_at_start = 0;  // expanded_count_ before this collection was opened
+    std::size_t first_child = 0;     // index into items_ or entries_
     // Mapping state.
     bool expecting_key = true;
     KeyState key_state = KeyState::kNormal;
-    std::string key;
-    SourceLocation key_location;
-    TextSpan key_span;
-    std::unordered_map<std::string, std::pair<std::size_t, int>> local_keys;  // index, first line
+    Key key;
+    // Built once a mapping is large enough that scanning its keys would be quadratic.
+    std::unique_ptr<std::unordered_map<std::string_view, std::size_t>> key_index;
     std::vector<MergeSlot> merges;
   };
 
@@ -211,15 +220,29 @@ class TreeBuilder {
 
   void on_scalar(const yaml_event_t& e) {
     const auto& scalar = e.data.scalar;
+    const std::string_view value(reinterpret_cast<const char*>(scalar.value), scalar.length);
+    const bool plain = scalar.style == YAML_PLAIN_SCALAR_STYLE;
+    if (in_key_position() && scalar.anchor == nullptr) {
+      // A key is read once, into its mapping entry: it needs no node of its own (a key with an
+      // anchor does, since an alias may use it as a value).
+      const SourceLocation where = location(e.start_mark);
+      Key key;
+      key.text = document_.store(value);
+      key.location = where;
+      key.span = scalar_span(value, where, e.start_mark, e.end_mark, scalar.style);
+      accept_key(frames_.back(), key);
+      frames_.back().expecting_key = false;
+      return;
+    }
     Node* node = begin_node(NodeKind::kScalar, e.start_mark, scalar.anchor, scalar.tag);
-    node->scalar.assign(reinterpret_cast<const char*>(scalar.value), scalar.length);
-    node->plain = scalar.style == YAML_PLAIN_SCALAR_STYLE;
-    node->span = scalar_span(*node, e.start_mark, e.end_mark, scalar.style);
+    node->scalar = document_.store(value);
+    node->plain = plain;
+    node->span = scalar_span(value, node->location, e.start_mark, e.end_mark, scalar.style);
     // `key:` with nothing after it: the empty value has no text of its own; it is reported at
     // its key rather than at wherever libyaml's scanner stood.
     if (node->plain && node->scalar.empty() && scalar.anchor == nullptr && scalar.tag == nullptr && !frames_.empty() &&
         frames_.back().node->is_mapping() && !frames_.back().expecting_key) {
-      node->location = frames_.back().key_location;
+      node->location = frames_.back().key.location;
     }
     finish_scalar(node);
   }
@@ -245,14 +268,15 @@ class TreeBuilder {
       failed_ = true;
       throw ParseAborted{};
     }
-    add_alias(target, e.start_mark);
+    add_alias(target, name, e.start_mark);
   }
 
   // Where the scalar's value is written verbatim, for fix-its: after its properties, inside its
   // quotes, on its first line, and only when the text equals the value (no escapes, no folding).
-  TextSpan scalar_span(const Node& node, const yaml_mark_t& start, const yaml_mark_t& end, yaml_scalar_style_t style) {
+  TextSpan scalar_span(std::string_view value, const SourceLocation& where, const yaml_mark_t& start,
+                       const yaml_mark_t& end, yaml_scalar_style_t style) {
     TextSpan span;
-    if (!utf8_ || node.scalar.empty()) return span;
+    if (!utf8_ || value.empty()) return span;
     const bool quoted = style == YAML_SINGLE_QUOTED_SCALAR_STYLE || style == YAML_DOUBLE_QUOTED_SCALAR_STYLE;
     if (style != YAML_PLAIN_SCALAR_STYLE && !quoted) return span;
     const std::size_t first = offset(start);
@@ -263,11 +287,12 @@ class TreeBuilder {
       if (stop == 0) return span;
       --stop;
     }
-    if (begin > stop || stop > text_.size() || text_.substr(begin, stop - begin) != node.scalar) return span;
+    if (begin > stop || stop > text_.size() || text_.substr(begin, stop - begin) != value) return span;
     if (text_.substr(first, begin - first).find('\n') != std::string_view::npos) return span;
-    span.begin = begin;
-    span.end = stop;
-    span.column = node.location.column + static_cast<int>(begin - first);
+    if (stop >= TextSpan::npos) return span;  // past 4 GiB: not editable in place
+    span.begin = static_cast<std::uint32_t>(begin);
+    span.end = static_cast<std::uint32_t>(stop);
+    span.column = where.column + static_cast<int>(begin - first);
     return span;
   }
 
@@ -281,20 +306,19 @@ class TreeBuilder {
     node->location = location(mark);
     // libyaml resolves `!!str` to `tag:yaml.org,2002:str`; the tag is kept as written, so it is
     // read back from the text, where the node's mark points at its first property.
-    if (tag != nullptr) node->tag = scan_node_text(text_, offset(mark)).tag;
+    if (tag != nullptr) document_.set_tag(node, scan_node_text(text_, offset(mark)).tag);
     if (anchor != nullptr) define_anchor(node, reinterpret_cast<const char*>(anchor));
     if (!in_key_position()) add_to_budget(1, node->location, false);
     return node;
   }
 
-  void define_anchor(Node* node, std::string name) {
-    node->anchor = std::move(name);
-    local_anchors_[node->anchor] = node;  // a later alias sees the newest definition
-    auto [it, inserted] = document_.anchors.emplace(node->anchor, node);
+  void define_anchor(Node* node, const std::string& name) {
+    local_anchors_[name] = node;  // a later alias sees the newest definition
+    auto [it, inserted] = document_.anchors.emplace(name, node);
     if (!inserted) {
       // body-format-spec §1.4: Choreonoid rejects a duplicated anchor, stricter than YAML 1.2.
       report("yaml-anchor-redefined", node->location,
-             "anchor \"" + node->anchor + "\" is already defined at line " + std::to_string(it->second->location.line),
+             "anchor \"" + name + "\" is already defined at line " + std::to_string(it->second->location.line),
              "give each anchor a unique name");
       failed_ = true;
     }
@@ -321,24 +345,24 @@ class TreeBuilder {
     throw ParseAborted{};
   }
 
-  void add_alias(const Node* target, const yaml_mark_t& mark) {
+  void add_alias(const Node* target, const std::string& name, const yaml_mark_t& mark) {
     SourceLocation site = location(mark);
     if (target->expanded_size == 0) {
       // `&a [*a]`: the anchor is registered before its content, so this would be a cycle.
       report("yaml-recursive-alias", site,
-             "alias \"*" + target->anchor + "\" refers to a node that contains it (defined at line " +
+             "alias \"*" + name + "\" refers to a node that contains it (defined at line " +
                  std::to_string(target->location.line) + ")");
       throw ParseAborted{};
     }
     if (!in_key_position()) add_to_budget(target->expanded_size, site, true);
     check_depth(static_cast<int>(frames_.size()) + target->expanded_depth, site);
-    deliver(NodeRef{target, std::move(site), std::nullopt});
+    deliver(NodeRef{target, document_.store(site), nullptr});
   }
 
   void finish_scalar(Node* node) {
     node->expanded_size = 1;
     node->expanded_depth = 0;
-    deliver(NodeRef{node, std::nullopt, std::nullopt});
+    deliver(NodeRef{node, nullptr, nullptr});
   }
 
   void begin_collection(Node* node) {
@@ -346,6 +370,7 @@ class TreeBuilder {
     frame.node = node;
     frame.is_key = in_key_position();
     frame.count_at_start = expanded_count_ - (frame.is_key ? 0 : 1);
+    frame.first_child = node->is_mapping() ? entries_.size() : items_.size();
     frames_.push_back(std::move(frame));
     check_depth(static_cast<int>(frames_.size()), node->location);
     if (frames_.size() > kNestingCeiling) {
@@ -366,80 +391,114 @@ class TreeBuilder {
       size = saturating_add(size, child->expanded_size);
       depth = std::max(depth, child->expanded_depth);
     };
-    for (const NodeRef& item : node->items) measure(item);
-    for (const MapEntry& entry : node->entries) measure(entry.value);
+    if (node->is_mapping()) {
+      for (std::size_t i = frame.first_child; i < entries_.size(); ++i) measure(entries_[i].value);
+      node->entries = document_.store(entries_.data() + frame.first_child, entries_.size() - frame.first_child);
+      entries_.resize(frame.first_child);
+      first_lines_.resize(frame.first_child);
+    } else {
+      for (std::size_t i = frame.first_child; i < items_.size(); ++i) measure(items_[i]);
+      node->items = document_.store(items_.data() + frame.first_child, items_.size() - frame.first_child);
+      items_.resize(frame.first_child);
+    }
     node->expanded_size = size;
     node->expanded_depth = depth + 1;
     // The running count was provisional (merge sources and overwritten duplicates counted in
     // full); replace it by the exact size now that the collection is final.
     expanded_count_ = frame.count_at_start;
     if (!frame.is_key) add_to_budget(size, node->location, false);
-    deliver(NodeRef{node, std::nullopt, std::nullopt});
+    deliver(NodeRef{node, nullptr, nullptr});
   }
 
-  void deliver(NodeRef ref) {
+  void deliver(const NodeRef& ref) {
     if (frames_.empty()) {
-      root_ = std::move(ref);
+      root_ = ref;
       return;
     }
     Frame& frame = frames_.back();
     if (frame.node->is_sequence()) {
-      frame.node->items.push_back(std::move(ref));
+      items_.push_back(ref);
     } else if (frame.expecting_key) {
-      accept_key(frame, ref);
+      Key key;
+      key.location = ref.use_site();
+      if (ref->is_scalar()) {
+        key.text = ref->scalar;
+        key.span = ref.alias_site != nullptr ? TextSpan{} : ref->span;
+      } else {
+        key.complex = ref.node;
+      }
+      accept_key(frame, key);
       frame.expecting_key = false;
     } else {
-      accept_value(frame, std::move(ref));
+      accept_value(frame, ref);
       frame.expecting_key = true;
     }
   }
 
-  void accept_key(Frame& frame, const NodeRef& ref) {
-    frame.key_location = ref.use_site();
-    frame.key_span = ref.alias_site ? TextSpan{} : ref->span;
-    if (!ref->is_scalar()) {
-      report("yaml-complex-key", frame.key_location,
-             "a mapping key must be a scalar, not a " + std::string(ref->is_mapping() ? "mapping" : "sequence"));
+  void accept_key(Frame& frame, const Key& key) {
+    frame.key = key;
+    if (key.complex != nullptr) {
+      report(
+          "yaml-complex-key", key.location,
+          "a mapping key must be a scalar, not a " + std::string(key.complex->is_mapping() ? "mapping" : "sequence"));
       frame.key_state = KeyState::kSkip;
-    } else if (ref->scalar.empty()) {
+    } else if (key.text.empty()) {
       // body-format-spec §1.8: Choreonoid reports "empty key".
-      report("yaml-empty-key", frame.key_location, "empty mapping key");
+      report("yaml-empty-key", key.location, "empty mapping key");
       frame.key_state = KeyState::kSkip;
     } else {
       // body-format-spec §1.5: Choreonoid compares the key text, whatever its quoting.
-      frame.key_state = ref->scalar == "<<" ? KeyState::kMerge : KeyState::kNormal;
-      frame.key = ref->scalar;
+      frame.key_state = key.text == "<<" ? KeyState::kMerge : KeyState::kNormal;
     }
   }
 
-  void accept_value(Frame& frame, NodeRef value) {
+  // The entry of `frame`'s mapping with this key, or npos.
+  std::size_t find_local(Frame& frame, std::string_view key) {
+    constexpr std::size_t kScanLimit = 16;
+    const std::size_t count = entries_.size() - frame.first_child;
+    if (count <= kScanLimit) {
+      for (std::size_t i = frame.first_child; i < entries_.size(); ++i) {
+        if (entries_[i].key == key) return i;
+      }
+      return std::string_view::npos;
+    }
+    if (!frame.key_index) {
+      frame.key_index = std::make_unique<std::unordered_map<std::string_view, std::size_t>>();
+      for (std::size_t i = frame.first_child; i < entries_.size(); ++i) frame.key_index->emplace(entries_[i].key, i);
+    }
+    auto it = frame.key_index->find(key);
+    return it == frame.key_index->end() ? std::string_view::npos : it->second;
+  }
+
+  void accept_value(Frame& frame, const NodeRef& value) {
     if (frame.key_state == KeyState::kSkip) return;
     if (frame.key_state == KeyState::kMerge) {
       add_merge(frame, value);
       return;
     }
-    std::vector<MapEntry>& entries = frame.node->entries;
-    auto [it, inserted] =
-        frame.local_keys.try_emplace(frame.key, std::make_pair(entries.size(), frame.key_location.line));
-    if (inserted) {
-      entries.push_back(MapEntry{frame.key, frame.key_location, frame.key_span, std::move(value), false});
+    const Key& key = frame.key;
+    const std::size_t existing = find_local(frame, key.text);
+    if (existing == std::string_view::npos) {
+      if (frame.key_index) frame.key_index->emplace(key.text, entries_.size());
+      entries_.push_back(MapEntry{key.text, key.location, key.span, false, value});
+      first_lines_.push_back(key.location.line);
       return;
     }
     // body-format-spec §1.6: the last one wins (WAREC1's `type: Collision` then `type: Group`).
-    report("yaml-duplicate-key", frame.key_location,
-           "duplicate key \"" + frame.key + "\" (first at line " + std::to_string(it->second.second) +
+    report("yaml-duplicate-key", key.location,
+           "duplicate key \"" + std::string(key.text) + "\" (first at line " + std::to_string(first_lines_[existing]) +
                "); the last value wins",
            "remove one of the two entries");
-    MapEntry& entry = entries[it->second.first];
-    entry.key_location = frame.key_location;
-    entry.key_span = frame.key_span;
-    entry.value = std::move(value);
+    MapEntry& entry = entries_[existing];
+    entry.key_location = key.location;
+    entry.key_span = key.span;
+    entry.value = value;
   }
 
   // body-format-spec §1.5: the value of `<<` is a mapping or a sequence of mappings.
   void add_merge(Frame& frame, const NodeRef& value) {
     MergeSlot slot;
-    slot.position = frame.node->entries.size();
+    slot.position = entries_.size() - frame.first_child;
     if (value->is_mapping()) {
       slot.sources.push_back(value);
     } else if (value->is_sequence()) {
@@ -461,22 +520,24 @@ class TreeBuilder {
   // entries take the place of the `<<` entry, which is dropped. Sources are finished nodes, so
   // their own merges are already applied (nested merges need no recursion).
   void apply_merges(Frame& frame) {
-    std::vector<MapEntry> locals = std::move(frame.node->entries);
-    std::unordered_set<std::string> present;
+    std::vector<MapEntry> locals(entries_.begin() + static_cast<std::ptrdiff_t>(frame.first_child), entries_.end());
+    std::unordered_set<std::string_view> present;
     for (const MapEntry& entry : locals) present.insert(entry.key);
     std::vector<MapEntry> merged;
     std::size_t next_local = 0;
     for (const MergeSlot& slot : frame.merges) {
-      while (next_local < slot.position) merged.push_back(std::move(locals[next_local++]));
+      while (next_local < slot.position) merged.push_back(locals[next_local++]);
       for (const NodeRef& source : slot.sources) {
         for (const MapEntry& entry : source->entries) {
           if (!present.insert(entry.key).second) continue;
-          merged.push_back(MapEntry{entry.key, entry.key_location, entry.key_span, entry.value, true});
+          merged.push_back(MapEntry{entry.key, entry.key_location, entry.key_span, true, entry.value});
         }
       }
     }
-    while (next_local < locals.size()) merged.push_back(std::move(locals[next_local++]));
-    frame.node->entries = std::move(merged);
+    while (next_local < locals.size()) merged.push_back(locals[next_local++]);
+    entries_.resize(frame.first_child);
+    entries_.insert(entries_.end(), merged.begin(), merged.end());
+    first_lines_.resize(entries_.size());
   }
 
   std::string_view text_;
@@ -492,6 +553,9 @@ class TreeBuilder {
   bool failed_ = false;
   NodeRef root_;
   std::vector<Frame> frames_;
+  std::vector<NodeRef> items_;     // children of the open sequences, innermost last
+  std::vector<MapEntry> entries_;  // entries of the open mappings, innermost last
+  std::vector<int> first_lines_;   // per entries_ element: the line its key was first written on
   std::unordered_map<std::string, const Node*> local_anchors_;
   std::size_t expanded_count_ = 0;  // nodes seen so far, aliases expanded (provisional)
 };
@@ -533,7 +597,7 @@ std::unique_ptr<Document> parse_yaml(std::string_view text, const std::string& f
         Node* empty = document->make_node();
         empty->location = SourceLocation{file_name, 1, 1};
         empty->expanded_size = 1;
-        root = NodeRef{empty, std::nullopt, std::nullopt};
+        root = NodeRef{empty, nullptr, nullptr};
       }
       document->root = std::move(root);
       document->expanded_node_count = document->root->expanded_size;
