@@ -32,7 +32,7 @@ std::vector<RuleInfo> make_table() {
       {"yaml-complex-key", E, "a mapping key is not a scalar", "Choreonoid's reader only supports scalar keys", ""},
       {"yaml-alias-expansion", F, "alias expansion exceeds the node budget",
        "a \"billion laughs\" document would exhaust memory in any consumer",
-       "LoadOptions::max_expanded_yaml_nodes (default 10,000,000)"},
+       "LoadOptions::max_expanded_yaml_nodes (default 40,000,000)"},
       {"yaml-depth", F, "nesting exceeds the depth budget", "deep nesting exhausts the stack of recursive readers",
        "LoadOptions::max_yaml_depth (default 200)"},
       // Body header and keys (§2, §14)

@@ -465,9 +465,8 @@ void BodyReader::read_extra_joints(const yaml::NodeRef& extra_joints, Model& mod
     joint.source = node.use_site();
     bool ok = true;
     for (int k = 1; k <= 2; ++k) {
-      std::string snake = "link" + std::to_string(k) + "_name";
-      std::string camel = "link" + std::to_string(k) + "Name";
-      yaml::NodeRef name = r.take({snake, camel});
+      const std::string snake = k == 1 ? "link1_name" : "link2_name";
+      yaml::NodeRef name = k == 1 ? r.take({"link1_name", "link1Name"}) : r.take({"link2_name", "link2Name"});
       if (!name) {
         ctx_.report("extra-joint-link", node, snake + " is not specified");
         ok = false;

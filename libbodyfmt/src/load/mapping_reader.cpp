@@ -9,17 +9,29 @@
 namespace bodyfmt::detail {
 
 MappingReader::MappingReader(LoadContext& ctx, const yaml::NodeRef& mapping, std::string what)
-    : ctx_(ctx), mapping_(mapping), what_(std::move(what)) {}
+    : ctx_(ctx), mapping_(mapping), what_(std::move(what)) {
+  if (mapping_ && mapping_->is_mapping()) consumed_.assign(mapping_->entries.size(), false);
+}
+
+void MappingReader::consume(const yaml::MapEntry* entry) {
+  consumed_[static_cast<std::size_t>(entry - mapping_->entries.begin())] = true;
+}
+
+std::string_view MappingReader::modern_of(std::string_view name) const {
+  for (const auto& [legacy, modern] : legacy_)
+    if (legacy == name) return modern;
+  return {};
+}
 
 yaml::NodeRef MappingReader::take(KeyNames names) {
   if (!mapping_ || !mapping_->is_mapping()) return {};
   bool modern = true;
   for (std::string_view name : names) {
-    if (name != *names.begin()) legacy_.emplace(std::string(name), std::string(*names.begin()));
+    if (name != *names.begin() && modern_of(name).empty()) legacy_.emplace_back(name, *names.begin());
   }
   for (std::string_view name : names) {
     if (const yaml::MapEntry* entry = mapping_->find(name)) {
-      consumed_.emplace(name);
+      consume(entry);
       if (!modern) {
         // Located at the key: that is the text to change. Take() found no earlier spelling in
         // this mapping, so the rename cannot collide with a key already there.
@@ -42,14 +54,17 @@ bool MappingReader::has(KeyNames names) const {
   return std::any_of(names.begin(), names.end(), [&](std::string_view n) { return mapping_->find(n) != nullptr; });
 }
 
-void MappingReader::ignore(std::string_view name) { consumed_.emplace(name); }
+void MappingReader::ignore(std::string_view name) {
+  if (!mapping_ || !mapping_->is_mapping()) return;
+  if (const yaml::MapEntry* entry = mapping_->find(name)) consume(entry);
+}
 
 bool MappingReader::unique_guess(std::string_view key, const std::vector<std::string_view>& candidates,
                                  std::string_view guess) const {
   const int best = text::edit_distance(key, guess);
   for (std::string_view candidate : candidates) {
-    std::string_view modern = candidate;
-    if (auto it = legacy_.find(candidate); it != legacy_.end()) modern = it->second;
+    std::string_view modern = modern_of(candidate);
+    if (modern.empty()) modern = candidate;
     if (modern != guess && text::edit_distance(key, candidate) <= best) return false;
   }
   return true;
@@ -66,11 +81,14 @@ void MappingReader::report_unknown(const std::vector<std::string_view>& known) {
   // Legacy spellings are candidates too (a typo of `jointRange` is closer to it than to
   // `joint_range`); the hint then names the modern spelling.
   std::vector<std::string_view> candidates = known;
+  const std::size_t first_legacy = candidates.size();
   for (const auto& [legacy, modern] : legacy_) candidates.push_back(legacy);
-  for (const yaml::MapEntry& entry : mapping_->entries) {
-    if (consumed_.count(entry.key) || entry.merged) continue;
+  std::sort(candidates.begin() + static_cast<std::ptrdiff_t>(first_legacy), candidates.end());  // as before: by name
+  for (std::size_t i = 0; i < mapping_->entries.size(); ++i) {
+    const yaml::MapEntry& entry = mapping_->entries[i];
+    if (consumed_[i] || entry.merged) continue;
     std::string_view guess = text::suggest(entry.key, candidates);
-    if (auto it = legacy_.find(guess); it != legacy_.end()) guess = it->second;
+    if (std::string_view modern = modern_of(guess); !modern.empty()) guess = modern;
     if (!guess.empty()) {
       // The rename is a fix-it only when the guess is the one candidate that close and no
       // spelling of it is in the mapping already; it is unsafe: the value is then read.

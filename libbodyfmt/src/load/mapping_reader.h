@@ -14,7 +14,8 @@
 
 namespace bodyfmt::detail {
 
-/// Spellings of one key: the modern snake_case name first, then legacy spellings.
+/// Spellings of one key: the modern snake_case name first, then legacy spellings. The reader
+/// keeps the views, so they must outlive it (string literals do).
 using KeyNames = std::initializer_list<std::string_view>;
 
 class MappingReader {
@@ -44,11 +45,17 @@ class MappingReader {
   /// A legacy spelling of `modern` is a key of the mapping.
   bool has_spelling_of(std::string_view modern) const;
 
+  /// The modern spelling of a legacy one seen by take(), or "" when `name` is none.
+  std::string_view modern_of(std::string_view name) const;
+  void consume(const yaml::MapEntry* entry);
+
+  // A link's mapping is read with some forty take() calls: the bookkeeping is flat and
+  // allocates once per mapping, not once per key.
   LoadContext& ctx_;
   yaml::NodeRef mapping_;
   std::string what_;
-  std::set<std::string, std::less<>> consumed_;
-  std::map<std::string, std::string, std::less<>> legacy_;  ///< legacy spelling -> modern, from take()
+  std::vector<bool> consumed_;                                         ///< per entry of the mapping
+  std::vector<std::pair<std::string_view, std::string_view>> legacy_;  ///< legacy spelling, modern
 };
 
 /// Whole-scalar reads of an optional key (body-format-spec §1.2): nullopt when the key is

@@ -19,8 +19,10 @@ bool Node::is_null() const {
 
 const MapEntry* Node::find(std::string_view key) const {
   // Mappings in body files hold a handful of keys, so a linear scan beats building an index.
+  // The first byte settles almost every mismatch without a call to memcmp.
+  if (key.empty()) return nullptr;
   for (const MapEntry& entry : entries) {
-    if (entry.key == key) return &entry;
+    if (entry.key.size() == key.size() && entry.key[0] == key[0] && entry.key == key) return &entry;
   }
   return nullptr;
 }

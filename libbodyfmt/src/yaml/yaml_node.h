@@ -118,7 +118,7 @@ struct Node {
 struct ParseOptions {
   /// Maximum number of nodes in the document as a consumer sees it, counting every alias
   /// expansion in full ("billion laughs" guard).
-  std::size_t max_expanded_nodes = 10'000'000;
+  std::size_t max_expanded_nodes = 40'000'000;
   /// Maximum nesting depth of sequences and mappings, counted through aliases.
   int max_depth = 200;
   /// Anchors defined elsewhere that this document may refer to (a YAML resource sees the

@@ -545,7 +545,7 @@ class TreeBuilder {
   bool ascii_ = true;  // no multi-byte character: libyaml's character counts are byte counts
   bool utf8_ = true;
   std::vector<std::size_t> char_starts_;  // byte offset of each character, built on demand
-  const std::string& file_;
+  const FileName file_;                   // interned once: every node's location names it
   const ParseOptions& options_;
   Document& document_;
 
