@@ -32,7 +32,7 @@ class Reader {
   }
 
   std::optional<double> number(const yaml::NodeRef& node, const std::string& what) {
-    std::optional<double> v = node->is_scalar() ? detail::parse_double_exact(node->scalar) : std::nullopt;
+    std::optional<double> v = node->is_scalar() ? detail::parse_double_exact(node->scalar()) : std::nullopt;
     if (!v || !std::isfinite(*v)) {
       error(node, what + " must be a number");
       return std::nullopt;
@@ -48,7 +48,7 @@ class Reader {
 
   /// Checks that every key of `node` is one of `keys`.
   void keys(const yaml::NodeRef& node, std::initializer_list<const char*> allowed) {
-    for (const yaml::MapEntry& entry : node->entries) {
+    for (const yaml::MapEntry& entry : node->entries()) {
       bool known = false;
       std::string list;
       for (const char* k : allowed) {
@@ -102,7 +102,7 @@ std::optional<ScenarioSpec> read_scenario(const std::string& path, const Model& 
   if (!r.mapping(root, "a scenario")) return std::nullopt;
   r.keys(root, {"duration", "sample", "initial", "commands"});
   bool has_duration = false;
-  for (const yaml::MapEntry& entry : root->entries) {
+  for (const yaml::MapEntry& entry : root->entries()) {
     const yaml::NodeRef& value = entry.value;
     if (entry.key == "duration" || entry.key == "sample") {
       if (std::optional<double> v = r.number(value, "'" + std::string(entry.key) + "'")) {
@@ -112,23 +112,23 @@ std::optional<ScenarioSpec> read_scenario(const std::string& path, const Model& 
       }
     } else if (entry.key == "initial" && r.mapping(value, "'initial'")) {
       r.keys(value, {"on_floor", "position", "yaw", "joints"});
-      for (const yaml::MapEntry& e : value->entries) {
+      for (const yaml::MapEntry& e : value->entries()) {
         if (e.key == "on_floor") {
-          std::optional<bool> b = e.value->is_scalar() ? text::parse_bool_word(e.value->scalar) : std::nullopt;
+          std::optional<bool> b = e.value->is_scalar() ? text::parse_bool_word(e.value->scalar()) : std::nullopt;
           if (!b) r.error(e.value, "'on_floor' must be true or false");
           spec.on_floor = b.value_or(false);
         } else if (e.key == "position") {
-          if (!e.value->is_sequence() || e.value->items.size() != 3) {
+          if (!e.value->is_sequence() || e.value->items().size() != 3) {
             r.error(e.value, "'position' must be a list of three numbers (m)");
             continue;
           }
           Eigen::Vector3d p;
-          for (int k = 0; k < 3; ++k) p[k] = r.number(e.value->items[k], "a coordinate").value_or(0);
+          for (int k = 0; k < 3; ++k) p[k] = r.number(e.value->items()[k], "a coordinate").value_or(0);
           spec.position = p;
         } else if (e.key == "yaw") {
           spec.yaw = r.number(e.value, "'yaw' (rad)");
         } else if (e.key == "joints" && r.mapping(e.value, "'joints'")) {
-          for (const yaml::MapEntry& j : e.value->entries) {
+          for (const yaml::MapEntry& j : e.value->entries()) {
             const LinkIndex link = r.link(j, true, false);
             if (std::optional<double> q = r.number(j.value, "a joint position (rad or m)"); q && link >= 0)
               spec.joints[link] = *q;
@@ -142,7 +142,7 @@ std::optional<ScenarioSpec> read_scenario(const std::string& path, const Model& 
       }
       double last = 0;
       std::set<LinkIndex> has_gain;  // a servo keeps its gains until a later command changes them
-      for (const yaml::NodeRef& item : value->items) {
+      for (const yaml::NodeRef& item : value->items()) {
         if (!r.mapping(item, "a command")) continue;
         r.keys(item, {"time", "tracks", "joints"});
         ScenarioCommand command;
@@ -154,19 +154,19 @@ std::optional<ScenarioSpec> read_scenario(const std::string& path, const Model& 
           command.time = last = *t;
         }
         if (const yaml::MapEntry* tracks = item->find("tracks"); tracks && r.mapping(tracks->value, "'tracks'")) {
-          for (const yaml::MapEntry& t : tracks->value->entries) {
+          for (const yaml::MapEntry& t : tracks->value->entries()) {
             const LinkIndex link = r.link(t, false, true);
             if (std::optional<double> v = r.number(t.value, "a track speed (m/s)"); v && link >= 0)
               command.tracks[link] = *v;
           }
         }
         if (const yaml::MapEntry* joints = item->find("joints"); joints && r.mapping(joints->value, "'joints'")) {
-          for (const yaml::MapEntry& j : joints->value->entries) {
+          for (const yaml::MapEntry& j : joints->value->entries()) {
             const LinkIndex link = r.link(j, true, false);
             if (!r.mapping(j.value, "a joint command")) continue;
             r.keys(j.value, {"target", "p", "d", "torque"});
             ScenarioServo servo;
-            for (const yaml::MapEntry& field : j.value->entries) {
+            for (const yaml::MapEntry& field : j.value->entries()) {
               std::optional<double> v = r.number(field.value, "'" + std::string(field.key) + "'");
               if (field.key == "target") servo.target = v;
               if (field.key == "p") servo.p = v;

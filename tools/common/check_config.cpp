@@ -37,7 +37,7 @@ bool read_rules(const yaml::NodeRef& node, const std::string& key, DiagnosticSin
   if (node->is_scalar()) {
     items.push_back(node);
   } else if (node->is_sequence()) {
-    items.assign(node->items.begin(), node->items.end());
+    items.assign(node->items().begin(), node->items().end());
   } else {
     error(sink, node.use_site(), "'" + key + "' must be a list of rule ids");
     return false;
@@ -49,7 +49,7 @@ bool read_rules(const yaml::NodeRef& node, const std::string& key, DiagnosticSin
       ok = false;
       continue;
     }
-    const std::string id(item->scalar);
+    const std::string id(item->scalar());
     std::string problem = check_rule_pattern(id);
     if (!problem.empty()) {
       error(sink, item.use_site(), problem);
@@ -106,13 +106,13 @@ std::optional<CheckConfig> read_config_string(const std::string& text, const std
     return std::nullopt;
   }
   bool ok = true;
-  for (const yaml::MapEntry& entry : root->entries) {
+  for (const yaml::MapEntry& entry : root->entries()) {
     const std::string key(entry.key);
     const yaml::NodeRef& value = entry.value;
     if (key == "disable" || key == "enable") {
       ok &= read_rules(value, key, sink, key == "disable" ? config.disable : config.enable);
     } else if (key == "fail_on") {
-      const std::string v = value->is_scalar() ? std::string(value->scalar) : std::string();
+      const std::string v = value->is_scalar() ? std::string(value->scalar()) : std::string();
       if (v == "error") {
         config.fail_on = Severity::kError;
       } else if (v == "warning") {
@@ -122,7 +122,7 @@ std::optional<CheckConfig> read_config_string(const std::string& text, const std
         ok = false;
       }
     } else if (key == "werror") {
-      if (std::optional<bool> b = value->is_scalar() ? text::parse_bool_word(value->scalar) : std::nullopt) {
+      if (std::optional<bool> b = value->is_scalar() ? text::parse_bool_word(value->scalar()) : std::nullopt) {
         config.werror = *b;
       } else {
         error(sink, value.use_site(), "'werror' must be true or false");

@@ -82,13 +82,13 @@ Appearance read_appearance(LoadContext& ctx, const yaml::NodeRef& appearance) {
       Texture texture;
       MappingReader tr(ctx, t, "texture");
       if (auto uri = tr.take({"uri", "url"})) {
-        texture.uri = uri->scalar;
+        texture.uri = uri->scalar();
         texture.resolved_path = resolve_uri(ctx, uri, texture.uri, uri->location.file);
       }
       if (auto repeat = tr.take({"repeat"})) {
-        if (repeat->is_sequence() && repeat->items.size() == 2) {
-          assign_if(texture.repeat_s, optional_bool(ctx, repeat->items[0]));
-          assign_if(texture.repeat_t, optional_bool(ctx, repeat->items[1]));
+        if (repeat->is_sequence() && repeat->items().size() == 2) {
+          assign_if(texture.repeat_s, optional_bool(ctx, repeat->items()[0]));
+          assign_if(texture.repeat_t, optional_bool(ctx, repeat->items()[1]));
         } else if (repeat->is_scalar()) {
           auto b = optional_bool(ctx, repeat);
           assign_if(texture.repeat_s, b);

@@ -166,7 +166,7 @@ void BodyReader::report_upgrade(const Model& model) {
     problem = "the angle at " + at.file.str() + ":" + std::to_string(at.line) + ":" + std::to_string(at.column) +
               " is not written as a plain number";
   }
-  std::string message = "format " + std::string(version_node_->scalar) + " file";
+  std::string message = "format " + std::string(version_node_->scalar()) + " file";
   if (!ctx_.degrees)
     message += " with angles in radians (" + std::to_string(ctx_.upgrade_fixes.size()) + " angle values)";
   message += "; 2.0 is the current format (snake_case keys, degrees)";
@@ -192,9 +192,9 @@ bool BodyReader::read_header(const yaml::NodeRef& root, Model& model) {
                   "add format: ChoreonoidBody");
     return false;
   }
-  if (format->scalar != "ChoreonoidBody") {
+  if (format->scalar() != "ChoreonoidBody") {
     ctx_.report("load-format", format.use_site(),
-                "the format \"" + std::string(format->scalar) + "\" cannot be loaded as a Choreonoid body model");
+                "the format \"" + std::string(format->scalar()) + "\" cannot be loaded as a Choreonoid body model");
     return false;
   }
   yaml::NodeRef version = r.take({"format_version", "formatVersion"});
@@ -207,14 +207,14 @@ bool BodyReader::read_header(const yaml::NodeRef& root, Model& model) {
   if (!v) return false;
   if (*v >= 2.1) {
     ctx_.report("load-format-version", version.use_site(),
-                "version " + std::string(version->scalar) + " of the Choreonoid body format is not supported");
+                "version " + std::string(version->scalar()) + " of the Choreonoid body format is not supported");
     return false;
   }
   model.format_version = *v;
   version_node_ = version;
   if (auto unit = r.take({"angle_unit", "angleUnit"})) {
     unit_node_ = unit;
-    if (unit->scalar == "radian") {
+    if (unit->scalar() == "radian") {
       if (*v >= 2.0) {
         // body-format-spec §2.1: radian mode is rejected in format 2.0.
         ctx_.report("units-radian-in-2.0", unit.use_site(), "radian mode is not supported in format version 2.0",
@@ -222,19 +222,19 @@ bool BodyReader::read_header(const yaml::NodeRef& root, Model& model) {
         return false;
       }
       ctx_.degrees = false;
-    } else if (unit->scalar != "degree") {
+    } else if (unit->scalar() != "degree") {
       ctx_.report("load-angle-unit", unit.use_site(), "the angle_unit value must be either \"radian\" or \"degree\"");
       return false;
     }
   }
   model.angles_in_degrees = ctx_.degrees;
-  if (auto name = r.take({"name"})) model.name = name->scalar;
+  if (auto name = r.take({"name"})) model.name = name->scalar();
   if (auto handlers = r.take({"body_handlers"})) {
     if (handlers->is_scalar())
-      model.body_handlers.emplace_back(handlers->scalar);
+      model.body_handlers.emplace_back(handlers->scalar());
     else if (handlers->is_sequence())
-      for (const auto& h : handlers->items)
-        if (h->is_scalar()) model.body_handlers.emplace_back(h->scalar);
+      for (const auto& h : handlers->items())
+        if (h->is_scalar()) model.body_handlers.emplace_back(h->scalar());
   }
   return true;
 }
@@ -258,14 +258,14 @@ void BodyReader::read_links(const yaml::NodeRef& links, Model& model, std::vecto
                 "use Link, SubBody, ContinuousTrack or Skip");
   };
   if (links->is_sequence()) {
-    if (links->items.empty()) ctx_.report("load-no-links", links, "no link is contained in the \"links\" listing");
-    for (const yaml::NodeRef& item : links->items) {
+    if (links->items().empty()) ctx_.report("load-no-links", links, "no link is contained in the \"links\" listing");
+    for (const yaml::NodeRef& item : links->items()) {
       const yaml::MapEntry* type = item->is_mapping() ? item->find("type") : nullptr;
-      read_one(item, type ? std::string(type->value->scalar) : std::string());
+      read_one(item, type ? std::string(type->value->scalar()) : std::string());
     }
   } else if (links->is_mapping()) {
     std::vector<const yaml::MapEntry*> sorted;
-    for (const auto& e : links->entries) sorted.push_back(&e);
+    for (const auto& e : links->entries()) sorted.push_back(&e);
     std::sort(sorted.begin(), sorted.end(), [](auto* a, auto* b) { return a->key < b->key; });
     for (const yaml::MapEntry* e : sorted) read_one(e->value, std::string(e->key));
   } else {
@@ -434,10 +434,10 @@ bool BodyReader::build_tree(Model& model, const std::vector<LinkEntry>& entries,
   const LinkNames names = index_link_names(model);
   LinkIndex root = 0;
   if (root_link) {
-    auto it = names.by_name.find(std::string(root_link->scalar));
+    auto it = names.by_name.find(std::string(root_link->scalar()));
     if (it == names.by_name.end()) {
       ctx_.report("structure-root-link", root_link.use_site(),
-                  "link \"" + std::string(root_link->scalar) + "\" specified in root_link is not defined");
+                  "link \"" + std::string(root_link->scalar()) + "\" specified in root_link is not defined");
       return false;
     }
     root = it->second;
@@ -455,7 +455,7 @@ void BodyReader::read_extra_joints(const yaml::NodeRef& extra_joints, Model& mod
     ctx_.report("load-ignored-value", extra_joints, "extra_joints must be a sequence; Choreonoid ignores it");
     return;
   }
-  for (const yaml::NodeRef& node : extra_joints->items) {
+  for (const yaml::NodeRef& node : extra_joints->items()) {
     if (!node->is_mapping()) {
       ctx_.report("load-type", node, "an extra joint must be a mapping");
       continue;
@@ -472,10 +472,10 @@ void BodyReader::read_extra_joints(const yaml::NodeRef& extra_joints, Model& mod
         ok = false;
         continue;
       }
-      LinkIndex index = model.find_link(name->scalar);
+      LinkIndex index = model.find_link(name->scalar());
       if (index < 0) {
         ctx_.report("extra-joint-link", name,
-                    "the link \"" + std::string(name->scalar) + "\" specified in " + snake + " is not found");
+                    "the link \"" + std::string(name->scalar()) + "\" specified in " + snake + " is not found");
         ok = false;
       }
       (k == 1 ? joint.link1 : joint.link2) = index;
@@ -484,13 +484,13 @@ void BodyReader::read_extra_joints(const yaml::NodeRef& extra_joints, Model& mod
     if (!type) {
       ctx_.report("extra-joint-type", node, "the joint type must be specified with the \"joint_type\" key");
       ok = false;
-    } else if (type->scalar != "fixed" && type->scalar != "hinge" && type->scalar != "ball" &&
-               type->scalar != "piston") {
-      ctx_.report("extra-joint-type", type, "joint type \"" + std::string(type->scalar) + "\" is not available",
+    } else if (type->scalar() != "fixed" && type->scalar() != "hinge" && type->scalar() != "ball" &&
+               type->scalar() != "piston") {
+      ctx_.report("extra-joint-type", type, "joint type \"" + std::string(type->scalar()) + "\" is not available",
                   "use fixed, hinge, ball or piston");
       ok = false;
     } else {
-      joint.type = type->scalar;
+      joint.type = type->scalar();
     }
     if (auto axis = r.take({"axis", "jointAxis"})) {
       if (auto a = read_vec3(ctx_, axis)) {

@@ -39,7 +39,7 @@ std::optional<Eigen::Vector3d> opt_vec3(MappingReader& r, KeyNames names) {
 
 std::string opt_string(MappingReader& r, KeyNames names, std::string fallback) {
   yaml::NodeRef ref = r.take(names);
-  if (ref && ref->is_scalar()) return std::string(ref->scalar);
+  if (ref && ref->is_scalar()) return std::string(ref->scalar());
   return fallback;
 }
 
@@ -47,7 +47,7 @@ bool read_camera(MappingReader& r, Device& d) {
   LoadContext& ctx = r.context();
   CameraParams c;
   yaml::NodeRef format = r.take({"format"});
-  c.format = format && format->is_scalar() ? format->scalar : "";
+  c.format = format && format->is_scalar() ? format->scalar() : "";
   static const std::array<std::string_view, 5> kFormats = {"COLOR", "DEPTH", "COLOR_DEPTH", "POINT_CLOUD",
                                                            "COLOR_POINT_CLOUD"};
   if (std::find(kFormats.begin(), kFormats.end(), c.format) == kFormats.end()) {
@@ -179,7 +179,7 @@ bool read_device_params(MappingReader& r, std::string_view t, Device& d) {
     for (const auto& [node, cls] : kClassNames)
       if (node == t) d.type = std::string(cls);
     if (t == "MarkerDevice") note_first_angle(r, {"offset_rotation", "offsetRotation"}, true);
-    for (const yaml::MapEntry& e : r.node()->entries) r.ignore(e.key);
+    for (const yaml::MapEntry& e : r.node()->entries()) r.ignore(e.key);
   }
   return true;
 }

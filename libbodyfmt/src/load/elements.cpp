@@ -64,7 +64,7 @@ ElementReader::ElementReader(LoadContext& ctx, Model& model, LinkIndex link, Res
 void ElementReader::read_elements(const yaml::NodeRef& elements, const ElementFrame& frame) {
   if (!elements) return;
   if (elements->is_sequence()) {
-    for (const yaml::NodeRef& raw_item : elements->items) {
+    for (const yaml::NodeRef& raw_item : elements->items()) {
       const yaml::NodeRef item = elements.child(raw_item);
       if (!item->is_mapping()) {
         ctx_.report("load-type", item, "an element must be a mapping");
@@ -75,18 +75,18 @@ void ElementReader::read_elements(const yaml::NodeRef& elements, const ElementFr
         ctx_.report("load-missing-key", item, "key \"type\" is not found in this element");
         continue;
       }
-      read_node(item, std::string(type->value->scalar), frame);
+      read_node(item, std::string(type->value->scalar()), frame);
     }
     return;
   }
   if (elements->is_mapping()) {
     if (const yaml::MapEntry* type = elements->find("type")) {
-      read_node(elements, std::string(type->value->scalar), frame);
+      read_node(elements, std::string(type->value->scalar()), frame);
       return;
     }
     // body-format-spec §7.1 form 3: keys are node types, visited in byte-wise order.
     std::vector<const yaml::MapEntry*> entries;
-    for (const yaml::MapEntry& e : elements->entries) entries.push_back(&e);
+    for (const yaml::MapEntry& e : elements->entries()) entries.push_back(&e);
     std::sort(entries.begin(), entries.end(),
               [](const yaml::MapEntry* a, const yaml::MapEntry* b) { return a->key < b->key; });
     for (const yaml::MapEntry* e : entries) {
@@ -94,9 +94,9 @@ void ElementReader::read_elements(const yaml::NodeRef& elements, const ElementFr
         ctx_.report("load-type", e->value, "the \"" + std::string(e->key) + "\" element must be a mapping");
         continue;
       }
-      if (const yaml::MapEntry* inner = e->value->find("type"); inner && inner->value->scalar != e->key) {
+      if (const yaml::MapEntry* inner = e->value->find("type"); inner && inner->value->scalar() != e->key) {
         ctx_.report("load-type-mismatch", inner->value,
-                    "the node type \"" + std::string(inner->value->scalar) + "\" is different from the type \"" +
+                    "the node type \"" + std::string(inner->value->scalar()) + "\" is different from the type \"" +
                         std::string(e->key) + "\" specified in the parent node");
         continue;
       }
@@ -191,7 +191,7 @@ void ElementReader::read_node(const yaml::NodeRef& node, const std::string& type
   // body-format-spec §7.2 rule 3.
   MappingReader r(ctx_, node, type);
   yaml::NodeRef optional = r.take({"is_optional", "isOptional"});
-  bool is_optional = optional && text::parse_bool_word(optional->scalar).value_or(false);
+  bool is_optional = optional && text::parse_bool_word(optional->scalar()).value_or(false);
   std::string_view guess = text::suggest(type, kElementTypes);
   const yaml::MapEntry* type_entry = node->find("type");
   yaml::NodeRef at = type_entry ? type_entry->value : node;
@@ -267,7 +267,7 @@ void ElementReader::read_shape(const yaml::NodeRef& node, const ElementFrame& fr
   MappingReader r(ctx_, node, "Shape node");
   r.take({"type"});
   Shape shape;
-  if (auto name = r.take({"name"})) shape.name = name->scalar;
+  if (auto name = r.take({"name"})) shape.name = name->scalar();
   ElementFrame inner = *enter(r, frame);
   shape.source = node.use_site();
   if (auto geometry = r.take({"geometry"})) {
@@ -302,11 +302,11 @@ void ElementReader::read_device(const yaml::NodeRef& node, const std::string& ty
   d.node_type = type;
   d.link = link_;
   d.source = node.use_site();
-  for (const yaml::MapEntry& e : node->entries) {
-    if (e.value->is_scalar()) d.keys[std::string(e.key)] = e.value->scalar;
+  for (const yaml::MapEntry& e : node->entries()) {
+    if (e.value->is_scalar()) d.keys[std::string(e.key)] = e.value->scalar();
     d.key_sources[std::string(e.key)] = node.child(e.value).use_site();
   }
-  if (auto name = r.take({"name"})) d.name = name->scalar;
+  if (auto name = r.take({"name"})) d.name = name->scalar();
   if (auto id = r.take({"id"})) {
     if (auto v = optional_int(ctx_, id)) d.id = static_cast<int>(*v);
   }
@@ -325,7 +325,7 @@ void ElementReader::read_device(const yaml::NodeRef& node, const std::string& ty
     d.type = type;
     // Particle devices (SceneEffects plugin): emission_range is an angle (§3).
     note_first_angle(r, {"emission_range", "emissionRange"}, false);
-    for (const yaml::MapEntry& e : node->entries) r.ignore(e.key);
+    for (const yaml::MapEntry& e : node->entries()) r.ignore(e.key);
     if (ctx_.reported_once.insert("plugin:" + type).second) {
       ctx_.report("load-plugin-node", node,
                   "\"" + type +

@@ -31,7 +31,7 @@ std::vector<int> indices(LoadContext& ctx, const yaml::NodeRef& ref) {
     if (ref) ctx.report("load-type", ref, "an index list must be a sequence");
     return out;
   }
-  for (const yaml::NodeRef& item : ref->items) {
+  for (const yaml::NodeRef& item : ref->items()) {
     auto v = required_int(ctx, item);
     out.push_back(v ? static_cast<int>(*v) : -1);
   }
@@ -110,7 +110,7 @@ Geometry read_extrusion(LoadContext& ctx, MappingReader& r) {
   std::vector<double> orientation = numbers_or_empty(ctx, orientation_node);
   for (std::size_t i = 0; i + 3 < orientation.size(); i += 4) {
     Eigen::Vector3d axis(orientation[i], orientation[i + 1], orientation[i + 2]);
-    double angle = ctx.angle(orientation[i + 3], orientation_node.child(orientation_node->items[i + 3]));
+    double angle = ctx.angle(orientation[i + 3], orientation_node.child(orientation_node->items()[i + 3]));
     // The axis as written: Choreonoid does not normalise it (see ExtrusionFrames).
     e.orientation.emplace_back(angle, axis);
   }
@@ -268,7 +268,7 @@ std::optional<Geometry> read_geometry(LoadContext& ctx, const yaml::NodeRef& geo
   }
   r.take({"extra_division_number"});
   r.take({"extra_division_mode"});
-  const std::string_view t = type->scalar;
+  const std::string_view t = type->scalar();
   if (t == "Box") return read_box(ctx, r);
   if (t == "Sphere") return read_sphere(ctx, r);
   if (t == "Cylinder") return read_cylinder(ctx, r);

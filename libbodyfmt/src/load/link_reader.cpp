@@ -45,20 +45,20 @@ std::optional<JointType> parse_joint_type(std::string_view s) {
 void read_joint(LoadContext& ctx, MappingReader& r, Link& link) {
   if (auto t = r.take({"joint_type", "jointType"})) {
     link.sources.joint_type = t.use_site();
-    if (auto type = parse_joint_type(t->scalar)) {
+    if (auto type = parse_joint_type(t->scalar())) {
       link.joint_type = *type;
-      if (t->scalar == "slide" || t->scalar == "pseudoContinuousTrack") {
+      if (t->scalar() == "slide" || t->scalar() == "pseudoContinuousTrack") {
         std::vector<FixIt> fixes;
         if (auto fix = edit_value(*t, std::string(joint_type_name(*type)), FixSafety::kSafe))
           fixes.push_back(std::move(*fix));
-        ctx.report("load-legacy-key", t, "legacy joint type \"" + std::string(t->scalar) + "\"",
+        ctx.report("load-legacy-key", t, "legacy joint type \"" + std::string(t->scalar()) + "\"",
                    std::string("write ") + std::string(joint_type_name(*type)), std::move(fixes));
       }
     } else {
       std::string hint;
-      if (t->scalar == "continuous" || t->scalar == "hinge")
+      if (t->scalar() == "continuous" || t->scalar() == "hinge")
         hint = "use revolute (with joint_range: unlimited for a continuous joint)";
-      ctx.report("load-joint-type", t, "illegal joint type \"" + std::string(t->scalar) + "\"", hint);
+      ctx.report("load-joint-type", t, "illegal joint type \"" + std::string(t->scalar()) + "\"", hint);
     }
   }
   if (auto mode = r.take({"actuation_mode", "actuationMode"})) {
@@ -66,14 +66,14 @@ void read_joint(LoadContext& ctx, MappingReader& r, Link& link) {
                                                          "jointForce",    "joint_displacement", "jointDisplacement",
                                                          "jointAngle",    "joint_velocity",     "jointVelocity",
                                                          "link_position", "linkPosition",       "jointSurfaceVelocity"};
-    link.actuation_mode = mode->scalar;
-    if (mode->scalar == "jointSurfaceVelocity") {
+    link.actuation_mode = mode->scalar();
+    if (mode->scalar() == "jointSurfaceVelocity") {
       // body-format-spec §6.3: the deprecated mode turns the joint into a pseudo track.
       link.joint_type = JointType::kPseudoContinuousTrack;
       ctx.report("load-legacy-key", mode, "actuation mode \"jointSurfaceVelocity\" is deprecated",
                  "write joint_type: pseudo_continuous_track");
-    } else if (std::find(kModes.begin(), kModes.end(), mode->scalar) == kModes.end()) {
-      ctx.report("load-actuation-mode", mode, "illegal actuation mode \"" + std::string(mode->scalar) + "\"");
+    } else if (std::find(kModes.begin(), kModes.end(), mode->scalar()) == kModes.end()) {
+      ctx.report("load-actuation-mode", mode, "illegal actuation mode \"" + std::string(mode->scalar()) + "\"");
     }
   }
   const bool revolute = link.joint_type == JointType::kRevolute;
@@ -191,7 +191,7 @@ LinkEntry read_link(LoadContext& ctx, const yaml::NodeRef& node, Model& model, R
     entry.parent_name = required_string(ctx, parent).value_or("");
     entry.parent_ref = parent;
   }
-  if (auto joint_name = r.take({"joint_name"})) link().joint_name = joint_name->scalar;
+  if (auto joint_name = r.take({"joint_name"})) link().joint_name = joint_name->scalar();
   if (auto t = r.take({"translation"})) {
     link().sources.translation = t.use_site();
     if (auto v = read_translation(ctx, t)) link().X_PL.translation() = *v;
@@ -201,7 +201,7 @@ LinkEntry read_link(LoadContext& ctx, const yaml::NodeRef& node, Model& model, R
     if (auto R = read_rotation(ctx, rot)) link().X_PL.linear() = *R;
   }
   read_joint(ctx, r, link());
-  if (auto material = r.take({"material"})) link().contact_material = material->scalar;
+  if (auto material = r.take({"material"})) link().contact_material = material->scalar();
   if (auto import = r.take({"import"})) {
     // body-format-spec §6.5: import only adds info keys; model keys in it have no effect.
     ctx.report("load-import", import, "import only adds info keys; model keys inside it are ignored by Choreonoid");
@@ -236,7 +236,7 @@ void apply_subbody_overrides(LoadContext& ctx, MappingReader& r, Model& model, L
   link.joint_range_upper = link.velocity_upper = kUnlimited;
   link.joint_axis_inertia = 0;
   read_joint(ctx, r, link);
-  if (auto material = r.take({"material"})) link.contact_material = material->scalar;
+  if (auto material = r.take({"material"})) link.contact_material = material->scalar();
   for (KeyNames names : {KeyNames{"mass"}, KeyNames{"center_of_mass", "centerOfMass"}, KeyNames{"inertia"}}) {
     if (auto ignored = r.take(names))
       ctx.report("load-mass-ignored", ignored, "mass properties on a SubBody node are ignored by Choreonoid");

@@ -31,7 +31,7 @@ std::optional<FixIt> edit_span(const SourceLocation& at, const yaml::TextSpan& s
 
 std::optional<FixIt> edit_value(const yaml::Node& node, std::string replacement, FixSafety safety) {
   if (!node.is_scalar()) return std::nullopt;
-  return edit_span(node.location, node.span, node.scalar, std::move(replacement), safety);
+  return edit_span(node.location, node.span, node.scalar(), std::move(replacement), safety);
 }
 
 std::optional<FixIt> edit_key(const yaml::MapEntry& entry, std::string replacement, FixSafety safety) {
@@ -90,7 +90,7 @@ void LoadContext::record_upgrade(const yaml::NodeRef& at, double radians) {
 void LoadContext::note_angle(const yaml::NodeRef& at) {
   if (degrees || !at || !at->is_scalar()) return;
   // Lenient like Choreonoid's required reads (§1.2): the numeric prefix.
-  const char* text = at->scalar.data();  // NUL-terminated
+  const char* text = at->scalar().data();  // NUL-terminated
   char* end = nullptr;
   const double value = std::strtod(text, &end);
   if (end != text) record_upgrade(at, value);
@@ -98,12 +98,12 @@ void LoadContext::note_angle(const yaml::NodeRef& at) {
 
 void LoadContext::note_rotation_angles(const yaml::NodeRef& rotation) {
   if (degrees || !rotation || !rotation->is_sequence()) return;
-  if (rotation->items.size() == 4 && rotation->items.front()->is_scalar()) {
-    note_angle(rotation.child(rotation->items[3]));
+  if (rotation->items().size() == 4 && rotation->items().front()->is_scalar()) {
+    note_angle(rotation.child(rotation->items()[3]));
     return;
   }
-  for (const yaml::NodeRef& item : rotation->items)
-    if (item->is_sequence() && item->items.size() == 4) note_angle(rotation.child(item).child(item->items[3]));
+  for (const yaml::NodeRef& item : rotation->items())
+    if (item->is_sequence() && item->items().size() == 4) note_angle(rotation.child(item).child(item->items()[3]));
 }
 
 }  // namespace bodyfmt::detail

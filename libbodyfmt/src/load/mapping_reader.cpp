@@ -10,11 +10,11 @@ namespace bodyfmt::detail {
 
 MappingReader::MappingReader(LoadContext& ctx, const yaml::NodeRef& mapping, std::string what)
     : ctx_(ctx), mapping_(mapping), what_(std::move(what)) {
-  if (mapping_ && mapping_->is_mapping()) consumed_.assign(mapping_->entries.size(), false);
+  if (mapping_ && mapping_->is_mapping()) consumed_.assign(mapping_->entries().size(), false);
 }
 
 void MappingReader::consume(const yaml::MapEntry* entry) {
-  consumed_[static_cast<std::size_t>(entry - mapping_->entries.begin())] = true;
+  consumed_[static_cast<std::size_t>(entry - mapping_->entries().begin())] = true;
 }
 
 std::string_view MappingReader::modern_of(std::string_view name) const {
@@ -84,8 +84,8 @@ void MappingReader::report_unknown(const std::vector<std::string_view>& known) {
   const std::size_t first_legacy = candidates.size();
   for (const auto& [legacy, modern] : legacy_) candidates.push_back(legacy);
   std::sort(candidates.begin() + static_cast<std::ptrdiff_t>(first_legacy), candidates.end());  // as before: by name
-  for (std::size_t i = 0; i < mapping_->entries.size(); ++i) {
-    const yaml::MapEntry& entry = mapping_->entries[i];
+  for (std::size_t i = 0; i < mapping_->entries().size(); ++i) {
+    const yaml::MapEntry& entry = mapping_->entries()[i];
     if (consumed_[i] || entry.merged) continue;
     std::string_view guess = text::suggest(entry.key, candidates);
     if (std::string_view modern = modern_of(guess); !modern.empty()) guess = modern;

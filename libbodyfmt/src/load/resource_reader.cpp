@@ -48,7 +48,7 @@ class Resources final : public ResourceReader {
     MappingReader r(ctx_, node, "Resource node");
     r.take({"type"});
     std::string name;
-    if (auto n = r.take({"name"})) name = n->scalar;
+    if (auto n = r.take({"name"})) name = n->scalar();
     yaml::NodeRef uri = r.take({"uri"});
     yaml::NodeRef fragment = r.take({"node", "fragment"});
     yaml::NodeRef metadata = r.take({"metadata"});
@@ -69,7 +69,7 @@ class Resources final : public ResourceReader {
       ctx_.report("load-missing-key", node, "key \"uri\" is not found in a Resource node");
       return;
     }
-    std::string path = resolve_uri(ctx_, uri, std::string(uri->scalar), uri->location.file);
+    std::string path = resolve_uri(ctx_, uri, std::string(uri->scalar()), uri->location.file);
     if (path.empty()) return;
     std::string ext = lower_extension(path);
     if (ext == ".yaml" || ext == ".yml") {
@@ -80,10 +80,10 @@ class Resources final : public ResourceReader {
     shape.name = name;
     shape.source = node.use_site();
     MeshResource mesh;
-    mesh.uri = uri->scalar;
+    mesh.uri = uri->scalar();
     mesh.uri_source = uri.use_site();
     mesh.resolved_path = path;
-    if (fragment) mesh.node = fragment->scalar;
+    if (fragment) mesh.node = fragment->scalar();
     if (metadata) read_mesh_metadata(ctx_, metadata, mesh);
     shape.geometry = mesh;
     reader.add_shape(std::move(shape), inner);
@@ -126,7 +126,7 @@ class Resources final : public ResourceReader {
       reader.read_elements(doc->root, frame);
       return;
     }
-    const std::string name(fragment->scalar);
+    const std::string name(fragment->scalar());
     const yaml::Node* target = nullptr;
     if (auto it = doc->anchors.find(name); it != doc->anchors.end())
       target = it->second;
@@ -135,7 +135,7 @@ class Resources final : public ResourceReader {
     }
     if (!target) {
       ctx_.report("resource-fragment", fragment,
-                  "fragment \"" + name + "\" is not found in \"" + std::string(uri->scalar) + "\"");
+                  "fragment \"" + name + "\" is not found in \"" + std::string(uri->scalar()) + "\"");
       return;
     }
     // The fragment is used like an alias: its findings point into the library file and name
@@ -161,13 +161,13 @@ class Resources final : public ResourceReader {
     const std::optional<std::string> text = read_included_file(path, options_, why);
     if (!text) {
       ctx_.report("subbody-missing", uri,
-                  "sub-body \"" + std::string(uri->scalar) + "\" cannot be read at \"" + path + "\": " + why);
+                  "sub-body \"" + std::string(uri->scalar()) + "\" cannot be read at \"" + path + "\": " + why);
     } else {
       BodyReader reader(options_, ctx_.sink, session_);
       if (auto model = reader.read(*text, path, false))
         result = std::make_shared<const Model>(std::move(*model));
       else
-        ctx_.report("subbody-load", uri, "the sub-body \"" + std::string(uri->scalar) + "\" cannot be loaded");
+        ctx_.report("subbody-load", uri, "the sub-body \"" + std::string(uri->scalar()) + "\" cannot be loaded");
     }
     session_.subbodies[canonical] = result;
     return result;
@@ -181,13 +181,13 @@ class Resources final : public ResourceReader {
       ctx_.report("load-missing-key", node, "uri must be specified for a SubBody");
       return;
     }
-    std::string path = resolve_uri(ctx_, uri, std::string(uri->scalar), uri->location.file);
+    std::string path = resolve_uri(ctx_, uri, std::string(uri->scalar()), uri->location.file);
     if (path.empty()) return;
     std::shared_ptr<const Model> sub = load_subbody(uri, path);
     if (!sub || sub->links.empty()) return;
     auto text = [&](KeyNames names) {
       yaml::NodeRef v = r.take(names);
-      return v && v->is_scalar() ? std::optional<std::string>(v->scalar) : std::nullopt;
+      return v && v->is_scalar() ? std::optional<std::string>(v->scalar()) : std::nullopt;
     };
     const std::string prefix = text({"prefix"}).value_or("");
     const std::string suffix = text({"suffix"}).value_or("");
@@ -211,7 +211,7 @@ class Resources final : public ResourceReader {
       if (link.parent >= 0) {
         entry.parent_name = prefix + sub->links[static_cast<std::size_t>(link.parent)].name + suffix;
       } else if (parent) {
-        entry.parent_name = parent->scalar;
+        entry.parent_name = parent->scalar();
         entry.parent_ref = parent;
       }
       link.parent = -1;
@@ -279,7 +279,7 @@ class Resources final : public ResourceReader {
       link.initial_displacement =
           static_cast<std::size_t>(i - 1) < initial.size()
               ? ctx_.angle(initial[static_cast<std::size_t>(i - 1)],
-                           angles->value.child(angles->value->items[static_cast<std::size_t>(i - 1)]))
+                           angles->value.child(angles->value->items()[static_cast<std::size_t>(i - 1)]))
               : 0.0;
       model_.links.push_back(std::move(link));
       LinkEntry entry;

@@ -36,7 +36,7 @@ bool is_yaml_special_float(std::string_view text) {
 bool report_if_not_finite(LoadContext& ctx, const yaml::NodeRef& ref, double value) {
   if (std::isfinite(value)) return false;
   ctx.report("load-number", ref,
-             "the value \"" + std::string(ref->scalar) + "\" is not finite (" +
+             "the value \"" + std::string(ref->scalar()) + "\" is not finite (" +
                  (std::isnan(value) ? "NaN" : "infinite") + "); masses, lengths and angles must be finite numbers");
   return true;
 }
@@ -54,7 +54,7 @@ std::optional<double> parse_double_exact(std::string_view text) {
 
 std::optional<double> required_double(LoadContext& ctx, const yaml::NodeRef& ref) {
   if (!is_scalar(ctx, ref, "a number")) return std::nullopt;
-  const std::string_view text = ref->scalar;
+  const std::string_view text = ref->scalar();
   const char* begin = text.data();  // NUL-terminated
   char* end = nullptr;
   double value = std::strtod(begin, &end);
@@ -84,7 +84,7 @@ std::optional<double> required_double(LoadContext& ctx, const yaml::NodeRef& ref
 
 std::optional<long> required_int(LoadContext& ctx, const yaml::NodeRef& ref) {
   if (!is_scalar(ctx, ref, "an integer")) return std::nullopt;
-  const std::string_view text = ref->scalar;
+  const std::string_view text = ref->scalar();
   const char* begin = text.data();  // NUL-terminated
   char* end = nullptr;
   errno = 0;
@@ -103,25 +103,25 @@ std::optional<long> required_int(LoadContext& ctx, const yaml::NodeRef& ref) {
 
 std::optional<bool> required_bool(LoadContext& ctx, const yaml::NodeRef& ref) {
   if (!is_scalar(ctx, ref, "a boolean")) return std::nullopt;
-  auto value = text::parse_bool_word(ref->scalar);
-  if (!value) ctx.report("load-bool", ref, "the value \"" + std::string(ref->scalar) + "\" must be a boolean value");
+  auto value = text::parse_bool_word(ref->scalar());
+  if (!value) ctx.report("load-bool", ref, "the value \"" + std::string(ref->scalar()) + "\" must be a boolean value");
   return value;
 }
 
 std::optional<std::string> required_string(LoadContext& ctx, const yaml::NodeRef& ref) {
   if (!is_scalar(ctx, ref, "a string")) return std::nullopt;
-  return std::string(ref->scalar);
+  return std::string(ref->scalar());
 }
 
 std::optional<double> optional_double(LoadContext& ctx, const yaml::NodeRef& ref) {
   if (ref && ref->is_scalar()) {
-    if (auto value = parse_double_exact(ref->scalar)) {
+    if (auto value = parse_double_exact(ref->scalar())) {
       if (report_if_not_finite(ctx, ref, *value)) return std::nullopt;
       return value;
     }
-    if (is_yaml_special_float(ref->scalar)) {
+    if (is_yaml_special_float(ref->scalar())) {
       ctx.report("load-number", ref,
-                 "the value \"" + std::string(ref->scalar) +
+                 "the value \"" + std::string(ref->scalar()) +
                      "\" is not finite; Choreonoid cannot read it and silently uses the default");
       return std::nullopt;
     }
@@ -132,7 +132,7 @@ std::optional<double> optional_double(LoadContext& ctx, const yaml::NodeRef& ref
 
 std::optional<long> optional_int(LoadContext& ctx, const yaml::NodeRef& ref) {
   if (ref && ref->is_scalar()) {
-    const char* text = ref->scalar.data();  // NUL-terminated
+    const char* text = ref->scalar().data();  // NUL-terminated
     char* end = nullptr;
     long value = std::strtol(text, &end, 10);
     if (end != text && only_trailing_space(end)) return value;
@@ -143,7 +143,7 @@ std::optional<long> optional_int(LoadContext& ctx, const yaml::NodeRef& ref) {
 
 std::optional<bool> optional_bool(LoadContext& ctx, const yaml::NodeRef& ref) {
   if (ref && ref->is_scalar()) {
-    if (auto value = text::parse_bool_word(ref->scalar)) return value;
+    if (auto value = text::parse_bool_word(ref->scalar())) return value;
   }
   ctx.report("load-ignored-value", ref, "this value is not a boolean; Choreonoid ignores it and uses the default");
   return std::nullopt;

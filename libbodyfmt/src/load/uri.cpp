@@ -72,7 +72,7 @@ void read_mesh_metadata(LoadContext& ctx, const yaml::NodeRef& metadata, MeshRes
   };
   if (metadata->is_scalar()) {
     // Legacy form: space-separated words (body-format-spec §9.4).
-    std::string words(metadata->scalar);
+    std::string words(metadata->scalar());
     std::size_t start = 0;
     while (start < words.size()) {
       std::size_t end = words.find(' ', start);
@@ -87,11 +87,11 @@ void read_mesh_metadata(LoadContext& ctx, const yaml::NodeRef& metadata, MeshRes
     return;
   }
   MappingReader r(ctx, metadata, "metadata");
-  if (auto unit = r.take({"length_unit"})) apply_unit(std::string(unit->scalar), unit);
+  if (auto unit = r.take({"length_unit"})) apply_unit(std::string(unit->scalar()), unit);
   if (auto axis = r.take({"upper_axis"})) {
-    if (axis->scalar == "Y")
+    if (axis->scalar() == "Y")
       mesh.y_up = true;
-    else if (axis->scalar != "Z")
+    else if (axis->scalar() != "Z")
       ctx.report("load-ignored-value", axis, "upper_axis must be Y or Z");
   }
   r.report_unknown({"length_unit", "upper_axis"});

@@ -17,22 +17,22 @@ bool expect_sequence(LoadContext& ctx, const yaml::NodeRef& ref, const char* wha
 }
 
 bool is_sequence_of_sequences(const yaml::NodeRef& ref) {
-  return ref && ref->is_sequence() && !ref->items.empty() && ref->items.front()->is_sequence();
+  return ref && ref->is_sequence() && !ref->items().empty() && ref->items().front()->is_sequence();
 }
 
 }  // namespace
 
 std::optional<Eigen::VectorXd> read_vector(LoadContext& ctx, const yaml::NodeRef& ref, int size) {
   if (!expect_sequence(ctx, ref, "this value")) return std::nullopt;
-  if (static_cast<int>(ref->items.size()) != size) {
+  if (static_cast<int>(ref->items().size()) != size) {
     ctx.report("load-vector-size", ref,
-               "a " + std::to_string(size) + "-element vector is expected, found " + std::to_string(ref->items.size()) +
-                   " elements");
+               "a " + std::to_string(size) + "-element vector is expected, found " +
+                   std::to_string(ref->items().size()) + " elements");
     return std::nullopt;
   }
   Eigen::VectorXd v(size);
   for (int i = 0; i < size; ++i) {
-    auto x = required_double(ctx, ref.child(ref->items[static_cast<std::size_t>(i)]));
+    auto x = required_double(ctx, ref.child(ref->items()[static_cast<std::size_t>(i)]));
     if (!x) return std::nullopt;
     v[i] = *x;
   }
@@ -59,8 +59,8 @@ std::optional<Eigen::Vector3d> read_optional_vec3(LoadContext& ctx, const yaml::
 std::optional<std::vector<double>> read_numbers(LoadContext& ctx, const yaml::NodeRef& ref) {
   if (!expect_sequence(ctx, ref, "this value")) return std::nullopt;
   std::vector<double> values;
-  values.reserve(ref->items.size());
-  for (const yaml::NodeRef& item : ref->items) {
+  values.reserve(ref->items().size());
+  for (const yaml::NodeRef& item : ref->items()) {
     auto x = required_double(ctx, ref.child(item));
     if (!x) return std::nullopt;
     values.push_back(*x);
@@ -70,14 +70,14 @@ std::optional<std::vector<double>> read_numbers(LoadContext& ctx, const yaml::No
 
 std::optional<Eigen::Vector3d> read_translation(LoadContext& ctx, const yaml::NodeRef& ref) {
   if (!expect_sequence(ctx, ref, "translation")) return std::nullopt;
-  if (ref->items.empty()) {
+  if (ref->items().empty()) {
     // body-format-spec §4.2: Choreonoid leaves the value undefined; reject it.
     ctx.report("load-vector-size", ref, "translation is an empty sequence", "write [x, y, z]");
     return std::nullopt;
   }
   if (!is_sequence_of_sequences(ref)) return read_vec3(ctx, ref);
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  for (const yaml::NodeRef& item : ref->items) {
+  for (const yaml::NodeRef& item : ref->items()) {
     auto v = read_vec3(ctx, item);
     if (!v) return std::nullopt;
     sum += *v;
@@ -87,7 +87,7 @@ std::optional<Eigen::Vector3d> read_translation(LoadContext& ctx, const yaml::No
 
 std::optional<Eigen::Matrix3d> read_rotation(LoadContext& ctx, const yaml::NodeRef& ref) {
   if (!expect_sequence(ctx, ref, "rotation")) return std::nullopt;
-  if (ref->items.empty()) {
+  if (ref->items().empty()) {
     ctx.report("load-vector-size", ref, "rotation is an empty sequence", "write [x, y, z, angle]");
     return std::nullopt;
   }
@@ -99,12 +99,12 @@ std::optional<Eigen::Matrix3d> read_rotation(LoadContext& ctx, const yaml::NodeR
       ctx.report("load-rotation-axis", r, "rotation axis is the zero vector");
       return std::nullopt;
     }
-    return Eigen::AngleAxisd(ctx.angle((*v)[3], r.child(r->items[3])), axis.normalized()).toRotationMatrix();
+    return Eigen::AngleAxisd(ctx.angle((*v)[3], r.child(r->items()[3])), axis.normalized()).toRotationMatrix();
   };
   if (!is_sequence_of_sequences(ref)) return one(ref);
   // body-format-spec §4.3: R = R1 * R2 * ... * Rn in list order.
   Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
-  for (const yaml::NodeRef& item : ref->items) {
+  for (const yaml::NodeRef& item : ref->items()) {
     auto r = one(item);
     if (!r) return std::nullopt;
     R = R * *r;
@@ -114,7 +114,7 @@ std::optional<Eigen::Matrix3d> read_rotation(LoadContext& ctx, const yaml::NodeR
 
 std::optional<Eigen::Matrix3d> read_inertia(LoadContext& ctx, const yaml::NodeRef& ref) {
   if (!expect_sequence(ctx, ref, "inertia")) return std::nullopt;
-  std::size_t n = ref->items.size();
+  std::size_t n = ref->items().size();
   if (n != 6 && n != 9) {
     ctx.report("load-inertia-size", ref,
                "the number of elements of an inertia value must be six or nine, found " + std::to_string(n));
@@ -134,7 +134,7 @@ std::optional<Eigen::Matrix3d> read_inertia(LoadContext& ctx, const yaml::NodeRe
 
 std::optional<Eigen::Vector3d> read_joint_axis(LoadContext& ctx, const yaml::NodeRef& ref) {
   if (ref && ref->is_scalar()) {
-    std::string s(ref->scalar);
+    std::string s(ref->scalar());
     std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::toupper(c); });
     double sign = 1;
     if (!s.empty() && s[0] == '-') {
@@ -144,7 +144,7 @@ std::optional<Eigen::Vector3d> read_joint_axis(LoadContext& ctx, const yaml::Nod
     if (s == "X") return Eigen::Vector3d(sign, 0, 0);
     if (s == "Y") return Eigen::Vector3d(0, sign, 0);
     if (s == "Z") return Eigen::Vector3d(0, 0, sign);
-    ctx.report("load-axis", ref, "illegal axis value \"" + std::string(ref->scalar) + "\"",
+    ctx.report("load-axis", ref, "illegal axis value \"" + std::string(ref->scalar()) + "\"",
                "use X, Y, Z, -X, -Y, -Z or [x, y, z]");
     return std::nullopt;
   }
@@ -160,14 +160,14 @@ std::optional<double> limit_value(LoadContext& ctx, const yaml::NodeRef& ref, bo
     ctx.report("load-range", ref, "invalid type value is used as a joint range value");
     return std::nullopt;
   }
-  if (ref->scalar == "unlimited") return unlimited_value;
-  if (!parse_double_exact(ref->scalar)) {
+  if (ref->scalar() == "unlimited") return unlimited_value;
+  if (!parse_double_exact(ref->scalar())) {
     // Choreonoid rejects any other symbol here (§3 "Unknown symbol is used as a jointRange value").
-    const char* b = ref->scalar.data();  // NUL-terminated
+    const char* b = ref->scalar().data();  // NUL-terminated
     char* e = nullptr;
     std::strtod(b, &e);
     if (e == b) {
-      ctx.report("load-range", ref, "unknown symbol \"" + std::string(ref->scalar) + "\" is used as a range value",
+      ctx.report("load-range", ref, "unknown symbol \"" + std::string(ref->scalar()) + "\" is used as a range value",
                  "use a number or unlimited");
       return std::nullopt;
     }
@@ -190,12 +190,12 @@ std::optional<std::pair<double, double>> read_range(LoadContext& ctx, const yaml
     ctx.report("load-range", ref, "invalid joint range value (a mapping)");
     return std::nullopt;
   }
-  if (ref->items.size() != 2) {
-    ctx.report("load-range", ref, "a joint range must have two elements, found " + std::to_string(ref->items.size()));
+  if (ref->items().size() != 2) {
+    ctx.report("load-range", ref, "a joint range must have two elements, found " + std::to_string(ref->items().size()));
     return std::nullopt;
   }
-  auto lower = limit_value(ctx, ref->items[0], convert_angle, -kUnlimited);
-  auto upper = limit_value(ctx, ref->items[1], convert_angle, kUnlimited);
+  auto lower = limit_value(ctx, ref->items()[0], convert_angle, -kUnlimited);
+  auto upper = limit_value(ctx, ref->items()[1], convert_angle, kUnlimited);
   if (!lower || !upper) return std::nullopt;
   return std::make_pair(*lower, *upper);
 }
@@ -215,12 +215,12 @@ std::optional<std::pair<double, double>> read_symmetric_limit(LoadContext& ctx, 
 std::optional<std::pair<double, double>> read_velocity_range(LoadContext& ctx, const yaml::NodeRef& ref,
                                                              bool convert_angle) {
   if (!ref) return std::nullopt;
-  if (!ref->is_sequence() || ref->items.size() != 2) {
+  if (!ref->is_sequence() || ref->items().size() != 2) {
     ctx.report("load-range", ref, "the joint velocity range must have two elements");
     return std::nullopt;
   }
-  auto lower = limit_value(ctx, ref->items[0], convert_angle, -kUnlimited);
-  auto upper = limit_value(ctx, ref->items[1], convert_angle, kUnlimited);
+  auto lower = limit_value(ctx, ref->items()[0], convert_angle, -kUnlimited);
+  auto upper = limit_value(ctx, ref->items()[1], convert_angle, kUnlimited);
   if (!lower || !upper) return std::nullopt;
   return std::make_pair(*lower, *upper);
 }

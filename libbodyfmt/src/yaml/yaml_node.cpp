@@ -8,20 +8,22 @@ namespace bodyfmt::yaml {
 static_assert(std::is_trivially_destructible_v<Node>);
 static_assert(std::is_trivially_destructible_v<MapEntry>);
 static_assert(std::is_trivially_destructible_v<NodeRef>);
+static_assert(sizeof(Node) <= 56, "a node's size is multiplied by millions");
 
 const SourceLocation& NodeRef::use_site() const { return alias_site != nullptr ? *alias_site : node->location; }
 
 bool Node::is_null() const {
   // The YAML core-schema null spellings; only plain scalars, so `""` and `'null'` stay strings.
   if (kind != NodeKind::kScalar || !plain) return false;
-  return scalar.empty() || scalar == "~" || scalar == "null" || scalar == "Null" || scalar == "NULL";
+  const std::string_view value = scalar();
+  return value.empty() || value == "~" || value == "null" || value == "Null" || value == "NULL";
 }
 
 const MapEntry* Node::find(std::string_view key) const {
   // Mappings in body files hold a handful of keys, so a linear scan beats building an index.
   // The first byte settles almost every mismatch without a call to memcmp.
   if (key.empty()) return nullptr;
-  for (const MapEntry& entry : entries) {
+  for (const MapEntry& entry : entries()) {
     if (entry.key.size() == key.size() && entry.key[0] == key[0] && entry.key == key) return &entry;
   }
   return nullptr;

@@ -3,7 +3,7 @@
 // (body-format-spec §1.1), aliases share one node, merge keys are already applied.
 //
 // The tree is compact and owned by its Document's arena: a 100,000-link file has about three
-// million nodes, so a node is a fixed 96 bytes with its text and its children in one
+// million nodes, so a node is a fixed 56 bytes with its text and its children in one
 // monotonic buffer, nothing is freed one by one, and mapping keys are not nodes of their own.
 
 #include <bodyfmt/diagnostic.h>
@@ -20,7 +20,7 @@ namespace bodyfmt::yaml {
 
 enum class NodeKind : std::uint8_t { kScalar, kSequence, kMapping };
 
-struct Node;
+class Node;
 
 /// An edge to a node. When the node was reached through `*alias`, `alias_site` is where the
 /// alias was written; `node->location` is always the anchor's (definition) site. Both sites
@@ -87,21 +87,21 @@ struct MapEntry {
   NodeRef value;
 };
 
-struct Node {
+class Node {
+  // Data members are declared in layout order: a node is 56 bytes, and a 100,000-link file
+  // holds about three million of them. The content (scalar text or children) is one field for
+  // whichever kind this is.
+ public:
   NodeKind kind = NodeKind::kScalar;
-  bool plain = true;        ///< kScalar: false for quoted or block scalars
-  int expanded_depth = 0;   ///< 0 for a scalar, 1 + deepest child for a collection
+  bool plain = true;  ///< kScalar: false for quoted or block scalars
+
+ private:
+  std::uint32_t size_ = 0;  // parse_yaml refuses texts of 4 GiB or more
+
+ public:
   SourceLocation location;  ///< 1-based position of the node's first character (or its anchor)
-
-  // kScalar
-  std::string_view scalar;  ///< the value, in the Document's arena; `scalar.data()` is NUL-terminated
-  TextSpan span;            ///< where `scalar` is written (fix-its edit it there)
-  // kSequence
-  Children<NodeRef> items;
-  // kMapping: file order; merge keys applied (local keys win, first merge source wins);
-  // duplicate keys collapsed (the last one wins, as in Choreonoid). The `<<` key is removed.
-  Children<MapEntry> entries;
-
+  TextSpan span;            ///< kScalar: where the value is written (fix-its edit it there)
+  int expanded_depth = 0;   ///< 0 for a scalar, 1 + deepest child for a collection
   // Filled by parse_yaml when the node is finished, so that a document reaching this node through
   // any number of aliases is measured in O(1) per alias (billion-laughs guard, toolchain.md §3).
   std::size_t expanded_size = 0;  ///< 1 + sum over children, aliases in full; 0 = not finished
@@ -109,10 +109,38 @@ struct Node {
   bool is_scalar() const { return kind == NodeKind::kScalar; }
   bool is_sequence() const { return kind == NodeKind::kSequence; }
   bool is_mapping() const { return kind == NodeKind::kMapping; }
+  /// kScalar: the value, in the Document's arena; `scalar().data()` is NUL-terminated. Empty
+  /// for a collection.
+  std::string_view scalar() const {
+    return is_scalar() && data_ != nullptr ? std::string_view(static_cast<const char*>(data_), size_)
+                                           : std::string_view("", 0);
+  }
+  /// kSequence: the items in order; empty otherwise.
+  Children<NodeRef> items() const {
+    return is_sequence() ? Children<NodeRef>(static_cast<const NodeRef*>(data_), size_) : Children<NodeRef>();
+  }
+  /// kMapping: file order; merge keys applied (local keys win, first merge source wins);
+  /// duplicate keys collapsed (the last one wins, as in Choreonoid). The `<<` key is removed.
+  /// Empty otherwise.
+  Children<MapEntry> entries() const {
+    return is_mapping() ? Children<MapEntry>(static_cast<const MapEntry*>(data_), size_) : Children<MapEntry>();
+  }
   /// A plain, empty scalar or `~`/`null` (an absent value such as `key:`).
   bool is_null() const;
   /// Mapping lookup; nullptr entry when absent or when this is not a mapping.
   const MapEntry* find(std::string_view key) const;
+
+  // For parse_yaml: the content lives in the Document's arena (Document::store).
+  void set_scalar(std::string_view stored) { set(stored.data(), stored.size()); }
+  void set_items(Children<NodeRef> stored) { set(stored.begin(), stored.size()); }
+  void set_entries(Children<MapEntry> stored) { set(stored.begin(), stored.size()); }
+
+ private:
+  void set(const void* data, std::size_t size) {
+    data_ = data;
+    size_ = static_cast<std::uint32_t>(size);
+  }
+  const void* data_ = nullptr;
 };
 
 struct ParseOptions {

@@ -235,13 +235,13 @@ class TreeBuilder {
       return;
     }
     Node* node = begin_node(NodeKind::kScalar, e.start_mark, scalar.anchor, scalar.tag);
-    node->scalar = document_.store(value);
+    node->set_scalar(document_.store(value));
     node->plain = plain;
     node->span = scalar_span(value, node->location, e.start_mark, e.end_mark, scalar.style);
     // `key:` with nothing after it: the empty value has no text of its own; it is reported at
     // its key rather than at wherever libyaml's scanner stood.
-    if (node->plain && node->scalar.empty() && scalar.anchor == nullptr && scalar.tag == nullptr && !frames_.empty() &&
-        frames_.back().node->is_mapping() && !frames_.back().expecting_key) {
+    if (node->plain && node->scalar().empty() && scalar.anchor == nullptr && scalar.tag == nullptr &&
+        !frames_.empty() && frames_.back().node->is_mapping() && !frames_.back().expecting_key) {
       node->location = frames_.back().key.location;
     }
     finish_scalar(node);
@@ -393,12 +393,12 @@ class TreeBuilder {
     };
     if (node->is_mapping()) {
       for (std::size_t i = frame.first_child; i < entries_.size(); ++i) measure(entries_[i].value);
-      node->entries = document_.store(entries_.data() + frame.first_child, entries_.size() - frame.first_child);
+      node->set_entries(document_.store(entries_.data() + frame.first_child, entries_.size() - frame.first_child));
       entries_.resize(frame.first_child);
       first_lines_.resize(frame.first_child);
     } else {
       for (std::size_t i = frame.first_child; i < items_.size(); ++i) measure(items_[i]);
-      node->items = document_.store(items_.data() + frame.first_child, items_.size() - frame.first_child);
+      node->set_items(document_.store(items_.data() + frame.first_child, items_.size() - frame.first_child));
       items_.resize(frame.first_child);
     }
     node->expanded_size = size;
@@ -422,7 +422,7 @@ class TreeBuilder {
       Key key;
       key.location = ref.use_site();
       if (ref->is_scalar()) {
-        key.text = ref->scalar;
+        key.text = ref->scalar();
         key.span = ref.alias_site != nullptr ? TextSpan{} : ref->span;
       } else {
         key.complex = ref.node;
@@ -502,7 +502,7 @@ class TreeBuilder {
     if (value->is_mapping()) {
       slot.sources.push_back(value);
     } else if (value->is_sequence()) {
-      for (const NodeRef& item : value->items) {
+      for (const NodeRef& item : value->items()) {
         if (item->is_mapping()) {
           slot.sources.push_back(item);
         } else {
@@ -528,7 +528,7 @@ class TreeBuilder {
     for (const MergeSlot& slot : frame.merges) {
       while (next_local < slot.position) merged.push_back(locals[next_local++]);
       for (const NodeRef& source : slot.sources) {
-        for (const MapEntry& entry : source->entries) {
+        for (const MapEntry& entry : source->entries()) {
           if (!present.insert(entry.key).second) continue;
           merged.push_back(MapEntry{entry.key, entry.key_location, entry.key_span, true, entry.value});
         }
@@ -583,6 +583,13 @@ std::unique_ptr<Document> parse_yaml(std::string_view text, const std::string& f
     sink.report(make_diagnostic("yaml-syntax", SourceLocation{file_name, 0, 0},
                                 "this is a binary file, not YAML text (a NUL byte at byte " + std::to_string(nul) +
                                     "); a .body model is a YAML text file"));
+    return nullptr;
+  }
+  if (text.size() >= TextSpan::npos) {
+    // Node sizes and text spans are 32-bit; LoadOptions::max_file_bytes is far below this.
+    sink.report(
+        make_diagnostic("yaml-syntax", SourceLocation{file_name, 0, 0},
+                        "cannot read a YAML text of 4 GiB or more (" + std::to_string(text.size()) + " bytes)"));
     return nullptr;
   }
   auto document = std::make_unique<Document>();

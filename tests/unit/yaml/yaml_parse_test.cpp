@@ -36,7 +36,7 @@ const Diagnostic& only_diagnostic(const CollectingSink& sink, std::string_view r
 
 std::string keys_of(const Node& mapping) {
   std::string keys;
-  for (const MapEntry& entry : mapping.entries) keys += std::string(entry.key) + (entry.merged ? "* " : " ");
+  for (const MapEntry& entry : mapping.entries()) keys += std::string(entry.key) + (entry.merged ? "* " : " ");
   return keys;
 }
 
@@ -72,25 +72,25 @@ TEST_CASE("yaml: positions of scalars, sequences, mappings and keys are 1-based"
   const Node& root = *doc->root;
   REQUIRE(root.is_mapping());
   CHECK(root.location == at(1, 1));
-  CHECK(root.entries[0].key_location == at(1, 1));
+  CHECK(root.entries()[0].key_location == at(1, 1));
   CHECK(value_of(root, "name")->location == at(1, 7));
   CHECK(root.find("links")->key_location == at(2, 1));
 
   const NodeRef& links = value_of(root, "links");
   REQUIRE(links->is_sequence());
   CHECK(links->location == at(3, 3));
-  REQUIRE(links->items.size() == 2);
-  const Node& base = *links->items[0];
+  REQUIRE(links->items().size() == 2);
+  const Node& base = *links->items()[0];
   CHECK(base.location == at(3, 5));
   CHECK(value_of(base, "name")->location == at(3, 11));
   CHECK(base.find("size")->key_location == at(4, 5));
   const NodeRef& size = value_of(base, "size");
   CHECK(size->location == at(4, 11));
-  REQUIRE(size->items.size() == 3);
-  CHECK(size->items[1]->location == at(4, 15));
-  CHECK(size->items[1]->scalar == "2");
+  REQUIRE(size->items().size() == 3);
+  CHECK(size->items()[1]->location == at(4, 15));
+  CHECK(size->items()[1]->scalar() == "2");
 
-  const Node& arm = *links->items[1];
+  const Node& arm = *links->items()[1];
   CHECK(arm.location == at(5, 5));
   CHECK(arm.find("name")->key_location == at(5, 6));
   CHECK(value_of(arm, "name")->location == at(5, 12));
@@ -107,11 +107,11 @@ TEST_CASE("yaml: CRLF line ends and a byte order mark do not shift positions") {
   CHECK(sink.diagnostics().empty());
   CHECK(value_of(*doc->root, "a")->location == at(1, 4));
   const NodeRef& b = value_of(*doc->root, "b");
-  REQUIRE(b->items.size() == 2);
-  CHECK(b->items[0]->scalar == "~");
-  CHECK(b->items[0]->location == at(3, 5));
-  CHECK(b->items[1].node == b->items[0].node);
-  CHECK(b->items[1].use_site() == at(4, 5));
+  REQUIRE(b->items().size() == 2);
+  CHECK(b->items()[0]->scalar() == "~");
+  CHECK(b->items()[0]->location == at(3, 5));
+  CHECK(b->items()[1].node == b->items()[0].node);
+  CHECK(b->items()[1].use_site() == at(4, 5));
 }
 
 TEST_CASE("yaml: an alias is the anchored node itself and keeps the use site") {
@@ -145,7 +145,7 @@ TEST_CASE("yaml: an alias is the anchored node itself and keeps the use site") {
 
   const NodeRef& again = value_of(root, "again");
   CHECK(again.node == value_of(root, "name").node);
-  CHECK(again->scalar == "x");
+  CHECK(again->scalar() == "x");
   CHECK_FALSE(again->plain);
   CHECK(again.use_site() == at(5, 8));
   CHECK(again->location == at(4, 7));
@@ -166,16 +166,16 @@ TEST_CASE("yaml: scalars stay strings, with quoting and tags recorded") {
   REQUIRE(doc);
   CHECK(sink.diagnostics().empty());
   const Node& root = *doc->root;
-  CHECK(value_of(root, "joint_axis")->scalar == "Y");
+  CHECK(value_of(root, "joint_axis")->scalar() == "Y");
   CHECK(value_of(root, "joint_axis")->plain);
-  CHECK(value_of(root, "on")->scalar == "yes");  // the key `on` is a string too
-  CHECK(value_of(root, "mass")->scalar == "0.t");
-  CHECK(value_of(root, "n")->scalar == "1e3");
-  CHECK(value_of(root, "quoted")->scalar == "Y");
+  CHECK(value_of(root, "on")->scalar() == "yes");  // the key `on` is a string too
+  CHECK(value_of(root, "mass")->scalar() == "0.t");
+  CHECK(value_of(root, "n")->scalar() == "1e3");
+  CHECK(value_of(root, "quoted")->scalar() == "Y");
   CHECK_FALSE(value_of(root, "quoted")->plain);
-  CHECK(value_of(root, "block")->scalar == "text\n");
+  CHECK(value_of(root, "block")->scalar() == "text\n");
   CHECK_FALSE(value_of(root, "block")->plain);
-  CHECK(value_of(root, "tagged")->scalar == "12");
+  CHECK(value_of(root, "tagged")->scalar() == "12");
   CHECK(doc->tag_of(value_of(root, "tagged").node) == "!!str");
   CHECK(value_of(root, "tagged")->location == at(8, 9));
   CHECK(doc->tag_of(value_of(root, "n").node).empty());
@@ -197,21 +197,21 @@ TEST_CASE("yaml: null scalars keep their spelling and quoted ones are not null")
   const Node& root = *doc->root;
   const NodeRef& empty = value_of(root, "empty");
   CHECK(empty->is_null());
-  CHECK(empty->scalar.empty());
+  CHECK(empty->scalar().empty());
   // A missing value has no text of its own; it is reported at its key.
   CHECK(empty->location == at(1, 1));
-  CHECK(value_of(root, "null")->scalar == "1");  // `null` as a key is just a string
+  CHECK(value_of(root, "null")->scalar() == "1");  // `null` as a key is just a string
   CHECK(value_of(root, "tilde")->is_null());
-  CHECK(value_of(root, "tilde")->scalar == "~");
-  CHECK(value_of(root, "word")->scalar == "Null");
+  CHECK(value_of(root, "tilde")->scalar() == "~");
+  CHECK(value_of(root, "word")->scalar() == "Null");
   CHECK(value_of(root, "word")->is_null());
   CHECK_FALSE(value_of(root, "quoted")->is_null());
   CHECK_FALSE(value_of(root, "text")->is_null());
   const NodeRef& list = value_of(root, "list");
-  REQUIRE(list->items.size() == 2);
-  CHECK(list->items[0]->is_null());
-  CHECK(list->items[0]->location == at(7, 8));
-  CHECK_FALSE(list->items[1]->is_null());
+  REQUIRE(list->items().size() == 2);
+  CHECK(list->items()[0]->is_null());
+  CHECK(list->items()[0]->location == at(7, 8));
+  CHECK_FALSE(list->items()[1]->is_null());
 }
 
 TEST_CASE("yaml: merge key - local keys win before and after <<") {
@@ -227,8 +227,8 @@ TEST_CASE("yaml: merge key - local keys win before and after <<") {
   CHECK(sink.diagnostics().empty());
   const Node& m = *value_of(*doc->root, "m");
   CHECK(keys_of(m) == "a b* c ");  // merged entries take the place of `<<`
-  CHECK(value_of(m, "a")->scalar == "local_a");
-  CHECK(value_of(m, "c")->scalar == "local_c");
+  CHECK(value_of(m, "a")->scalar() == "local_a");
+  CHECK(value_of(m, "c")->scalar() == "local_c");
   CHECK(value_of(m, "b").node == value_of(*value_of(*doc->root, "base"), "b").node);
   CHECK(m.find("b")->key_location == at(1, 20));
   CHECK(m.find("<<") == nullptr);
@@ -247,8 +247,8 @@ TEST_CASE("yaml: merge key - sequence of sources, the first source wins") {
   CHECK(sink.diagnostics().empty());
   const Node& m = *value_of(*doc->root, "m");
   CHECK(keys_of(m) == "k* j* own ");
-  CHECK(value_of(m, "k")->scalar == "1");
-  CHECK(value_of(m, "j")->scalar == "3");
+  CHECK(value_of(m, "k")->scalar() == "1");
+  CHECK(value_of(m, "j")->scalar() == "3");
 }
 
 TEST_CASE("yaml: merge key - inline source and nested merges") {
@@ -264,7 +264,7 @@ TEST_CASE("yaml: merge key - inline source and nested merges") {
   const Node& root = *doc->root;
   const Node& c = *value_of(root, "c");
   CHECK(keys_of(c) == "x* y* z ");
-  CHECK(value_of(c, "x")->scalar == "1");
+  CHECK(value_of(c, "x")->scalar() == "1");
   CHECK(value_of(c, "x").node == value_of(*value_of(root, "a"), "x").node);
   CHECK(keys_of(*value_of(root, "d")) == "w* v ");
 }
@@ -301,7 +301,7 @@ TEST_CASE("yaml: duplicate key warns, located at the second key; the last one wi
   CHECK(d.message.find("line 1") != std::string::npos);
   const Node& root = *doc->root;
   CHECK(keys_of(root) == "type other ");
-  CHECK(value_of(root, "type")->scalar == "Group");
+  CHECK(value_of(root, "type")->scalar() == "Group");
   CHECK(root.find("type")->key_location == at(3, 1));
   CHECK(doc->expanded_node_count == 3);
 }
@@ -354,10 +354,10 @@ TEST_CASE("yaml: imported anchors are visible to aliases; local anchors take pri
   CHECK(appearance.node == library->anchors.at("RED"));
   CHECK(appearance.use_site() == at(1, 21));
   const NodeRef& list = value_of(root, "list");
-  REQUIRE(list->items.size() == 3);
-  CHECK(list->items[1].node == library->anchors.at("RED"));
-  CHECK(list->items[1].use_site() == at(2, 14));
-  CHECK(list->items[2]->scalar == "1");
+  REQUIRE(list->items().size() == 3);
+  CHECK(list->items()[1].node == library->anchors.at("RED"));
+  CHECK(list->items()[1].use_site() == at(2, 14));
+  CHECK(list->items()[2]->scalar() == "1");
   CHECK(value_of(root, "local").node == value_of(root, "BLUE").node);
   CHECK(value_of(root, "local").node != library->anchors.at("BLUE"));
   CHECK(doc->anchors.count("RED") == 0);
@@ -387,9 +387,9 @@ TEST_CASE("yaml: columns count bytes in multi-byte text; bad UTF-8 is a located 
   REQUIRE(doc);
   CHECK(sink.diagnostics().empty());
   const NodeRef& b = value_of(*doc->root, "b");
-  REQUIRE(b->items.size() == 2);
-  CHECK(b->items[0]->scalar == "\xC3\xA9");
-  CHECK(b->items[1]->location == at(2, 9));
+  REQUIRE(b->items().size() == 2);
+  CHECK(b->items()[0]->scalar() == "\xC3\xA9");
+  CHECK(b->items()[1]->location == at(2, 9));
 
   CollectingSink alias;
   CHECK(parse("a: [\xC3\xA9, *x]\n", alias) == nullptr);
@@ -407,9 +407,9 @@ TEST_CASE("yaml: a tab inside a flow sequence is accepted") {
   REQUIRE(doc);
   CHECK(sink.diagnostics().empty());
   const NodeRef& translation = value_of(*doc->root, "translation");
-  REQUIRE(translation->items.size() == 3);
-  CHECK(translation->items[2]->scalar == "0.0058");
-  CHECK(value_of(*doc->root, "next")->items.size() == 2);
+  REQUIRE(translation->items().size() == 3);
+  CHECK(translation->items()[2]->scalar() == "0.0058");
+  CHECK(value_of(*doc->root, "next")->items().size() == 2);
 }
 
 TEST_CASE("yaml: empty and complex keys are errors; the rest of the mapping is kept") {
