@@ -228,6 +228,9 @@ Report make_report(const std::vector<Job>& jobs, std::vector<JobResult>& results
                    bool& findings) {
   Report report;
   FileSpellings spellings;
+  std::size_t total = 0;
+  for (const JobResult& r : results) total += r.diagnostics.size();
+  report.diagnostics.reserve(total);
   for (std::size_t i = 0; i < jobs.size(); ++i) {
     JobResult& r = results[i];
     report.files.push_back(jobs[i].input.name);

@@ -31,12 +31,17 @@ class SourceLines {
  public:
   /// Uses `text` as the contents of `file` (text that is not on disk: standard input).
   void add(const std::string& file, std::string_view text);
-  /// Line `line` (1-based) of `file` without its line break, or nullptr when the file cannot
+  /// Line `line` (1-based) of `file` without its line break, or nullopt when the file cannot
   /// be read or is shorter.
-  const std::string* line(const std::string& file, int line);
+  std::optional<std::string_view> line(const std::string& file, int line);
 
  private:
-  std::map<std::string, std::optional<std::vector<std::string>>> files_;
+  struct Text {
+    std::string text;
+    std::vector<std::string_view> lines;  ///< into `text`
+  };
+  /// Node-based: a Text never moves, so its line views stay valid.
+  std::map<std::string, std::optional<Text>> files_;
 };
 
 struct TextOptions {

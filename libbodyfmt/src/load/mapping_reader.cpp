@@ -7,6 +7,25 @@
 #include <cctype>
 
 namespace bodyfmt::detail {
+namespace {
+
+/// Calls `f` with each '\0'-terminated name of `buffer`, in order, until it returns true.
+template <typename F>
+bool any_name(std::string_view buffer, F f) {
+  for (std::size_t begin = 0; begin < buffer.size();) {
+    const std::size_t end = buffer.find('\0', begin);
+    if (f(buffer.substr(begin, end - begin))) return true;
+    begin = end + 1;
+  }
+  return false;
+}
+
+void append_name(std::string& buffer, std::string_view name) {
+  buffer.append(name);
+  buffer.push_back('\0');
+}
+
+}  // namespace
 
 MappingReader::MappingReader(LoadContext& ctx, const yaml::NodeRef& mapping, std::string what)
     : ctx_(ctx), mapping_(mapping), what_(std::move(what)) {}
@@ -15,11 +34,14 @@ yaml::NodeRef MappingReader::take(KeyNames names) {
   if (!mapping_ || !mapping_->is_mapping()) return {};
   bool modern = true;
   for (std::string_view name : names) {
-    if (name != *names.begin()) legacy_.emplace(std::string(name), std::string(*names.begin()));
+    if (name != *names.begin() && modern_of(name).empty()) {
+      append_name(legacy_, name);
+      append_name(legacy_, *names.begin());
+    }
   }
   for (std::string_view name : names) {
     if (const yaml::MapEntry* entry = mapping_->find(name)) {
-      consumed_.emplace(name);
+      if (!consumed(name)) append_name(consumed_, name);
       if (!modern) {
         // Located at the key: that is the text to change. Take() found no earlier spelling in
         // this mapping, so the rename cannot collide with a key already there.
@@ -42,35 +64,73 @@ bool MappingReader::has(KeyNames names) const {
   return std::any_of(names.begin(), names.end(), [&](std::string_view n) { return mapping_->find(n) != nullptr; });
 }
 
-void MappingReader::ignore(std::string_view name) { consumed_.emplace(name); }
+void MappingReader::ignore(std::string_view name) {
+  if (!consumed(name)) append_name(consumed_, name);
+}
+
+bool MappingReader::consumed(std::string_view key) const {
+  return any_name(consumed_, [&](std::string_view name) { return name == key; });
+}
+
+std::string_view MappingReader::modern_of(std::string_view legacy) const {
+  std::string_view modern;
+  bool is_legacy = true;  // names alternate: legacy, modern, legacy, ...
+  bool found = false;
+  any_name(legacy_, [&](std::string_view name) {
+    if (!is_legacy && found) {
+      modern = name;
+      return true;
+    }
+    found = is_legacy && name == legacy;
+    is_legacy = !is_legacy;
+    return false;
+  });
+  return modern;
+}
 
 bool MappingReader::unique_guess(std::string_view key, const std::vector<std::string_view>& candidates,
                                  std::string_view guess) const {
   const int best = text::edit_distance(key, guess);
   for (std::string_view candidate : candidates) {
-    std::string_view modern = candidate;
-    if (auto it = legacy_.find(candidate); it != legacy_.end()) modern = it->second;
+    std::string_view modern = modern_of(candidate);
+    if (modern.empty()) modern = candidate;
     if (modern != guess && text::edit_distance(key, candidate) <= best) return false;
   }
   return true;
 }
 
 bool MappingReader::has_spelling_of(std::string_view modern) const {
-  for (const auto& [legacy, name] : legacy_)
-    if (name == modern && mapping_->find(legacy)) return true;
-  return false;
+  std::string_view legacy;
+  bool is_legacy = true;
+  return any_name(legacy_, [&](std::string_view name) {
+    const bool match = !is_legacy && name == modern && mapping_->find(legacy);
+    if (is_legacy) legacy = name;
+    is_legacy = !is_legacy;
+    return match;
+  });
 }
 
 void MappingReader::report_unknown(const std::vector<std::string_view>& known) {
   if (!mapping_ || !mapping_->is_mapping()) return;
   // Legacy spellings are candidates too (a typo of `jointRange` is closer to it than to
   // `joint_range`); the hint then names the modern spelling.
-  std::vector<std::string_view> candidates = known;
-  for (const auto& [legacy, modern] : legacy_) candidates.push_back(legacy);
+  std::vector<std::string_view> candidates;
   for (const yaml::MapEntry& entry : mapping_->entries) {
-    if (consumed_.count(entry.key) || entry.merged) continue;
+    if (consumed(entry.key) || entry.merged) continue;
+    if (candidates.empty()) {  // built for the first unknown key only: most mappings have none
+      candidates = known;
+      std::vector<std::string_view> legacy;  // sorted, so that ties between guesses break alike
+      bool is_legacy = true;
+      any_name(legacy_, [&](std::string_view name) {
+        if (is_legacy) legacy.push_back(name);
+        is_legacy = !is_legacy;
+        return false;
+      });
+      std::sort(legacy.begin(), legacy.end());
+      candidates.insert(candidates.end(), legacy.begin(), legacy.end());
+    }
     std::string_view guess = text::suggest(entry.key, candidates);
-    if (auto it = legacy_.find(guess); it != legacy_.end()) guess = it->second;
+    if (std::string_view modern = modern_of(guess); !modern.empty()) guess = modern;
     if (!guess.empty()) {
       // The rename is a fix-it only when the guess is the one candidate that close and no
       // spelling of it is in the mapping already; it is unsafe: the value is then read.

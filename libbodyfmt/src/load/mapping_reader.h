@@ -5,9 +5,7 @@
 #include "load/load_context.h"
 
 #include <initializer_list>
-#include <map>
 #include <optional>
-#include <set>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -44,11 +42,18 @@ class MappingReader {
   /// A legacy spelling of `modern` is a key of the mapping.
   bool has_spelling_of(std::string_view modern) const;
 
+  /// The modern spelling of a `legacy` key met in take(); empty when unknown.
+  std::string_view modern_of(std::string_view legacy) const;
+  bool consumed(std::string_view key) const;
+
   LoadContext& ctx_;
   yaml::NodeRef mapping_;
   std::string what_;
-  std::set<std::string, std::less<>> consumed_;
-  std::map<std::string, std::string, std::less<>> legacy_;  ///< legacy spelling -> modern, from take()
+  // A reader lives for one mapping and sees a dozen names: flat lists in one buffer each
+  // (every name followed by '\0') instead of a tree node per name, which made a link's keys
+  // cost more allocations than its values.
+  std::string consumed_;  ///< names taken or ignored
+  std::string legacy_;    ///< pairs "legacy\0modern\0", from take(), each legacy spelling once
 };
 
 /// Whole-scalar reads of an optional key (body-format-spec §1.2): nullopt when the key is
