@@ -6,6 +6,7 @@
 
 #include <bodyfmt/diagnostic.h>
 
+#include <iosfwd>
 #include <map>
 #include <optional>
 #include <string>
@@ -64,6 +65,9 @@ std::string format_text_diagnostic(const Diagnostic& diagnostic, SourceLines& so
 
 /// Every diagnostic of the report, in order.
 std::string format_text_report(const Report& report, SourceLines& sources, const TextOptions& options = {});
+/// The same text written to `out` a block at a time, so that a report of a million findings
+/// is never held as one string.
+void write_text_report(std::ostream& out, const Report& report, SourceLines& sources, const TextOptions& options = {});
 
 /// `bodycheck: N files checked: E errors, W warnings, K notes` (+ suppressed/disabled counts).
 std::string format_summary_line(const Report& report);

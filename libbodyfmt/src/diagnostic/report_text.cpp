@@ -8,6 +8,7 @@
 #include <charconv>
 #include <fstream>
 #include <iterator>
+#include <ostream>
 #include <sstream>
 
 namespace bodyfmt {
@@ -294,6 +295,21 @@ std::string format_text_report(const Report& report, SourceLines& sources, const
     append_text_diagnostic(text, d, sources, options);
   }
   return text;
+}
+
+void write_text_report(std::ostream& out, const Report& report, SourceLines& sources, const TextOptions& options) {
+  constexpr std::size_t kBlock = 1 << 16;
+  std::string text;
+  text.reserve(2 * kBlock);
+  for (const Diagnostic& d : report.diagnostics) {
+    if (d.severity == Severity::kNote && !options.notes) continue;
+    append_text_diagnostic(text, d, sources, options);
+    if (text.size() >= kBlock) {
+      out.write(text.data(), static_cast<std::streamsize>(text.size()));
+      text.clear();
+    }
+  }
+  out.write(text.data(), static_cast<std::streamsize>(text.size()));
 }
 
 std::string format_summary_line(const Report& report) {
