@@ -228,6 +228,9 @@ Report make_report(const std::vector<Job>& jobs, std::vector<JobResult>& results
                    bool& findings) {
   Report report;
   FileSpellings spellings;
+  std::size_t total = 0;
+  for (const JobResult& r : results) total += r.diagnostics.size();
+  report.diagnostics.reserve(total);
   for (std::size_t i = 0; i < jobs.size(); ++i) {
     JobResult& r = results[i];
     report.files.push_back(jobs[i].input.name);
@@ -253,46 +256,47 @@ Report make_report(const std::vector<Job>& jobs, std::vector<JobResult>& results
   return report;
 }
 
-std::string format_report(tools::Front& front, const Report& report, const Settings& settings) {
+/// Writes the report to stdout or to --output; the text format a block at a time (a report of
+/// a million findings is never held as one string).
+bool write_report(tools::Front& front, const Report& report, const Settings& settings) {
   ToolInfo tool;
   tool.version = BODYFMT_VERSION;
   tool.information_uri = BODYCHECK_INFORMATION_URI;
-  std::string text;
+  const auto cannot_write = [&] {
+    front.print_error(settings.output + ": cannot write the report: " +
+                      (errno != 0 ? std::string(std::strerror(errno)) : std::string("a write error")));
+    return false;
+  };
+  errno = 0;
+  std::ofstream file;
+  if (!settings.output.empty()) {
+    file.open(settings.output, std::ios::binary);
+    if (!file.is_open()) return cannot_write();
+  }
+  std::ostream& out = settings.output.empty() ? std::cout : file;
   if (settings.format == "json") {
-    text = format_json_report(report, tool);
+    out << format_json_report(report, tool);
   } else if (settings.format == "sarif") {
-    text = format_sarif_report(report, tool);
+    out << format_sarif_report(report, tool);
   } else {
     const bool terminal = settings.output.empty() && ::isatty(STDOUT_FILENO) != 0;
-    text = format_text_report(report, front.sources(), front.text_options(terminal));
-    if (!front.quiet()) text += format_summary_line(report);
+    write_text_report(out, report, front.sources(), front.text_options(terminal));
+    if (!front.quiet()) out << format_summary_line(report);
   }
   if (settings.stats) {
     std::string lines;
     for (const auto& [rule, n] : report.counts_by_rule()) lines += fmt::format("{:>6}  {}\n", n, rule);
     if (settings.format == "text")
-      text += lines;
+      out << lines;
     else
       std::cerr << lines;
   }
-  return text;
-}
-
-bool write_report(const tools::Front& front, const std::string& text, const std::string& output) {
-  if (output.empty()) {
-    std::cout << text << std::flush;
+  if (settings.output.empty()) {
+    out << std::flush;
     return true;
   }
-  errno = 0;
-  std::ofstream out(output, std::ios::binary);
-  out << text;
-  out.close();
-  if (!out) {
-    front.print_error(output + ": cannot write the report: " +
-                      (errno != 0 ? std::string(std::strerror(errno)) : std::string("a write error")));
-    return false;
-  }
-  return true;
+  file.close();
+  return file ? true : cannot_write();
 }
 
 }  // namespace
@@ -367,7 +371,7 @@ int main(int argc, char** argv) {
   const std::vector<Job> jobs = make_jobs(front, files, fatal);
   std::vector<JobResult> results = run_jobs(front, jobs, settings.jobs);
   const Report report = make_report(jobs, results, front.quiet(), fatal, findings);
-  if (!write_report(front, format_report(front, report, settings), settings.output)) return tools::kExitFatal;
+  if (!write_report(front, report, settings)) return tools::kExitFatal;
   if (fatal) return tools::kExitFatal;
   return findings ? tools::kExitFindings : tools::kExitClean;
 }

@@ -91,7 +91,10 @@ void check_link(const RuleContext& ctx, LinkIndex index, bool welded) {
   const PrincipalInertia p = principal_inertia(mp.inertia);
   const double trace = p.moments.sum();
   const SourceLocation at = inertia_location(link);
-  const std::string moments = fmt::format("({}, {}, {})", num(p.moments[0]), num(p.moments[1]), num(p.moments[2]));
+  // Formatted only for a finding: most links have none.
+  const auto moments = [&] {
+    return fmt::format("({}, {}, {})", num(p.moments[0]), num(p.moments[1]), num(p.moments[2]));
+  };
 
   // Negative mass is wrong anywhere; zero mass only where the link moves on its own.
   if (mp.mass < 0) {
@@ -106,10 +109,10 @@ void check_link(const RuleContext& ctx, LinkIndex index, bool welded) {
   const InertiaValidity validity = inertia_validity(p);
   const bool semidefinite = !validity.negative_moment;
   if (validity.negative_moment) {
-    ctx.report(
-        "inertia-not-positive-definite", at,
-        fmt::format("inertia of link \"{}\" has a negative principal moment: principal moments {}", link.name, moments),
-        nearest_valid(mp.inertia));
+    ctx.report("inertia-not-positive-definite", at,
+               fmt::format("inertia of link \"{}\" has a negative principal moment: principal moments {}", link.name,
+                           moments()),
+               nearest_valid(mp.inertia));
   }
   if (validity.triangle) {
     const double margin = validity.triangle_margin;
@@ -119,7 +122,7 @@ void check_link(const RuleContext& ctx, LinkIndex index, bool welded) {
     ctx.report("inertia-triangle", at,
                fmt::format("principal moments {} of link \"{}\" violate the triangle inequality: {} + {} - {} = "
                            "{}; refused by {}",
-                           moments, link.name, num(p.moments[0]), num(p.moments[1]), num(p.moments[2]), num(margin),
+                           moments(), link.name, num(p.moments[0]), num(p.moments[1]), num(p.moments[2]), num(margin),
                            fmt::join(refuse, ", ")),
                nearest_valid(mp.inertia));
   }

@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include <cmath>
 #include <vector>
 
@@ -89,6 +91,8 @@ constexpr double kMeshSize = 10.0;
 
 void check_mesh_scale(const RuleContext& ctx, LinkIndex index) {
   const Link& link = ctx.model.links[index];
+  const auto is_resource = [](const Shape& shape) { return std::holds_alternative<MeshResource>(shape.geometry); };
+  if (std::none_of(link.shapes.begin(), link.shapes.end(), is_resource)) return;  // only meshes are measured
   std::vector<double> sizes(link.shapes.size(), 0.0);
   std::vector<bool> is_mesh(link.shapes.size(), false);
   for (std::size_t s = 0; s < link.shapes.size(); ++s) {

@@ -13,8 +13,10 @@
 #include <initializer_list>
 #include <limits>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -110,9 +112,65 @@ struct Texture {
   bool repeat_t = true;
 };
 
+/// An optional value kept on the heap: one pointer while empty. For members that most
+/// elements leave out (a shape's material is 104 bytes, its texture 72), so that a model of
+/// many plain shapes does not carry them inline. Reads as the std::optional it holds.
+template <typename T>
+class HeapOptional {
+ public:
+  HeapOptional() = default;
+  HeapOptional(std::nullopt_t) {}  // NOLINT: implicit, as std::optional
+  HeapOptional(const T& value) : value_(std::make_unique<std::optional<T>>(value)) {}  // NOLINT
+  HeapOptional(const std::optional<T>& value) { *this = value; }                       // NOLINT
+  HeapOptional(const HeapOptional& other) { *this = other; }
+  HeapOptional(HeapOptional&&) noexcept = default;
+  HeapOptional& operator=(const HeapOptional& other) { return *this = other.get(); }
+  HeapOptional& operator=(HeapOptional&&) noexcept = default;
+  HeapOptional& operator=(const std::optional<T>& value) {
+    if (!value)
+      value_.reset();
+    else if (value_)
+      **value_ = *value;
+    else
+      value_ = std::make_unique<std::optional<T>>(value);
+    return *this;
+  }
+  HeapOptional& operator=(const T& value) { return *this = std::optional<T>(value); }
+  HeapOptional& operator=(std::nullopt_t) {
+    value_.reset();
+    return *this;
+  }
+
+  const std::optional<T>& get() const { return value_ ? *value_ : empty(); }
+  operator const std::optional<T>&() const { return get(); }  // NOLINT: reads as the optional
+  explicit operator bool() const { return value_ != nullptr; }
+  bool has_value() const { return value_ != nullptr; }
+  const T& operator*() const { return **value_; }
+  T& operator*() { return **value_; }
+  const T* operator->() const { return &**value_; }
+  T* operator->() { return &**value_; }
+  const T& value() const { return get().value(); }
+  template <typename U>
+  T value_or(U&& fallback) const {
+    return get().value_or(std::forward<U>(fallback));
+  }
+  T& emplace() {
+    value_ = std::make_unique<std::optional<T>>(T{});
+    return **value_;
+  }
+  void reset() { value_.reset(); }
+
+ private:
+  static const std::optional<T>& empty() {
+    static const std::optional<T> none;
+    return none;
+  }
+  std::unique_ptr<std::optional<T>> value_;  ///< never holds an empty optional
+};
+
 struct Appearance {
-  std::optional<Material> material;
-  std::optional<Texture> texture;
+  HeapOptional<Material> material;
+  HeapOptional<Texture> texture;
 };
 
 /// A transform node of a link's element tree (Transform, RigidBody, Visual, Collision,

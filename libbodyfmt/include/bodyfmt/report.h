@@ -6,6 +6,7 @@
 
 #include <bodyfmt/diagnostic.h>
 
+#include <iosfwd>
 #include <map>
 #include <optional>
 #include <string>
@@ -31,12 +32,17 @@ class SourceLines {
  public:
   /// Uses `text` as the contents of `file` (text that is not on disk: standard input).
   void add(const std::string& file, std::string_view text);
-  /// Line `line` (1-based) of `file` without its line break, or nullptr when the file cannot
+  /// Line `line` (1-based) of `file` without its line break, or nullopt when the file cannot
   /// be read or is shorter.
-  const std::string* line(const std::string& file, int line);
+  std::optional<std::string_view> line(const std::string& file, int line);
 
  private:
-  std::map<std::string, std::optional<std::vector<std::string>>> files_;
+  struct Text {
+    std::string text;
+    std::vector<std::string_view> lines;  ///< into `text`
+  };
+  /// Node-based: a Text never moves, so its line views stay valid.
+  std::map<std::string, std::optional<Text>> files_;
 };
 
 struct TextOptions {
@@ -59,6 +65,9 @@ std::string format_text_diagnostic(const Diagnostic& diagnostic, SourceLines& so
 
 /// Every diagnostic of the report, in order.
 std::string format_text_report(const Report& report, SourceLines& sources, const TextOptions& options = {});
+/// The same text written to `out` a block at a time, so that a report of a million findings
+/// is never held as one string.
+void write_text_report(std::ostream& out, const Report& report, SourceLines& sources, const TextOptions& options = {});
 
 /// `bodycheck: N files checked: E errors, W warnings, K notes` (+ suppressed/disabled counts).
 std::string format_summary_line(const Report& report);

@@ -76,10 +76,30 @@ std::string format_diagnostic(const Diagnostic& d) {
 }
 
 void sort_diagnostics(std::vector<Diagnostic>& diagnostics) {
-  std::stable_sort(diagnostics.begin(), diagnostics.end(), [](const Diagnostic& a, const Diagnostic& b) {
+  const auto before = [](const Diagnostic& a, const Diagnostic& b) {
     return std::tie(a.location.file, a.location.line, a.location.column, a.rule_id) <
            std::tie(b.location.file, b.location.line, b.location.column, b.rule_id);
-  });
+  };
+  if (std::is_sorted(diagnostics.begin(), diagnostics.end(), before)) return;  // the rules' order, often
+  // Sorted as indices, then moved into place along the permutation's cycles: a stable sort of
+  // the diagnostics themselves would allocate a second array of them.
+  std::vector<std::size_t> order(diagnostics.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return before(diagnostics[a], diagnostics[b]); });
+  for (std::size_t start = 0; start < order.size(); ++start) {
+    if (order[start] == start) continue;
+    Diagnostic held = std::move(diagnostics[start]);
+    std::size_t k = start;
+    while (order[k] != start) {  // position k receives the diagnostic at order[k]
+      const std::size_t from = order[k];
+      diagnostics[k] = std::move(diagnostics[from]);
+      order[k] = k;
+      k = from;
+    }
+    diagnostics[k] = std::move(held);
+    order[k] = k;
+  }
 }
 
 }  // namespace bodyfmt

@@ -115,8 +115,7 @@ Suppressions Suppressions::from_text(std::string_view text) {
   Suppressions result;
   std::vector<std::size_t> pending;  // from comment-only lines, for the next content line
   int line_number = 0;
-  for (const std::string& text_line : text::split_lines(text)) {
-    const std::string_view line = text_line;
+  for (const std::string_view line : text::line_views(text)) {
     ++line_number;
 
     const std::size_t hash = comment_start(line);

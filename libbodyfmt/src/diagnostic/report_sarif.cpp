@@ -110,7 +110,7 @@ class UriMaker {
 
 /// SARIF columns count characters (columnKind unicodeCodePoints); ours count bytes.
 int code_point_column(SourceLines& sources, const SourceLocation& loc) {
-  const std::string* line = sources.line(loc.file, loc.line);
+  const std::optional<std::string_view> line = sources.line(loc.file, loc.line);
   if (!line) return loc.column;
   int column = 1;
   const std::size_t limit = std::min(line->size(), static_cast<std::size_t>(loc.column - 1));

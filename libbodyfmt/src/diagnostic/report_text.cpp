@@ -5,7 +5,10 @@
 #include "text/text_util.h"
 
 #include <algorithm>
+#include <charconv>
 #include <fstream>
+#include <iterator>
+#include <ostream>
 #include <sstream>
 
 namespace bodyfmt {
@@ -22,37 +25,55 @@ std::map<std::string, int> Report::counts_by_rule() const {
   return counts;
 }
 
-void SourceLines::add(const std::string& file, std::string_view text) { files_[file] = text::split_lines(text); }
+void SourceLines::add(const std::string& file, std::string_view text) {
+  std::optional<Text>& entry = files_[file];
+  entry.emplace();
+  entry->text = std::string(text);
+  entry->lines = text::line_views(entry->text);
+}
 
-const std::string* SourceLines::line(const std::string& file, int line) {
+std::optional<std::string_view> SourceLines::line(const std::string& file, int line) {
   auto it = files_.find(file);
   if (it == files_.end()) {
-    std::optional<std::vector<std::string>> lines;
+    it = files_.emplace(file, std::nullopt).first;
     try {
       std::ifstream in(file, std::ios::binary);
       if (in.is_open()) {
-        std::ostringstream text;
-        text << in.rdbuf();
-        lines = text::split_lines(text.str());
+        std::optional<Text>& entry = it->second;
+        entry.emplace();
+        entry->text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+        entry->lines = text::line_views(entry->text);
       }
     } catch (...) {
-      lines.reset();
+      it->second.reset();
     }
-    it = files_.emplace(file, std::move(lines)).first;
   }
-  if (!it->second || line < 1 || static_cast<std::size_t>(line) > it->second->size()) return nullptr;
-  return &(*it->second)[static_cast<std::size_t>(line - 1)];
+  const std::optional<Text>& entry = it->second;
+  if (!entry || line < 1 || static_cast<std::size_t>(line) > entry->lines.size()) return std::nullopt;
+  return entry->lines[static_cast<std::size_t>(line - 1)];
 }
 
 namespace {
 
-std::string location_text(const SourceLocation& location) {
-  std::string text = location.file.empty() ? std::string("<input>") : location.file.str();
+void append_number(std::string& out, int value) {
+  char buffer[16];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  out.append(buffer, result.ptr);
+}
+
+void append_location(std::string& out, const SourceLocation& location) {
+  if (location.file.empty())
+    out += "<input>";
+  else
+    out += location.file.str();
   if (location.line > 0) {
-    text += ':' + std::to_string(location.line);
-    if (location.column > 0) text += ':' + std::to_string(location.column);
+    out += ':';
+    append_number(out, location.line);
+    if (location.column > 0) {
+      out += ':';
+      append_number(out, location.column);
+    }
   }
-  return text;
 }
 
 /// One character of a source line as printed: its bytes (or a stand-in), its columns on a
@@ -74,7 +95,7 @@ bool is_wide(unsigned cp) {
          (cp >= 0x1F900 && cp <= 0x1F9FF) || (cp >= 0x20000 && cp <= 0x3FFFD);
 }
 
-Glyph glyph_at(const std::string& line, std::size_t i) {
+Glyph glyph_at(std::string_view line, std::size_t i) {
   Glyph g;
   g.offset = i;
   const unsigned char c = static_cast<unsigned char>(line[i]);
@@ -107,75 +128,163 @@ Glyph glyph_at(const std::string& line, std::size_t i) {
 /// (a flow list of thousands of numbers, or a binary file read as text) shows a window of
 /// about kWindow bytes around the caret between "..." marks, so every diagnostic prints a
 /// bounded excerpt; control bytes and invalid UTF-8 print as '?'. The caret line copies the
-/// tabs and counts two columns for a wide character.
+/// tabs and counts two columns for a wide character. Appended to `text` and `pad` (the
+/// caret line without its caret).
 constexpr std::size_t kWindow = 160;
 
-std::pair<std::string, std::string> excerpt(const std::string& line, int column) {
+void excerpt(std::string_view line, int column, std::string& text, std::string& pad) {
   const std::size_t caret = static_cast<std::size_t>(column > 0 ? column - 1 : 0);
   std::size_t begin = 0, end = line.size();
   if (line.size() > kWindow) {
     begin = caret > kWindow / 3 ? std::min(caret, line.size()) - kWindow / 3 : 0;
     end = std::min(line.size(), begin + kWindow);
   }
-  std::string text = begin > 0 ? "..." : "";
-  std::string pad = begin > 0 ? "   " : "";
+  if (begin > 0) {
+    text += "...";
+    pad += "   ";
+  }
   std::size_t i = 0;
   // Start on a character boundary at or after `begin`.
   while (i < begin) i += glyph_at(line, i).size;
   for (; i < end;) {
+    const unsigned char c = static_cast<unsigned char>(line[i]);
+    if (c >= 0x20 && c < 0x7F) {  // the common case: printable ASCII, one column
+      text += static_cast<char>(c);
+      if (i < caret) pad += ' ';
+      ++i;
+      continue;
+    }
     const Glyph g = glyph_at(line, i);
     if (i + g.size > end) break;
-    text += g.shown ? line.substr(i, g.size) : std::string("?");
-    if (i < caret) pad += g.width == 0 ? std::string("\t") : std::string(static_cast<std::size_t>(g.width), ' ');
+    if (g.shown)
+      text.append(line.substr(i, g.size));
+    else
+      text += '?';
+    if (i < caret) {
+      if (g.width == 0)
+        pad += '\t';
+      else
+        pad.append(static_cast<std::size_t>(g.width), ' ');
+    }
     i += g.size;
   }
   if (i < line.size()) text += "...";
   // A column past the end (e.g. "missing key" at the end of the line) gets the caret there.
   for (std::size_t k = std::max(i, line.size()); k < caret; ++k) pad += ' ';
-  return {text, pad + '^'};
+}
+
+// GCC's colours: bold locations, bold red errors, bold magenta warnings, bold cyan notes,
+// bold green carets.
+std::string_view severity_code(Severity severity) {
+  switch (severity) {
+    case Severity::kNote: return "1;36";
+    case Severity::kWarning: return "1;35";
+    default: return "1;31";
+  }
+}
+
+/// Appends `text` in the colour `code` (when colours are on).
+class Painter {
+ public:
+  Painter(std::string& out, bool color) : out_(out), color_(color) {}
+  void begin(std::string_view code) const {
+    if (!color_) return;
+    out_ += "\x1b[";
+    out_ += code;
+    out_ += 'm';
+  }
+  void end() const {
+    if (color_) out_ += "\x1b[0m";
+  }
+  void location(const SourceLocation& location) const {
+    begin("1");
+    append_location(out_, location);
+    out_ += ':';
+    end();
+  }
+  void note() const {
+    out_ += ' ';
+    begin(severity_code(Severity::kNote));
+    out_ += "note:";
+    end();
+    out_ += ' ';
+  }
+
+ private:
+  std::string& out_;
+  bool color_;
+};
+
+void append_text_diagnostic(std::string& out, const Diagnostic& d, SourceLines& sources, const TextOptions& options) {
+  const Painter paint(out, options.color);
+  paint.location(d.location);
+  out += ' ';
+  paint.begin(severity_code(d.severity));
+  out += severity_name(d.severity);
+  out += ':';
+  paint.end();
+  out += ' ';
+  out += d.message;
+  if (!d.rule_id.empty()) {
+    out += " [";
+    out += d.rule_id;
+    out += ']';
+  }
+  out += '\n';
+  if (options.source_lines && d.location.known() && !d.location.file.empty()) {
+    if (const std::optional<std::string_view> source = sources.line(d.location.file, d.location.line)) {
+      std::string pad;
+      excerpt(*source, d.location.column, out, pad);
+      out += '\n';
+      if (d.location.column > 0) {
+        paint.begin("1;32");
+        out += pad;
+        out += '^';
+        paint.end();
+        out += '\n';
+      }
+    }
+  }
+  if (!options.notes) return;
+  if (d.via) {
+    paint.location(*d.via);
+    paint.note();
+    out += "reached through this alias\n";
+  }
+  if (!d.fix_hint.empty()) {
+    paint.location(d.location);
+    paint.note();
+    out += d.fix_hint;
+    out += '\n';
+  }
+  // Fix-its: the first few as edits, the rest counted (an upgrade can carry hundreds).
+  constexpr std::size_t kShownFixes = 3;
+  for (std::size_t i = 0; i < d.fixes.size() && i < kShownFixes; ++i) {
+    const FixIt& f = d.fixes[i];
+    paint.location(SourceLocation{f.file, f.line, f.column});
+    paint.note();
+    out += "fix-it (";
+    out += fix_safety_name(f.safety);
+    out += "): replace \"";
+    out += f.original;
+    out += "\" with \"";
+    out += f.replacement;
+    out += "\"\n";
+  }
+  if (d.fixes.size() > kShownFixes) {
+    paint.location(d.location);
+    paint.note();
+    out += "... and ";
+    out += std::to_string(d.fixes.size() - kShownFixes);
+    out += " more fix-its\n";
+  }
 }
 
 }  // namespace
 
 std::string format_text_diagnostic(const Diagnostic& d, SourceLines& sources, const TextOptions& options) {
-  // GCC's colours: bold locations, bold red errors, bold magenta warnings, bold cyan notes,
-  // bold green carets.
-  const auto paint = [&](std::string_view code, const std::string& text) {
-    return options.color ? "\x1b[" + std::string(code) + "m" + text + "\x1b[0m" : text;
-  };
-  const auto severity_code = [](Severity severity) -> std::string_view {
-    switch (severity) {
-      case Severity::kNote: return "1;36";
-      case Severity::kWarning: return "1;35";
-      default: return "1;31";
-    }
-  };
-  std::string text = paint("1", location_text(d.location) + ":") + " " +
-                     paint(severity_code(d.severity), std::string(severity_name(d.severity)) + ":") + " " + d.message;
-  if (!d.rule_id.empty()) text += " [" + d.rule_id + "]";
-  text += '\n';
-  if (options.source_lines && d.location.known() && !d.location.file.empty()) {
-    if (const std::string* source = sources.line(d.location.file, d.location.line)) {
-      const auto [shown, caret] = excerpt(*source, d.location.column);
-      text += shown + '\n';
-      if (d.location.column > 0) text += paint("1;32", caret) + '\n';
-    }
-  }
-  const std::string note = paint(severity_code(Severity::kNote), "note:");
-  if (!options.notes) return text;
-  if (d.via) text += paint("1", location_text(*d.via) + ":") + " " + note + " reached through this alias\n";
-  if (!d.fix_hint.empty()) text += paint("1", location_text(d.location) + ":") + " " + note + " " + d.fix_hint + '\n';
-  // Fix-its: the first few as edits, the rest counted (an upgrade can carry hundreds).
-  constexpr std::size_t kShownFixes = 3;
-  for (std::size_t i = 0; i < d.fixes.size() && i < kShownFixes; ++i) {
-    const FixIt& f = d.fixes[i];
-    text += paint("1", location_text(SourceLocation{f.file, f.line, f.column}) + ":") + " " + note + " fix-it (" +
-            std::string(fix_safety_name(f.safety)) + "): replace \"" + f.original + "\" with \"" + f.replacement +
-            "\"\n";
-  }
-  if (d.fixes.size() > kShownFixes)
-    text += paint("1", location_text(d.location) + ":") + " " + note + " ... and " +
-            std::to_string(d.fixes.size() - kShownFixes) + " more fix-its\n";
+  std::string text;
+  append_text_diagnostic(text, d, sources, options);
   return text;
 }
 
@@ -183,9 +292,24 @@ std::string format_text_report(const Report& report, SourceLines& sources, const
   std::string text;
   for (const Diagnostic& d : report.diagnostics) {
     if (d.severity == Severity::kNote && !options.notes) continue;
-    text += format_text_diagnostic(d, sources, options);
+    append_text_diagnostic(text, d, sources, options);
   }
   return text;
+}
+
+void write_text_report(std::ostream& out, const Report& report, SourceLines& sources, const TextOptions& options) {
+  constexpr std::size_t kBlock = 1 << 16;
+  std::string text;
+  text.reserve(2 * kBlock);
+  for (const Diagnostic& d : report.diagnostics) {
+    if (d.severity == Severity::kNote && !options.notes) continue;
+    append_text_diagnostic(text, d, sources, options);
+    if (text.size() >= kBlock) {
+      out.write(text.data(), static_cast<std::streamsize>(text.size()));
+      text.clear();
+    }
+  }
+  out.write(text.data(), static_cast<std::streamsize>(text.size()));
 }
 
 std::string format_summary_line(const Report& report) {

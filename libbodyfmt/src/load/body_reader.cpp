@@ -258,6 +258,10 @@ void BodyReader::read_links(const yaml::NodeRef& links, Model& model, std::vecto
                 "use Link, SubBody, ContinuousTrack or Skip");
   };
   if (links->is_sequence()) {
+    // One Link per item in the common case (SubBodies add more): no growth by reallocation,
+    // which would keep the old and the new link arrays alive together.
+    model.links.reserve(links->items().size());
+    entries.reserve(links->items().size());
     if (links->items().empty()) ctx_.report("load-no-links", links, "no link is contained in the \"links\" listing");
     for (const yaml::NodeRef& item : links->items()) {
       const yaml::MapEntry* type = item->is_mapping() ? item->find("type") : nullptr;
@@ -327,6 +331,7 @@ std::vector<LinkIndex> depth_first_order(LinkIndex root, const std::vector<std::
 
 BodyReader::LinkNames BodyReader::index_link_names(const Model& model) {
   LinkNames names;
+  names.by_name.reserve(model.links.size());
   for (LinkIndex i = 0; i < static_cast<LinkIndex>(model.links.size()); ++i) {
     const Link& link = model.links[at(i)];
     if (link.name.empty()) continue;
@@ -347,6 +352,7 @@ std::vector<LinkIndex> BodyReader::link_parents(const Model& model, const std::v
   const std::size_t n = model.links.size();
   std::vector<LinkIndex> parent(n, -1);
   TreeRoots roots(n);
+  std::vector<std::string_view> known;  // the defined names in order, for did-you-mean hints
   for (LinkIndex i = 0; i < static_cast<LinkIndex>(n); ++i) {
     const Link& link = model.links[at(i)];
     const LinkEntry& entry = entries[at(i)];
@@ -363,8 +369,11 @@ std::vector<LinkIndex> BodyReader::link_parents(const Model& model, const std::v
     }
     auto it = names.by_name.find(entry.parent_name);
     if (it == names.by_name.end()) {
-      std::vector<std::string_view> known;
-      for (const auto& [name, index] : names.by_name) known.push_back(name);
+      if (known.empty()) {
+        known.reserve(names.by_name.size());
+        for (const auto& [name, index] : names.by_name) known.push_back(name);
+        std::sort(known.begin(), known.end());
+      }
       std::string_view guess = text::suggest(entry.parent_name, known);
       ctx_.report("structure-unknown-parent", entry.parent_ref.use_site(),
                   "parent link \"" + entry.parent_name + "\" of \"" + link.name + "\" is not defined",
@@ -384,7 +393,7 @@ std::vector<LinkIndex> BodyReader::link_parents(const Model& model, const std::v
 }
 
 void BodyReader::reorder_links(Model& model, const std::vector<LinkIndex>& order, const std::vector<LinkIndex>& parent,
-                               const std::vector<std::vector<LinkIndex>>& children) {
+                               std::vector<std::vector<LinkIndex>>& children) {
   std::vector<LinkIndex> new_index(model.links.size(), -1);
   for (std::size_t k = 0; k < order.size(); ++k) new_index[at(order[k])] = static_cast<LinkIndex>(k);
   for (LinkIndex i = 0; i < static_cast<LinkIndex>(model.links.size()); ++i) {
@@ -395,17 +404,30 @@ void BodyReader::reorder_links(Model& model, const std::vector<LinkIndex>& order
           "link \"" + link.name + "\" is not connected to the root link \"" + model.links[at(order[0])].name + "\"");
     }
   }
-  std::vector<Link> ordered;
-  ordered.reserve(order.size());
-  for (LinkIndex old : order) {
-    Link link = std::move(model.links[at(old)]);
-    const LinkIndex p = parent[at(old)];
+  // Parents and children in the new numbering, then the links permuted in place (following
+  // the permutation's cycles), so that no second copy of the link vector is ever alive.
+  std::vector<std::size_t> target(model.links.size());
+  std::size_t dropped = order.size();
+  for (LinkIndex i = 0; i < static_cast<LinkIndex>(model.links.size()); ++i) {
+    Link& link = model.links[at(i)];
+    if (new_index[at(i)] < 0) {
+      target[at(i)] = dropped++;  // unreachable: moved past the end, then erased
+      continue;
+    }
+    target[at(i)] = at(new_index[at(i)]);
+    const LinkIndex p = parent[at(i)];
     link.parent = p >= 0 ? new_index[at(p)] : -1;
-    link.children.clear();
-    for (LinkIndex c : children[at(old)]) link.children.push_back(new_index[at(c)]);
-    ordered.push_back(std::move(link));
+    link.children = std::move(children[at(i)]);
+    for (LinkIndex& c : link.children) c = new_index[at(c)];
   }
-  model.links = std::move(ordered);
+  for (std::size_t i = 0; i < target.size(); ++i) {
+    while (target[i] != i) {
+      const std::size_t j = target[i];
+      std::swap(model.links[i], model.links[j]);
+      std::swap(target[i], target[j]);
+    }
+  }
+  model.links.erase(model.links.begin() + static_cast<std::ptrdiff_t>(order.size()), model.links.end());
   // Devices follow their links; devices of dropped links are dropped with them.
   std::vector<Device> devices;
   for (Device& d : model.devices) {

@@ -11,6 +11,8 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <unordered_map>
 #include <vector>
 
 namespace bodyfmt::detail {
@@ -36,15 +38,16 @@ class BodyReader {
   void read_links(const yaml::NodeRef& links, Model& model, std::vector<struct LinkEntry>& entries);
   /// Orders the links depth-first from the root and sets parents and children (§5.2).
   bool build_tree(Model& model, const std::vector<struct LinkEntry>& entries, const yaml::NodeRef& root_link);
+  /// Views of the names in `Model::links`: valid while the links are neither added nor moved.
   struct LinkNames {
-    std::map<std::string, LinkIndex> by_name;
-    std::map<std::string, LinkIndex> by_joint_name;
+    std::unordered_map<std::string_view, LinkIndex> by_name;
+    std::unordered_map<std::string_view, LinkIndex> by_joint_name;
   };
   LinkNames index_link_names(const Model& model);
   std::vector<LinkIndex> link_parents(const Model& model, const std::vector<struct LinkEntry>& entries,
                                       const LinkNames& names, LinkIndex root);
   void reorder_links(Model& model, const std::vector<LinkIndex>& order, const std::vector<LinkIndex>& parent,
-                     const std::vector<std::vector<LinkIndex>>& children);
+                     std::vector<std::vector<LinkIndex>>& children);
   void read_extra_joints(const yaml::NodeRef& extra_joints, Model& model);
   void import_meshes(Model& model);
   /// load-format-upgrade for a format < 2.0 file, carrying the upgrade fix-its (§2.1, §3).

@@ -83,7 +83,7 @@ void LoadContext::record_upgrade(const yaml::NodeRef& at, double radians) {
     return;
   }
   // Text shared through an alias is read once per use: one edit.
-  if (std::find(upgrade_fixes.begin(), upgrade_fixes.end(), *fix) == upgrade_fixes.end())
+  if (upgrade_fix_keys.emplace(&fix->file.str(), fix->begin, fix->end, fix->replacement).second)
     upgrade_fixes.push_back(std::move(*fix));
 }
 

@@ -39,6 +39,9 @@ struct LoadContext {
   /// Format-upgrade edits (load-format-upgrade): in a radian-mode file, every angle value the
   /// loader converts (body-format-spec §3), rewritten in degrees; each written text once.
   std::vector<FixIt> upgrade_fixes;
+  /// (file, begin, end, replacement) of each upgrade fix: a lookup per angle instead of a
+  /// scan of all the fixes so far (quadratic on a radian file of many links).
+  std::set<std::tuple<const std::string*, std::size_t, std::size_t, std::string>> upgrade_fix_keys;
   /// Angle values that cannot be rewritten in place (block scalars, escapes): no upgrade.
   std::vector<SourceLocation> upgrade_blockers;
 

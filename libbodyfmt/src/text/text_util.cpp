@@ -52,18 +52,23 @@ std::optional<bool> parse_bool_word(std::string_view word) {
   return std::nullopt;
 }
 
-std::vector<std::string> split_lines(std::string_view text) {
-  std::vector<std::string> lines;
+std::vector<std::string_view> line_views(std::string_view text) {
+  std::vector<std::string_view> lines;
   std::size_t pos = 0;
   while (pos < text.size()) {
     std::size_t end = text.find('\n', pos);
     if (end == std::string_view::npos) end = text.size();
     std::string_view line = text.substr(pos, end - pos);
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    lines.emplace_back(line);
+    lines.push_back(line);
     pos = end + 1;
   }
   return lines;
+}
+
+std::vector<std::string> split_lines(std::string_view text) {
+  const std::vector<std::string_view> views = line_views(text);
+  return std::vector<std::string>(views.begin(), views.end());
 }
 
 namespace {

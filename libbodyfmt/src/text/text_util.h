@@ -22,6 +22,8 @@ std::optional<bool> parse_bool_word(std::string_view word);
 
 /// Splits text into lines (LF or CRLF), without the breaks.
 std::vector<std::string> split_lines(std::string_view text);
+/// The same lines as views into `text`, without copying them.
+std::vector<std::string_view> line_views(std::string_view text);
 
 /// JSON text for `s` between quotes: `"` `\` and control characters escaped, UTF-8 kept,
 /// invalid UTF-8 bytes replaced by U+FFFD.
