@@ -14,6 +14,7 @@
 #include <assimp/version.h>
 #include <fmt/format.h>
 #include <assimp/Exporter.hpp>
+#include <assimp/ProgressHandler.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -105,20 +106,40 @@ bool same_mesh(const aiMesh& a, const aiMesh& b) {
   return true;
 }
 
+/// Frees a scene's node tree and meshes once Assimp::Exporter::Export has copied the scene:
+/// Export reports step 1 of 4 right after its SceneCombiner::CopyScene and reads nothing of
+/// the original scene but its private data (mPrivate) afterwards (assimp 5.x).
+class ReleaseAfterCopy : public Assimp::ProgressHandler {
+ public:
+  explicit ReleaseAfterCopy(aiScene& scene) : scene_(scene) {}
+  bool Update(float) override { return true; }
+  void UpdateFileWrite(int step, int steps) override {
+    if (step != 1 || steps != 4 || released_) return;
+    released_ = true;
+    delete scene_.mRootNode;
+    scene_.mRootNode = nullptr;
+    for (unsigned i = 0; i < scene_.mNumMeshes; ++i) {
+      delete scene_.mMeshes[i];
+      scene_.mMeshes[i] = nullptr;
+    }
+    scene_.mNumMeshes = 0;
+  }
+
+ private:
+  aiScene& scene_;
+  bool released_ = false;
+};
+
 class Writer {
  public:
   Writer(const Model& model, const Derived& derived, const GltfOptions& options, converters::OutputSet& output,
          DiagnosticSink& sink)
       : model_(model), derived_(derived), options_(options), output_(output), sink_(sink) {}
   ~Writer() {
-    // Nodes not yet owned by a scene (an early return) are freed here; the scene frees the rest.
-    if (!scene_ && root_) {
-      attach_children();  // so that deleting the root frees every node
-      delete root_;
-    }
-    if (!scene_) {
-      for (aiMesh* m : meshes_) delete m;
-    }
+    // What no scene owns yet (an early return) is freed here; the scene frees the rest. Nodes
+    // not yet attached have no children, so this does not recurse.
+    for (aiNode* n : ai_nodes_) delete n;
+    for (aiMesh* m : meshes_) delete m;
   }
 
   bool run();
@@ -130,29 +151,26 @@ class Writer {
     std::optional<Texture> texture;
   };
 
-  aiNode* node(aiNode* parent, NodeTable table) {
-    auto* n = new aiNode(fmt::format("{}{}", kMarker, tables_.nodes.size()));
-    const Eigen::Matrix4d& m = table.transform.matrix();
-    n->mTransformation = aiMatrix4x4(
-        static_cast<ai_real>(m(0, 0)), static_cast<ai_real>(m(0, 1)), static_cast<ai_real>(m(0, 2)),
-        static_cast<ai_real>(m(0, 3)), static_cast<ai_real>(m(1, 0)), static_cast<ai_real>(m(1, 1)),
-        static_cast<ai_real>(m(1, 2)), static_cast<ai_real>(m(1, 3)), static_cast<ai_real>(m(2, 0)),
-        static_cast<ai_real>(m(2, 1)), static_cast<ai_real>(m(2, 2)), static_cast<ai_real>(m(2, 3)), 0, 0, 0, 1);
+  static constexpr std::uint32_t kNoParent = UINT32_MAX;
+  /// Adds a node under `parent` (kNoParent for the root) and returns its index. The aiNode keeps
+  /// an identity transform: finish_gltf writes every node's transform from its NodeTable (in
+  /// double precision), so a matrix from assimp would only be parsed to be thrown away.
+  std::uint32_t node(std::uint32_t parent, NodeTable table) {
+    const auto index = static_cast<std::uint32_t>(ai_nodes_.size());
+    ai_nodes_.push_back(new aiNode(fmt::format("{}{}", kMarker, index)));
+    parents_.push_back(parent);
     tables_.nodes.push_back(std::move(table));
-    // Children are attached once at the end (attach_children): aiNode::addChildren copies the
-    // whole child array on every call, quadratic for a link with 100k children.
-    if (parent) children_[parent].push_back(n);
-    return n;
+    return index;
   }
   void loss(converters::LossKind kind, const SourceLocation& at, const std::string& what,
             const std::string& hint = {}) {
     converters::report_loss(sink_, at, kTarget, kind, what, hint);
   }
 
-  aiNode* write_link(aiNode* parent, std::size_t index);
-  void write_geometry(aiNode* link_node, const Link& link, bool visual);
-  void write_shape(aiNode* parent, const Link& link, std::size_t s, const Eigen::Affine3d& X, bool report);
-  void write_devices(aiNode* link_node, std::size_t link_index);
+  std::uint32_t write_link(std::uint32_t parent, std::size_t index);
+  void write_geometry(std::uint32_t link_node, const Link& link, bool visual);
+  void write_shape(std::uint32_t parent, const Link& link, std::size_t s, const Eigen::Affine3d& X, bool report);
+  void write_devices(std::uint32_t link_node, std::size_t link_index);
   unsigned add_mesh(const TriangleMesh& mesh, int material, const std::string& name);
   int material_index(const Material& material, int texture);
   int texture_index(const Texture& texture, const SourceLocation& at);
@@ -165,7 +183,6 @@ class Writer {
   DiagnosticSink& sink_;
 
   SceneTables tables_;
-  aiNode* root_ = nullptr;
   std::unique_ptr<aiScene> scene_;
   std::vector<aiMesh*> meshes_;
   std::unordered_map<std::uint64_t, std::vector<unsigned>> meshes_by_hash_;
@@ -175,18 +192,33 @@ class Writer {
   std::set<std::string> image_names_;
   /// Texture files of a .gltf export, in a folder of their own so that exports never share one.
   const std::string texture_folder_ = converters::generated_folder("", "textures", output_, model_.name);
-  std::unordered_map<aiNode*, std::vector<aiNode*>> children_;
+  /// Every node in creation order (index = NodeTable index) and its parent's index; the aiNodes
+  /// are linked only at the end (attach_children): aiNode::addChildren copies the whole child
+  /// array on every call, quadratic for a link with 100k children.
+  std::vector<aiNode*> ai_nodes_;
+  std::vector<std::uint32_t> parents_;
 
-  void attach_children() {
-    for (auto& [parent, kids] : children_) {
-      parent->mNumChildren = static_cast<unsigned>(kids.size());
-      parent->mChildren = new aiNode*[kids.size()];
-      for (std::size_t i = 0; i < kids.size(); ++i) {
-        parent->mChildren[i] = kids[i];
-        kids[i]->mParent = parent;
-      }
+  /// Links every node to its parent (children in creation order) and returns the root, which
+  /// then owns them all.
+  aiNode* attach_children() {
+    std::vector<std::uint32_t> counts(ai_nodes_.size(), 0);
+    for (std::size_t i = 1; i < ai_nodes_.size(); ++i) ++counts[parents_[i]];
+    for (std::size_t i = 0; i < ai_nodes_.size(); ++i) {
+      if (counts[i] == 0) continue;
+      ai_nodes_[i]->mChildren = new aiNode*[counts[i]];
+      ai_nodes_[i]->mNumChildren = 0;
     }
-    children_.clear();
+    for (std::size_t i = 1; i < ai_nodes_.size(); ++i) {
+      aiNode* parent = ai_nodes_[parents_[i]];
+      parent->mChildren[parent->mNumChildren++] = ai_nodes_[i];
+      ai_nodes_[i]->mParent = parent;
+    }
+    aiNode* root = ai_nodes_.empty() ? nullptr : ai_nodes_[0];
+    ai_nodes_.clear();
+    ai_nodes_.shrink_to_fit();
+    parents_.clear();
+    parents_.shrink_to_fit();
+    return root;
   }
 };
 
@@ -347,7 +379,7 @@ unsigned Writer::add_mesh(const TriangleMesh& mesh, int material, const std::str
   return static_cast<unsigned>(meshes_.size() - 1);
 }
 
-void Writer::write_shape(aiNode* parent, const Link& link, std::size_t s, const Eigen::Affine3d& X, bool report) {
+void Writer::write_shape(std::uint32_t parent, const Link& link, std::size_t s, const Eigen::Affine3d& X, bool report) {
   const Shape& shape = link.shapes[s];
   const std::string name = shape.name.empty() ? fmt::format("{}/shape{}", link.name, s) : shape.name;
   std::vector<Part> parts = parts_of(shape);
@@ -375,7 +407,7 @@ void Writer::write_shape(aiNode* parent, const Link& link, std::size_t s, const 
     }
     t.transform = Eigen::Affine3d(Eigen::Translation3d(X.translation()));
   }
-  aiNode* shape_node = node(parent, std::move(t));
+  const std::uint32_t shape_node = node(parent, std::move(t));
   std::vector<unsigned> mesh_indices;
   for (std::size_t p = 0; p < parts.size(); ++p) {
     Part& part = parts[p];
@@ -404,7 +436,8 @@ void Writer::write_shape(aiNode* parent, const Link& link, std::size_t s, const 
     mesh_indices.push_back(add_mesh(part.mesh, material, mesh_name));
   }
   // glTF allows one mesh per node: a single part goes on the shape node, several on children.
-  auto attach = [](aiNode* n, unsigned mesh) {
+  auto attach = [this](std::uint32_t index, unsigned mesh) {
+    aiNode* n = ai_nodes_[index];
     n->mNumMeshes = 1;
     n->mMeshes = new unsigned[1]{mesh};
   };
@@ -419,9 +452,9 @@ void Writer::write_shape(aiNode* parent, const Link& link, std::size_t s, const 
   }
 }
 
-void Writer::write_geometry(aiNode* link_node, const Link& link, bool visual) {
+void Writer::write_geometry(std::uint32_t link_node, const Link& link, bool visual) {
   const bool both = options_.geometry == GeometrySet::kBoth;
-  aiNode* base = link_node;
+  std::uint32_t base = link_node;
   if (both) {
     NodeTable g;
     g.name = fmt::format("{}/{}", link.name, visual ? "visual" : "collision");
@@ -431,7 +464,7 @@ void Writer::write_geometry(aiNode* link_node, const Link& link, bool visual) {
     base = node(link_node, std::move(g));
   }
   // The link's element tree: one node per frame, shapes under their innermost frame.
-  std::vector<aiNode*> frame_nodes;
+  std::vector<std::uint32_t> frame_nodes;
   std::vector<Eigen::Affine3d> frame_in_link;
   for (std::size_t k = 0; k < link.frames.size(); ++k) {
     const SceneFrame& f = link.frames[k];
@@ -445,7 +478,7 @@ void Writer::write_geometry(aiNode* link_node, const Link& link, bool visual) {
   for (std::size_t s = 0; s < link.shapes.size(); ++s) {
     const Shape& shape = link.shapes[s];
     if (!(visual ? shape.visual : shape.collision)) continue;
-    aiNode* parent = base;
+    std::uint32_t parent = base;
     Eigen::Affine3d X = shape.X_LS;
     if (shape.frame >= 0 && static_cast<std::size_t>(shape.frame) < frame_nodes.size()) {
       const Eigen::Affine3d& F = frame_in_link[static_cast<std::size_t>(shape.frame)];
@@ -459,7 +492,7 @@ void Writer::write_geometry(aiNode* link_node, const Link& link, bool visual) {
   }
 }
 
-void Writer::write_devices(aiNode* link_node, std::size_t link_index) {
+void Writer::write_devices(std::uint32_t link_node, std::size_t link_index) {
   for (std::size_t d = 0; d < model_.devices.size(); ++d) {
     const Device& device = model_.devices[d];
     if (device.link != static_cast<LinkIndex>(link_index)) continue;
@@ -545,7 +578,7 @@ void Writer::write_devices(aiNode* link_node, std::size_t link_index) {
   }
 }
 
-aiNode* Writer::write_link(aiNode* parent, std::size_t index) {
+std::uint32_t Writer::write_link(std::uint32_t parent, std::size_t index) {
   const Link& link = model_.links[index];
   NodeTable t;
   t.name = link.name;
@@ -583,7 +616,7 @@ aiNode* Writer::write_link(aiNode* parent, std::size_t index) {
          fmt::format("the belt motion of the continuous track '{}'", link.name),
          "the link and its shapes are kept; extras.joint_type says it is a track");
   }
-  aiNode* n = node(parent, std::move(t));
+  const std::uint32_t n = node(parent, std::move(t));
   if (options_.geometry != GeometrySet::kCollision) write_geometry(n, link, true);
   if (options_.geometry != GeometrySet::kVisual) write_geometry(n, link, false);
   write_devices(n, index);
@@ -599,12 +632,12 @@ bool Writer::run() {
   top.transform.linear() << 1, 0, 0, 0, 0, 1, 0, -1, 0;
   top.extras = Json::object();
   top.extras["up_axis_converted_from"] = "Z";
-  root_ = node(nullptr, std::move(top));
+  const std::uint32_t root = node(kNoParent, std::move(top));
   // Links are in depth-first pre-order, parents first: one pass, no recursion per tree level.
-  std::vector<aiNode*> link_nodes(model_.links.size(), nullptr);
+  std::vector<std::uint32_t> link_nodes(model_.links.size(), kNoParent);
   for (std::size_t i = 0; i < model_.links.size(); ++i) {
     const LinkIndex parent = model_.links[i].parent;
-    link_nodes[i] = write_link(parent >= 0 ? link_nodes[static_cast<std::size_t>(parent)] : root_, i);
+    link_nodes[i] = write_link(parent >= 0 ? link_nodes[static_cast<std::size_t>(parent)] : root, i);
   }
 
   for (const ExtraJoint& ej : model_.extra_joints) {
@@ -614,9 +647,8 @@ bool Writer::run() {
          fmt::format("the {} extra joint between '{}' and '{}' (a closed loop)", ej.type, l1, l2));
   }
 
-  attach_children();
   scene_ = std::make_unique<aiScene>();
-  scene_->mRootNode = root_;
+  scene_->mRootNode = attach_children();
   const std::size_t nmat = std::max<std::size_t>(1, tables_.materials.size());
   scene_->mNumMaterials = static_cast<unsigned>(nmat);
   scene_->mMaterials = new aiMaterial*[nmat];
@@ -628,18 +660,29 @@ bool Writer::run() {
   scene_->mNumMeshes = static_cast<unsigned>(meshes_.size());
   scene_->mMeshes = new aiMesh*[std::max<std::size_t>(1, meshes_.size())];
   std::copy(meshes_.begin(), meshes_.end(), scene_->mMeshes);
+  meshes_.clear();
 
-  Assimp::Exporter exporter;
-  const aiExportDataBlob* blob = exporter.ExportToBlob(scene_.get(), "glb2");
   std::string error;
   std::optional<FinishedGltf> done;
   const std::string stem = output_.main_path().stem().string();
   const std::string bin_name = (stem.empty() ? std::string("model") : stem) + ".bin";
-  if (!blob) {
-    error = exporter.GetErrorString();
-  } else {
-    done = finish_gltf(std::string_view(static_cast<const char*>(blob->data), blob->size), tables_,
-                       options_.binary ? std::string() : bin_name, &error);
+  {
+    Assimp::Exporter exporter;
+    // Our scene's nodes and meshes are freed as soon as assimp has its own copy (above 1 KB per
+    // node: every aiNode holds a fixed-size name); the aiScene itself stays, as Export still
+    // reads its private data.
+    auto* release = new ReleaseAfterCopy(*scene_);
+    exporter.SetProgressHandler(release);
+    const aiExportDataBlob* blob = exporter.ExportToBlob(scene_.get(), "glb2");
+    exporter.SetProgressHandler(nullptr);  // hands the handler back (the exporter does not delete it)
+    delete release;
+    scene_.reset();
+    if (!blob) {
+      error = exporter.GetErrorString();
+    } else {
+      done = finish_gltf(std::string_view(static_cast<const char*>(blob->data), blob->size), tables_,
+                         options_.binary ? std::string() : bin_name, &error);
+    }
   }
   if (!done) {
     report_rule(sink_, "export-write", model_.source, "assimp's glTF2 export failed: " + error);
