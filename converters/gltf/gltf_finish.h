@@ -16,6 +16,7 @@
 
 #include <Eigen/Geometry>
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -26,11 +27,14 @@ namespace bodyfmt::gltf {
 inline constexpr std::string_view kMarker = "bodyfmt#";
 
 struct NodeTable {
+  static constexpr std::uint32_t kNoParent = UINT32_MAX;
+  std::uint32_t parent = kNoParent;  ///< index of the parent node; nodes come after their parent
+  int mesh = -1;                     ///< index of the aiMesh the node shows
   std::string name;
   Eigen::Affine3d transform = Eigen::Affine3d::Identity();
-  Json extras;      ///< null = none
-  int camera = -1;  ///< index into SceneTables::cameras
-  int light = -1;   ///< index into SceneTables::lights
+  std::string extras;  ///< a JSON object as text (Json::dump); empty = none
+  int camera = -1;     ///< index into SceneTables::cameras
+  int light = -1;      ///< index into SceneTables::lights
 };
 
 struct ImageTable {

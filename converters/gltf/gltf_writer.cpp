@@ -106,9 +106,9 @@ bool same_mesh(const aiMesh& a, const aiMesh& b) {
   return true;
 }
 
-/// Frees a scene's node tree and meshes once Assimp::Exporter::Export has copied the scene:
-/// Export reports step 1 of 4 right after its SceneCombiner::CopyScene and reads nothing of
-/// the original scene but its private data (mPrivate) afterwards (assimp 5.x).
+/// Frees a scene's meshes once Assimp::Exporter::Export has copied the scene: Export reports
+/// step 1 of 4 right after its SceneCombiner::CopyScene and reads nothing of the original
+/// scene but its private data (mPrivate) afterwards (assimp 5.x).
 class ReleaseAfterCopy : public Assimp::ProgressHandler {
  public:
   explicit ReleaseAfterCopy(aiScene& scene) : scene_(scene) {}
@@ -116,8 +116,6 @@ class ReleaseAfterCopy : public Assimp::ProgressHandler {
   void UpdateFileWrite(int step, int steps) override {
     if (step != 1 || steps != 4 || released_) return;
     released_ = true;
-    delete scene_.mRootNode;
-    scene_.mRootNode = nullptr;
     for (unsigned i = 0; i < scene_.mNumMeshes; ++i) {
       delete scene_.mMeshes[i];
       scene_.mMeshes[i] = nullptr;
@@ -136,10 +134,7 @@ class Writer {
          DiagnosticSink& sink)
       : model_(model), derived_(derived), options_(options), output_(output), sink_(sink) {}
   ~Writer() {
-    // What no scene owns yet (an early return) is freed here; the scene frees the rest. Nodes
-    // not yet attached have no children, so this does not recurse.
-    for (aiNode* n : ai_nodes_) delete n;
-    for (aiMesh* m : meshes_) delete m;
+    for (aiMesh* m : meshes_) delete m;  // meshes no scene owns yet (an early return)
   }
 
   bool run();
@@ -151,16 +146,11 @@ class Writer {
     std::optional<Texture> texture;
   };
 
-  static constexpr std::uint32_t kNoParent = UINT32_MAX;
-  /// Adds a node under `parent` (kNoParent for the root) and returns its index. The aiNode keeps
-  /// an identity transform: finish_gltf writes every node's transform from its NodeTable (in
-  /// double precision), so a matrix from assimp would only be parsed to be thrown away.
+  /// Adds a node under `parent` (kNoParent for the root) and returns its index.
   std::uint32_t node(std::uint32_t parent, NodeTable table) {
-    const auto index = static_cast<std::uint32_t>(ai_nodes_.size());
-    ai_nodes_.push_back(new aiNode(fmt::format("{}{}", kMarker, index)));
-    parents_.push_back(parent);
+    table.parent = parent;
     tables_.nodes.push_back(std::move(table));
-    return index;
+    return static_cast<std::uint32_t>(tables_.nodes.size() - 1);
   }
   void loss(converters::LossKind kind, const SourceLocation& at, const std::string& what,
             const std::string& hint = {}) {
@@ -192,34 +182,6 @@ class Writer {
   std::set<std::string> image_names_;
   /// Texture files of a .gltf export, in a folder of their own so that exports never share one.
   const std::string texture_folder_ = converters::generated_folder("", "textures", output_, model_.name);
-  /// Every node in creation order (index = NodeTable index) and its parent's index; the aiNodes
-  /// are linked only at the end (attach_children): aiNode::addChildren copies the whole child
-  /// array on every call, quadratic for a link with 100k children.
-  std::vector<aiNode*> ai_nodes_;
-  std::vector<std::uint32_t> parents_;
-
-  /// Links every node to its parent (children in creation order) and returns the root, which
-  /// then owns them all.
-  aiNode* attach_children() {
-    std::vector<std::uint32_t> counts(ai_nodes_.size(), 0);
-    for (std::size_t i = 1; i < ai_nodes_.size(); ++i) ++counts[parents_[i]];
-    for (std::size_t i = 0; i < ai_nodes_.size(); ++i) {
-      if (counts[i] == 0) continue;
-      ai_nodes_[i]->mChildren = new aiNode*[counts[i]];
-      ai_nodes_[i]->mNumChildren = 0;
-    }
-    for (std::size_t i = 1; i < ai_nodes_.size(); ++i) {
-      aiNode* parent = ai_nodes_[parents_[i]];
-      parent->mChildren[parent->mNumChildren++] = ai_nodes_[i];
-      ai_nodes_[i]->mParent = parent;
-    }
-    aiNode* root = ai_nodes_.empty() ? nullptr : ai_nodes_[0];
-    ai_nodes_.clear();
-    ai_nodes_.shrink_to_fit();
-    parents_.clear();
-    parents_.shrink_to_fit();
-    return root;
-  }
 };
 
 std::vector<Writer::Part> Writer::parts_of(const Shape& shape) {
@@ -436,11 +398,7 @@ void Writer::write_shape(std::uint32_t parent, const Link& link, std::size_t s, 
     mesh_indices.push_back(add_mesh(part.mesh, material, mesh_name));
   }
   // glTF allows one mesh per node: a single part goes on the shape node, several on children.
-  auto attach = [this](std::uint32_t index, unsigned mesh) {
-    aiNode* n = ai_nodes_[index];
-    n->mNumMeshes = 1;
-    n->mMeshes = new unsigned[1]{mesh};
-  };
+  auto attach = [this](std::uint32_t index, unsigned mesh) { tables_.nodes[index].mesh = static_cast<int>(mesh); };
   if (mesh_indices.size() == 1) {
     attach(shape_node, mesh_indices[0]);
   } else {
@@ -458,9 +416,10 @@ void Writer::write_geometry(std::uint32_t link_node, const Link& link, bool visu
   if (both) {
     NodeTable g;
     g.name = fmt::format("{}/{}", link.name, visual ? "visual" : "collision");
-    g.extras = Json::object();
-    g.extras["geometry"] = visual ? "visual" : "collision";
-    if (!visual) g.extras["hidden"] = true;
+    Json extras = Json::object();
+    extras["geometry"] = visual ? "visual" : "collision";
+    if (!visual) extras["hidden"] = true;
+    g.extras = extras.dump();
     base = node(link_node, std::move(g));
   }
   // The link's element tree: one node per frame, shapes under their innermost frame.
@@ -499,10 +458,10 @@ void Writer::write_devices(std::uint32_t link_node, std::size_t link_index) {
     NodeTable t;
     t.name = device.name.empty() ? fmt::format("{}/{}{}", model_.links[link_index].name, device.type, d) : device.name;
     t.transform = device.X_LD;
-    t.extras = Json::object();
-    t.extras["device_type"] = device.type;
-    if (device.id >= 0) t.extras["device_id"] = device.id;
-    if (!device.on) t.extras["on"] = false;
+    Json extras = Json::object();
+    extras["device_type"] = device.type;
+    if (device.id >= 0) extras["device_id"] = device.id;
+    if (!device.on) extras["on"] = false;
     if (const auto* cam = std::get_if<CameraParams>(&device.params)) {
       // The glTF camera looks along -Z with +Y up, as Choreonoid's "gl" optical frame.
       Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
@@ -534,8 +493,8 @@ void Writer::write_devices(std::uint32_t link_node, std::size_t link_index) {
         c["perspective"]["zfar"] = cam->far_clip_distance;
         t.camera = static_cast<int>(tables_.cameras.items().size());
         tables_.cameras.push_back(std::move(c));
-        t.extras["resolution"] = Json(Json::Array{cam->width, cam->height});
-        t.extras["optical_frame"] = cam->optical_frame;
+        extras["resolution"] = Json(Json::Array{cam->width, cam->height});
+        extras["optical_frame"] = cam->optical_frame;
       }
     } else if (const auto* light = std::get_if<LightParams>(&device.params)) {
       const bool spot = device.type == "SpotLight";
@@ -548,7 +507,7 @@ void Writer::write_devices(std::uint32_t link_node, std::size_t link_index) {
       // off shines with 0, as in Choreonoid, and keeps its factor in extras.
       const double intensity = std::isfinite(light->intensity) ? std::max(0.0, light->intensity) : 0.0;
       l["intensity"] = device.on ? intensity : 0.0;
-      if (!device.on) t.extras["intensity"] = intensity;
+      if (!device.on) extras["intensity"] = intensity;
       if (spot) {
         // A KHR light shines along its node's -Z: turn -Z onto `direction`.
         const Eigen::Vector3d dir = light->direction.normalized();
@@ -561,19 +520,20 @@ void Writer::write_devices(std::uint32_t link_node, std::size_t link_index) {
         l["spot"]["innerConeAngle"] = inner;
         l["spot"]["outerConeAngle"] = outer;
         if (light->cut_off_exponent != 0 && light->beam_width < light->cut_off_angle)
-          t.extras["cut_off_exponent"] = light->cut_off_exponent;
+          extras["cut_off_exponent"] = light->cut_off_exponent;
       }
       loss(converters::LossKind::kDevices, device.source,
            fmt::format("the attenuation [{}, {}, {}] of light '{}'", light->attenuation.x(), light->attenuation.y(),
                        light->attenuation.z(), device.name),
            "KHR_lights_punctual lights fall off with the inverse square of the distance");
-      t.extras["attenuation"] = vec3(light->attenuation);
+      extras["attenuation"] = vec3(light->attenuation);
       t.light = static_cast<int>(tables_.lights.items().size());
       tables_.lights.push_back(std::move(l));
     } else {
       loss(converters::LossKind::kDevices, device.source, fmt::format("the {} device '{}'", device.type, device.name),
            "an empty node keeps its name and pose; extras give its type");
     }
+    t.extras = extras.dump();
     node(link_node, std::move(t));
   }
 }
@@ -583,7 +543,7 @@ std::uint32_t Writer::write_link(std::uint32_t parent, std::size_t index) {
   NodeTable t;
   t.name = link.name;
   t.transform = link.X_PL;
-  Json& x = t.extras = Json::object();
+  Json x = Json::object();
   x["joint_name"] = link.joint_name.empty() ? link.name : link.joint_name;
   x["joint_type"] = std::string(joint_type_name(link.joint_type));
   const bool moving = link.joint_type == JointType::kRevolute || link.joint_type == JointType::kPrismatic ||
@@ -616,6 +576,7 @@ std::uint32_t Writer::write_link(std::uint32_t parent, std::size_t index) {
          fmt::format("the belt motion of the continuous track '{}'", link.name),
          "the link and its shapes are kept; extras.joint_type says it is a track");
   }
+  t.extras = x.dump();
   const std::uint32_t n = node(parent, std::move(t));
   if (options_.geometry != GeometrySet::kCollision) write_geometry(n, link, true);
   if (options_.geometry != GeometrySet::kVisual) write_geometry(n, link, false);
@@ -630,11 +591,12 @@ bool Writer::run() {
   NodeTable top;
   top.name = model_.name.empty() ? "body" : model_.name;
   top.transform.linear() << 1, 0, 0, 0, 0, 1, 0, -1, 0;
-  top.extras = Json::object();
-  top.extras["up_axis_converted_from"] = "Z";
-  const std::uint32_t root = node(kNoParent, std::move(top));
+  Json extras = Json::object();
+  extras["up_axis_converted_from"] = "Z";
+  top.extras = extras.dump();
+  const std::uint32_t root = node(NodeTable::kNoParent, std::move(top));
   // Links are in depth-first pre-order, parents first: one pass, no recursion per tree level.
-  std::vector<std::uint32_t> link_nodes(model_.links.size(), kNoParent);
+  std::vector<std::uint32_t> link_nodes(model_.links.size(), NodeTable::kNoParent);
   for (std::size_t i = 0; i < model_.links.size(); ++i) {
     const LinkIndex parent = model_.links[i].parent;
     link_nodes[i] = write_link(parent >= 0 ? link_nodes[static_cast<std::size_t>(parent)] : root, i);
@@ -647,8 +609,11 @@ bool Writer::run() {
          fmt::format("the {} extra joint between '{}' and '{}' (a closed loop)", ej.type, l1, l2));
   }
 
+  // assimp gets the meshes and materials, and one empty root node (a scene needs one): the
+  // node hierarchy is written by finish_gltf from the tables. An aiNode costs over 1 KB (a
+  // fixed-size name) and assimp copies and converts each, about 3 KB per glTF node in all.
   scene_ = std::make_unique<aiScene>();
-  scene_->mRootNode = attach_children();
+  scene_->mRootNode = new aiNode(fmt::format("{}0", kMarker));
   const std::size_t nmat = std::max<std::size_t>(1, tables_.materials.size());
   scene_->mNumMaterials = static_cast<unsigned>(nmat);
   scene_->mMaterials = new aiMaterial*[nmat];
@@ -668,9 +633,8 @@ bool Writer::run() {
   const std::string bin_name = (stem.empty() ? std::string("model") : stem) + ".bin";
   {
     Assimp::Exporter exporter;
-    // Our scene's nodes and meshes are freed as soon as assimp has its own copy (above 1 KB per
-    // node: every aiNode holds a fixed-size name); the aiScene itself stays, as Export still
-    // reads its private data.
+    // Our meshes are freed as soon as assimp has its own copy of the scene; the aiScene itself
+    // stays, as Export still reads its private data.
     auto* release = new ReleaseAfterCopy(*scene_);
     exporter.SetProgressHandler(release);
     const aiExportDataBlob* blob = exporter.ExportToBlob(scene_.get(), "glb2");
@@ -692,7 +656,8 @@ bool Writer::run() {
   if (options_.binary) {
     output_.set_main(pack_glb(done->json, done->bin));
   } else {
-    output_.set_main(done->json + "\n");
+    done->json += '\n';
+    output_.set_main(std::move(done->json));
     if (!done->bin.empty()) output_.add(bin_name, std::move(done->bin));
   }
   return true;
