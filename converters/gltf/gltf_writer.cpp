@@ -145,7 +145,7 @@ class Writer {
     std::optional<Texture> texture;
   };
 
-  /// Adds a node under `parent` (kNoParent for the root) and returns its index.
+  /// Adds a node under `parent` (NodeTable::kNoParent for the root) and returns its index.
   std::uint32_t node(std::uint32_t parent, NodeTable table) {
     table.parent = parent;
     tables_.nodes.push_back(std::move(table));
@@ -593,6 +593,11 @@ bool Writer::run() {
   Json extras = Json::object();
   extras["up_axis_converted_from"] = "Z";
   top.extras = extras.dump();
+  // Room for the usual nodes (link, frames, shapes, devices; a mesh part adds one more).
+  std::size_t expected = 1 + model_.devices.size();
+  const std::size_t groups = options_.geometry == GeometrySet::kBoth ? 2 : 1;
+  for (const Link& link : model_.links) expected += 1 + groups * (1 + link.frames.size() + link.shapes.size());
+  tables_.nodes.reserve(expected);
   const std::uint32_t root = node(NodeTable::kNoParent, std::move(top));
   // Links are in depth-first pre-order, parents first: one pass, no recursion per tree level.
   std::vector<std::uint32_t> link_nodes(model_.links.size(), NodeTable::kNoParent);
