@@ -2,6 +2,7 @@
 
 #include <bodyfmt/converters/transforms.h>
 
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -28,11 +29,10 @@ int marker_index(const Json* name) {
   if (!name || !name->is_string()) return -1;
   const std::string& s = name->string();
   if (s.compare(0, kMarker.size(), kMarker) != 0) return -1;
-  try {
-    return std::stoi(s.substr(kMarker.size()));
-  } catch (...) {
-    return -1;
-  }
+  int index = -1;
+  const char* digits = s.data() + kMarker.size();
+  if (std::from_chars(digits, s.data() + s.size(), index).ec != std::errc()) return -1;
+  return index;
 }
 
 Json vec(std::initializer_list<double> v) {
@@ -102,44 +102,113 @@ void normalise_normals(Json& doc, std::string& bin) {
   }
 }
 
-}  // namespace
+/// The node hierarchy from the tables, as assimp's exporter would write an aiNode tree of the
+/// same shape (depth-first pre-order from node 0, children in creation order, name, children,
+/// mesh), completed with the double-precision transform, camera, light and extras. Each node
+/// is built and written on its own, so no tree of the whole array is held.
+std::string node_array(const SceneTables& tables, const std::vector<int>& mesh_out, bool& lights_used) {
+  const std::size_t n = tables.nodes.size();
+  // Children of node i: kids[first[i] .. first[i + 1]).
+  std::vector<std::uint32_t> first(n + 1, 0), kids;
+  for (std::size_t i = 1; i < n; ++i)
+    if (tables.nodes[i].parent < i) ++first[tables.nodes[i].parent + 1];
+  for (std::size_t i = 0; i < n; ++i) first[i + 1] += first[i];
+  kids.resize(first[n]);
+  std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
+  for (std::size_t i = 1; i < n; ++i)
+    if (tables.nodes[i].parent < i) kids[fill[tables.nodes[i].parent]++] = static_cast<std::uint32_t>(i);
+  fill = {};
+  // glTF index of each node: depth-first pre-order (an explicit stack: chains are deep).
+  std::vector<std::uint32_t> order, out_index(n, NodeTable::kNoParent), stack;
+  order.reserve(n);
+  if (n) stack.push_back(0);
+  while (!stack.empty()) {
+    const std::uint32_t v = stack.back();
+    stack.pop_back();
+    out_index[v] = static_cast<std::uint32_t>(order.size());
+    order.push_back(v);
+    for (std::uint32_t k = first[v + 1]; k > first[v]; --k) stack.push_back(kids[k - 1]);
+  }
+  std::string text = "[";
+  for (const std::uint32_t v : order) {
+    const NodeTable& t = tables.nodes[v];
+    Json node = Json::object();
+    node["name"] = t.name;
+    if (first[v + 1] > first[v]) {
+      Json children = Json::array();
+      children.items().reserve(first[v + 1] - first[v]);
+      for (std::uint32_t k = first[v]; k < first[v + 1]; ++k)
+        children.push_back(static_cast<std::size_t>(out_index[kids[k]]));
+      node["children"] = std::move(children);
+    }
+    if (t.mesh >= 0 && static_cast<std::size_t>(t.mesh) < mesh_out.size() &&
+        mesh_out[static_cast<std::size_t>(t.mesh)] >= 0)
+      node["mesh"] = mesh_out[static_cast<std::size_t>(t.mesh)];
+    set_transform(node, t.transform);
+    if (t.camera >= 0) node["camera"] = t.camera;
+    if (t.light >= 0) {
+      node["extensions"]["KHR_lights_punctual"]["light"] = t.light;
+      lights_used = true;
+    }
+    if (!t.extras.empty()) node["extras"] = Json::raw(t.extras);
+    if (text.size() > 1) text += ',';
+    node.dump_to(text);
+  }
+  text += ']';
+  return text;
+}
 
-std::optional<FinishedGltf> unpack_glb(std::string_view glb) {
+struct GlbChunks {
+  std::string_view json, bin;
+};
+
+/// The JSON and binary chunks of a GLB file, as views into it.
+std::optional<GlbChunks> glb_chunks(std::string_view glb) {
   if (glb.size() < 20 || glb.substr(0, 4) != "glTF" || read_u32(glb, 4) != 2) return std::nullopt;
-  FinishedGltf out;
+  GlbChunks out;
   std::size_t at = 12;
   while (at + 8 <= glb.size()) {
     const std::uint32_t len = read_u32(glb, at), type = read_u32(glb, at + 4);
     if (at + 8 + len > glb.size()) return std::nullopt;
-    if (type == 0x4E4F534A) out.json.assign(glb.substr(at + 8, len));
-    if (type == 0x004E4942) out.bin.assign(glb.substr(at + 8, len));
+    if (type == 0x4E4F534A) out.json = glb.substr(at + 8, len);
+    if (type == 0x004E4942) out.bin = glb.substr(at + 8, len);
     at += 8 + len;
   }
   if (out.json.empty()) return std::nullopt;
   return out;
 }
 
+}  // namespace
+
+std::optional<FinishedGltf> unpack_glb(std::string_view glb) {
+  const std::optional<GlbChunks> chunks = glb_chunks(glb);
+  if (!chunks) return std::nullopt;
+  return FinishedGltf{std::string(chunks->json), std::string(chunks->bin)};
+}
+
 std::string pack_glb(const std::string& json, const std::string& bin) {
-  std::string j = json, b = bin;
-  while (j.size() % 4) j += ' ';
-  while (b.size() % 4) b += '\0';
-  std::string out = "glTF";
+  const std::size_t json_padded = (json.size() + 3) / 4 * 4, bin_padded = (bin.size() + 3) / 4 * 4;
+  std::string out;
+  out.reserve(12 + 8 + json_padded + (bin.empty() ? 0 : 8 + bin_padded));
+  out = "glTF";
   append_u32(out, 2);
-  append_u32(out, static_cast<std::uint32_t>(12 + 8 + j.size() + (b.empty() ? 0 : 8 + b.size())));
-  append_u32(out, static_cast<std::uint32_t>(j.size()));
+  append_u32(out, static_cast<std::uint32_t>(12 + 8 + json_padded + (bin.empty() ? 0 : 8 + bin_padded)));
+  append_u32(out, static_cast<std::uint32_t>(json_padded));
   append_u32(out, 0x4E4F534A);
-  out += j;
-  if (!b.empty()) {
-    append_u32(out, static_cast<std::uint32_t>(b.size()));
+  out += json;
+  out.append(json_padded - json.size(), ' ');
+  if (!bin.empty()) {
+    append_u32(out, static_cast<std::uint32_t>(bin_padded));
     append_u32(out, 0x004E4942);
-    out += b;
+    out += bin;
+    out.append(bin_padded - bin.size(), '\0');
   }
   return out;
 }
 
 std::optional<FinishedGltf> finish_gltf(std::string_view glb, const SceneTables& tables, const std::string& bin_uri,
                                         std::string* error) {
-  auto parts = unpack_glb(glb);
+  const std::optional<GlbChunks> parts = glb_chunks(glb);
   if (!parts) {
     if (error) *error = "assimp did not write a GLB container";
     return std::nullopt;
@@ -147,26 +216,7 @@ std::optional<FinishedGltf> finish_gltf(std::string_view glb, const SceneTables&
   auto parsed = Json::parse(parts->json, error);
   if (!parsed) return std::nullopt;
   Json& doc = *parsed;
-  std::string bin = std::move(parts->bin);
-
-  // Nodes: real names, double-precision transforms, extras, cameras and lights.
-  bool lights_used = false;
-  if (Json* nodes = doc.find("nodes")) {
-    for (Json& node : nodes->items()) {
-      const int i = marker_index(node.find("name"));
-      if (i < 0 || static_cast<std::size_t>(i) >= tables.nodes.size()) continue;
-      const NodeTable& t = tables.nodes[static_cast<std::size_t>(i)];
-      node["name"] = t.name;
-      set_transform(node, t.transform);
-      if (t.camera >= 0) node["camera"] = t.camera;
-      if (t.light >= 0) {
-        node["extensions"]["KHR_lights_punctual"]["light"] = t.light;
-        lights_used = true;
-      }
-      node.erase("extras");
-      if (!t.extras.is_null()) node["extras"] = t.extras;
-    }
-  }
+  std::string bin(parts->bin);
 
   // Materials: the writer's own, only those a primitive uses, in first-use order.
   std::vector<int> assimp_to_ours;
@@ -174,11 +224,15 @@ std::optional<FinishedGltf> finish_gltf(std::string_view glb, const SceneTables&
     for (const Json& m : mats->items()) assimp_to_ours.push_back(marker_index(m.find("name")));
   std::map<int, int> ours_to_out;
   Json materials = Json::array();
+  std::vector<int> mesh_out(tables.mesh_names.size(), -1);  // the writer's mesh -> assimp's index
   if (Json* meshes = doc.find("meshes")) {
-    for (Json& mesh : meshes->items()) {
+    for (std::size_t out = 0; out < meshes->items().size(); ++out) {
+      Json& mesh = meshes->items()[out];
       const int mi = marker_index(mesh.find("name"));
-      if (mi >= 0 && static_cast<std::size_t>(mi) < tables.mesh_names.size())
+      if (mi >= 0 && static_cast<std::size_t>(mi) < tables.mesh_names.size()) {
         mesh["name"] = tables.mesh_names[static_cast<std::size_t>(mi)];
+        mesh_out[static_cast<std::size_t>(mi)] = static_cast<int>(out);
+      }
       if (Json* prims = mesh.find("primitives")) {
         for (Json& p : prims->items()) {
           Json* m = p.find("material");
@@ -199,6 +253,8 @@ std::optional<FinishedGltf> finish_gltf(std::string_view glb, const SceneTables&
     }
   }
   doc.erase("materials");
+  bool lights_used = false;
+  doc["nodes"] = Json::raw(node_array(tables, mesh_out, lights_used));
   for (const char* k : {"textures", "images", "samplers"}) doc.erase(k);
   if (!materials.items().empty()) doc["materials"] = std::move(materials);
 

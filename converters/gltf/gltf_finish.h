@@ -1,11 +1,11 @@
 #pragma once
 /// The one post-processing step over what assimp's glTF2 exporter writes (SUPPORT.md,
-/// "assimp and the post-processing step"). The writer names every node, mesh and material it
-/// hands to assimp with a marker ("bodyfmt#<index>") and keeps the real data in
-/// SceneTables; finish_gltf() then:
-///  * gives nodes their real names and their transforms in double precision (assimp stores
-///    float matrices), adds link extras, cameras and KHR_lights_punctual lights (assimp 5.2
-///    writes neither);
+/// "assimp and the post-processing step"). The writer hands assimp the meshes and materials,
+/// named with a marker ("bodyfmt#<index>"), and one empty root node, and keeps the nodes and
+/// the real data in SceneTables; finish_gltf() then:
+///  * writes the nodes from the tables as assimp writes a node tree (depth-first pre-order),
+///    with their transforms in double precision (assimp stores float matrices), link extras,
+///    cameras and KHR_lights_punctual lights (assimp 5.2 writes neither);
 ///  * replaces assimp's materials by the writer's PBR materials, drops unused ones and
 ///    points primitives at them;
 ///  * normalises every NORMAL accessor in the binary buffer (assimp writes importer normals
@@ -16,6 +16,7 @@
 
 #include <Eigen/Geometry>
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -26,11 +27,14 @@ namespace bodyfmt::gltf {
 inline constexpr std::string_view kMarker = "bodyfmt#";
 
 struct NodeTable {
+  static constexpr std::uint32_t kNoParent = UINT32_MAX;
+  std::uint32_t parent = kNoParent;  ///< index of the parent node; nodes come after their parent
+  int mesh = -1;                     ///< index of the aiMesh the node shows
   std::string name;
   Eigen::Affine3d transform = Eigen::Affine3d::Identity();
-  Json extras;      ///< null = none
-  int camera = -1;  ///< index into SceneTables::cameras
-  int light = -1;   ///< index into SceneTables::lights
+  std::string extras;  ///< a JSON object as text (Json::dump); empty = none
+  int camera = -1;     ///< index into SceneTables::cameras
+  int light = -1;      ///< index into SceneTables::lights
 };
 
 struct ImageTable {

@@ -1,7 +1,8 @@
 #pragma once
-/// body2gltf's writer: Model -> glTF 2.0 (GLB, or .gltf + .bin + texture files). The scene is
-/// built as an aiScene and written by assimp's glTF2 exporter; one post-processing pass over
-/// the exported JSON (gltf_finish.h) makes it valid and complete. SUPPORT.md lists what maps,
+/// body2gltf's writer: Model -> glTF 2.0 (GLB, or .gltf + .bin + texture files). Meshes and
+/// materials are built as an aiScene and written by assimp's glTF2 exporter; the nodes are
+/// kept in tables, and one post-processing pass over the exported JSON (gltf_finish.h) writes
+/// them and makes the file valid and complete. SUPPORT.md lists what maps,
 /// what is approximated and what is lost; every loss is reported as `export-loss` at its
 /// source line.
 #include <bodyfmt/converters/output_set.h>

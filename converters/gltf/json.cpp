@@ -289,6 +289,7 @@ void Json::dump_to(std::string& out) const {
       break;
     }
     case Kind::kString: dump_string(out, string_); break;
+    case Kind::kRaw: out += string_; break;
     case Kind::kArray: {
       out += '[';
       for (std::size_t i = 0; i < array_.size(); ++i) {

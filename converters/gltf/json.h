@@ -15,7 +15,7 @@ namespace bodyfmt::gltf {
 
 class Json {
  public:
-  enum class Kind { kNull, kBool, kNumber, kString, kArray, kObject };
+  enum class Kind { kNull, kBool, kNumber, kString, kArray, kObject, kRaw };
   using Array = std::vector<Json>;
   using Object = std::vector<std::pair<std::string, Json>>;
 
@@ -34,6 +34,14 @@ class Json {
     return j;
   }
   static Json array() { return Json(Array{}); }
+  /// Text that is already JSON (the caller's promise), written as it is by dump(): a node's
+  /// extras, kept as text from the writer to the output.
+  static Json raw(std::string text) {
+    Json j;
+    j.kind_ = Kind::kRaw;
+    j.string_ = std::move(text);
+    return j;
+  }
 
   Kind kind() const { return kind_; }
   bool is_null() const { return kind_ == Kind::kNull; }
@@ -63,12 +71,12 @@ class Json {
 
   /// Compact, deterministic text.
   std::string dump() const;
+  /// Appends the compact text to `out`.
+  void dump_to(std::string& out) const;
   /// Parses a complete JSON text; nullopt with `error` set on malformed input.
   static std::optional<Json> parse(std::string_view text, std::string* error = nullptr);
 
  private:
-  void dump_to(std::string& out) const;
-
   Kind kind_ = Kind::kNull;
   bool bool_ = false;
   double number_ = 0;

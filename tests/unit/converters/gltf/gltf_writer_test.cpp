@@ -15,6 +15,7 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -316,6 +317,50 @@ TEST_CASE("gltf: link extras, root Y-up node, materials and the textured mesh") 
   CHECK(!tdoc.find("extensionsUsed"));
 }
 
+TEST_CASE("gltf: nodes are written depth-first, as assimp writes a node tree, each with one parent") {
+  // SR1's WAIST has six frames before its shapes: in the writer's tables a shape comes after
+  // all of its link's frames, in the glTF right after its own frame.
+  auto e = export_model(kCorpus / "choreonoid" / "SR1" / "SR1.body");
+  Json doc = json_of(e->main);
+  const auto& nodes = doc["nodes"].items();
+  const std::size_t meshes = doc["meshes"].items().size();
+  REQUIRE(nodes.size() > 100);
+  std::vector<int> parents(nodes.size(), -1);
+  std::vector<std::size_t> subtree(nodes.size(), 1);
+  for (std::size_t i = nodes.size(); i-- > 0;) {
+    if (const Json* mesh = nodes[i].find("mesh")) CHECK(static_cast<std::size_t>(mesh->integer()) < meshes);
+    const Json* children = nodes[i].find("children");
+    if (!children) continue;
+    // Pre-order: the first child follows its parent, each further child its sibling's subtree.
+    std::size_t next = i + 1;
+    for (const Json& c : children->items()) {
+      const auto k = static_cast<std::size_t>(c.integer());
+      CHECK(k == next);
+      REQUIRE(k < nodes.size());
+      CHECK(parents[k] == -1);
+      parents[k] = static_cast<int>(i);
+      subtree[i] += subtree[k];
+      next = k + subtree[k];
+    }
+  }
+  CHECK(subtree[0] == nodes.size());  // everything hangs below the model node
+  CHECK(std::count(parents.begin(), parents.end(), -1) == 1);
+  CHECK(doc["scenes"].items()[0].find("nodes")->items()[0].integer() == 0);
+  // WAIST/frame1 (z = 0.0955) holds WAIST/frame2, which holds the shape WAIST/shape1; in the
+  // writer's tables frame3..frame5 come between them.
+  bool found = false;
+  for (std::size_t i = 0; i + 2 < nodes.size(); ++i) {
+    if (nodes[i].find("name")->string() != "WAIST/frame1") continue;
+    found = true;
+    CHECK(nodes[i].find("translation")->items()[2].number() == doctest::Approx(0.0955));
+    CHECK(nodes[i + 1].find("name")->string() == "WAIST/frame2");
+    CHECK(nodes[i + 2].find("name")->string() == "WAIST/shape1");
+    CHECK(parents[i + 2] == static_cast<int>(i + 1));
+    CHECK(nodes[i + 2].find("mesh"));
+  }
+  CHECK(found);
+}
+
 /// The direction a camera node looks in Body's world frame (undoing the Y-up node).
 Eigen::Vector3d camera_forward(const std::string& glb, const std::string& camera) {
   Assimp::Importer importer;
@@ -414,6 +459,11 @@ TEST_CASE("gltf: the JSON model parses, keeps order and writes deterministic num
   CHECK(!Json::parse("[1 2]"));
   CHECK(!Json::parse("\"open"));
   CHECK(Json(0.1).dump() == "0.1");
+  // Raw text goes out as it is (node extras are kept as text from writer to output).
+  Json o = Json::object();
+  o["x"] = Json::raw("{\"k\":[1,null]}");
+  o["y"] = 2;
+  CHECK(o.dump() == "{\"x\":{\"k\":[1,null]},\"y\":2}");
 }
 
 }  // namespace
