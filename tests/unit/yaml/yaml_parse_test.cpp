@@ -306,6 +306,47 @@ TEST_CASE("yaml: duplicate key warns, located at the second key; the last one wi
   CHECK(doc->expanded_node_count == 3);
 }
 
+TEST_CASE("yaml: duplicate keys in a large mapping (indexed, not scanned) keep the first line") {
+  // Mappings of more than 16 keys are checked through a hash index built on the way; a third
+  // spelling of a key still names the line of the first.
+  std::string text;
+  for (int i = 0; i < 40; ++i) text += "k" + std::to_string(i) + ": " + std::to_string(i) + "\n";
+  text += "k5: second\nk39: also\nk5: third\n";
+  CollectingSink sink;
+  auto doc = parse(text, sink);
+  REQUIRE(doc);
+  REQUIRE(sink.diagnostics().size() == 3);
+  CHECK(sink.diagnostics()[0].location == at(41, 1));
+  CHECK(sink.diagnostics()[0].message.find("first at line 6)") != std::string::npos);
+  CHECK(sink.diagnostics()[1].message.find("first at line 40)") != std::string::npos);
+  CHECK(sink.diagnostics()[2].location == at(43, 1));
+  CHECK(sink.diagnostics()[2].message.find("first at line 6)") != std::string::npos);
+  const Node& root = *doc->root;
+  CHECK(root.entries().size() == 40);
+  CHECK(value_of(root, "k5")->scalar() == "third");
+  CHECK(value_of(root, "k39")->scalar() == "also");
+  CHECK(root.entries()[5].key_location == at(43, 1));  // the winning key's site, in file order of the first
+}
+
+TEST_CASE("yaml: an anchored key is a node that an alias can use as a value") {
+  // Plain keys are not nodes of their own; a key with an anchor must still be one.
+  CollectingSink sink;
+  auto doc = parse(
+      "&k first: 1\n"
+      "second: *k\n",
+      sink);
+  REQUIRE(doc);
+  CHECK(sink.diagnostics().empty());
+  const Node& root = *doc->root;
+  CHECK(keys_of(root) == "first second ");
+  const NodeRef& second = value_of(root, "second");
+  CHECK(second->scalar() == "first");
+  CHECK(second->location == at(1, 1));
+  REQUIRE(second.alias_site != nullptr);
+  CHECK(*second.alias_site == at(2, 9));
+  CHECK(doc->anchor_of(second.node) == "k");
+}
+
 TEST_CASE("yaml: a redefined anchor is an error at the second definition") {
   CollectingSink sink;
   auto doc = parse("a: &x 1\nb: &x 2\n", sink);
