@@ -5,11 +5,10 @@
 #include "load/load_context.h"
 
 #include <initializer_list>
-#include <map>
 #include <optional>
-#include <set>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace bodyfmt::detail {
