@@ -30,6 +30,10 @@ struct LoadOptions {
   /// (std::filesystem::weakly_canonical): `bodycheck --fix` re-loads its edits from memory
   /// before it writes them.
   std::map<std::string, std::string> file_texts;
+  /// Read the items of `links` while the file is parsed, so that the YAML tree never holds
+  /// them all (a 100,000-link model). The model and the findings are the same either way;
+  /// false keeps the whole tree first, as a reference for tests.
+  bool stream_links = true;
 };
 
 /// Loads a .body file. Reports every problem it can find to `sink` and returns the model

@@ -48,24 +48,89 @@ const std::vector<std::string_view> kHeaderKeys = {"format",       "format_versi
 }  // namespace
 
 BodyReader::BodyReader(const LoadOptions& options, DiagnosticSink& sink, LoadSession& session)
-    : options_(options), ctx_(sink), session_(session) {
+    : options_(options), sink_(sink), redirect_(sink), ctx_(redirect_), session_(session) {
   ctx_.package_paths = options.package_paths;
 }
 
 BodyReader::~BodyReader() = default;
 
-std::optional<Model> BodyReader::read(const std::string& text, const std::string& file_name, bool top_level) {
-  yaml::ParseOptions parse_options;
-  parse_options.max_expanded_nodes = options_.max_expanded_yaml_nodes;
-  parse_options.max_depth = options_.max_yaml_depth;
-  auto document = yaml::parse_yaml(text, file_name, parse_options, ctx_.sink);
-  if (!document) return std::nullopt;
-  const yaml::NodeRef root = document->root;
-  if (!root || !root->is_mapping()) {
-    SourceLocation at{file_name, 1, 1};
-    ctx_.report("load-top-level", root ? root.use_site() : at, "the top level of a body file must be a mapping");
-    return std::nullopt;
+/// Reads each item of the top-level `links` sequence as soon as the parser has finished it,
+/// so that the YAML tree never holds every link (body files of 100,000 links). Choreonoid
+/// reads the header first, wherever it is written; the items are read with the header keys
+/// written before `links`, and BodyReader::read_once compares that header with the whole one
+/// at the end: when they differ, the file is read again with its whole tree. So is a file
+/// whose link read a YAML resource (it may use an anchor written after the link). Items
+/// after a SubBody stay in the tree and are read after the parse, in order: a sub-body's
+/// findings are reported once per load, which a second reading could not repeat.
+class BodyReader::LinkStream : public yaml::SequenceConsumer {
+ public:
+  LinkStream(BodyReader& reader, Model& model, std::vector<LinkEntry>& entries)
+      : reader_(reader), model_(model), entries_(entries) {}
+
+  std::string_view key() const override { return "links"; }
+
+  bool begin(const yaml::Node& head, const yaml::Node& sequence) override {
+    if (sequence_ != nullptr) {  // `links` written twice: the last one is read
+      conflict_ = true;
+      return false;
+    }
+    CollectingSink silent;  // the header's findings are reported when the whole header is read
+    LoadContext probe(silent);
+    Model header;
+    if (!reader_.read_header(probe, yaml::NodeRef{&head, nullptr, nullptr}, header)) return false;
+    degrees_ = probe.degrees;
+    format_version_ = header.format_version;
+    reader_.ctx_.degrees = degrees_;
+    model_.format_version = format_version_;
+    model_.angles_in_degrees = degrees_;
+    sequence_ = &sequence;
+    return true;
   }
+
+  bool take(const yaml::NodeRef& item) override {
+    if (stopped_) return false;
+    const yaml::MapEntry* type = item->is_mapping() ? item->find("type") : nullptr;
+    const std::string type_name = type ? std::string(type->value->scalar()) : std::string();
+    if (type_name == "SubBody") {
+      stopped_ = true;
+      return false;
+    }
+    ++taken_;
+    reader_.read_link_node(item, type_name, model_, entries_);
+    return true;
+  }
+
+  /// Whether the items read so far are what the whole file says: `links` is the sequence that
+  /// was read, and `model` has the header the items were read with.
+  bool matches(const yaml::NodeRef& links, const Model& model, const LoadContext& ctx) const {
+    if (conflict_) return false;
+    if (sequence_ == nullptr) return taken_ == 0;
+    return links.node == sequence_ && model.format_version == format_version_ && ctx.degrees == degrees_;
+  }
+  std::size_t taken() const { return taken_; }
+
+ private:
+  BodyReader& reader_;
+  Model& model_;
+  std::vector<LinkEntry>& entries_;
+  const yaml::Node* sequence_ = nullptr;
+  bool conflict_ = false;
+  bool stopped_ = false;
+  std::size_t taken_ = 0;
+  bool degrees_ = true;
+  double format_version_ = 0;
+};
+
+std::optional<Model> BodyReader::read(const std::string& text, const std::string& file_name, bool top_level) {
+  bool read_again = false;
+  std::optional<Model> model = read_once(text, file_name, top_level, options_.stream_links, read_again);
+  if (!read_again) return model;
+  BodyReader again(options_, sink_, session_);
+  return again.read_once(text, file_name, top_level, false, read_again);
+}
+
+std::optional<Model> BodyReader::read_once(const std::string& text, const std::string& file_name, bool top_level,
+                                           bool stream, bool& read_again) {
   struct ChainEntry {  // recursion detection for SubBody includes (§11.2)
     std::vector<std::string>& chain;
     ChainEntry(std::vector<std::string>& c, std::string path) : chain(c) { chain.push_back(std::move(path)); }
@@ -73,24 +138,66 @@ std::optional<Model> BodyReader::read(const std::string& text, const std::string
   } chain_entry(session_.chain, file_identity(file_name));
   Model model;
   model.source_file = file_name;
-  model.source = root->location;
   model.name = std::filesystem::path(file_name).stem().string();
-  resources_ = make_resource_handler(options_, ctx_, model, document.get(), session_);
+  resources_ = make_resource_handler(options_, ctx_, model, session_);
+  std::vector<LinkEntry> entries;
+
+  // Findings wait in the order Choreonoid's reading would make them: the YAML's, the
+  // header's, then the links'. Those of links read during the parse are held meanwhile.
+  CollectingSink yaml_findings, header_findings, link_findings;
+  auto release = [&] {
+    for (CollectingSink* held : {&yaml_findings, &header_findings, &link_findings})
+      for (Diagnostic& diagnostic : held->diagnostics()) sink_.report(std::move(diagnostic));
+    redirect_.redirect(sink_);
+  };
+  LinkStream link_stream(*this, model, entries);
+  yaml::ParseOptions parse_options;
+  parse_options.max_expanded_nodes = options_.max_expanded_yaml_nodes;
+  parse_options.max_depth = options_.max_yaml_depth;
+  if (stream) parse_options.stream = &link_stream;
+  redirect_.redirect(link_findings);
+  auto document = yaml::parse_yaml(text, file_name, parse_options, yaml_findings);
+  redirect_.redirect(header_findings);
+  if (!document) {
+    link_findings.clear();  // a file that does not parse has no links to speak of
+    release();
+    return std::nullopt;
+  }
+  resources_->set_main_document(document.get());
+  const yaml::NodeRef root = document->root;
+  if (!root || !root->is_mapping()) {
+    release();
+    SourceLocation at{file_name, 1, 1};
+    ctx_.report("load-top-level", root ? root.use_site() : at, "the top level of a body file must be a mapping");
+    return std::nullopt;
+  }
+  model.source = root->location;
   documents_.push_back(std::move(document));
-  if (!read_header(root, model)) return std::nullopt;
+  const bool header_read = read_header(ctx_, root, model);
+  const yaml::MapEntry* links = root->find("links");
+  if (header_read && (!link_stream.matches(links ? links->value : yaml::NodeRef{}, model, ctx_) ||
+                      resources_->read_yaml_without_main_document())) {
+    read_again = true;
+    return std::nullopt;
+  }
+  if (!header_read) link_findings.clear();  // Choreonoid stops before the links
+  release();
+  if (!header_read) return std::nullopt;
 
   MappingReader r(ctx_, root, "body");
   for (std::string_view key : kHeaderKeys) r.ignore(key);
   for (std::string_view key : kKnownInfoKeys) r.ignore(key);
   for (const char* key : {"formatVersion", "angleUnit", "rootLink", "extraJoints", "modelFile"}) r.ignore(key);
 
-  std::vector<LinkEntry> entries;
-  const yaml::MapEntry* links = root->find("links");
   if (!links) {
     ctx_.report("load-no-links", root.use_site(), "there is no \"links\" key defining the links of the body");
     return std::nullopt;
   }
-  read_links(links->value, model, entries);
+  if (link_stream.taken() > 0) {
+    for (const yaml::NodeRef& item : links->value->items()) read_link_item(item, model, entries);
+  } else {
+    read_links(links->value, model, entries);
+  }
   if (model.links.empty()) {
     ctx_.report("load-no-links", links->value.use_site(), "no link is defined");
     return std::nullopt;
@@ -181,33 +288,33 @@ void BodyReader::report_upgrade(const Model& model) {
   ctx_.report("load-format-upgrade", version_node_, std::move(message), std::move(hint), std::move(fixes));
 }
 
-bool BodyReader::read_header(const yaml::NodeRef& root, Model& model) {
-  MappingReader r(ctx_, root, "body");
+bool BodyReader::read_header(LoadContext& ctx, const yaml::NodeRef& root, Model& model) {
+  MappingReader r(ctx, root, "body");
   yaml::NodeRef format = r.take({"format"});
   if (!format) {
     if (r.take({"model_file", "modelFile"}))
-      ctx_.report("load-wrapper", root.use_site(), "wrapper body files (model_file without format) are not supported");
+      ctx.report("load-wrapper", root.use_site(), "wrapper body files (model_file without format) are not supported");
     else
-      ctx_.report("load-format", root.use_site(), "neither format nor model_file is specified",
-                  "add format: ChoreonoidBody");
+      ctx.report("load-format", root.use_site(), "neither format nor model_file is specified",
+                 "add format: ChoreonoidBody");
     return false;
   }
   if (format->scalar() != "ChoreonoidBody") {
-    ctx_.report("load-format", format.use_site(),
-                "the format \"" + std::string(format->scalar()) + "\" cannot be loaded as a Choreonoid body model");
+    ctx.report("load-format", format.use_site(),
+               "the format \"" + std::string(format->scalar()) + "\" cannot be loaded as a Choreonoid body model");
     return false;
   }
   yaml::NodeRef version = r.take({"format_version", "formatVersion"});
   if (!version) {
-    ctx_.report("load-format-version", root.use_site(),
-                "the version of the Choreonoid body file format is not specified", "add format_version: 2.0");
+    ctx.report("load-format-version", root.use_site(),
+               "the version of the Choreonoid body file format is not specified", "add format_version: 2.0");
     return false;
   }
-  auto v = required_double(ctx_, version);
+  auto v = required_double(ctx, version);
   if (!v) return false;
   if (*v >= 2.1) {
-    ctx_.report("load-format-version", version.use_site(),
-                "version " + std::string(version->scalar()) + " of the Choreonoid body format is not supported");
+    ctx.report("load-format-version", version.use_site(),
+               "version " + std::string(version->scalar()) + " of the Choreonoid body format is not supported");
     return false;
   }
   model.format_version = *v;
@@ -217,17 +324,17 @@ bool BodyReader::read_header(const yaml::NodeRef& root, Model& model) {
     if (unit->scalar() == "radian") {
       if (*v >= 2.0) {
         // body-format-spec §2.1: radian mode is rejected in format 2.0.
-        ctx_.report("units-radian-in-2.0", unit.use_site(), "radian mode is not supported in format version 2.0",
-                    "write angles in degrees, or use format_version: 1.0");
+        ctx.report("units-radian-in-2.0", unit.use_site(), "radian mode is not supported in format version 2.0",
+                   "write angles in degrees, or use format_version: 1.0");
         return false;
       }
-      ctx_.degrees = false;
+      ctx.degrees = false;
     } else if (unit->scalar() != "degree") {
-      ctx_.report("load-angle-unit", unit.use_site(), "the angle_unit value must be either \"radian\" or \"degree\"");
+      ctx.report("load-angle-unit", unit.use_site(), "the angle_unit value must be either \"radian\" or \"degree\"");
       return false;
     }
   }
-  model.angles_in_degrees = ctx_.degrees;
+  model.angles_in_degrees = ctx.degrees;
   if (auto name = r.take({"name"})) model.name = name->scalar();
   if (auto handlers = r.take({"body_handlers"})) {
     if (handlers->is_scalar())
@@ -239,39 +346,43 @@ bool BodyReader::read_header(const yaml::NodeRef& root, Model& model) {
   return true;
 }
 
+void BodyReader::read_link_node(const yaml::NodeRef& node, const std::string& type, Model& model,
+                                std::vector<LinkEntry>& entries) {
+  if (!node->is_mapping()) {
+    ctx_.report("load-type", node, "a link must be a mapping");
+    return;
+  }
+  if (type == "Skip") return;
+  if (type.empty() || type == "Link") {
+    entries.push_back(read_link(ctx_, node, model, resources_.get()));
+    return;
+  }
+  if (type == "SubBody" || type == "ContinuousTrack") {
+    resources_->read_link_node(node, type, entries);
+    return;
+  }
+  ctx_.report("load-link-type", node, "a " + type + " node cannot be specified in links",
+              "use Link, SubBody, ContinuousTrack or Skip");
+}
+
+void BodyReader::read_link_item(const yaml::NodeRef& item, Model& model, std::vector<LinkEntry>& entries) {
+  const yaml::MapEntry* type = item->is_mapping() ? item->find("type") : nullptr;
+  read_link_node(item, type ? std::string(type->value->scalar()) : std::string(), model, entries);
+}
+
 void BodyReader::read_links(const yaml::NodeRef& links, Model& model, std::vector<LinkEntry>& entries) {
-  auto read_one = [&](const yaml::NodeRef& node, const std::string& type) {
-    if (!node->is_mapping()) {
-      ctx_.report("load-type", node, "a link must be a mapping");
-      return;
-    }
-    if (type == "Skip") return;
-    if (type.empty() || type == "Link") {
-      entries.push_back(read_link(ctx_, node, model, resources_.get()));
-      return;
-    }
-    if (type == "SubBody" || type == "ContinuousTrack") {
-      resources_->read_link_node(node, type, entries);
-      return;
-    }
-    ctx_.report("load-link-type", node, "a " + type + " node cannot be specified in links",
-                "use Link, SubBody, ContinuousTrack or Skip");
-  };
   if (links->is_sequence()) {
     // One Link per item in the common case (SubBodies add more): no growth by reallocation,
     // which would keep the old and the new link arrays alive together.
     model.links.reserve(links->items().size());
     entries.reserve(links->items().size());
     if (links->items().empty()) ctx_.report("load-no-links", links, "no link is contained in the \"links\" listing");
-    for (const yaml::NodeRef& item : links->items()) {
-      const yaml::MapEntry* type = item->is_mapping() ? item->find("type") : nullptr;
-      read_one(item, type ? std::string(type->value->scalar()) : std::string());
-    }
+    for (const yaml::NodeRef& item : links->items()) read_link_item(item, model, entries);
   } else if (links->is_mapping()) {
     std::vector<const yaml::MapEntry*> sorted;
     for (const auto& e : links->entries()) sorted.push_back(&e);
     std::sort(sorted.begin(), sorted.end(), [](auto* a, auto* b) { return a->key < b->key; });
-    for (const yaml::MapEntry* e : sorted) read_one(e->value, std::string(e->key));
+    for (const yaml::MapEntry* e : sorted) read_link_node(e->value, std::string(e->key), model, entries);
   } else {
     ctx_.report("load-no-links", links, "invalid value specified in the \"links\" key");
   }
@@ -375,14 +486,14 @@ std::vector<LinkIndex> BodyReader::link_parents(const Model& model, const std::v
         std::sort(known.begin(), known.end());
       }
       std::string_view guess = text::suggest(entry.parent_name, known);
-      ctx_.report("structure-unknown-parent", entry.parent_ref.use_site(),
+      ctx_.report("structure-unknown-parent", entry.parent_site,
                   "parent link \"" + entry.parent_name + "\" of \"" + link.name + "\" is not defined",
                   guess.empty() ? std::string() : "did you mean \"" + std::string(guess) + "\"?");
       continue;
     }
     // A parent chain that comes back to this link is a cycle (§5.2).
     if (roots.root_of(it->second) == i) {
-      ctx_.report("structure-cycle", entry.parent_ref.use_site(),
+      ctx_.report("structure-cycle", entry.parent_site,
                   "adding \"" + link.name + "\" to link \"" + entry.parent_name + "\" would make a cycle");
       continue;
     }

@@ -34,8 +34,31 @@ class BodyReader {
   std::optional<Model> read(const std::string& text, const std::string& file_name, bool top_level = true);
 
  private:
-  bool read_header(const yaml::NodeRef& root, Model& model);
+  class LinkStream;
+  /// Sends every diagnostic to whichever sink is current: while links are read during the
+  /// parse, their findings wait until the header's are out, or are dropped when the file has
+  /// to be read again.
+  class RedirectSink : public DiagnosticSink {
+   public:
+    explicit RedirectSink(DiagnosticSink& target) : target_(&target) {}
+    void report(Diagnostic diagnostic) override { target_->report(std::move(diagnostic)); }
+    void redirect(DiagnosticSink& target) { target_ = &target; }
+
+   private:
+    DiagnosticSink* target_;
+  };
+
+  /// One reading of the file; sets `read_again` when links read during the parse turn out to
+  /// have been read with the wrong header (written after `links`, see LinkStream).
+  std::optional<Model> read_once(const std::string& text, const std::string& file_name, bool top_level, bool stream,
+                                 bool& read_again);
+  bool read_header(LoadContext& ctx, const yaml::NodeRef& root, Model& model);
   void read_links(const yaml::NodeRef& links, Model& model, std::vector<struct LinkEntry>& entries);
+  /// One item of a `links` sequence.
+  void read_link_item(const yaml::NodeRef& item, Model& model, std::vector<struct LinkEntry>& entries);
+  /// A Link, SubBody, ContinuousTrack or Skip node of `links`.
+  void read_link_node(const yaml::NodeRef& node, const std::string& type, Model& model,
+                      std::vector<struct LinkEntry>& entries);
   /// Orders the links depth-first from the root and sets parents and children (§5.2).
   bool build_tree(Model& model, const std::vector<struct LinkEntry>& entries, const yaml::NodeRef& root_link);
   /// Views of the names in `Model::links`: valid while the links are neither added nor moved.
@@ -54,7 +77,9 @@ class BodyReader {
   void report_upgrade(const Model& model);
 
   const LoadOptions& options_;
-  LoadContext ctx_;
+  DiagnosticSink& sink_;
+  RedirectSink redirect_;
+  LoadContext ctx_;  ///< reports to redirect_
   LoadSession& session_;
   std::unique_ptr<class ResourceReader> resources_;
   std::vector<std::unique_ptr<yaml::Document>> documents_;

@@ -189,7 +189,7 @@ LinkEntry read_link(LoadContext& ctx, const yaml::NodeRef& node, Model& model, R
   if (auto parent = r.take({"parent"})) {
     link().sources.parent = parent.use_site();
     entry.parent_name = required_string(ctx, parent).value_or("");
-    entry.parent_ref = parent;
+    entry.parent_site = parent.use_site();
   }
   if (auto joint_name = r.take({"joint_name"})) link().joint_name = joint_name->scalar();
   if (auto t = r.take({"translation"})) {

@@ -11,7 +11,9 @@ namespace bodyfmt::detail {
 
 struct LinkEntry {
   std::string parent_name;
-  yaml::NodeRef parent_ref;
+  /// Where the parent is named (its alias use site, if any). A copy: the link's YAML may be
+  /// gone by the time the tree is built (links are read while the file is parsed).
+  SourceLocation parent_site;
 };
 
 /// Reads one link mapping, appending the link to `model.links` (in file order) and its

@@ -40,9 +40,11 @@ std::string lower_extension(const std::string& path) {
 
 class Resources final : public ResourceReader {
  public:
-  Resources(const LoadOptions& options, LoadContext& ctx, Model& model, const yaml::Document* main,
-            LoadSession& session)
-      : options_(options), ctx_(ctx), model_(model), main_(main), session_(session) {}
+  Resources(const LoadOptions& options, LoadContext& ctx, Model& model, LoadSession& session)
+      : options_(options), ctx_(ctx), model_(model), session_(session) {}
+
+  void set_main_document(const yaml::Document* main_document) override { main_ = main_document; }
+  bool read_yaml_without_main_document() const override { return read_yaml_without_main_; }
 
   void read_resource(ElementReader& reader, const yaml::NodeRef& node, const ElementFrame& frame) override {
     MappingReader r(ctx_, node, "Resource node");
@@ -107,6 +109,7 @@ class Resources final : public ResourceReader {
       yaml_files_[path] = nullptr;
       return nullptr;
     }
+    if (!main_) read_yaml_without_main_ = true;
     yaml::ParseOptions po;
     po.max_expanded_nodes = options_.max_expanded_yaml_nodes;
     po.max_depth = options_.max_yaml_depth;
@@ -212,7 +215,7 @@ class Resources final : public ResourceReader {
         entry.parent_name = prefix + sub->links[static_cast<std::size_t>(link.parent)].name + suffix;
       } else if (parent) {
         entry.parent_name = parent->scalar();
-        entry.parent_ref = parent;
+        entry.parent_site = parent.use_site();
       }
       link.parent = -1;
       link.children.clear();
@@ -291,7 +294,8 @@ class Resources final : public ResourceReader {
   const LoadOptions& options_;
   LoadContext& ctx_;
   Model& model_;
-  const yaml::Document* main_;
+  const yaml::Document* main_ = nullptr;
+  bool read_yaml_without_main_ = false;
   LoadSession& session_;
   std::map<std::string, std::unique_ptr<yaml::Document>> yaml_files_;
 };
@@ -299,8 +303,8 @@ class Resources final : public ResourceReader {
 }  // namespace
 
 std::unique_ptr<ResourceReader> make_resource_handler(const LoadOptions& options, LoadContext& ctx, Model& model,
-                                                      const yaml::Document* main_document, LoadSession& session) {
-  return std::make_unique<Resources>(options, ctx, model, main_document, session);
+                                                      LoadSession& session) {
+  return std::make_unique<Resources>(options, ctx, model, session);
 }
 
 }  // namespace bodyfmt::detail

@@ -18,10 +18,16 @@ class ResourceReader : public ResourceHandler {
   /// Reads a SubBody or ContinuousTrack node of `links`, appending links (and one LinkEntry
   /// per link) exactly as read_link does.
   virtual void read_link_node(const yaml::NodeRef& node, const std::string& type, std::vector<LinkEntry>& entries) = 0;
+  /// The main body file's document, whose anchors YAML resources see (body-format-spec §9.3).
+  /// While the links are read during the parse, there is none yet.
+  virtual void set_main_document(const yaml::Document* main_document) = 0;
+  /// Whether a YAML resource was read while there was no main document: it may have missed an
+  /// anchor of the main file, so the file must be read again with its whole tree.
+  virtual bool read_yaml_without_main_document() const = 0;
 };
 
 struct LoadSession;
 std::unique_ptr<ResourceReader> make_resource_handler(const LoadOptions& options, LoadContext& ctx, Model& model,
-                                                      const yaml::Document* main_document, LoadSession& session);
+                                                      LoadSession& session);
 
 }  // namespace bodyfmt::detail

@@ -4,14 +4,15 @@
 //
 // The tree is compact and owned by its Document's arena: a 100,000-link file has about three
 // million nodes, so a node is a fixed 56 bytes with its text and its children in one
-// monotonic buffer, nothing is freed one by one, and mapping keys are not nodes of their own.
+// arena, nothing is freed one by one, and mapping keys are not nodes of their own.
 
 #include <bodyfmt/diagnostic.h>
+
+#include "yaml/arena.h"
 
 #include <cstdint>
 #include <map>
 #include <memory>
-#include <memory_resource>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -143,6 +144,24 @@ class Node {
   const void* data_ = nullptr;
 };
 
+/// Takes the items of one top-level sequence while the document is parsed, each as soon as it
+/// is finished, so that a reader can turn them into its own data and the tree need not keep
+/// them: the links of a 100,000-link file are read one by one instead of as one tree.
+class SequenceConsumer {
+ public:
+  virtual ~SequenceConsumer() = default;
+  /// The top-level mapping key whose sequence value is offered.
+  virtual std::string_view key() const = 0;
+  /// `sequence` starts. `head` is a mapping of the top-level entries written before it, as far
+  /// as they are known (merge keys not yet applied); it is valid during this call only.
+  /// Returns false to leave the sequence in the tree as usual.
+  virtual bool begin(const Node& head, const Node& sequence) = 0;
+  /// A finished item, in order. Returns true when the item is consumed: it is then left out of
+  /// the sequence, and its memory is reused unless it defines anchors or tags. The item is
+  /// valid during this call only.
+  virtual bool take(const NodeRef& item) = 0;
+};
+
 struct ParseOptions {
   /// Maximum number of nodes in the document as a consumer sees it, counting every alias
   /// expansion in full ("billion laughs" guard).
@@ -152,6 +171,8 @@ struct ParseOptions {
   /// Anchors defined elsewhere that this document may refer to (a YAML resource sees the
   /// main body file's anchors, body-format-spec §9.3). Not owned.
   const std::map<std::string, const Node*>* imported_anchors = nullptr;
+  /// Offered the items of its key's sequence while they are parsed. Not owned.
+  SequenceConsumer* stream = nullptr;
 };
 
 /// A parsed document. Owns every node, scalar and child array in one arena; NodeRefs point into it.
@@ -182,9 +203,13 @@ class Document {
   /// The tag as written ("!!str"; "" when none). Tags are kept, not used: the loader ignores them.
   std::string_view tag_of(const Node* node) const;
   void set_tag(const Node* node, std::string_view tag) { tags_[node] = store(tag); }
+  std::size_t tag_count() const { return tags_.size(); }
+  /// For parse_yaml: releases what was stored since `position` (a consumed sequence item).
+  Arena::Mark mark() const { return arena_.mark(); }
+  void rewind(Arena::Mark position) { arena_.rewind(position); }
 
  private:
-  std::pmr::monotonic_buffer_resource arena_;
+  Arena arena_;
   std::unordered_map<const Node*, std::string_view> tags_;
 };
 

@@ -119,13 +119,17 @@ class TreeBuilder {
       switch (e.type) {
         case YAML_SCALAR_EVENT: on_scalar(e); break;
         case YAML_ALIAS_EVENT: on_alias(e); break;
-        case YAML_SEQUENCE_START_EVENT:
-          begin_collection(
-              begin_node(NodeKind::kSequence, e.start_mark, e.data.sequence_start.anchor, e.data.sequence_start.tag));
+        case YAML_SEQUENCE_START_EVENT: {
+          const auto& start = e.data.sequence_start;
+          // A sequence with an anchor or a tag stays whole: an alias may use all of it.
+          const bool streamable = start.anchor == nullptr && start.tag == nullptr;
+          begin_collection(begin_node(NodeKind::kSequence, e.start_mark, start.anchor, start.tag), streamable);
           break;
+        }
         case YAML_MAPPING_START_EVENT:
           begin_collection(
-              begin_node(NodeKind::kMapping, e.start_mark, e.data.mapping_start.anchor, e.data.mapping_start.tag));
+              begin_node(NodeKind::kMapping, e.start_mark, e.data.mapping_start.anchor, e.data.mapping_start.tag),
+              false);
           break;
         case YAML_SEQUENCE_END_EVENT:
         case YAML_MAPPING_END_EVENT: end_collection(); break;
@@ -179,6 +183,9 @@ class TreeBuilder {
     // Built once a mapping is large enough that scanning its keys would be quadratic.
     std::unique_ptr<std::unordered_map<std::string_view, std::size_t>> key_index;
     std::vector<MergeSlot> merges;
+    // Items taken by ParseOptions::stream: no longer children, still part of the sizes.
+    std::size_t streamed_size = 0;
+    int streamed_depth = 0;
   };
 
   // The byte offset in `text_` of libyaml's character index (which does not count the BOM).
@@ -313,6 +320,7 @@ class TreeBuilder {
   }
 
   void define_anchor(Node* node, const std::string& name) {
+    ++anchors_defined_;
     local_anchors_[name] = node;  // a later alias sees the newest definition
     auto [it, inserted] = document_.anchors.emplace(name, node);
     if (!inserted) {
@@ -365,7 +373,8 @@ class TreeBuilder {
     deliver(NodeRef{node, nullptr, nullptr});
   }
 
-  void begin_collection(Node* node) {
+  void begin_collection(Node* node, bool streamable) {
+    const bool streamed = streamable && offer_to_stream(*node);
     Frame frame;
     frame.node = node;
     frame.is_key = in_key_position();
@@ -378,6 +387,47 @@ class TreeBuilder {
              "nesting is deeper than the parser's limit of " + std::to_string(kNestingCeiling) + " levels");
       throw ParseAborted{};
     }
+    if (streamed) {
+      stream_frame_ = frames_.size();
+      start_item();
+    }
+  }
+
+  // Whether ParseOptions::stream takes the items of `sequence`, which is about to open: it
+  // must be the value of the stream's key in the top-level mapping.
+  bool offer_to_stream(const Node& sequence) {
+    if (options_.stream == nullptr || stream_frame_ != 0 || !sequence.is_sequence() || frames_.size() != 1)
+      return false;
+    const Frame& root = frames_.front();
+    if (!root.node->is_mapping() || root.is_key || root.expecting_key || root.key_state != KeyState::kNormal ||
+        root.key.text != options_.stream->key()) {
+      return false;
+    }
+    Node head;
+    head.kind = NodeKind::kMapping;
+    head.location = root.node->location;
+    head.set_entries(Children<MapEntry>(entries_.data() + root.first_child, entries_.size() - root.first_child));
+    return options_.stream->begin(head, sequence);
+  }
+
+  void start_item() {
+    item_start_ = document_.mark();
+    anchors_at_item_ = anchors_defined_;
+    tags_at_item_ = document_.tag_count();
+  }
+
+  // A finished item of the streamed sequence: the consumer's, or the sequence's when declined.
+  void stream_item(const NodeRef& item) {
+    Frame& frame = frames_.back();
+    if (!options_.stream->take(item)) {
+      items_.push_back(item);
+    } else {
+      frame.streamed_size = saturating_add(frame.streamed_size, item->expanded_size);
+      frame.streamed_depth = std::max(frame.streamed_depth, item->expanded_depth);
+      // An anchor or a tag defined inside may be used later: then the item's memory stays.
+      if (anchors_defined_ == anchors_at_item_ && document_.tag_count() == tags_at_item_) document_.rewind(item_start_);
+    }
+    start_item();
   }
 
   void end_collection() {
@@ -385,8 +435,9 @@ class TreeBuilder {
     frames_.pop_back();
     Node* node = frame.node;
     if (node->is_mapping() && !frame.merges.empty()) apply_merges(frame);
-    std::size_t size = 1;
-    int depth = 0;
+    if (frames_.size() + 1 == stream_frame_) stream_frame_ = 0;
+    std::size_t size = saturating_add(1, frame.streamed_size);
+    int depth = frame.streamed_depth;
     auto measure = [&](const NodeRef& child) {
       size = saturating_add(size, child->expanded_size);
       depth = std::max(depth, child->expanded_depth);
@@ -413,6 +464,10 @@ class TreeBuilder {
   void deliver(const NodeRef& ref) {
     if (frames_.empty()) {
       root_ = ref;
+      return;
+    }
+    if (frames_.size() == stream_frame_) {
+      stream_item(ref);
       return;
     }
     Frame& frame = frames_.back();
@@ -558,6 +613,13 @@ class TreeBuilder {
   std::vector<int> first_lines_;   // per entries_ element: the line its key was first written on
   std::unordered_map<std::string, const Node*> local_anchors_;
   std::size_t expanded_count_ = 0;  // nodes seen so far, aliases expanded (provisional)
+  std::size_t anchors_defined_ = 0;
+  // The streamed sequence (ParseOptions::stream): its depth in frames_ (0 = none), and the
+  // state when its current item began.
+  std::size_t stream_frame_ = 0;
+  Arena::Mark item_start_;
+  std::size_t anchors_at_item_ = 0;
+  std::size_t tags_at_item_ = 0;
 };
 
 }  // namespace

@@ -572,3 +572,46 @@ TEST_CASE("yaml: every corpus .body and .yaml file parses without errors") {
   MESSAGE(files << " corpus files parsed, " << warnings << " warnings");
   CHECK(files > 50);
 }
+
+namespace {
+
+// Takes the items of `key` whose first scalar is not "keep".
+class TakeItems : public SequenceConsumer {
+ public:
+  std::string_view key() const override { return "items"; }
+  bool begin(const Node& head, const Node&) override {
+    head_keys = keys_of(head);
+    return true;
+  }
+  bool take(const NodeRef& item) override {
+    if (item->is_scalar() && item->scalar() == "keep") return false;
+    taken.push_back(item->is_scalar() ? std::string(item->scalar()) : std::string(item->items().front()->scalar()));
+    return true;
+  }
+  std::string head_keys;
+  std::vector<std::string> taken;
+};
+
+}  // namespace
+
+TEST_CASE("yaml: a SequenceConsumer takes the items of its key while they are parsed") {
+  const std::string text = "a: 1\nb: &b [x]\nitems:\n  - one\n  - keep\n  - [two, *b]\n  - &c three\nafter: *c\n";
+  CollectingSink plain_sink, sink;
+  auto plain = parse(text, plain_sink);
+  TakeItems consumer;
+  ParseOptions options;
+  options.stream = &consumer;
+  auto doc = parse(text, sink, options);
+  REQUIRE(doc);
+  CHECK(sink.diagnostics().empty());
+  CHECK(consumer.head_keys == "a b ");
+  CHECK(consumer.taken == std::vector<std::string>{"one", "two", "three"});
+  // What was declined stays, in order; the sizes still count every item.
+  const NodeRef& items = value_of(*doc->root, "items");
+  REQUIRE(items->items().size() == 1);
+  CHECK(items->items()[0]->scalar() == "keep");
+  CHECK(doc->expanded_node_count == plain->expanded_node_count);
+  CHECK(items->expanded_size == value_of(*plain->root, "items")->expanded_size);
+  // An anchor defined in a taken item is still there for a later alias.
+  CHECK(value_of(*doc->root, "after")->scalar() == "three");
+}
