@@ -12,6 +12,7 @@
 
 #include <bodyfmt/diagnostic.h>
 
+#include <iosfwd>
 #include <map>
 #include <memory>
 #include <optional>
@@ -57,6 +58,7 @@ class Suppressions {
 
   Suppressions() = default;
   static Suppressions from_text(std::string_view text);
+  static Suppressions from_stream(std::istream& in);
   /// True when `rule_id` is suppressed on 1-based `line`; the directives that match are
   /// marked used.
   bool suppresses(int line, std::string_view rule_id);
@@ -64,6 +66,9 @@ class Suppressions {
   const std::vector<Directive>& directives() const { return directives_; }
 
  private:
+  /// Reads line `line_number`; `pending` holds the directives of comment-only lines above it.
+  void add_line(std::string_view line, int line_number, std::vector<std::size_t>& pending);
+
   std::vector<Directive> directives_;
   std::map<int, std::vector<std::size_t>> by_line_;  ///< covered line -> directives_ indices
 };

@@ -113,32 +113,50 @@ std::vector<std::pair<std::string, std::size_t>> parse_directive(const std::stri
 
 Suppressions Suppressions::from_text(std::string_view text) {
   Suppressions result;
-  std::vector<std::size_t> pending;  // from comment-only lines, for the next content line
+  std::vector<std::size_t> pending;
   int line_number = 0;
-  for (const std::string_view line : text::line_views(text)) {
-    ++line_number;
-
-    const std::size_t hash = comment_start(line);
-    std::vector<std::size_t> ids;
-    if (hash != std::string_view::npos) {
-      for (auto& [id, offset] : parse_directive(line.substr(hash + 1))) {
-        ids.push_back(result.directives_.size());
-        result.directives_.push_back({std::move(id), line_number, static_cast<int>(hash + 1 + offset) + 1});
-      }
-    }
-    const bool comment_only = hash != std::string_view::npos && trim(line.substr(0, hash)).empty();
-    if (comment_only && !ids.empty()) {
-      pending.insert(pending.end(), ids.begin(), ids.end());
-      continue;
-    }
-    if (!pending.empty() || !ids.empty()) {
-      auto& covered = result.by_line_[line_number];
-      covered.insert(covered.end(), pending.begin(), pending.end());
-      covered.insert(covered.end(), ids.begin(), ids.end());
-      pending.clear();
-    }
+  std::size_t pos = 0;
+  while (pos < text.size()) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string_view::npos) end = text.size();
+    result.add_line(text.substr(pos, end - pos), ++line_number, pending);
+    pos = end + 1;
   }
   return result;
+}
+
+Suppressions Suppressions::from_stream(std::istream& in) {
+  // Line by line: a 100,000-link model is not held a second time to find a few comments.
+  Suppressions result;
+  std::vector<std::size_t> pending;
+  int line_number = 0;
+  std::string line;
+  while (std::getline(in, line)) result.add_line(line, ++line_number, pending);
+  return result;
+}
+
+void Suppressions::add_line(std::string_view line, int line_number, std::vector<std::size_t>& pending) {
+  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  const std::size_t hash = line.find('#') == std::string_view::npos ? std::string_view::npos : comment_start(line);
+  std::vector<std::size_t> ids;
+  if (hash != std::string_view::npos) {
+    for (auto& [id, offset] : parse_directive(line.substr(hash + 1))) {
+      ids.push_back(directives_.size());
+      directives_.push_back({std::move(id), line_number, static_cast<int>(hash + 1 + offset) + 1});
+    }
+  }
+  // A comment-only line covers the next content line.
+  const bool comment_only = hash != std::string_view::npos && trim(line.substr(0, hash)).empty();
+  if (comment_only && !ids.empty()) {
+    pending.insert(pending.end(), ids.begin(), ids.end());
+    return;
+  }
+  if (!pending.empty() || !ids.empty()) {
+    auto& covered = by_line_[line_number];
+    covered.insert(covered.end(), pending.begin(), pending.end());
+    covered.insert(covered.end(), ids.begin(), ids.end());
+    pending.clear();
+  }
 }
 
 bool Suppressions::suppresses(int line, std::string_view rule_id) {
@@ -177,11 +195,7 @@ Suppressions& DiagnosticPolicy::suppressions_for(const std::string& file) {
   Suppressions s;
   try {
     std::ifstream in(file, std::ios::binary);
-    if (in) {
-      std::ostringstream text;
-      text << in.rdbuf();
-      s = Suppressions::from_text(text.str());
-    }
+    if (in) s = Suppressions::from_stream(in);
   } catch (...) {
     // Unreadable: no suppressions. The loader reports the file itself.
   }

@@ -3,6 +3,8 @@
 
 #include <doctest/doctest.h>
 
+#include <sstream>
+
 #include <filesystem>
 #include <fstream>
 
@@ -66,6 +68,25 @@ TEST_CASE("policy: werror turns warnings into errors, strict turns export-loss i
   CHECK(strict_out.diagnostics()[0].severity == Severity::kError);
   CHECK(strict_out.diagnostics()[1].severity == Severity::kError);
   CHECK(strict_out.diagnostics()[2].severity == Severity::kWarning);
+}
+
+TEST_CASE("policy: suppressions read from a stream are those read from the text, CRLF lines too") {
+  const std::string text =
+      "a: 1  # bodycheck: disable=rule-a\r\n"
+      "# bodycheck: disable=rule-b\r\n"
+      "\r\n"
+      "b: 2  # bodycheck: disable=rule-c";  // no final line break
+  std::istringstream in(text);
+  Suppressions streamed = Suppressions::from_stream(in);
+  Suppressions whole = Suppressions::from_text(text);
+  for (Suppressions* s : {&streamed, &whole}) {
+    CHECK(s->suppresses(1, "rule-a"));
+    CHECK(s->suppresses(3, "rule-b"));  // the next line, even a blank one
+    CHECK(!s->suppresses(4, "rule-b"));
+    CHECK(s->suppresses(4, "rule-c"));
+    REQUIRE(s->directives().size() == 3);
+    CHECK(s->directives()[2].column == 28);  // where the rule id is written
+  }
 }
 
 TEST_CASE("policy: inline suppression on the same line and on the line before") {
