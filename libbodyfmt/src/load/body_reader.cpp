@@ -64,8 +64,8 @@ BodyReader::~BodyReader() = default;
 /// findings are reported once per load, which a second reading could not repeat.
 class BodyReader::LinkStream : public yaml::SequenceConsumer {
  public:
-  LinkStream(BodyReader& reader, Model& model, std::vector<LinkEntry>& entries)
-      : reader_(reader), model_(model), entries_(entries) {}
+  LinkStream(BodyReader& reader, std::string_view text, Model& model, std::vector<LinkEntry>& entries)
+      : reader_(reader), text_(text), model_(model), entries_(entries) {}
 
   std::string_view key() const override { return "links"; }
 
@@ -84,6 +84,7 @@ class BodyReader::LinkStream : public yaml::SequenceConsumer {
     model_.format_version = format_version_;
     model_.angles_in_degrees = degrees_;
     sequence_ = &sequence;
+    reserve_links(sequence.location.line);
     return true;
   }
 
@@ -110,7 +111,20 @@ class BodyReader::LinkStream : public yaml::SequenceConsumer {
   std::size_t taken() const { return taken_; }
 
  private:
+  // The number of links is known only at the end. One link per line is the densest layout,
+  // so the lines from `links` on bound it: reserving that many keeps the link array from
+  // being copied (and its pages touched twice) as it grows. Pages never used cost no memory;
+  // past kLargestReservation the array grows as usual.
+  void reserve_links(int first_line) {
+    constexpr std::size_t kLargestReservation = std::size_t{1} << 20;
+    const auto lines = static_cast<std::size_t>(std::count(text_.begin(), text_.end(), '\n')) + 1;
+    const std::size_t bound = lines - std::min(lines, static_cast<std::size_t>(first_line));
+    model_.links.reserve(std::min(bound, kLargestReservation));
+    entries_.reserve(std::min(bound, kLargestReservation));
+  }
+
   BodyReader& reader_;
+  std::string_view text_;
   Model& model_;
   std::vector<LinkEntry>& entries_;
   const yaml::Node* sequence_ = nullptr;
@@ -150,7 +164,7 @@ std::optional<Model> BodyReader::read_once(const std::string& text, const std::s
       for (Diagnostic& diagnostic : held->diagnostics()) sink_.report(std::move(diagnostic));
     redirect_.redirect(sink_);
   };
-  LinkStream link_stream(*this, model, entries);
+  LinkStream link_stream(*this, text, model, entries);
   yaml::ParseOptions parse_options;
   parse_options.max_expanded_nodes = options_.max_expanded_yaml_nodes;
   parse_options.max_depth = options_.max_yaml_depth;

@@ -12,7 +12,9 @@
 #include <yaml.h>
 
 #include <algorithm>
+#include <exception>
 #include <limits>
+#include <new>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -626,6 +628,16 @@ class TreeBuilder {
 
 namespace {
 
+bool is_out_of_memory(const std::exception_ptr& error) {
+  try {
+    std::rethrow_exception(error);
+  } catch (const std::bad_alloc&) {
+    return true;
+  } catch (...) {
+    return false;
+  }
+}
+
 /// The offset of a NUL byte near the start of `text`, which no YAML text in UTF-8 holds (UTF-16
 /// and UTF-32 start with a byte-order mark, and libyaml transcodes them), or npos.
 std::size_t binary_marker(std::string_view text) {
@@ -675,7 +687,10 @@ std::unique_ptr<Document> parse_yaml(std::string_view text, const std::string& f
     }
     diagnostics = std::move(builder.diagnostics());
     if (!usable || builder.failed()) document.reset();
-  } catch (...) {  // e.g. std::bad_alloc: never throw across the API (style.md §2.4)
+  } catch (...) {
+    // Never throw across the API (style.md §2.4), except what a SequenceConsumer threw: that is
+    // the caller's own (the loader reports its broken invariants as internal errors).
+    if (options.stream != nullptr && !is_out_of_memory(std::current_exception())) throw;
     document.reset();
     diagnostics.clear();
     diagnostics.push_back(

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 using bodyfmt::CollectingSink;
@@ -614,4 +615,17 @@ TEST_CASE("yaml: a SequenceConsumer takes the items of its key while they are pa
   CHECK(items->expanded_size == value_of(*plain->root, "items")->expanded_size);
   // An anchor defined in a taken item is still there for a later alias.
   CHECK(value_of(*doc->root, "after")->scalar() == "three");
+}
+
+TEST_CASE("yaml: what a SequenceConsumer throws reaches the caller, not a YAML error") {
+  struct Throwing : SequenceConsumer {
+    std::string_view key() const override { return "items"; }
+    bool begin(const Node&, const Node&) override { return true; }
+    bool take(const NodeRef&) override { throw std::logic_error("consumer invariant"); }
+  } consumer;
+  ParseOptions options;
+  options.stream = &consumer;
+  CollectingSink sink;
+  CHECK_THROWS_AS(parse("items: [a]\n", sink, options), std::logic_error);
+  CHECK(sink.diagnostics().empty());
 }
