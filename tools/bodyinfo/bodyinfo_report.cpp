@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <iterator>
 
 #include <cmath>
 
@@ -68,18 +69,27 @@ std::string range_text(const Link& link) {
 constexpr int kMaxIndent = 32;
 
 void summary_link(std::string& out, const Model& model, const Derived& derived, LinkIndex i, int depth) {
+  // Appended in place: one line per link of a 100,000-link model.
   const Link& link = model.links[static_cast<std::size_t>(i)];
   const MassProperties& m = derived.mass[static_cast<std::size_t>(i)];
-  std::string joint(joint_type_name(link.joint_type));
-  if (link.joint_id >= 0) joint += fmt::format(" #{}", link.joint_id);
+  auto to = std::back_inserter(out);
+  out.append(static_cast<std::size_t>(std::min(depth, kMaxIndent) * 2), ' ');
+  if (depth > kMaxIndent) fmt::format_to(to, "[depth {}] ", depth);
+  out += link.name;
+  out += "  (";
+  out += joint_type_name(link.joint_type);
+  if (link.joint_id >= 0) fmt::format_to(to, " #{}", link.joint_id);
   if (link.joint_type == JointType::kRevolute || link.joint_type == JointType::kPrismatic ||
-      link.joint_type == JointType::kPseudoContinuousTrack)
-    joint += " axis " + list(link.joint_axis);
-  std::string range = range_text(link);
-  if (!range.empty()) joint += " range " + range;
-  const std::string deep = depth > kMaxIndent ? fmt::format("[depth {}] ", depth) : std::string();
-  out +=
-      fmt::format("{:{}}{}{}  ({})  {:.6g} kg\n", "", std::min(depth, kMaxIndent) * 2, deep, link.name, joint, m.mass);
+      link.joint_type == JointType::kPseudoContinuousTrack) {
+    out += " axis ";
+    out += list(link.joint_axis);
+  }
+  const std::string range = range_text(link);
+  if (!range.empty()) {
+    out += " range ";
+    out += range;
+  }
+  fmt::format_to(to, ")  {:.6g} kg\n", m.mass);
 }
 
 void summary_links(std::string& out, const Model& model, const Derived& derived) {

@@ -11,6 +11,7 @@ namespace bodyfmt::detail {
 MappingReader::MappingReader(LoadContext& ctx, const yaml::NodeRef& mapping, std::string what)
     : ctx_(ctx), mapping_(mapping), what_(std::move(what)) {
   if (mapping_ && mapping_->is_mapping()) consumed_.assign(mapping_->entries().size(), false);
+  legacy_.reserve(32);  // a link's mapping records about twenty spellings
 }
 
 void MappingReader::consume(const yaml::MapEntry* entry) {
@@ -26,9 +27,10 @@ std::string_view MappingReader::modern_of(std::string_view name) const {
 yaml::NodeRef MappingReader::take(KeyNames names) {
   if (!mapping_ || !mapping_->is_mapping()) return {};
   bool modern = true;
-  for (std::string_view name : names) {
-    if (name != *names.begin() && modern_of(name).empty()) legacy_.emplace_back(name, *names.begin());
-  }
+  // Recorded for report_unknown, which drops repeats: a lookup here would cost every take()
+  // a scan of the spellings so far.
+  for (std::string_view name : names)
+    if (name != *names.begin()) legacy_.emplace_back(name, *names.begin());
   for (std::string_view name : names) {
     if (const yaml::MapEntry* entry = mapping_->find(name)) {
       consume(entry);
@@ -78,12 +80,18 @@ bool MappingReader::has_spelling_of(std::string_view modern) const {
 
 void MappingReader::report_unknown(const std::vector<std::string_view>& known) {
   if (!mapping_ || !mapping_->is_mapping()) return;
+  bool any_unknown = false;
+  for (std::size_t i = 0; i < consumed_.size() && !any_unknown; ++i)
+    any_unknown = !consumed_[i] && !mapping_->entries()[i].merged;
+  if (!any_unknown) return;
   // Legacy spellings are candidates too (a typo of `jointRange` is closer to it than to
   // `joint_range`); the hint then names the modern spelling.
   std::vector<std::string_view> candidates = known;
   const std::size_t first_legacy = candidates.size();
   for (const auto& [legacy, modern] : legacy_) candidates.push_back(legacy);
   std::sort(candidates.begin() + static_cast<std::ptrdiff_t>(first_legacy), candidates.end());  // as before: by name
+  candidates.erase(std::unique(candidates.begin() + static_cast<std::ptrdiff_t>(first_legacy), candidates.end()),
+                   candidates.end());
   for (std::size_t i = 0; i < mapping_->entries().size(); ++i) {
     const yaml::MapEntry& entry = mapping_->entries()[i];
     if (consumed_[i] || entry.merged) continue;
