@@ -431,7 +431,8 @@ void Writer::write_geometry(std::uint32_t link_node, const Link& link, bool visu
     t.name = fmt::format("{}/frame{}", link.name, k);
     t.transform = f.X_PF;
     frame_nodes.push_back(node(root ? base : frame_nodes[static_cast<std::size_t>(f.parent)], std::move(t)));
-    frame_in_link.push_back(root ? f.X_PF : frame_in_link[static_cast<std::size_t>(f.parent)] * f.X_PF);
+    frame_in_link.push_back(root ? Eigen::Affine3d(f.X_PF)
+                                 : frame_in_link[static_cast<std::size_t>(f.parent)] * f.X_PF);
   }
   for (std::size_t s = 0; s < link.shapes.size(); ++s) {
     const Shape& shape = link.shapes[s];

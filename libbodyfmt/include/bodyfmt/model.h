@@ -173,12 +173,17 @@ struct Appearance {
   HeapOptional<Texture> texture;
 };
 
+// Shapes and scene frames keep their affine transforms as the top 3x4 block
+// (Eigen::AffineCompact3d): the bottom row is always [0 0 0 1], and a large model holds two
+// per link. They convert to and multiply with Eigen::Affine3d exactly (Eigen combines the
+// linear and translation parts alike for both storages).
+
 /// A transform node of a link's element tree (Transform, RigidBody, Visual, Collision,
 /// device, Resource, or a Shape's own transform). Kept so that consumers can rebuild the
 /// hierarchy: Choreonoid's bounding boxes and a glTF node tree depend on it.
 struct SceneFrame {
-  int parent = -1;                                     ///< index into Link::frames; -1 = the link frame
-  Eigen::Affine3d X_PF = Eigen::Affine3d::Identity();  ///< in the parent frame; may scale
+  int parent = -1;                                                   ///< index into Link::frames; -1 = the link frame
+  Eigen::AffineCompact3d X_PF = Eigen::AffineCompact3d::Identity();  ///< in the parent frame; may scale
 };
 
 /// A shape placed in its link's frame.
@@ -186,7 +191,7 @@ struct Shape {
   std::string name;
   Geometry geometry;
   Appearance appearance;
-  Eigen::Affine3d X_LS = Eigen::Affine3d::Identity();  ///< may contain scale
+  Eigen::AffineCompact3d X_LS = Eigen::AffineCompact3d::Identity();  ///< may contain scale
   int frame = -1;            ///< innermost Link::frames entry enclosing the shape; X_LS is its pose
   int division_number = 20;  ///< tessellation (values < 4 mean the default, 20)
   bool visual = true;        ///< part of the visual model
