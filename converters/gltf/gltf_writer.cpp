@@ -431,7 +431,8 @@ void Writer::write_geometry(std::uint32_t link_node, const Link& link, bool visu
     t.name = fmt::format("{}/frame{}", link.name, k);
     t.transform = f.X_PF;
     frame_nodes.push_back(node(root ? base : frame_nodes[static_cast<std::size_t>(f.parent)], std::move(t)));
-    frame_in_link.push_back(root ? f.X_PF : frame_in_link[static_cast<std::size_t>(f.parent)] * f.X_PF);
+    frame_in_link.push_back(root ? Eigen::Affine3d(f.X_PF)
+                                 : frame_in_link[static_cast<std::size_t>(f.parent)] * f.X_PF);
   }
   for (std::size_t s = 0; s < link.shapes.size(); ++s) {
     const Shape& shape = link.shapes[s];
@@ -543,7 +544,7 @@ std::uint32_t Writer::write_link(std::uint32_t parent, std::size_t index) {
   t.name = link.name;
   t.transform = link.X_PL;
   Json x = Json::object();
-  x["joint_name"] = link.joint_name.empty() ? link.name : link.joint_name;
+  x["joint_name"] = link.joint_name.empty() ? link.name : link.joint_name.str();
   x["joint_type"] = std::string(joint_type_name(link.joint_type));
   const bool moving = link.joint_type == JointType::kRevolute || link.joint_type == JointType::kPrismatic ||
                       link.joint_type == JointType::kPseudoContinuousTrack;
@@ -560,8 +561,8 @@ std::uint32_t Writer::write_link(std::uint32_t parent, std::size_t index) {
     x["joint_effort_range"] = range(link.effort_lower, link.effort_upper);
   if (link.initial_displacement != 0) x["initial_joint_displacement"] = link.initial_displacement;
   if (link.joint_axis_inertia != 0) x["joint_axis_inertia"] = link.joint_axis_inertia;
-  if (!link.actuation_mode.empty()) x["actuation_mode"] = link.actuation_mode;
-  if (!link.contact_material.empty()) x["contact_material"] = link.contact_material;
+  if (!link.actuation_mode.empty()) x["actuation_mode"] = link.actuation_mode.str();
+  if (!link.contact_material.empty()) x["contact_material"] = link.contact_material.str();
   // Mass data, so that nothing of the link is silently dropped (glTF has no physics).
   const MassProperties& mp = derived_.mass[index];
   x["mass"] = mp.mass;

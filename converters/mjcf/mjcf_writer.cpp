@@ -944,10 +944,10 @@ bool Writer::run() {
     write_shapes(body, i);
     if (!link.contact_material.empty() && link.contact_material != "default")
       loss(converters::LossKind::kDynamics, body, link.source,
-           fmt::format("the contact material '{}'", link.contact_material));
+           fmt::format("the contact material '{}'", link.contact_material.str()));
     if (!link.actuation_mode.empty() && link.joint_type != JointType::kPseudoContinuousTrack)
       loss(converters::LossKind::kDynamics, body, link.source,
-           fmt::format("the actuation mode '{}'", link.actuation_mode),
+           fmt::format("the actuation mode '{}'", link.actuation_mode.str()),
            "--actuators adds position or velocity actuators");
     write_devices(body, i);
   }

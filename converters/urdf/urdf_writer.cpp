@@ -564,11 +564,11 @@ bool Writer::run() {
     write_shapes(link_el, i);
     if (!link.contact_material.empty() && link.contact_material != "default") {
       loss(converters::LossKind::kDynamics, link_el, link.source,
-           fmt::format("the contact material '{}'", link.contact_material));
+           fmt::format("the contact material '{}'", link.contact_material.str()));
     }
     if (!link.actuation_mode.empty() && link.joint_type != JointType::kPseudoContinuousTrack) {
       loss(converters::LossKind::kDynamics, link_el, link.source,
-           fmt::format("the actuation mode '{}'", link.actuation_mode));
+           fmt::format("the actuation mode '{}'", link.actuation_mode.str()));
     }
     write_devices(link_el, i);
     flush();
@@ -585,7 +585,7 @@ bool Writer::run() {
   std::set<std::string> joint_names;
   for (std::size_t i : order) {
     const Link& link = model_.links[i];
-    std::string name = link.joint_name.empty() ? link.name : link.joint_name;
+    std::string name = link.joint_name.empty() ? link.name : link.joint_name.str();
     if (joint_names.count(name)) {
       std::string unique = name + "_joint";
       for (int n = 2; joint_names.count(unique); ++n) unique = fmt::format("{}_joint{}", name, n);

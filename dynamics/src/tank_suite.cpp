@@ -125,8 +125,9 @@ class Scenario {
 
 }  // namespace
 
-std::optional<TankLayout> find_tank(const Model& model, const Derived& derived, const std::vector<ContactPoint>& points,
-                                    std::string& why) {
+std::optional<TankLayout> find_tank(const Model& model, const Derived& /*derived*/,
+                                    const std::vector<ContactPoint>& points, std::string& why) {
+  const std::vector<Eigen::Isometry3d> X_RL = compute_root_relative_frames(model);
   TankLayout tank;
   std::vector<LinkIndex> tracks;
   for (std::size_t i = 0; i < model.links.size(); ++i)
@@ -145,7 +146,7 @@ std::optional<TankLayout> find_tank(const Model& model, const Derived& derived, 
   double lowest = std::numeric_limits<double>::infinity();
   for (const ContactPoint& p : points) {
     // The lowest point of a sphere contact at the file pose (root frame z is up).
-    const Eigen::Vector3d x = derived.X_RL[p.link] * p.position_in_link - Eigen::Vector3d(0, 0, p.radius);
+    const Eigen::Vector3d x = X_RL[p.link] * p.position_in_link - Eigen::Vector3d(0, 0, p.radius);
     by_link[p.link].push_back(x);
     lowest = std::min(lowest, x.z());
   }
@@ -160,7 +161,7 @@ std::optional<TankLayout> find_tank(const Model& model, const Derived& derived, 
   std::vector<Eigen::Vector3d> bottoms[2];
   for (int k = 0; k < 2; ++k) {
     const Link& link = model.links[tracks[k]];
-    const Eigen::Vector3d a = derived.X_RL[tracks[k]].linear() * link.joint_axis.normalized();
+    const Eigen::Vector3d a = X_RL[tracks[k]].linear() * link.joint_axis.normalized();
     const Eigen::Vector3d forward = a.cross(Eigen::Vector3d::UnitZ());
     if (std::abs(forward.x()) < 0.99 * forward.norm() || forward.norm() < 1e-9) {
       why = fmt::format("the axis of track \"{}\" does not drive along the root's x axis (a × z = ({:g}, {:g}, {:g}))",
@@ -200,7 +201,7 @@ std::optional<TankLayout> find_tank(const Model& model, const Derived& derived, 
   for (std::size_t i = 1; i < model.links.size(); ++i) {
     const Link& link = model.links[i];
     if (link.joint_type != JointType::kRevolute) continue;
-    const Eigen::Vector3d a = derived.X_RL[i].linear() * link.joint_axis.normalized();
+    const Eigen::Vector3d a = X_RL[i].linear() * link.joint_axis.normalized();
     if (tank.yaw < 0 && std::abs(a.z()) > 0.999) {
       tank.yaw = static_cast<LinkIndex>(i);
     } else if (tank.yaw >= 0 && tank.pitch < 0 && std::abs(a.z()) < 1e-3) {
@@ -364,8 +365,9 @@ std::vector<CheckResult> run_tank_suite(const Model& model, const Derived& deriv
     std::vector<Eigen::Vector3d> pts = tank.left_points;
     pts.insert(pts.end(), tank.right_points.begin(), tank.right_points.end());
     Eigen::Vector3d com_root = Eigen::Vector3d::Zero();
+    const std::vector<Eigen::Isometry3d> X_RL = compute_root_relative_frames(model);
     for (std::size_t k = 0; k < model.links.size(); ++k)
-      com_root += derived.mass[k].mass * (derived.X_RL[k] * derived.mass[k].center_of_mass);
+      com_root += derived.mass[k].mass * (X_RL[k] * derived.mass[k].center_of_mass);
     com_root /= mass;
     const std::vector<double> loads = static_loads(pts, com_root, weight);
     std::vector<Eigen::Vector3d> belt;

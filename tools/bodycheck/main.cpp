@@ -19,9 +19,11 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <deque>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <map>
 #include <set>
 #include <thread>
@@ -78,9 +80,28 @@ bool git_models(std::vector<std::string>& files) {
   return true;
 }
 
+/// Keeps one file's findings in blocks that never move. A growing array would hold its old and
+/// its new copy at once, and it grows while the model and its derived data are alive (a
+/// generated chain has a finding per link); the one array of them is made after the model is gone.
+class FindingsSink : public DiagnosticSink {
+ public:
+  void report(Diagnostic diagnostic) override { findings_.push_back(std::move(diagnostic)); }
+
+  /// The findings in arrival order, moved out a block at a time (each freed once emptied).
+  std::vector<Diagnostic> take() {
+    std::vector<Diagnostic> all;
+    all.reserve(findings_.size());
+    for (; !findings_.empty(); findings_.pop_front()) all.push_back(std::move(findings_.front()));
+    return all;
+  }
+
+ private:
+  std::deque<Diagnostic> findings_;
+};
+
 JobResult check_file(tools::Front& front, const Job& job) {
   JobResult result;
-  CollectingSink collected;
+  FindingsSink collected;
   DiagnosticPolicy policy(collected, job.policy.options);
   try {
     auto model = front.load(job.input, policy);
@@ -96,7 +117,7 @@ JobResult check_file(tools::Front& front, const Job& job) {
                                   std::string("unexpected failure: ") + e.what()));
     result.loaded = false;
   }
-  result.diagnostics = std::move(collected.diagnostics());
+  result.diagnostics = collected.take();
   result.suppressed = policy.suppressed_count();
   result.disabled = policy.disabled_count();
   return result;
@@ -230,7 +251,6 @@ Report make_report(const std::vector<Job>& jobs, std::vector<JobResult>& results
   FileSpellings spellings;
   std::size_t total = 0;
   for (const JobResult& r : results) total += r.diagnostics.size();
-  report.diagnostics.reserve(total);
   for (std::size_t i = 0; i < jobs.size(); ++i) {
     JobResult& r = results[i];
     report.files.push_back(jobs[i].input.name);
@@ -242,12 +262,23 @@ Report make_report(const std::vector<Job>& jobs, std::vector<JobResult>& results
       case tools::kExitFindings: findings = true; break;
       default: break;
     }
+    if (quiet)
+      r.diagnostics.erase(std::remove_if(r.diagnostics.begin(), r.diagnostics.end(),
+                                         [](const Diagnostic& d) { return d.severity == Severity::kNote; }),
+                          r.diagnostics.end());
     for (Diagnostic& d : r.diagnostics) {
-      if (quiet && d.severity == Severity::kNote) continue;
       d.location.file = spellings.spelling(d.location.file);
       if (d.via) d.via->file = spellings.spelling(d.via->file);
-      report.diagnostics.push_back(std::move(d));
     }
+    // The first file's findings are taken over whole, so that a run of one large model never
+    // holds its findings in two arrays at once; the others are appended, and their arrays freed.
+    if (report.diagnostics.empty()) {
+      report.diagnostics = std::move(r.diagnostics);
+    } else {
+      report.diagnostics.reserve(total);
+      std::move(r.diagnostics.begin(), r.diagnostics.end(), std::back_inserter(report.diagnostics));
+    }
+    r.diagnostics = std::vector<Diagnostic>();
   }
   sort_diagnostics(report.diagnostics);
   // A file included by several checked files (SubBody) reports the same finding each time.

@@ -137,6 +137,7 @@ std::string format_reference_yaml(const Model& model, const Derived& derived, co
   out += "root_translation: " + list(root.X_PL.translation()) + "\n";
   out += "root_rotation: " + matrix(root.X_PL.linear()) + "\n";
   out += "links:\n";
+  const std::vector<Eigen::Isometry3d> X_RL = compute_root_relative_frames(model);
   for (std::size_t i = 0; i < model.links.size(); ++i) {
     const Link& l = model.links[i];
     const MassProperties& m = derived.mass[i];
@@ -155,7 +156,7 @@ std::string format_reference_yaml(const Model& model, const Derived& derived, co
       out += "  translation: " + list(l.X_PL.translation()) + "\n";
       out += "  rotation: " + matrix(l.X_PL.linear()) + "\n";
     }
-    out += "  world_translation_at_zero: " + list(derived.X_RL[i].translation()) + "\n";
+    out += "  world_translation_at_zero: " + list(X_RL[i].translation()) + "\n";
     if (!boxes[i].visual.empty()) out += "  visual_bbox: " + bbox(boxes[i].visual) + "\n";
     if (!boxes[i].collision.empty()) out += "  collision_bbox: " + bbox(boxes[i].collision) + "\n";
   }

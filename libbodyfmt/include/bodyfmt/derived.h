@@ -58,10 +58,11 @@ std::vector<LinkBounds> compute_choreonoid_bounds(const Model& model, Diagnostic
 /// The axis-aligned box of `box` transformed (its 8 corners).
 BoundingBox transform_box(const Eigen::Affine3d& transform, const BoundingBox& box);
 
-/// Everything above, computed once.
+/// Everything above that every consumer reads, computed once. Root-relative frames are not kept
+/// (a large model would carry 128 bytes per link for the few readers of them): those call
+/// compute_root_relative_frames().
 struct Derived {
   std::vector<MassProperties> mass;
-  std::vector<Eigen::Isometry3d> X_RL;  ///< root-relative link frames at zero joint positions
   std::vector<Eigen::Isometry3d> X_WL;  ///< world link frames at zero joint positions
   std::vector<LinkBounds> bounds;       ///< tight
   double total_mass = 0;

@@ -16,6 +16,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <variant>
 #include <vector>
@@ -168,17 +169,69 @@ class HeapOptional {
   std::unique_ptr<std::optional<T>> value_;  ///< never holds an empty optional
 };
 
+/// A string kept on the heap: one pointer while empty. For names and modes that most elements
+/// leave out (a link's joint_name, actuation_mode, contact_material), so that a model of
+/// 100,000 links does not carry three 32-byte strings per link. Reads as the std::string it
+/// holds.
+class HeapString {
+ public:
+  HeapString() = default;
+  HeapString(std::string_view value) { *this = value; }                          // NOLINT: implicit, as std::string
+  HeapString(const std::string& value) : HeapString(std::string_view(value)) {}  // NOLINT
+  HeapString(const char* value) : HeapString(std::string_view(value)) {}         // NOLINT
+  HeapString(const HeapString& other) : HeapString(other.view()) {}
+  HeapString(HeapString&&) noexcept = default;
+  HeapString& operator=(const HeapString& other) { return *this = other.view(); }
+  HeapString& operator=(HeapString&&) noexcept = default;
+  HeapString& operator=(std::string_view value) {
+    if (value.empty())
+      value_.reset();
+    else if (value_)
+      value_->assign(value);
+    else
+      value_ = std::make_unique<std::string>(value);
+    return *this;
+  }
+  HeapString& operator=(const std::string& value) { return *this = std::string_view(value); }
+  HeapString& operator=(const char* value) { return *this = std::string_view(value); }
+
+  const std::string& str() const { return value_ ? *value_ : empty_string(); }
+  std::string_view view() const { return str(); }
+  operator const std::string&() const { return str(); }  // NOLINT: reads as a string
+  operator std::string_view() const { return str(); }    // NOLINT
+  bool empty() const { return value_ == nullptr; }
+
+  friend bool operator==(const HeapString& a, std::string_view b) { return a.view() == b; }
+  friend bool operator==(std::string_view a, const HeapString& b) { return a == b.view(); }
+  friend bool operator!=(const HeapString& a, std::string_view b) { return a.view() != b; }
+  friend bool operator!=(std::string_view a, const HeapString& b) { return a != b.view(); }
+  friend std::string operator+(std::string_view a, const HeapString& b) { return std::string(a) += b.str(); }
+  friend std::string operator+(const HeapString& a, std::string_view b) { return std::string(a.str()).append(b); }
+
+ private:
+  static const std::string& empty_string() {
+    static const std::string none;
+    return none;
+  }
+  std::unique_ptr<std::string> value_;  ///< never holds an empty string
+};
+
 struct Appearance {
   HeapOptional<Material> material;
   HeapOptional<Texture> texture;
 };
 
+// Shapes and scene frames keep their affine transforms as the top 3x4 block
+// (Eigen::AffineCompact3d): the bottom row is always [0 0 0 1], and a large model holds two
+// per link. They convert to and multiply with Eigen::Affine3d exactly (Eigen combines the
+// linear and translation parts alike for both storages).
+
 /// A transform node of a link's element tree (Transform, RigidBody, Visual, Collision,
 /// device, Resource, or a Shape's own transform). Kept so that consumers can rebuild the
 /// hierarchy: Choreonoid's bounding boxes and a glTF node tree depend on it.
 struct SceneFrame {
-  int parent = -1;                                     ///< index into Link::frames; -1 = the link frame
-  Eigen::Affine3d X_PF = Eigen::Affine3d::Identity();  ///< in the parent frame; may scale
+  int parent = -1;                                                   ///< index into Link::frames; -1 = the link frame
+  Eigen::AffineCompact3d X_PF = Eigen::AffineCompact3d::Identity();  ///< in the parent frame; may scale
 };
 
 /// A shape placed in its link's frame.
@@ -186,7 +239,7 @@ struct Shape {
   std::string name;
   Geometry geometry;
   Appearance appearance;
-  Eigen::Affine3d X_LS = Eigen::Affine3d::Identity();  ///< may contain scale
+  Eigen::AffineCompact3d X_LS = Eigen::AffineCompact3d::Identity();  ///< may contain scale
   int frame = -1;            ///< innermost Link::frames entry enclosing the shape; X_LS is its pose
   int division_number = 20;  ///< tessellation (values < 4 mean the default, 20)
   bool visual = true;        ///< part of the visual model
@@ -231,7 +284,7 @@ struct LinkSources {
 
 struct Link {
   std::string name;
-  std::string joint_name;
+  HeapString joint_name;
   LinkIndex parent = -1;
   std::vector<LinkIndex> children;
 
@@ -250,8 +303,8 @@ struct Link {
   double effort_upper = kUnlimited;
   double initial_displacement = 0;
   double joint_axis_inertia = 0;  ///< equivalent rotor inertia
-  std::string actuation_mode;
-  std::string contact_material;
+  HeapString actuation_mode;
+  HeapString contact_material;
 
   std::vector<MassContribution> mass_contributions;
   std::vector<Shape> shapes;

@@ -95,11 +95,14 @@ namespace {
 // 1e306 m from its link makes the parallel-axis term infinite. Said once per link, at the
 // values that combine, so that no tool writes or simulates the NaN that follows.
 void report_overflow(const Model& model, const Derived& d, DiagnosticSink& sink) {
+  // A far-off root can bring a world frame back into range while the root-relative one
+  // overflows, so both are checked.
+  const std::vector<Eigen::Isometry3d> X_RL = compute_root_relative_frames(model);
   for (std::size_t i = 0; i < model.links.size(); ++i) {
     const Link& link = model.links[i];
     const MassProperties& m = d.mass[i];
     const bool mass_finite = std::isfinite(m.mass) && m.center_of_mass.allFinite() && m.inertia.allFinite();
-    const bool frame_finite = d.X_WL[i].matrix().allFinite() && d.X_RL[i].matrix().allFinite();
+    const bool frame_finite = d.X_WL[i].matrix().allFinite() && X_RL[i].matrix().allFinite();
     if (mass_finite && frame_finite) continue;
     // The culprit of an overflowing sum is the contribution farthest out.
     const MassContribution* farthest = nullptr;
@@ -126,7 +129,6 @@ Derived compute_derived(const Model& model, DiagnosticSink& sink) {
     d.mass.push_back(compute_mass_properties(link));
     d.total_mass += d.mass.back().mass;
   }
-  d.X_RL = compute_root_relative_frames(model);
   d.X_WL = compute_world_frames(model);
   report_overflow(model, d, sink);
   d.bounds = compute_link_bounds(model, sink);
