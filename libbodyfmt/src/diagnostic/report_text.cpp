@@ -2,15 +2,13 @@
 
 #include <bodyfmt/report.h>
 
+#include "io/read_file.h"
 #include "text/text_util.h"
 
 #include <algorithm>
 #include <charconv>
-#include <fstream>
-#include <istream>
-#include <iterator>
+#include <limits>
 #include <ostream>
-#include <sstream>
 
 namespace bodyfmt {
 
@@ -26,30 +24,6 @@ std::map<std::string, int> Report::counts_by_rule() const {
   return counts;
 }
 
-namespace {
-
-/// The rest of `in`: read at the file's size where the stream can tell it, into one buffer of
-/// that length, instead of a doubling buffer and then a copy (a large model's text is held
-/// until its report is written).
-void read_all(std::istream& in, std::string& text) {
-  const std::istream::pos_type start = in.tellg();
-  if (start != std::istream::pos_type(-1) && in.seekg(0, std::ios::end)) {
-    const std::istream::pos_type end = in.tellg();
-    in.seekg(start);
-    if (end != std::istream::pos_type(-1) && end >= start && in) {
-      text.resize(static_cast<std::size_t>(end - start));
-      in.read(text.data(), static_cast<std::streamsize>(text.size()));
-      text.resize(static_cast<std::size_t>(in.gcount()));
-      if (!in.eof()) text.append(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-      return;
-    }
-  }
-  in.clear();
-  text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
-}  // namespace
-
 void SourceLines::add(const std::string& file, std::string_view text) {
   std::optional<Text>& entry = files_[file];
   entry.emplace();
@@ -62,11 +36,14 @@ std::optional<std::string_view> SourceLines::line(const std::string& file, int l
   if (it == files_.end()) {
     it = files_.emplace(file, std::nullopt).first;
     try {
-      std::ifstream in(file, std::ios::binary);
-      if (in.is_open()) {
+      // The loader's own reader: only a regular file, read at its size (a large model's text
+      // is held until its report is written). Any size: the loader has applied its limit.
+      std::string why;
+      if (std::optional<std::string> text =
+              detail::read_regular_file(file, std::numeric_limits<std::uintmax_t>::max(), why)) {
         std::optional<Text>& entry = it->second;
         entry.emplace();
-        read_all(in, entry->text);
+        entry->text = std::move(*text);
         entry->lines = text::line_views(entry->text);
       }
     } catch (...) {
