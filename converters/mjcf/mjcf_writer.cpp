@@ -243,7 +243,11 @@ bool Writer::prepare_inertials() {
     out.mass = mp.mass;
     out.com = mp.center_of_mass;
     out.inertia = symmetrized_inertia(mp.inertia);
-    if (!(mp.mass >= 0) || !std::isfinite(mp.mass)) {
+    if (!computable(mp)) {  // compute_derived reported it (derived-not-finite)
+      ok = false;
+      continue;
+    }
+    if (!(mp.mass >= 0)) {
       report_rule(
           sink_, "inertia-nonpositive-mass", first_known({&link.sources.mass, &link.source}),
           fmt::format("link \"{}\" has mass {} kg; MuJoCo refuses negative masses", link.name, format_number(mp.mass)));

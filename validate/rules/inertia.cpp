@@ -202,6 +202,12 @@ void check_inertia(const RuleContext& ctx) {
   const std::vector<bool> welded = welded_to_world(ctx.model);
   const std::vector<bool> valid_descendant = valid_welded_descendant(ctx.model, ctx.derived);
   for (LinkIndex i = 0; i < static_cast<LinkIndex>(ctx.model.links.size()); ++i) {
+    // A link whose mass properties are not computable was reported by compute_derived
+    // (derived-not-finite); its NaN moments would only add findings that follow from it.
+    if (!computable(ctx.derived.mass[static_cast<std::size_t>(i)])) {
+      check_symmetry(ctx, ctx.model.links[static_cast<std::size_t>(i)]);
+      continue;
+    }
     check_link(ctx, i, welded[static_cast<std::size_t>(i)]);
     check_moving(ctx, i, valid_descendant[static_cast<std::size_t>(i)]);
   }

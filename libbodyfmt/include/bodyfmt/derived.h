@@ -14,6 +14,14 @@ namespace bodyfmt {
 /// contribution gets Choreonoid's defaults (1 kg, origin, identity inertia).
 MassProperties compute_mass_properties(const Link& link);
 
+/// Largest combined inertia entry whose principal decomposition (ours, and MuJoCo's of a
+/// fullinertia) does not overflow, although every entry is finite.
+inline constexpr double kLargestComputableInertia = 1e100;
+
+/// Finite, with an inertia within kLargestComputableInertia. compute_derived reports every
+/// link that is not (derived-not-finite); rules that decompose the inertia skip those links.
+bool computable(const MassProperties& mass);
+
 /// Link frames at the given joint positions (one per link, indexed like Model::links; joints
 /// without an entry are at 0). X_RL: link frame relative to the root link frame.
 std::vector<Eigen::Isometry3d> compute_root_relative_frames(const Model& model, const std::vector<double>& q = {});

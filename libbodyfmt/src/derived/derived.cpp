@@ -89,6 +89,11 @@ std::vector<LinkBounds> compute_link_bounds(const Model& model, DiagnosticSink& 
   return bounds;
 }
 
+bool computable(const MassProperties& m) {
+  return std::isfinite(m.mass) && m.center_of_mass.allFinite() && m.inertia.allFinite() &&
+         m.inertia.cwiseAbs().maxCoeff() <= kLargestComputableInertia;
+}
+
 namespace {
 
 // Every loaded number is finite, but sums and products of huge ones need not be: a RigidBody
@@ -103,6 +108,23 @@ void report_overflow(const Model& model, const Derived& d, DiagnosticSink& sink)
     const MassProperties& m = d.mass[i];
     const bool mass_finite = std::isfinite(m.mass) && m.center_of_mass.allFinite() && m.inertia.allFinite();
     const bool frame_finite = d.X_WL[i].matrix().allFinite() && X_RL[i].matrix().allFinite();
+    const double largest_moment = mass_finite ? m.inertia.cwiseAbs().maxCoeff() : 0;
+    if (mass_finite && frame_finite && largest_moment > kLargestComputableInertia) {
+      // The culprit: the contribution with the largest own or parallel-axis term.
+      const auto size = [](const MassContribution& c) {
+        return c.inertia.cwiseAbs().maxCoeff() + std::abs(c.mass) * c.center_of_mass.squaredNorm();
+      };
+      const MassContribution* largest = nullptr;
+      for (const MassContribution& c : link.mass_contributions)
+        if (!largest || size(c) > size(*largest)) largest = &c;
+      report_rule(
+          sink, "derived-not-finite", largest && largest->source.known() ? largest->source : link.source,
+          fmt::format("the combined inertia of link \"{}\" reaches {:g} kg·m², beyond {:g}, where its principal "
+                      "moments and every balanced or exported tensor overflow to infinity or NaN",
+                      link.name, largest_moment, kLargestComputableInertia),
+          "no body has an inertia this large (the Earth's is 8e37 kg·m²); check the exponents");
+      continue;
+    }
     if (mass_finite && frame_finite) continue;
     // The culprit of an overflowing sum is the contribution farthest out.
     const MassContribution* farthest = nullptr;

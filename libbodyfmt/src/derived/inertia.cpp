@@ -9,7 +9,10 @@
 
 namespace bodyfmt {
 
-Eigen::Matrix3d symmetrized_inertia(const Eigen::Matrix3d& inertia) { return 0.5 * (inertia + inertia.transpose()); }
+// Halving before adding keeps a tensor of finite entries finite (1e308 + 1e308 overflows).
+Eigen::Matrix3d symmetrized_inertia(const Eigen::Matrix3d& inertia) {
+  return 0.5 * inertia + 0.5 * inertia.transpose();
+}
 
 PrincipalInertia principal_inertia(const Eigen::Matrix3d& inertia) {
   const Eigen::Matrix3d sym = symmetrized_inertia(inertia);

@@ -141,8 +141,11 @@ std::vector<RuleInfo> make_table() {
       {"inertia-asymmetric", E, "a 9-element inertia is not symmetric",
        "Choreonoid uses the 9 numbers as given; engines assume a symmetric tensor and silently use a part of it",
        "|I - I^T|max > CheckOptions::inertia_symmetry_tolerance (1e-6) x |I|max, per RigidBody or link-level inertia"},
-      {"derived-not-finite", E, "a link's combined mass properties or world frame overflow to infinity or NaN",
-       "every number written or simulated from it would be NaN; each input value was finite", ""},
+      {"derived-not-finite", E,
+       "a link's combined mass properties or world frame overflow to infinity or NaN, or its combined inertia is too "
+       "large to decompose",
+       "every number written or simulated from it would be NaN; each input value was finite",
+       "an infinite or NaN sum, or a combined inertia entry beyond 1e100 kg m^2"},
       {"suppression-unknown-rule", W, "a `# bodycheck: disable=` comment names no rule",
        "a mistyped id suppresses nothing, and the finding it was meant for still fails the run", ""},
       {"suppression-unused", W, "a `# bodycheck: disable=` comment suppresses nothing on the line it covers",

@@ -25,6 +25,17 @@ TEST_CASE("inertia: the symmetrised tensor is (I + Iᵀ)/2") {
   CHECK(symmetrized_inertia(I)(1, 0) == 0.1);
 }
 
+TEST_CASE("inertia: symmetrising a tensor of finite entries near DBL_MAX keeps it finite") {
+  // fuzz_mjcf: (1e308 + 1e308) / 2 was infinite, and the balanced tensor written was NaN.
+  Matrix3d I = Vector3d(1e308, 0.0042, 0.0036).asDiagonal();
+  I(1, 2) = 1.7e308;
+  I(2, 1) = 1.7e308;
+  CHECK(symmetrized_inertia(I).allFinite());
+  CHECK(symmetrized_inertia(I)(0, 0) == 1e308);
+  CHECK(symmetrized_inertia(I)(1, 2) == 1.7e308);
+  CHECK(principal_inertia(Vector3d(1e308, 0.0042, 0.0036).asDiagonal()).moments[2] == 1e308);
+}
+
 TEST_CASE("inertia: a valid tensor needs no balancing") {
   CHECK_FALSE(balance_inertia(Vector3d(0.2, 0.2, 0.4).asDiagonal()).has_value());  // A + B = C exactly
   CHECK_FALSE(balance_inertia(Matrix3d::Identity()).has_value());
