@@ -2,6 +2,7 @@
 // Exit codes (tools/common/front.h): 0 nothing at or above the fail level, 1 findings,
 // 2 usage, I/O or fatal error.
 
+#include "compact_findings.h"
 #include "fix_run.h"
 #include "front.h"
 
@@ -19,7 +20,6 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
-#include <deque>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -80,28 +80,10 @@ bool git_models(std::vector<std::string>& files) {
   return true;
 }
 
-/// Keeps one file's findings in blocks that never move. A growing array would hold its old and
-/// its new copy at once, and it grows while the model and its derived data are alive (a
-/// generated chain has a finding per link); the one array of them is made after the model is gone.
-class FindingsSink : public DiagnosticSink {
- public:
-  void report(Diagnostic diagnostic) override { findings_.push_back(std::move(diagnostic)); }
-
-  /// The findings in arrival order, moved out a block at a time (each freed once emptied).
-  std::vector<Diagnostic> take() {
-    std::vector<Diagnostic> all;
-    all.reserve(findings_.size());
-    for (; !findings_.empty(); findings_.pop_front()) all.push_back(std::move(findings_.front()));
-    return all;
-  }
-
- private:
-  std::deque<Diagnostic> findings_;
-};
-
 JobResult check_file(tools::Front& front, const Job& job) {
   JobResult result;
-  FindingsSink collected;
+  // Compact while the model is alive: a generated model can have a finding per link.
+  tools::CompactFindings collected;
   DiagnosticPolicy policy(collected, job.policy.options);
   try {
     auto model = front.load(job.input, policy);

@@ -1,0 +1,94 @@
+#include "compact_findings.h"
+
+#include <algorithm>
+#include <cstring>
+#include <stdexcept>
+
+namespace bodyfmt::tools {
+
+namespace {
+// Large enough that a block holds thousands of messages, small enough that the last one of a
+// run with few findings wastes little (its pages are touched only as they fill).
+constexpr std::size_t kBlockBytes = std::size_t{1} << 20;
+}  // namespace
+
+std::uint16_t CompactFindings::intern(std::vector<std::string>& table, const std::string& value) {
+  // Few distinct values; a run repeats the last one most of the time.
+  for (std::size_t i = table.size(); i-- > 0;)
+    if (table[i] == value) return static_cast<std::uint16_t>(i);
+  if (table.size() > UINT16_MAX) throw std::length_error("too many distinct rule ids");
+  table.push_back(value);
+  return static_cast<std::uint16_t>(table.size() - 1);
+}
+
+CompactFindings::Text CompactFindings::store(std::string_view text) {
+  Text stored;
+  stored.size = static_cast<std::uint32_t>(text.size());
+  if (text.empty()) return stored;
+  if (blocks_.empty() || used_in_last_block_ + text.size() > kBlockBytes) {
+    blocks_.push_back(std::make_unique<char[]>(std::max(kBlockBytes, text.size())));
+    used_in_last_block_ = 0;
+  }
+  stored.block = static_cast<std::uint32_t>(blocks_.size() - 1);
+  stored.offset = static_cast<std::uint32_t>(used_in_last_block_);
+  std::memcpy(blocks_.back().get() + used_in_last_block_, text.data(), text.size());
+  used_in_last_block_ += text.size();
+  return stored;
+}
+
+std::uint32_t CompactFindings::keep_hint(std::uint16_t rule, std::string&& hint) {
+  if (hint.empty()) return 0;
+  auto last = last_hint_of_rule_.find(rule);
+  if (last != last_hint_of_rule_.end() && hints_[last->second] == hint) return last->second;
+  hints_.push_back(std::move(hint));
+  const auto index = static_cast<std::uint32_t>(hints_.size() - 1);
+  last_hint_of_rule_[rule] = index;
+  return index;
+}
+
+void CompactFindings::report(Diagnostic diagnostic) {
+  Record record;
+  record.location = diagnostic.location;
+  record.severity = diagnostic.severity;
+  record.rule = intern(rules_, diagnostic.rule_id);
+  record.category = intern(categories_, diagnostic.category);
+  record.message = store(diagnostic.message);
+  record.hint = keep_hint(record.rule, std::move(diagnostic.fix_hint));
+  if (diagnostic.via || !diagnostic.fixes.empty()) {
+    record.rare = static_cast<std::int32_t>(rare_.size());
+    rare_.push_back(Rare{diagnostic.via, std::move(diagnostic.fixes)});
+  }
+  records_.push_back(record);
+}
+
+std::vector<Diagnostic> CompactFindings::take() {
+  std::vector<Diagnostic> all;
+  all.reserve(records_.size());
+  std::size_t freed = 0;  // blocks before this one are freed
+  for (; !records_.empty(); records_.pop_front()) {
+    const Record& r = records_.front();
+    // Messages are stored in arrival order, so a block behind this message is done with.
+    for (; freed < r.message.block && r.message.size > 0; ++freed) blocks_[freed].reset();
+    Diagnostic d;
+    d.severity = r.severity;
+    d.rule_id = rules_[r.rule];
+    d.category = categories_[r.category];
+    if (r.message.size > 0) d.message.assign(blocks_[r.message.block].get() + r.message.offset, r.message.size);
+    d.location = r.location;
+    d.fix_hint = hints_[r.hint];
+    if (r.rare >= 0) {
+      Rare& rare = rare_[static_cast<std::size_t>(r.rare)];
+      d.via = rare.via;
+      d.fixes = std::move(rare.fixes);
+    }
+    all.push_back(std::move(d));
+  }
+  blocks_.clear();
+  used_in_last_block_ = 0;
+  rare_.clear();
+  hints_.resize(1);
+  last_hint_of_rule_.clear();
+  return all;
+}
+
+}  // namespace bodyfmt::tools
