@@ -47,18 +47,15 @@ std::uint32_t CompactFindings::keep_hint(std::uint16_t rule, std::string&& hint)
 }
 
 void CompactFindings::report(Diagnostic diagnostic) {
-  Record record;
-  record.location = diagnostic.location;
-  record.severity = diagnostic.severity;
-  record.rule = intern(rules_, diagnostic.rule_id);
-  record.category = intern(categories_, diagnostic.category);
-  record.message = store(diagnostic.message);
-  record.hint = keep_hint(record.rule, std::move(diagnostic.fix_hint));
+  const std::uint16_t rule = intern(rules_, diagnostic.rule_id);
+  std::int32_t rare = -1;
   if (diagnostic.via || !diagnostic.fixes.empty()) {
-    record.rare = static_cast<std::int32_t>(rare_.size());
+    rare = static_cast<std::int32_t>(rare_.size());
     rare_.push_back(Rare{diagnostic.via, std::move(diagnostic.fixes)});
   }
-  records_.push_back(record);
+  records_.push_back(Record{diagnostic.location, store(diagnostic.message),
+                            keep_hint(rule, std::move(diagnostic.fix_hint)), rule,
+                            intern(categories_, diagnostic.category), diagnostic.severity, rare});
 }
 
 std::vector<Diagnostic> CompactFindings::take() {
@@ -69,18 +66,13 @@ std::vector<Diagnostic> CompactFindings::take() {
     const Record& r = records_.front();
     // Messages are stored in arrival order, so a block behind this message is done with.
     for (; freed < r.message.block && r.message.size > 0; ++freed) blocks_[freed].reset();
-    Diagnostic d;
-    d.severity = r.severity;
-    d.rule_id = rules_[r.rule];
-    d.category = categories_[r.category];
-    if (r.message.size > 0) d.message.assign(blocks_[r.message.block].get() + r.message.offset, r.message.size);
-    d.location = r.location;
-    d.fix_hint = hints_[r.hint];
-    if (r.rare >= 0) {
-      Rare& rare = rare_[static_cast<std::size_t>(r.rare)];
-      d.via = rare.via;
-      d.fixes = std::move(rare.fixes);
-    }
+    std::string message;
+    if (r.message.size > 0) message.assign(blocks_[r.message.block].get() + r.message.offset, r.message.size);
+    Rare none;
+    Rare& rare = r.rare >= 0 ? rare_[static_cast<std::size_t>(r.rare)] : none;
+    // The finding as it was made (by make_diagnostic), severity included.
+    Diagnostic d{r.severity, rules_[r.rule], std::move(message),      r.location,
+                 rare.via,   hints_[r.hint], categories_[r.category], std::move(rare.fixes)};
     all.push_back(std::move(d));
   }
   blocks_.clear();

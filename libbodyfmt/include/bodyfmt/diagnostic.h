@@ -5,6 +5,7 @@
 /// DiagnosticSink they were given and carry on with a safe value where that still means
 /// something (SDFormat's error list, Drake's diagnostic policy).
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -17,8 +18,9 @@ enum class Severity { kNote, kWarning, kError, kFatal };
 std::string_view severity_name(Severity severity);
 
 /// A file name as locations carry it: interned once per process, so that the millions of
-/// locations of a large model share one copy, and a copy is a pointer. Reads as the
-/// std::string it names; equal names are the same object.
+/// locations of a large model share one copy, and a location is 12 bytes (the name is a 32-bit
+/// number in the process's table of names). Reads as the std::string it names; equal names
+/// are the same number.
 class FileName {
  public:
   FileName() = default;
@@ -31,15 +33,15 @@ class FileName {
   bool empty() const { return str().empty(); }
   const char* c_str() const { return str().c_str(); }
 
-  friend bool operator==(FileName a, FileName b) { return a.name_ == b.name_; }
-  friend bool operator!=(FileName a, FileName b) { return a.name_ != b.name_; }
+  friend bool operator==(FileName a, FileName b) { return a.id_ == b.id_; }
+  friend bool operator!=(FileName a, FileName b) { return a.id_ != b.id_; }
   friend bool operator<(FileName a, FileName b) { return a.str() < b.str(); }
   friend bool operator==(FileName a, const std::string& b) { return a.str() == b; }
   friend bool operator==(const std::string& a, FileName b) { return a == b.str(); }
   friend bool operator==(FileName a, const char* b) { return a.str() == b; }
 
  private:
-  const std::string* name_ = nullptr;  ///< nullptr: the empty name
+  std::uint32_t id_ = 0;  ///< 0: the empty name
 };
 
 /// A position in a source file. Line and column are 1-based; 0 means unknown.

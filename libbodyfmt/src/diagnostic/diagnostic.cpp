@@ -1,9 +1,13 @@
 #include <bodyfmt/diagnostic.h>
 
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <mutex>
+#include <stdexcept>
+#include <string_view>
 #include <tuple>
-#include <unordered_set>
+#include <unordered_map>
 
 namespace bodyfmt {
 
@@ -11,16 +15,56 @@ namespace {
 const std::string kEmptyName;
 }
 
-FileName::FileName(const std::string& name) {
-  if (name.empty()) return;
-  // Never freed: a process names few files, and every location may point at them.
-  static std::mutex mutex;
-  static std::unordered_set<std::string>* names = new std::unordered_set<std::string>();
-  const std::lock_guard<std::mutex> lock(mutex);
-  name_ = &*names->insert(name).first;
+namespace {
+
+// The process's file names, numbered from 1 in the order they are first met. Never freed: a
+// process names few files, and every location may refer to them. Names are read without a
+// lock (locations are printed from several threads): a name's slot is written before its
+// number is handed out, and slots never move (fixed pages of a fixed page table).
+constexpr std::size_t kPageBits = 10;
+constexpr std::size_t kPageSize = std::size_t{1} << kPageBits;
+constexpr std::size_t kPages = std::size_t{1} << 12;  // ~4 million names
+using NamePage = std::array<std::atomic<const std::string*>, kPageSize>;
+
+struct NameTable {
+  std::mutex mutex;
+  std::unordered_map<std::string_view, std::uint32_t> ids;  // views of the names in the pages
+  std::array<std::atomic<NamePage*>, kPages> pages{};
+  std::uint32_t next = 1;
+};
+
+NameTable& table() {
+  static NameTable* names = new NameTable();
+  return *names;
 }
 
-const std::string& FileName::str() const { return name_ ? *name_ : kEmptyName; }
+}  // namespace
+
+FileName::FileName(const std::string& name) {
+  if (name.empty()) return;
+  NameTable& t = table();
+  const std::lock_guard<std::mutex> lock(t.mutex);
+  auto known = t.ids.find(name);
+  if (known != t.ids.end()) {
+    id_ = known->second;
+    return;
+  }
+  const std::uint32_t id = t.next;
+  const std::size_t page = id >> kPageBits;
+  if (page >= kPages) throw std::length_error("more than 4 million distinct file names");
+  if (!t.pages[page].load(std::memory_order_relaxed)) t.pages[page].store(new NamePage(), std::memory_order_release);
+  const std::string* stored = new std::string(name);
+  (*t.pages[page].load(std::memory_order_relaxed))[id & (kPageSize - 1)].store(stored, std::memory_order_release);
+  t.ids.emplace(*stored, id);
+  ++t.next;
+  id_ = id;
+}
+
+const std::string& FileName::str() const {
+  if (id_ == 0) return kEmptyName;
+  const NamePage* page = table().pages[id_ >> kPageBits].load(std::memory_order_acquire);
+  return *(*page)[id_ & (kPageSize - 1)].load(std::memory_order_acquire);
+}
 
 std::string_view severity_name(Severity severity) {
   switch (severity) {
