@@ -21,18 +21,51 @@ std::uint16_t CompactFindings::intern(std::vector<std::string>& table, const std
   return static_cast<std::uint16_t>(table.size() - 1);
 }
 
-CompactFindings::Text CompactFindings::store(std::string_view text) {
-  Text stored;
-  stored.size = static_cast<std::uint32_t>(text.size());
-  if (text.empty()) return stored;
-  if (blocks_.empty() || used_in_last_block_ + text.size() > kBlockBytes) {
-    blocks_.push_back(std::make_unique<char[]>(std::max(kBlockBytes, text.size())));
+namespace {
+
+void put_varint(std::string& out, std::size_t value) {
+  for (; value >= 0x80; value >>= 7) out.push_back(static_cast<char>((value & 0x7f) | 0x80));
+  out.push_back(static_cast<char>(value));
+}
+
+std::size_t get_varint(const char*& p) {
+  std::size_t value = 0;
+  for (int shift = 0;; shift += 7) {
+    const auto byte = static_cast<unsigned char>(*p++);
+    value |= static_cast<std::size_t>(byte & 0x7f) << shift;
+    if (!(byte & 0x80)) return value;
+  }
+}
+
+}  // namespace
+
+void CompactFindings::append(std::string_view bytes) {
+  std::memcpy(blocks_.back().get() + used_in_last_block_, bytes.data(), bytes.size());
+  used_in_last_block_ += bytes.size();
+}
+
+CompactFindings::Text CompactFindings::store(std::uint16_t rule, std::string_view message) {
+  std::string& previous = last_message_of_rule_[rule];
+  std::size_t prefix = 0;
+  const std::size_t common = std::min(previous.size(), message.size());
+  while (prefix < common && previous[prefix] == message[prefix]) ++prefix;
+  std::size_t suffix = 0;
+  while (suffix < common - prefix && previous[previous.size() - 1 - suffix] == message[message.size() - 1 - suffix])
+    ++suffix;
+  std::string lengths;
+  put_varint(lengths, prefix);
+  put_varint(lengths, suffix);
+  const std::string_view middle = message.substr(prefix, message.size() - prefix - suffix);
+  const std::size_t size = lengths.size() + middle.size();
+  if (blocks_.empty() || used_in_last_block_ + size > kBlockBytes) {
+    blocks_.push_back(std::make_unique<char[]>(std::max(kBlockBytes, size)));
     used_in_last_block_ = 0;
   }
-  stored.block = static_cast<std::uint32_t>(blocks_.size() - 1);
-  stored.offset = static_cast<std::uint32_t>(used_in_last_block_);
-  std::memcpy(blocks_.back().get() + used_in_last_block_, text.data(), text.size());
-  used_in_last_block_ += text.size();
+  const Text stored{static_cast<std::uint32_t>(blocks_.size() - 1), static_cast<std::uint32_t>(used_in_last_block_),
+                    static_cast<std::uint32_t>(size)};
+  append(lengths);
+  append(middle);
+  previous.assign(message);
   return stored;
 }
 
@@ -53,7 +86,7 @@ void CompactFindings::report(Diagnostic diagnostic) {
     rare = static_cast<std::int32_t>(rare_.size());
     rare_.push_back(Rare{diagnostic.via, std::move(diagnostic.fixes)});
   }
-  records_.push_back(Record{diagnostic.location, store(diagnostic.message),
+  records_.push_back(Record{diagnostic.location, store(rule, diagnostic.message),
                             keep_hint(rule, std::move(diagnostic.fix_hint)), rule,
                             intern(categories_, diagnostic.category), diagnostic.severity, rare});
 }
@@ -62,12 +95,20 @@ std::vector<Diagnostic> CompactFindings::take() {
   std::vector<Diagnostic> all;
   all.reserve(records_.size());
   std::size_t freed = 0;  // blocks before this one are freed
+  std::map<std::uint16_t, std::string> previous_of_rule;
   for (; !records_.empty(); records_.pop_front()) {
     const Record& r = records_.front();
     // Messages are stored in arrival order, so a block behind this message is done with.
-    for (; freed < r.message.block && r.message.size > 0; ++freed) blocks_[freed].reset();
+    for (; freed < r.message.block; ++freed) blocks_[freed].reset();
+    const char* p = blocks_[r.message.block].get() + r.message.offset;
+    const char* end = p + r.message.size;
+    const std::size_t prefix = get_varint(p);
+    const std::size_t suffix = get_varint(p);
+    std::string& previous = previous_of_rule[r.rule];
     std::string message;
-    if (r.message.size > 0) message.assign(blocks_[r.message.block].get() + r.message.offset, r.message.size);
+    message.reserve(prefix + static_cast<std::size_t>(end - p) + suffix);
+    message.append(previous, 0, prefix).append(p, end).append(previous, previous.size() - suffix, suffix);
+    previous = message;
     Rare none;
     Rare& rare = r.rare >= 0 ? rare_[static_cast<std::size_t>(r.rare)] : none;
     // The finding as it was made (by make_diagnostic), severity included.
@@ -77,6 +118,7 @@ std::vector<Diagnostic> CompactFindings::take() {
   }
   blocks_.clear();
   used_in_last_block_ = 0;
+  last_message_of_rule_.clear();
   rare_.clear();
   hints_.resize(1);
   last_hint_of_rule_.clear();

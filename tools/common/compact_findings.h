@@ -2,8 +2,10 @@
 // A sink that keeps a run's findings compactly while the model they are about is still alive.
 // A generated model can have a finding per link; as Diagnostics (a 200-byte struct and one or
 // two heap strings each) they were the third largest cost of bodycheck's peak, next to the
-// model. Here a finding is a small fixed record, its message lives in large text blocks, rule
-// ids and categories are interned, and a hint equal to the last one of the same rule is kept once.
+// model. Here a finding is a small fixed record; its message lives in large text blocks, as
+// the part that differs from the rule's previous message (a generated model's findings differ
+// in a link name and a number or two); rule ids and categories are interned, and a hint equal
+// to the last one of the same rule is kept once.
 // The Diagnostics come back, in arrival order, once the model is gone.
 
 #include <bodyfmt/diagnostic.h>
@@ -30,7 +32,8 @@ class CompactFindings : public DiagnosticSink {
   std::vector<Diagnostic> take();
 
  private:
-  /// A message in the text blocks.
+  /// A message in the text blocks: the lengths of the prefix and the suffix it shares with the
+  /// rule's previous message (two varints), then the bytes between them.
   struct Text {
     std::uint32_t block = 0;
     std::uint32_t offset = 0;
@@ -51,7 +54,8 @@ class CompactFindings : public DiagnosticSink {
     std::vector<FixIt> fixes;
   };
 
-  Text store(std::string_view text);
+  Text store(std::uint16_t rule, std::string_view message);
+  void append(std::string_view bytes);
   std::uint32_t keep_hint(std::uint16_t rule, std::string&& hint);
   static std::uint16_t intern(std::vector<std::string>& table, const std::string& value);
 
@@ -60,6 +64,7 @@ class CompactFindings : public DiagnosticSink {
   std::size_t used_in_last_block_ = 0;
   std::vector<std::string> rules_;
   std::vector<std::string> categories_{""};
+  std::map<std::uint16_t, std::string> last_message_of_rule_;
   std::vector<std::string> hints_{""};
   std::map<std::uint16_t, std::uint32_t> last_hint_of_rule_;
   std::vector<Rare> rare_;

@@ -87,3 +87,23 @@ TEST_CASE("compact findings: a message larger than a block, and reuse after take
   check_same(back[0], finding(26));
   check_same(back[1], finding(39));
 }
+
+TEST_CASE("compact findings: messages sharing any prefix and suffix with the rule's previous one") {
+  // Short strings over two letters overlap in every way (prefix and suffix meeting, one
+  // message inside the other, empty ones), across two interleaved rules.
+  tools::CompactFindings store;
+  std::vector<Diagnostic> sent;
+  std::uint32_t seed = 12345;
+  for (int i = 0; i < 5000; ++i) {
+    seed = seed * 1664525u + 1013904223u;
+    Diagnostic d = finding(i);
+    d.rule_id = (seed >> 30) & 1 ? "rule-a" : "rule-b";
+    d.message.clear();
+    for (std::uint32_t k = 0, n = (seed >> 8) % 7; k < n; ++k) d.message.push_back((seed >> (k + 12)) & 1 ? 'a' : 'b');
+    store.report(d);
+    sent.push_back(d);
+  }
+  const std::vector<Diagnostic> back = store.take();
+  REQUIRE(back.size() == sent.size());
+  for (std::size_t i = 0; i < sent.size(); ++i) check_same(back[i], sent[i]);
+}
