@@ -21,7 +21,7 @@ void protect_inputs(OutputSet& output, const Model& model) {
     for (const Shape& shape : link.shapes) {
       body_files.insert(shape.source.file.str());
       texture(shape.appearance.texture);
-      if (const auto* resource = std::get_if<MeshResource>(&shape.geometry);
+      if (const auto* resource = geometry_if<MeshResource>(shape.geometry);
           resource && !resource->resolved_path.empty())
         meshes.insert(resource->resolved_path);
     }

@@ -64,11 +64,11 @@ double clamp01(double v) { return std::isfinite(v) ? std::clamp(v, 0.0, 1.0) : 0
 /// Crease angle of a shape's polygon geometry, or of a mesh resource; nullopt = keep the
 /// normals the mesh came with.
 std::optional<double> crease_angle_of(const Geometry& g) {
-  if (const auto* x = std::get_if<IndexedFaceSet>(&g)) return x->crease_angle;
-  if (const auto* x = std::get_if<TriangleMeshGeometry>(&g)) return x->crease_angle;
-  if (const auto* x = std::get_if<Extrusion>(&g)) return x->crease_angle;
-  if (const auto* x = std::get_if<ElevationGrid>(&g)) return x->crease_angle;
-  if (const auto* x = std::get_if<MeshResource>(&g)) return x->crease_angle;
+  if (const auto* x = geometry_if<IndexedFaceSet>(g)) return x->crease_angle;
+  if (const auto* x = geometry_if<TriangleMeshGeometry>(g)) return x->crease_angle;
+  if (const auto* x = geometry_if<Extrusion>(g)) return x->crease_angle;
+  if (const auto* x = geometry_if<ElevationGrid>(g)) return x->crease_angle;
+  if (const auto* x = geometry_if<MeshResource>(g)) return x->crease_angle;
   return kPrimitiveCreaseAngle;
 }
 
@@ -185,7 +185,7 @@ class Writer {
 
 std::vector<Writer::Part> Writer::parts_of(const Shape& shape) {
   std::vector<Part> parts;
-  const auto* resource = std::get_if<MeshResource>(&shape.geometry);
+  const auto* resource = geometry_if<MeshResource>(shape.geometry);
   if (resource && resource->mesh >= 0 && static_cast<std::size_t>(resource->mesh) < model_.meshes.size()) {
     // Each part keeps its own material; the shape's appearance, where written, wins.
     for (const MeshPart& part : model_.meshes[static_cast<std::size_t>(resource->mesh)].parts) {
@@ -342,7 +342,7 @@ unsigned Writer::add_mesh(const TriangleMesh& mesh, int material, const std::str
 
 void Writer::write_shape(std::uint32_t parent, const Link& link, std::size_t s, const Eigen::Affine3d& X, bool report) {
   const Shape& shape = link.shapes[s];
-  const std::string name = shape.name.empty() ? fmt::format("{}/shape{}", link.name, s) : shape.name;
+  const std::string name = shape.name.empty() ? fmt::format("{}/shape{}", link.name, s) : shape.name.str();
   std::vector<Part> parts = parts_of(shape);
   parts.erase(std::remove_if(parts.begin(), parts.end(), [](const Part& p) { return p.mesh.empty(); }), parts.end());
   if (parts.empty()) {
@@ -387,7 +387,7 @@ void Writer::write_shape(std::uint32_t parent, const Link& link, std::size_t s, 
       } else if (report) {
         loss(converters::LossKind::kTextures, shape.source,
              fmt::format("the texture '{}' on a {}", part.texture->uri, geometry_type_name(shape.geometry)),
-             std::holds_alternative<MeshResource>(shape.geometry)
+             geometry_is<MeshResource>(shape.geometry)
                  ? "the mesh has no texture coordinates; the colour is kept"
                  : "its texture coordinate indices point past its tex_coords; the colour is kept");
       }
@@ -572,7 +572,7 @@ std::uint32_t Writer::write_link(std::uint32_t parent, std::size_t index) {
     for (int c = 0; c < 3; ++c) inertia.push_back(mp.inertia(r, c));
   x["inertia"] = std::move(inertia);
   if (link.joint_type == JointType::kPseudoContinuousTrack) {
-    loss(converters::LossKind::kTracks, link.sources.joint_type.known() ? link.sources.joint_type : link.source,
+    loss(converters::LossKind::kTracks, link.sources.joint_type().known() ? link.sources.joint_type() : link.source,
          fmt::format("the belt motion of the continuous track '{}'", link.name),
          "the link and its shapes are kept; extras.joint_type says it is a track");
   }

@@ -46,9 +46,9 @@ constexpr double kFlatBoxHalfThickness = 1e-6;
 // Distance between the two connect points that make a hinge extra joint.
 constexpr double kHingePointSpacing = 0.1;
 
-SourceLocation first_known(std::initializer_list<const SourceLocation*> locations) {
-  for (const SourceLocation* l : locations)
-    if (l && l->known()) return *l;
+SourceLocation first_known(std::initializer_list<SourceLocation> locations) {
+  for (const SourceLocation& l : locations)
+    if (l.known()) return l;
   return {};
 }
 
@@ -56,7 +56,8 @@ SourceLocation inertia_location(const Link& link) {
   const SourceLocation* rigid_body = nullptr;
   for (const MassContribution& c : link.mass_contributions)
     if (!rigid_body && !c.from_link_keys && c.source.known()) rigid_body = &c.source;
-  return first_known({&link.sources.inertia, rigid_body, &link.sources.mass, &link.source});
+  return first_known(
+      {link.sources.inertia(), rigid_body ? *rigid_body : SourceLocation{}, link.sources.mass(), link.source});
 }
 
 std::string quat_text(const Eigen::Matrix3d& R) {
@@ -182,7 +183,7 @@ class Writer {
     used.insert(name);
     return name;
   }
-  void place(XMLElement* e, const Eigen::Isometry3d& X) {
+  void place(XMLElement* e, const Eigen::Affine3d& X) {
     if (!X.translation().isZero(0)) e->SetAttribute("pos", vec3(X.translation()).c_str());
     if (!X.linear().isIdentity(0)) e->SetAttribute("quat", quat_text(X.linear()).c_str());
   }
@@ -249,7 +250,7 @@ bool Writer::prepare_inertials() {
     }
     if (!(mp.mass >= 0)) {
       report_rule(
-          sink_, "inertia-nonpositive-mass", first_known({&link.sources.mass, &link.source}),
+          sink_, "inertia-nonpositive-mass", first_known({link.sources.mass(), link.source}),
           fmt::format("link \"{}\" has mass {} kg; MuJoCo refuses negative masses", link.name, format_number(mp.mass)));
       ok = false;
       continue;
@@ -349,7 +350,7 @@ void Writer::write_inertial(XMLElement* body, std::size_t index) {
 
 void Writer::write_joint(XMLElement* body, std::size_t index) {
   const Link& link = model_.links[index];
-  const SourceLocation joint_at = first_known({&link.sources.joint_type, &link.source});
+  const SourceLocation joint_at = first_known({link.sources.joint_type(), link.source});
   switch (link.joint_type) {
     case JointType::kFixed: return;
     case JointType::kFree:
@@ -389,14 +390,14 @@ void Writer::write_joint(XMLElement* body, std::size_t index) {
     // ids and qpos stay as in the model) in the narrowest range MuJoCo accepts.
     const double upper = lo < hi ? hi : std::nextafter(lo, kUnlimited);
     if (upper != hi)
-      changed(index, first_known({&link.sources.joint_range, &link.source}),
+      changed(index, first_known({link.sources.joint_range(), link.source}),
               fmt::format("the zero-width range [{0}, {0}] of '{1}' (written [{0}, {2}])", format_number(lo), link.name,
                           format_number(upper)));
     j->SetAttribute("range", fmt::format("{} {}", format_number(lo), format_number(upper)).c_str());
   } else {
     j->SetAttribute("limited", "false");
     if (lo_finite || hi_finite) {
-      loss(converters::LossKind::kJoints, body, first_known({&link.sources.joint_range, &link.source}),
+      loss(converters::LossKind::kJoints, body, first_known({link.sources.joint_range(), link.source}),
            fmt::format("the one-sided range [{}, {}] of '{}' (MuJoCo limits need both bounds; written unlimited)",
                        lo_finite ? format_number(lo) : "-inf", hi_finite ? format_number(hi) : "inf", link.name));
     }
@@ -408,7 +409,7 @@ void Writer::write_joint(XMLElement* body, std::size_t index) {
   if (velocity_limited && options_.actuators != Actuators::kVelocity) lost.push_back("velocity");
   if (effort_limited && options_.actuators == Actuators::kNone) lost.push_back("effort");
   if (!lost.empty()) {
-    loss(converters::LossKind::kJoints, body, first_known({&link.sources.joint_velocity, &link.source}),
+    loss(converters::LossKind::kJoints, body, first_known({link.sources.joint_velocity(), link.source}),
          fmt::format("the {} limits of '{}' (MuJoCo joints have none)", fmt::join(lost, " and "), link.name),
          lost.size() == 2 || lost[0] == "velocity" ? "--actuators velocity writes them as control and force ranges"
                                                    : "--actuators writes it as a force range");
@@ -489,7 +490,7 @@ std::vector<Piece> Writer::pieces(XMLElement* body, const Link& link, std::size_
   const std::optional<Material>& material = shape.appearance.material;
   const std::string shape_key = fmt::format("shape:{}:{}", link_index, shape_index);
   const std::string stem =
-      fmt::format("{}_{}", link.name, shape.name.empty() ? fmt::format("shape{}", shape_index) : shape.name);
+      fmt::format("{}_{}", link.name, shape.name.empty() ? fmt::format("shape{}", shape_index) : shape.name.str());
   const auto sr = decompose(shape.X_LS.linear());
   auto tessellated = [&](bool report_scale) {
     if (report_scale) {
@@ -578,7 +579,7 @@ std::vector<Piece> Writer::pieces(XMLElement* body, const Link& link, std::size_
     } else {
       tessellated(true);
     }
-  } else if (const auto* res = std::get_if<MeshResource>(&shape.geometry)) {
+  } else if (const auto* res = geometry_if<MeshResource>(shape.geometry)) {
     if (res->mesh < 0 || static_cast<std::size_t>(res->mesh) >= model_.meshes.size() ||
         model_.meshes[static_cast<std::size_t>(res->mesh)].parts.empty()) {
       loss(converters::LossKind::kGeometry, body, shape.source,
@@ -770,7 +771,7 @@ void Writer::write_equalities() {
     }
     // MuJoCo 2.2.2 takes body2's side of a connect from the initial configuration (qpos0), so
     // the loop must be closed there.
-    const Eigen::Isometry3d W1 = derived_.X_WL[i1] * ej.X_1J, W2 = derived_.X_WL[i2] * ej.X_2J;
+    const Eigen::Affine3d W1 = derived_.X_WL[i1] * ej.X_1J, W2 = derived_.X_WL[i2] * ej.X_2J;
     const double gap = (W1.translation() - W2.translation()).norm();
     if (ej.type == "fixed") {
       XMLElement* w = eq("weld");
@@ -826,7 +827,7 @@ void Writer::write_actuators() {
                      const SourceLocation& at) {
       const bool finite = lo > -kUnlimited && hi < kUnlimited;
       if (finite && lo > hi)
-        loss(converters::LossKind::kJoints, e, first_known({&at, &link.source}),
+        loss(converters::LossKind::kJoints, e, first_known({at, link.source}),
              fmt::format("the reversed {} [{}, {}] of actuator '{}' (written unlimited)", range, format_number(lo),
                          format_number(hi), link.name));
       if (finite && lo <= hi) {
@@ -842,9 +843,9 @@ void Writer::write_actuators() {
     a->SetAttribute("name", link.name.c_str());
     a->SetAttribute("joint", link.name.c_str());
     if (position)
-      range(a, "ctrllimited", "ctrlrange", link.joint_range_lower, link.joint_range_upper, link.sources.joint_range);
+      range(a, "ctrllimited", "ctrlrange", link.joint_range_lower, link.joint_range_upper, link.sources.joint_range());
     else
-      range(a, "ctrllimited", "ctrlrange", link.velocity_lower, link.velocity_upper, link.sources.joint_velocity);
+      range(a, "ctrllimited", "ctrlrange", link.velocity_lower, link.velocity_upper, link.sources.joint_velocity());
     range(a, "forcelimited", "forcerange", link.effort_lower, link.effort_upper, link.source);
   }
 }
@@ -895,7 +896,7 @@ bool Writer::run() {
     const Link& link = model_.links[i];
     if (link.parent >= 0 && !detached(link)) depth[i] = depth[static_cast<std::size_t>(link.parent)] + 1;
     if (depth[i] > kMaxBodyDepth) {
-      fatal("export-write", first_known({&link.sources.name, &link.source}),
+      fatal("export-write", first_known({link.sources.name(), link.source}),
             fmt::format("link \"{}\" is {} bodies deep; MuJoCo 2.2.2 reads MJCF with tinyxml2, which stops at 100 "
                         "nested elements ({} nested bodies), so nothing is written",
                         link.name, depth[i], kMaxBodyDepth));
@@ -931,7 +932,7 @@ bool Writer::run() {
   std::vector<XMLElement*> bodies(model_.links.size(), nullptr);
   for (std::size_t i = 0; i < model_.links.size(); ++i) {
     const Link& link = model_.links[i];
-    const SourceLocation name_at = first_known({&link.sources.name, &link.source});
+    const SourceLocation name_at = first_known({link.sources.name(), link.source});
     check_name(link.name, "link", name_at);
     if (link.name == "world")
       fatal("export-name-conflict", name_at, "a link named 'world' clashes with MuJoCo's world body");

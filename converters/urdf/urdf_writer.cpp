@@ -96,7 +96,7 @@ class Writer {
   }
   /// Reports names URDF tools cannot use; fails on names XML cannot hold.
   void check_name(const std::string& name, const char* what, const SourceLocation& at);
-  void origin(XMLElement* parent, const Eigen::Isometry3d& X, bool always = false);
+  void origin(XMLElement* parent, const Eigen::Affine3d& X, bool always = false);
   void write_inertial(XMLElement* link_el, std::size_t index);
   void write_shapes(XMLElement* link_el, std::size_t link_index);
   std::vector<Piece> pieces(XMLElement* link_el, const Link& link, std::size_t link_index, std::size_t shape_index,
@@ -167,7 +167,7 @@ void Writer::check_name(const std::string& name, const char* what, const SourceL
   }
 }
 
-void Writer::origin(XMLElement* parent, const Eigen::Isometry3d& X, bool always) {
+void Writer::origin(XMLElement* parent, const Eigen::Affine3d& X, bool always) {
   const Eigen::Vector3d xyz = X.translation();
   const bool rotated = !X.linear().isIdentity(0);
   if (!always && !rotated && xyz.isZero(0)) return;
@@ -259,7 +259,7 @@ std::vector<Piece> Writer::pieces(XMLElement* link_el, const Link& link, std::si
   const std::optional<Material>& material = shape.appearance.material;
   const std::string shape_key = fmt::format("shape:{}:{}", link_index, shape_index);
   const std::string stem =
-      fmt::format("{}_{}", link.name, shape.name.empty() ? fmt::format("shape{}", shape_index) : shape.name);
+      fmt::format("{}_{}", link.name, shape.name.empty() ? fmt::format("shape{}", shape_index) : shape.name.str());
   const auto sr = decompose(shape.X_LS.linear());
   auto tessellated = [&](bool report_scale) {
     if (report_scale) {
@@ -317,7 +317,7 @@ std::vector<Piece> Writer::pieces(XMLElement* link_el, const Link& link, std::si
     } else {
       tessellated(true);
     }
-  } else if (const auto* res = std::get_if<MeshResource>(&shape.geometry)) {
+  } else if (const auto* res = geometry_if<MeshResource>(shape.geometry)) {
     if (res->mesh < 0 || static_cast<std::size_t>(res->mesh) >= model_.meshes.size() ||
         model_.meshes[static_cast<std::size_t>(res->mesh)].parts.empty()) {
       loss(converters::LossKind::kGeometry, link_el, shape.source,
@@ -395,7 +395,7 @@ void Writer::write_shapes(XMLElement* link_el, std::size_t link_index) {
         const bool wanted = kind[0] == 'v' ? shape.visual : shape.collision;
         if (!wanted) continue;
         XMLElement* e = element(link_el, kind);
-        if (!shape.name.empty()) e->SetAttribute("name", shape.name.c_str());
+        if (!shape.name.empty()) e->SetAttribute("name", shape.name.str().c_str());
         origin(e, piece.origin);
         piece.geometry(element(e, "geometry"));
         if (kind[0] == 'v' && piece.material) {
@@ -453,12 +453,14 @@ void Writer::write_joint(std::size_t index, const std::string& joint_name) {
       break;
     case JointType::kPseudoContinuousTrack:
       comment(j, fmt::format("pseudo_continuous_track axis {}", format_vector(link.joint_axis)));
-      loss(converters::LossKind::kTracks, j, link.sources.joint_type.known() ? link.sources.joint_type : link.source,
+      loss(converters::LossKind::kTracks, j,
+           link.sources.joint_type().known() ? link.sources.joint_type() : link.source,
            fmt::format("the pseudo_continuous_track of '{}' (a fixed joint is written; axis {})", link.name,
                        format_vector(link.joint_axis)));
       break;
     case JointType::kFree:
-      loss(converters::LossKind::kJoints, j, link.sources.joint_type.known() ? link.sources.joint_type : link.source,
+      loss(converters::LossKind::kJoints, j,
+           link.sources.joint_type().known() ? link.sources.joint_type() : link.source,
            fmt::format("the free joint of the non-root link '{}' (a fixed joint is written)", link.name));
       break;
     case JointType::kFixed: break;
@@ -480,7 +482,8 @@ void Writer::write_joint(std::size_t index, const std::string& joint_name) {
                      format_number(hi), joint_name, format_number(finite_or_stand_in(bound))));
     return finite_or_stand_in(bound);
   };
-  const double velocity = symmetric(link.velocity_lower, link.velocity_upper, "velocity", link.sources.joint_velocity);
+  const double velocity =
+      symmetric(link.velocity_lower, link.velocity_upper, "velocity", link.sources.joint_velocity());
   const double effort = symmetric(link.effort_lower, link.effort_upper, "effort", link.source);
   XMLElement* limit = element(j, "limit");
   if (std::string_view(type) != "continuous") {
@@ -530,7 +533,7 @@ bool Writer::run() {
   const Link& root = model_.root();
   if (options_.floating_base) {
     if (link_names_.count("world")) {
-      fatal("export-name-conflict", root.sources.name.known() ? root.sources.name : root.source,
+      fatal("export-name-conflict", root.sources.name().known() ? root.sources.name() : root.source,
             "--floating-base adds a link named 'world', but the model already has one");
     } else {
       element(robot_, "link")->SetAttribute("name", "world");
@@ -546,14 +549,14 @@ bool Writer::run() {
 
   for (std::size_t i = 0; i < model_.links.size(); ++i) {
     const Link& link = model_.links[i];
-    check_name(link.name, "link", link.sources.name.known() ? link.sources.name : link.source);
+    check_name(link.name, "link", link.sources.name().known() ? link.sources.name() : link.source);
     XMLElement* link_el = element(robot_, "link");
     link_el->SetAttribute("name", link.name.c_str());
     if (i == 0 && !options_.floating_base) {
-      if (!link.X_PL.isApprox(Eigen::Isometry3d::Identity(), 0)) {
+      if (!link.X_PL.isApprox(Eigen::AffineCompact3d::Identity(), 0)) {
         loss(converters::LossKind::kDynamics, link_el,
-             link.sources.translation.known() ? link.sources.translation : link.source, "the root link's initial pose",
-             "--floating-base writes it as the origin of a joint to a 'world' link");
+             link.sources.translation().known() ? link.sources.translation() : link.source,
+             "the root link's initial pose", "--floating-base writes it as the origin of a joint to a 'world' link");
       }
       if (link.joint_type != JointType::kFree && link.joint_type != JointType::kFixed) {
         loss(converters::LossKind::kJoints, link_el, link.source,

@@ -30,7 +30,7 @@ Eigen::Matrix3d to_eigen(const SimTK::Rotation& R) {
     for (int j = 0; j < 3; ++j) m(i, j) = R.asMat33()(i, j);
   return m;
 }
-SimTK::Transform transform(const Eigen::Isometry3d& X) {
+SimTK::Transform transform(const Eigen::Affine3d& X) {
   return {rotation(Eigen::Matrix3d(X.linear())), vec3(Eigen::Vector3d(X.translation()))};
 }
 
@@ -39,10 +39,10 @@ std::string matrix_text(const Eigen::Matrix3d& I) {
 }
 
 SourceLocation inertia_location(const Link& link) {
-  if (link.sources.inertia.known()) return link.sources.inertia;
+  if (link.sources.inertia().known()) return link.sources.inertia();
   for (const MassContribution& c : link.mass_contributions)
     if (!c.from_link_keys && c.source.known()) return c.source;
-  if (link.sources.mass.known()) return link.sources.mass;
+  if (link.sources.mass().known()) return link.sources.mass();
   return link.source;
 }
 
@@ -222,7 +222,7 @@ std::unique_ptr<Simulation> Simulation::build(const Model& model, const Derived&
     const Link& link = model.links[i];
     const MassProperties& mp = derived.mass[i];
     if (!std::isfinite(mp.mass) || mp.mass < 0 || !mp.center_of_mass.allFinite() || !mp.inertia.allFinite()) {
-      report_rule(sink, "inertia-nonpositive-mass", link.sources.mass.known() ? link.sources.mass : link.source,
+      report_rule(sink, "inertia-nonpositive-mass", link.sources.mass().known() ? link.sources.mass() : link.source,
                   fmt::format("link \"{}\" has mass {:g} kg; Simbody cannot simulate it", link.name, mp.mass));
       ok = false;
       continue;
@@ -322,7 +322,7 @@ std::unique_ptr<Simulation> Simulation::build(const Model& model, const Derived&
       // Fixed links and pseudo tracks are welded: a track has no DOF (spec §1.1). A locked
       // joint is welded at its initial position.
       if (link.joint_type == JointType::kPseudoContinuousTrack) m.track_axis[i] = axis;
-      Eigen::Isometry3d X_PB = link.X_PL;
+      Eigen::Affine3d X_PB = link.X_PL;
       if (link.joint_type == JointType::kRevolute)
         X_PB.rotate(Eigen::AngleAxisd(link.initial_displacement, axis));
       else if (link.joint_type == JointType::kPrismatic)

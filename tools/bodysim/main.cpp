@@ -129,7 +129,7 @@ int main(int argc, char** argv) {
   if (model->links.size() > max_links) {
     const Link& first_over = model->links[max_links];
     report_rule(sink, "dynamics-model-size",
-                first_over.sources.name.known() ? first_over.sources.name : first_over.source,
+                first_over.sources.name().known() ? first_over.sources.name() : first_over.source,
                 fmt::format("the model has {} links, more than bodysim simulates (--max-links {}); this is link {}, "
                             "the first over the limit",
                             model->links.size(), max_links, max_links + 1),

@@ -17,11 +17,11 @@ void RuleContext::report(std::string_view rule_id, const SourceLocation& locatio
   report_rule(sink, rule_id, std::move(at), std::move(message), std::move(fix_hint));
 }
 
-SourceLocation first_known(std::initializer_list<const SourceLocation*> locations) {
+SourceLocation first_known(std::initializer_list<SourceLocation> locations) {
   const SourceLocation* last = nullptr;
-  for (const SourceLocation* l : locations) {
-    if (l->known()) return *l;
-    last = l;
+  for (const SourceLocation& l : locations) {
+    if (l.known()) return l;
+    last = &l;
   }
   return last ? *last : SourceLocation{};
 }

@@ -13,7 +13,7 @@ namespace bodyfmt::validate::detail {
 void check_geometry(const RuleContext& ctx) {
   for (const Link& link : ctx.model.links) {
     for (const Shape& shape : link.shapes) {
-      const SourceLocation at = first_known({&shape.source, &link.source});
+      const SourceLocation at = first_known({shape.source, link.source});
       if (const auto* box = std::get_if<Box>(&shape.geometry)) {
         if ((box->size.array() == 0).any()) {
           ctx.report("geometry-zero-size", at,

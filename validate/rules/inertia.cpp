@@ -38,13 +38,13 @@ const SourceLocation* rigid_body_source(const Link& link) {
 SourceLocation inertia_location(const Link& link) {
   const SourceLocation none;
   const SourceLocation* rigid_body = rigid_body_source(link);
-  return first_known({&link.sources.inertia, rigid_body ? rigid_body : &none, &link.sources.mass, &link.source});
+  return first_known({link.sources.inertia(), rigid_body ? *rigid_body : none, link.sources.mass(), link.source});
 }
 
 SourceLocation mass_location(const Link& link) {
   const SourceLocation none;
   const SourceLocation* rigid_body = rigid_body_source(link);
-  return first_known({&link.sources.mass, rigid_body ? rigid_body : &none, &link.sources.inertia, &link.source});
+  return first_known({link.sources.mass(), rigid_body ? *rigid_body : none, link.sources.inertia(), link.source});
 }
 
 /// Per link: welded to the world (a fixed root and its fixed descendants, e.g. floors). One
@@ -69,8 +69,8 @@ void check_symmetry(const RuleContext& ctx, const Link& link) {
     if (worst <= ctx.options.inertia_symmetry_tolerance * scale) continue;
     if (row > col) std::swap(row, col);
     const char* axis = "xyz";
-    const SourceLocation at = c.from_link_keys ? first_known({&link.sources.inertia, &c.source, &link.source})
-                                               : first_known({&c.source, &link.source});
+    const SourceLocation at = c.from_link_keys ? first_known({link.sources.inertia(), c.source, link.source})
+                                               : first_known({c.source, link.source});
     ctx.report("inertia-asymmetric", at,
                fmt::format("inertia of link \"{}\" is not symmetric: I{}{} = {} but I{}{} = {} (relative "
                            "difference {} > {})",
@@ -135,7 +135,7 @@ void check_link(const RuleContext& ctx, LinkIndex index, bool welded) {
     const double slack = 0.01 * (box.max - box.min).norm() + 1e-3;
     const Eigen::Vector3d& c = mp.center_of_mass;
     if ((c.array() < box.min.array() - slack).any() || (c.array() > box.max.array() + slack).any()) {
-      ctx.report("inertia-com-outside", first_known({&link.sources.center_of_mass, &at}),
+      ctx.report("inertia-com-outside", first_known({link.sources.center_of_mass(), at}),
                  fmt::format("centre of mass {} of link \"{}\" lies outside its geometry bounds {} .. {}", vec(c),
                              link.name, vec(box.min), vec(box.max)));
     }

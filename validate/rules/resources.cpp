@@ -101,8 +101,8 @@ void check_resources(const RuleContext& ctx) {
   DirectoryCache dirs;
   for (const Link& link : ctx.model.links) {
     for (const Shape& shape : link.shapes) {
-      const SourceLocation at = first_known({&shape.source, &link.source});
-      if (const auto* mesh = std::get_if<MeshResource>(&shape.geometry))
+      const SourceLocation at = first_known({shape.source, link.source});
+      if (const auto* mesh = geometry_if<MeshResource>(shape.geometry))
         check_uri(ctx, mesh->uri, mesh->resolved_path, at, dirs);
       if (shape.appearance.texture)
         check_uri(ctx, shape.appearance.texture->uri, shape.appearance.texture->resolved_path, at, dirs);

@@ -24,7 +24,7 @@ struct RuleContext {
 };
 
 /// The first known location of the list (line > 0), else the last one.
-SourceLocation first_known(std::initializer_list<const SourceLocation*> locations);
+SourceLocation first_known(std::initializer_list<SourceLocation> locations);
 
 /// Shortest round-trip-ish form for messages: 6 significant digits, no trailing zeros.
 std::string num(double value);

@@ -61,7 +61,7 @@ void check_radian_range(const RuleContext& ctx, const Link& link) {
       as_degrees.push_back(num(meant));
     }
   }
-  ctx.report("units-range-looks-radian", first_known({&link.sources.joint_range, &link.source}),
+  ctx.report("units-range-looks-radian", first_known({link.sources.joint_range(), link.source}),
              fmt::format("joint range [{}] of link \"{}\" is read in degrees but looks like radians (it would be "
                          "[{}] degrees)",
                          fmt::join(as_written, ", "), link.name, fmt::join(as_degrees, ", ")),
@@ -77,7 +77,7 @@ void check_prismatic_range(const RuleContext& ctx, const Link& link) {
   for (double v : {link.joint_range_lower, link.joint_range_upper})
     if (std::abs(v) < kUnlimited) worst = std::max(worst, std::abs(v));
   if (worst <= kPrismaticLimit) return;
-  ctx.report("units-prismatic-millimetres", first_known({&link.sources.joint_range, &link.source}),
+  ctx.report("units-prismatic-millimetres", first_known({link.sources.joint_range(), link.source}),
              fmt::format("prismatic joint range [{}, {}] of link \"{}\" reaches {} m, which looks like millimetres",
                          limit(link.joint_range_lower), limit(link.joint_range_upper), link.name, num(worst)),
              fmt::format("prismatic ranges are metres: joint_range: [{}, {}]", limit(link.joint_range_lower / 1000),
@@ -91,14 +91,14 @@ constexpr double kMeshSize = 10.0;
 
 void check_mesh_scale(const RuleContext& ctx, LinkIndex index) {
   const Link& link = ctx.model.links[index];
-  const auto is_resource = [](const Shape& shape) { return std::holds_alternative<MeshResource>(shape.geometry); };
+  const auto is_resource = [](const Shape& shape) { return geometry_is<MeshResource>(shape.geometry); };
   if (std::none_of(link.shapes.begin(), link.shapes.end(), is_resource)) return;  // only meshes are measured
   std::vector<double> sizes(link.shapes.size(), 0.0);
   std::vector<bool> is_mesh(link.shapes.size(), false);
   for (std::size_t s = 0; s < link.shapes.size(); ++s) {
     const Shape& shape = link.shapes[s];
     BoundingBox box;
-    if (const auto* mesh = std::get_if<MeshResource>(&shape.geometry)) {
+    if (const auto* mesh = geometry_if<MeshResource>(shape.geometry)) {
       if (mesh->mesh < 0 || mesh->length_scale != 1.0) continue;
       const MeshAsset& asset = ctx.model.meshes[mesh->mesh];
       for (const MeshPart& part : asset.parts) box.add(bounding_box(part.mesh, shape.X_LS));
@@ -134,11 +134,11 @@ void check_mesh_scale(const RuleContext& ctx, LinkIndex index) {
     const bool ratio = other > 0 && sizes[s] > kMeshRatio * other;
     const bool huge = sizes[s] > kMeshSize && is_moving(link);
     if (!ratio && !huge) continue;
-    const auto& mesh = std::get<MeshResource>(link.shapes[s].geometry);
+    const auto& mesh = geometry_get<MeshResource>(link.shapes[s].geometry);
     const std::string why =
         ratio ? fmt::format("{} times the link's other geometry ({} m)", num(sizes[s] / other), num(other))
               : fmt::format("more than {} m across on a moving link", num(kMeshSize));
-    ctx.report("units-mesh-millimetres", first_known({&link.shapes[s].source, &link.source}),
+    ctx.report("units-mesh-millimetres", first_known({link.shapes[s].source, link.source}),
                fmt::format("mesh \"{}\" of link \"{}\" is {} m across, {}: it looks like millimetres", mesh.uri,
                            link.name, num(sizes[s]), why),
                "add metadata: { length_unit: millimeter } to the Resource");

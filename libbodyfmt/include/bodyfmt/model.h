@@ -10,6 +10,7 @@
 
 #include <Eigen/Geometry>
 
+#include <cstdint>
 #include <initializer_list>
 #include <limits>
 #include <map>
@@ -17,6 +18,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <utility>
 #include <variant>
 #include <vector>
@@ -101,8 +103,99 @@ struct MeshResource {
   SourceLocation uri_source;  ///< the `uri:` value, where problems with the file are reported
 };
 
-using Geometry = std::variant<Box, Sphere, Cylinder, Cone, Capsule, Extrusion, ElevationGrid, IndexedFaceSet,
-                              TriangleMeshGeometry, MeshResource>;
+/// A value kept on the heap and copied deeply. Reads as the value it holds (a moved-from
+/// Boxed holds nothing and may only be assigned or destroyed).
+template <typename T>
+class Boxed {
+ public:
+  Boxed() : value_(std::make_unique<T>()) {}
+  Boxed(T value) : value_(std::make_unique<T>(std::move(value))) {}  // NOLINT: implicit, as the value
+  Boxed(const Boxed& other) : value_(std::make_unique<T>(*other)) {}
+  Boxed(Boxed&&) noexcept = default;
+  Boxed& operator=(const Boxed& other) { return *this = *other; }
+  Boxed& operator=(Boxed&&) noexcept = default;
+  Boxed& operator=(T value) {
+    value_ = std::make_unique<T>(std::move(value));
+    return *this;
+  }
+
+  operator const T&() const { return *value_; }  // NOLINT: reads as the value
+  const T& operator*() const { return *value_; }
+  T& operator*() { return *value_; }
+  const T* operator->() const { return value_.get(); }
+  T* operator->() { return value_.get(); }
+
+ private:
+  std::unique_ptr<T> value_;
+};
+
+/// The geometry of a shape. The alternatives that hold vectors or strings are Boxed, so that
+/// the variant is sized by the primitives (32 bytes instead of 160): a model of 100,000 box
+/// shapes does not carry room for a mesh resource in each. Read them with geometry_if and
+/// geometry_get; the primitives also with std::get_if and std::get.
+using Geometry = std::variant<Box, Sphere, Cylinder, Cone, Capsule, Boxed<Extrusion>, Boxed<ElevationGrid>,
+                              Boxed<IndexedFaceSet>, Boxed<TriangleMeshGeometry>, Boxed<MeshResource>>;
+
+namespace detail {
+template <typename T>
+struct GeometryStorage {
+  using type = T;
+};
+template <typename T>
+struct GeometryStorage<Boxed<T>>;  // name the geometry type, not its storage
+template <>
+struct GeometryStorage<Extrusion> {
+  using type = Boxed<Extrusion>;
+};
+template <>
+struct GeometryStorage<ElevationGrid> {
+  using type = Boxed<ElevationGrid>;
+};
+template <>
+struct GeometryStorage<IndexedFaceSet> {
+  using type = Boxed<IndexedFaceSet>;
+};
+template <>
+struct GeometryStorage<TriangleMeshGeometry> {
+  using type = Boxed<TriangleMeshGeometry>;
+};
+template <>
+struct GeometryStorage<MeshResource> {
+  using type = Boxed<MeshResource>;
+};
+}  // namespace detail
+
+/// The geometry as a T (Box, ..., MeshResource), or nullptr when it holds another type.
+template <typename T>
+const T* geometry_if(const Geometry& geometry) {
+  const auto* stored = std::get_if<typename detail::GeometryStorage<T>::type>(&geometry);
+  if constexpr (std::is_same_v<T, typename detail::GeometryStorage<T>::type>)
+    return stored;
+  else
+    return stored ? &**stored : nullptr;
+}
+template <typename T>
+T* geometry_if(Geometry& geometry) {
+  return const_cast<T*>(geometry_if<T>(static_cast<const Geometry&>(geometry)));
+}
+/// The geometry as a T; throws std::bad_variant_access when it holds another type.
+template <typename T>
+const T& geometry_get(const Geometry& geometry) {
+  return std::get<typename detail::GeometryStorage<T>::type>(geometry);
+}
+template <typename T>
+bool geometry_is(const Geometry& geometry) {
+  return std::holds_alternative<typename detail::GeometryStorage<T>::type>(geometry);
+}
+/// A geometry alternative as its geometry type (for std::visit over a Geometry).
+template <typename T>
+const T& unboxed(const T& value) {
+  return value;
+}
+template <typename T>
+const T& unboxed(const Boxed<T>& value) {
+  return *value;
+}
 
 std::string_view geometry_type_name(const Geometry& geometry);
 
@@ -236,7 +329,7 @@ struct SceneFrame {
 
 /// A shape placed in its link's frame.
 struct Shape {
-  std::string name;
+  HeapString name;
   Geometry geometry;
   Appearance appearance;
   Eigen::AffineCompact3d X_LS = Eigen::AffineCompact3d::Identity();  ///< may contain scale
@@ -276,10 +369,60 @@ enum class JointType { kFree, kFixed, kRevolute, kPrismatic, kPseudoContinuousTr
 
 std::string_view joint_type_name(JointType type);
 
-/// Where the fields that rules and writers point at were written.
-struct LinkSources {
-  SourceLocation name, parent, translation, rotation, joint_type, joint_axis, joint_id, joint_range, joint_velocity,
-      mass, center_of_mass, inertia;
+/// Where the fields that rules and writers point at were written. A link's keys are written
+/// in one file, so each field keeps its line and column and the link one file name (8 bytes a
+/// field instead of a whole SourceLocation); the rare field written in another file (a
+/// SubBody node overriding its root's pose or joint) keeps its file on the side.
+class LinkSources {
+ public:
+  enum Field {
+    kName,
+    kParent,
+    kTranslation,
+    kRotation,
+    kJointType,
+    kJointAxis,
+    kJointId,
+    kJointRange,
+    kJointVelocity,
+    kMass,
+    kCenterOfMass,
+    kInertia,
+    kFieldCount
+  };
+
+  LinkSources() = default;
+  LinkSources(const LinkSources& other);
+  LinkSources(LinkSources&&) noexcept = default;
+  LinkSources& operator=(const LinkSources& other);
+  LinkSources& operator=(LinkSources&&) noexcept = default;
+
+  SourceLocation get(Field field) const;
+  void set(Field field, const SourceLocation& at);
+
+  SourceLocation name() const { return get(kName); }
+  SourceLocation parent() const { return get(kParent); }
+  SourceLocation translation() const { return get(kTranslation); }
+  SourceLocation rotation() const { return get(kRotation); }
+  SourceLocation joint_type() const { return get(kJointType); }
+  SourceLocation joint_axis() const { return get(kJointAxis); }
+  SourceLocation joint_id() const { return get(kJointId); }
+  SourceLocation joint_range() const { return get(kJointRange); }
+  SourceLocation joint_velocity() const { return get(kJointVelocity); }
+  SourceLocation mass() const { return get(kMass); }
+  SourceLocation center_of_mass() const { return get(kCenterOfMass); }
+  SourceLocation inertia() const { return get(kInertia); }
+
+ private:
+  struct Position {
+    int line = 0;
+    int column = 0;
+  };
+  FileName file_;  ///< the file of the fields in in_file_
+  Position at_[kFieldCount];
+  std::unique_ptr<FileName[]> other_files_;  ///< per field, for those not in in_file_; null until needed
+  std::uint16_t in_file_ = 0;                ///< bit per field: written in file_
+  static_assert(kFieldCount <= 16);
 };
 
 struct Link {
@@ -289,8 +432,10 @@ struct Link {
   std::vector<LinkIndex> children;
 
   /// Offset of this link (= its joint frame) in the parent link frame; for the root, its
-  /// initial pose in the world.
-  Eigen::Isometry3d X_PL = Eigen::Isometry3d::Identity();
+  /// initial pose in the world. A rigid transform, kept in the 3x4 storage of shapes and
+  /// frames (products with transforms are exact; with a point, convert to Isometry3d first:
+  /// its 4x4 product rounds differently).
+  Eigen::AffineCompact3d X_PL = Eigen::AffineCompact3d::Identity();
 
   JointType joint_type = JointType::kFixed;
   Eigen::Vector3d joint_axis{0, 0, 1};  ///< link frame; not normalised (Choreonoid does not)

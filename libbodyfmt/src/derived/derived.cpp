@@ -11,7 +11,7 @@ namespace bodyfmt {
 TriangleMesh compute_shape_local_mesh(const Model& model, const Shape& shape, DiagnosticSink& sink,
                                       TexCoords tex_coords) {
   TriangleMesh local;
-  if (const auto* resource = std::get_if<MeshResource>(&shape.geometry)) {
+  if (const auto* resource = geometry_if<MeshResource>(shape.geometry)) {
     if (resource->mesh >= 0 && resource->mesh < static_cast<MeshIndex>(model.meshes.size())) {
       for (const MeshPart& part : model.meshes[static_cast<std::size_t>(resource->mesh)].parts)
         append_mesh(local, part.mesh);
@@ -55,7 +55,7 @@ std::vector<LinkBounds> compute_choreonoid_bounds(const Model& model, Diagnostic
       BoundingBox in_link;
       for (const Shape& shape : link.shapes) {
         if (visual ? !shape.visual : !shape.collision) continue;
-        const auto* resource = std::get_if<MeshResource>(&shape.geometry);
+        const auto* resource = geometry_if<MeshResource>(shape.geometry);
         const bool has_asset =
             resource && resource->mesh >= 0 && resource->mesh < static_cast<MeshIndex>(model.meshes.size());
         // Primitives are boxed from the vertices Choreonoid generates, Extrusion's skewed
@@ -130,9 +130,9 @@ void report_overflow(const Model& model, const Derived& d, DiagnosticSink& sink)
     const MassContribution* farthest = nullptr;
     for (const MassContribution& c : link.mass_contributions)
       if (!farthest || c.center_of_mass.norm() > farthest->center_of_mass.norm()) farthest = &c;
-    const SourceLocation at = !mass_finite && farthest && farthest->source.known() ? farthest->source
-                              : !frame_finite && link.sources.translation.known()  ? link.sources.translation
-                                                                                   : link.source;
+    const SourceLocation at = !mass_finite && farthest && farthest->source.known()  ? farthest->source
+                              : !frame_finite && link.sources.translation().known() ? link.sources.translation()
+                                                                                    : link.source;
     report_rule(sink, "derived-not-finite", at,
                 fmt::format("the {} of link \"{}\" {} to infinity or NaN",
                             !mass_finite ? "combined mass properties" : "world frame", link.name,
@@ -151,7 +151,9 @@ Derived compute_derived(const Model& model, DiagnosticSink& sink) {
     d.mass.push_back(compute_mass_properties(link));
     d.total_mass += d.mass.back().mass;
   }
-  d.X_WL = compute_world_frames(model);
+  const std::vector<Eigen::Isometry3d> X_WL = compute_world_frames(model);
+  d.X_WL.reserve(X_WL.size());
+  for (const Eigen::Isometry3d& X : X_WL) d.X_WL.emplace_back(X.affine());
   report_overflow(model, d, sink);
   d.bounds = compute_link_bounds(model, sink);
   return d;

@@ -26,7 +26,8 @@ std::vector<Eigen::Isometry3d> frames(const Model& model, const std::vector<doub
       X[i] = X_W_root * joint_motion(link, qi);
     } else {
       // Links are in depth-first order, so the parent's frame is already known.
-      X[i] = X[static_cast<std::size_t>(link.parent)] * link.X_PL * joint_motion(link, qi);
+      X[i] =
+          Eigen::Isometry3d((X[static_cast<std::size_t>(link.parent)] * link.X_PL * joint_motion(link, qi)).matrix());
     }
   }
   return X;
@@ -40,7 +41,7 @@ std::vector<Eigen::Isometry3d> compute_root_relative_frames(const Model& model, 
 
 std::vector<Eigen::Isometry3d> compute_world_frames(const Model& model, const std::vector<double>& q) {
   if (model.links.empty()) return {};
-  return frames(model, q, model.root().X_PL);
+  return frames(model, q, Eigen::Isometry3d(model.root().X_PL.matrix()));
 }
 
 }  // namespace bodyfmt

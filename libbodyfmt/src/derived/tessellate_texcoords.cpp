@@ -323,13 +323,13 @@ TriangleMesh with_tex_coords(const TriangleMesh& mesh, const Geometry& geometry,
     corners = cylinder_tex_coords(mesh, n);
   else if (std::holds_alternative<Cone>(geometry))
     corners = cone_tex_coords(mesh, n);
-  else if (const auto* extrusion = std::get_if<Extrusion>(&geometry))
+  else if (const auto* extrusion = geometry_if<Extrusion>(geometry))
     corners = extrusion_tex_coords(mesh, *extrusion);
-  else if (const auto* grid = std::get_if<ElevationGrid>(&geometry))
+  else if (const auto* grid = geometry_if<ElevationGrid>(geometry))
     corners = elevation_grid_tex_coords(mesh, *grid);
-  else if (const auto* face_set = std::get_if<IndexedFaceSet>(&geometry))
+  else if (const auto* face_set = geometry_if<IndexedFaceSet>(geometry))
     corners = face_list_tex_coords(mesh, *face_set, origins, true);
-  else if (const auto* list = std::get_if<TriangleMeshGeometry>(&geometry))
+  else if (const auto* list = geometry_if<TriangleMeshGeometry>(geometry))
     corners = face_list_tex_coords(mesh, *list, origins, false);
   if (!corners) return mesh;
   return split_by_corner(mesh, *corners);

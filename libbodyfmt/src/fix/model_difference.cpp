@@ -89,9 +89,10 @@ class Comparer {
       return;
     }
     std::visit(
-        [&](const auto& a) {
+        [&](const auto& stored) {
+          const auto& a = unboxed(stored);
           using T = std::decay_t<decltype(a)>;
-          const T& b = std::get<T>(gb);
+          const T& b = geometry_get<T>(gb);
           if constexpr (std::is_same_v<T, Box>) {
             numbers(what + ".size", a.size, b.size);
           } else if constexpr (std::is_same_v<T, Sphere>) {
@@ -165,7 +166,7 @@ class Comparer {
     text(what + ".joint_name", a.joint_name, b.joint_name);
     equal(what + ".parent", a.parent, b.parent);
     equal(what + ".children", a.children, b.children);
-    isometry(what + ".X_PL", a.X_PL, b.X_PL);
+    affine(what + ".X_PL", a.X_PL, b.X_PL);
     if (!difference && a.joint_type != b.joint_type)
       difference =
           fmt::format("{}.joint_type: {} != {}", what, joint_type_name(a.joint_type), joint_type_name(b.joint_type));

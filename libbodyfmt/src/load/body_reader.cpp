@@ -241,13 +241,13 @@ void BodyReader::import_meshes(Model& model) {
   std::map<std::string, std::vector<std::string>> selected_nodes;
   for (const Link& link : model.links)
     for (const Shape& shape : link.shapes)
-      if (const auto* mesh = std::get_if<MeshResource>(&shape.geometry); mesh && !mesh->node.empty()) {
+      if (const auto* mesh = geometry_if<MeshResource>(shape.geometry); mesh && !mesh->node.empty()) {
         auto& names = selected_nodes[mesh->resolved_path];
         if (std::find(names.begin(), names.end(), mesh->node) == names.end()) names.push_back(mesh->node);
       }
   for (Link& link : model.links) {
     for (Shape& shape : link.shapes) {
-      auto* mesh = std::get_if<MeshResource>(&shape.geometry);
+      auto* mesh = geometry_if<MeshResource>(shape.geometry);
       if (!mesh || mesh->mesh >= 0 || mesh->resolved_path.empty()) continue;
       auto key = std::make_tuple(mesh->resolved_path, mesh->node, mesh->length_scale, mesh->y_up);
       if (auto it = indices.find(key); it != indices.end()) {
@@ -469,9 +469,9 @@ BodyReader::LinkNames BodyReader::index_link_names(const Model& model) {
     if (link.name.empty()) continue;
     auto [it, inserted] = names.by_name.emplace(link.name, i);
     if (!inserted) {
-      ctx_.report("structure-duplicate-link", link.sources.name,
+      ctx_.report("structure-duplicate-link", link.sources.name(),
                   "duplicated link name \"" + link.name + "\" (first defined at line " +
-                      std::to_string(model.links[at(it->second)].sources.name.line) + ")");
+                      std::to_string(model.links[at(it->second)].sources.name().line) + ")");
     }
     if (!link.joint_name.empty() && !names.by_joint_name.emplace(link.joint_name, i).second)
       ctx_.report("structure-duplicate-joint-name", link.source, "duplicated joint name \"" + link.joint_name + "\"");
@@ -490,7 +490,7 @@ std::vector<LinkIndex> BodyReader::link_parents(const Model& model, const std::v
     const LinkEntry& entry = entries[at(i)];
     if (i == root) {
       if (!entry.parent_name.empty())
-        ctx_.report("structure-root-parent", link.sources.parent,
+        ctx_.report("structure-root-parent", link.sources.parent(),
                     "the root link \"" + link.name + "\" must not have a parent");
       continue;
     }

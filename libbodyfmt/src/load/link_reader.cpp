@@ -44,7 +44,7 @@ std::optional<JointType> parse_joint_type(std::string_view s) {
 
 void read_joint(LoadContext& ctx, MappingReader& r, Link& link) {
   if (auto t = r.take({"joint_type", "jointType"})) {
-    link.sources.joint_type = t.use_site();
+    link.sources.set(LinkSources::kJointType, t.use_site());
     if (auto type = parse_joint_type(t->scalar())) {
       link.joint_type = *type;
       if (t->scalar() == "slide" || t->scalar() == "pseudoContinuousTrack") {
@@ -78,11 +78,11 @@ void read_joint(LoadContext& ctx, MappingReader& r, Link& link) {
   }
   const bool revolute = link.joint_type == JointType::kRevolute;
   if (auto axis = r.take({"joint_axis", "jointAxis"})) {
-    link.sources.joint_axis = axis.use_site();
+    link.sources.set(LinkSources::kJointAxis, axis.use_site());
     if (auto a = read_joint_axis(ctx, axis)) link.joint_axis = *a;
   }
   if (auto id = r.take({"joint_id", "jointId"})) {
-    link.sources.joint_id = id.use_site();
+    link.sources.set(LinkSources::kJointId, id.use_site());
     if (auto v = required_int(ctx, id)) link.joint_id = *v < 0 ? -1 : static_cast<int>(*v);
   }
   // joint_displacement wins over joint_angle; joint_angle is always an angle (§3).
@@ -101,20 +101,20 @@ void read_joint(LoadContext& ctx, MappingReader& r, Link& link) {
     }
   }
   if (auto range = r.take({"joint_range", "jointRange"})) {
-    link.sources.joint_range = range.use_site();
+    link.sources.set(LinkSources::kJointRange, range.use_site());
     if (auto v = read_range(ctx, range, revolute)) std::tie(link.joint_range_lower, link.joint_range_upper) = *v;
   }
   yaml::NodeRef max_velocity = r.take({"max_joint_velocity", "maxJointVelocity"});
   yaml::NodeRef velocity_range = r.take({"joint_velocity_range", "jointVelocityRange"});
   if (max_velocity) {
-    link.sources.joint_velocity = max_velocity.use_site();
+    link.sources.set(LinkSources::kJointVelocity, max_velocity.use_site());
     if (auto v = read_symmetric_limit(ctx, max_velocity, revolute))
       std::tie(link.velocity_lower, link.velocity_upper) = *v;
     if (velocity_range)
       ctx.report("load-ignored-key", velocity_range,
                  "joint_velocity_range is ignored by Choreonoid when max_joint_velocity is given");
   } else if (velocity_range) {
-    link.sources.joint_velocity = velocity_range.use_site();
+    link.sources.set(LinkSources::kJointVelocity, velocity_range.use_site());
     if (auto v = read_velocity_range(ctx, velocity_range, revolute))
       std::tie(link.velocity_lower, link.velocity_upper) = *v;
   }
@@ -149,15 +149,15 @@ void read_link_mass(LoadContext& ctx, MappingReader& r, Link& link, bool has_rig
     c.inertia = defaults.inertia;
   }
   if (com) {
-    link.sources.center_of_mass = com.use_site();
+    link.sources.set(LinkSources::kCenterOfMass, com.use_site());
     if (auto v = read_vec3(ctx, com)) c.center_of_mass = *v;
   }
   if (mass) {
-    link.sources.mass = mass.use_site();
+    link.sources.set(LinkSources::kMass, mass.use_site());
     if (auto v = required_double(ctx, mass)) c.mass = *v;
   }
   if (inertia) {
-    link.sources.inertia = inertia.use_site();
+    link.sources.set(LinkSources::kInertia, inertia.use_site());
     if (inertia->is_sequence()) {
       if (auto v = read_inertia(ctx, inertia)) c.inertia = *v;
     } else {
@@ -181,23 +181,23 @@ LinkEntry read_link(LoadContext& ctx, const yaml::NodeRef& node, Model& model, R
   auto link = [&]() -> Link& { return model.links[static_cast<std::size_t>(index)]; };
   link().source = node.use_site();
   if (auto name = r.take({"name"})) {
-    link().sources.name = name.use_site();
+    link().sources.set(LinkSources::kName, name.use_site());
     link().name = required_string(ctx, name).value_or("");
   } else {
     ctx.report("load-link-name", node, "this link has no name", "add name: LINK_NAME");
   }
   if (auto parent = r.take({"parent"})) {
-    link().sources.parent = parent.use_site();
+    link().sources.set(LinkSources::kParent, parent.use_site());
     entry.parent_name = required_string(ctx, parent).value_or("");
     entry.parent_site = parent.use_site();
   }
   if (auto joint_name = r.take({"joint_name"})) link().joint_name = joint_name->scalar();
   if (auto t = r.take({"translation"})) {
-    link().sources.translation = t.use_site();
+    link().sources.set(LinkSources::kTranslation, t.use_site());
     if (auto v = read_translation(ctx, t)) link().X_PL.translation() = *v;
   }
   if (auto rot = r.take({"rotation"})) {
-    link().sources.rotation = rot.use_site();
+    link().sources.set(LinkSources::kRotation, rot.use_site());
     if (auto R = read_rotation(ctx, rot)) link().X_PL.linear() = *R;
   }
   read_joint(ctx, r, link());
@@ -223,11 +223,11 @@ void apply_subbody_overrides(LoadContext& ctx, MappingReader& r, Model& model, L
                              ResourceHandler* resources) {
   Link& link = model.links[static_cast<std::size_t>(root)];
   if (auto t = r.take({"translation"})) {
-    link.sources.translation = t.use_site();
+    link.sources.set(LinkSources::kTranslation, t.use_site());
     if (auto v = read_translation(ctx, t)) link.X_PL.translation() = *v;
   }
   if (auto rot = r.take({"rotation"})) {
-    link.sources.rotation = rot.use_site();
+    link.sources.set(LinkSources::kRotation, rot.use_site());
     if (auto R = read_rotation(ctx, rot)) link.X_PL.linear() = *R;
   }
   // body-format-spec §11.2: the override re-applies the range, velocity and rotor inertia

@@ -209,7 +209,7 @@ class Resources final : public ResourceReader {
       if (!link.joint_name.empty()) link.joint_name = prefix + link.joint_name + suffix;
       if (link.joint_id >= 0) link.joint_id += id_offset;
       for (Shape& shape : link.shapes)
-        if (auto* mesh = std::get_if<MeshResource>(&shape.geometry); mesh && mesh->mesh >= 0) mesh->mesh += mesh_base;
+        if (auto* mesh = geometry_if<MeshResource>(shape.geometry); mesh && mesh->mesh >= 0) mesh->mesh += mesh_base;
       LinkEntry entry;
       if (link.parent >= 0) {
         entry.parent_name = prefix + sub->links[static_cast<std::size_t>(link.parent)].name + suffix;
@@ -277,7 +277,7 @@ class Resources final : public ResourceReader {
       link.name = base + std::to_string(i);
       link.joint_type = JointType::kRevolute;
       link.joint_id = -1;
-      link.X_PL = Eigen::Isometry3d::Identity();
+      link.X_PL = Eigen::AffineCompact3d::Identity();
       link.X_PL.translation() = *joint_offset;
       link.initial_displacement =
           static_cast<std::size_t>(i - 1) < initial.size()

@@ -1,6 +1,7 @@
 #include <bodyfmt/model.h>
 
 #include <algorithm>
+#include <iterator>
 
 namespace bodyfmt {
 
@@ -20,6 +21,35 @@ std::string_view geometry_type_name(const Geometry& geometry) {
                                                 "Capsule",      "Extrusion", "ElevationGrid", "IndexedFaceSet",
                                                 "TriangleMesh", "Resource"};
   return kNames[geometry.index()];
+}
+
+LinkSources::LinkSources(const LinkSources& other) : file_(other.file_), in_file_(other.in_file_) {
+  std::copy(std::begin(other.at_), std::end(other.at_), std::begin(at_));
+  if (other.other_files_) {
+    other_files_ = std::make_unique<FileName[]>(kFieldCount);
+    std::copy_n(other.other_files_.get(), kFieldCount, other_files_.get());
+  }
+}
+
+LinkSources& LinkSources::operator=(const LinkSources& other) { return *this = LinkSources(other); }
+
+SourceLocation LinkSources::get(Field field) const {
+  const Position& at = at_[field];
+  const FileName file = (in_file_ >> field) & 1 ? file_ : other_files_ ? other_files_[field] : FileName();
+  return SourceLocation{file, at.line, at.column};
+}
+
+void LinkSources::set(Field field, const SourceLocation& at) {
+  at_[field] = Position{at.line, at.column};
+  const auto bit = static_cast<std::uint16_t>(1u << field);
+  if (!at.file.empty() && file_.empty()) file_ = at.file;
+  if (!at.file.empty() && at.file == file_) {
+    in_file_ |= bit;
+    return;
+  }
+  in_file_ &= static_cast<std::uint16_t>(~bit);
+  if (!other_files_ && !at.file.empty()) other_files_ = std::make_unique<FileName[]>(kFieldCount);
+  if (other_files_) other_files_[field] = at.file;
 }
 
 LinkIndex Model::find_link(std::string_view link_name) const {

@@ -122,7 +122,7 @@ links:
 )");
   const auto& s = r.link("A").shapes;
   REQUIRE(s.size() == 2);
-  const auto& e = std::get<Extrusion>(s[0].geometry);
+  const auto& e = geometry_get<Extrusion>(s[0].geometry);
   REQUIRE(e.cross_section.size() == 5);
   CHECK(e.cross_section[2] == Eigen::Vector2d(0.34, 0.06));
   REQUIRE(e.spine.size() == 2);
@@ -137,7 +137,7 @@ links:
   CHECK_FALSE(e.end_cap);
   CHECK(pos(r.take("load-legacy-key")) == Pos{15, 11});  // endCap
   CHECK(pos(r.take("load-legacy-key")) == Pos{19, 11});  // crossSection
-  const auto& e2 = std::get<Extrusion>(s[1].geometry);
+  const auto& e2 = geometry_get<Extrusion>(s[1].geometry);
   CHECK(e2.cross_section.size() == 3);
   CHECK(e2.begin_cap);  // begin_cap is not read
   CHECK(pos(r.take("load-ignored-key")) == Pos{21, 22});
@@ -178,7 +178,7 @@ links:
           height: [0, 1, 2, 3, 4]
 )");
   CHECK(pos(r.take("load-legacy-key")) == Pos{12, 11});  // zSpacing
-  const auto& g = std::get<ElevationGrid>(r.link("A").shapes.at(0).geometry);
+  const auto& g = geometry_get<ElevationGrid>(r.link("A").shapes.at(0).geometry);
   CHECK(g.x_dimension == 2);
   CHECK(g.z_dimension == 3);
   CHECK(g.x_spacing == 0.5);
@@ -218,7 +218,7 @@ links:
 )");
   const auto& s = r.link("A").shapes;
   REQUIRE(s.size() == 3);
-  const auto& f = std::get<IndexedFaceSet>(s[0].geometry);
+  const auto& f = geometry_get<IndexedFaceSet>(s[0].geometry);
   REQUIRE(f.vertices.size() == 4);
   CHECK(f.vertices[2] == Eigen::Vector3d(1, 1, 0));
   CHECK(f.faces == std::vector<int>{0, 1, 2, 3, -1});
@@ -255,7 +255,7 @@ links:
           vertices: [0, 0, 0, 1, 0, 0, 1, 1, 0]
           faces: [0, 1, 2, 0]
 )");
-  const auto& m = std::get<TriangleMeshGeometry>(r.link("A").shapes.at(0).geometry);
+  const auto& m = geometry_get<TriangleMeshGeometry>(r.link("A").shapes.at(0).geometry);
   CHECK(m.vertices.size() == 4);
   CHECK(m.faces == std::vector<int>{0, 1, 2, 0, 2, 3});
   CHECK(pos(r.take("geometry-degenerate")) == Pos{13, 11});

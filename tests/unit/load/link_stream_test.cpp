@@ -47,9 +47,9 @@ std::vector<std::string> link_locations(const Model& model) {
   std::vector<std::string> result;
   for (const Link& link : model.links) {
     const LinkSources& s = link.sources;
-    for (const SourceLocation* at : {&link.source, &s.name, &s.parent, &s.translation, &s.rotation, &s.joint_type,
-                                     &s.joint_axis, &s.joint_id, &s.joint_range, &s.mass, &s.inertia})
-      result.push_back(link.name + " " + describe(*at));
+    for (const SourceLocation& at : {link.source, s.name(), s.parent(), s.translation(), s.rotation(), s.joint_type(),
+                                     s.joint_axis(), s.joint_id(), s.joint_range(), s.mass(), s.inertia()})
+      result.push_back(link.name + " " + describe(at));
     for (const Shape& shape : link.shapes) result.push_back(link.name + " shape " + describe(shape.source));
   }
   return result;

@@ -78,6 +78,16 @@ TEST_CASE("load: SubBody prefixes, suffixes, id offsets, device prefix and root 
   // The override's translation and rotation (degrees: the includer's unit) replace the root offset.
   CHECK(left.X_PL.translation().isApprox(Eigen::Vector3d(0.1, 0.2, 0.3)));
   CHECK(left.X_PL.linear().isApprox(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix()));
+  // Findings about the overridden pose point at the includer; the name stays in the sub-body.
+  CHECK(left.sources.translation().file.str() == kData + "includer.body");
+  CHECK(left.sources.translation().line == 14);
+  CHECK(left.sources.translation().column == 18);
+  CHECK(left.sources.rotation().file.str() == kData + "includer.body");
+  CHECK(left.sources.rotation().line == 15);
+  CHECK(left.sources.name().file.str() == kData + "sub/gripper.body");
+  CHECK(left.sources.name().line == 7);
+  CHECK(left.sources.mass().file.str() == kData + "sub/gripper.body");
+  CHECK(left.sources.mass().line == 14);
   // §11.2: a SubBody node without joint_range resets the range, velocity and rotor inertia.
   CHECK(left.joint_range_upper == bodyfmt::kUnlimited);
   CHECK(left.velocity_upper == bodyfmt::kUnlimited);
@@ -117,8 +127,8 @@ TEST_CASE("load: YAML fragments see the main file's anchors and resolve URIs fro
   REQUIRE(cart.shapes[0].appearance.material);
   CHECK(cart.shapes[0].appearance.material->diffuse_color.isApprox(Eigen::Vector3d(1, 0, 0)));
   // PLATE: `../pkgroot/...` relative to parts/, and the package:// form, resolve to one file.
-  const auto& plate = std::get<bodyfmt::MeshResource>(cart.shapes[1].geometry);
-  const auto& package = std::get<bodyfmt::MeshResource>(cart.shapes[2].geometry);
+  const auto& plate = bodyfmt::geometry_get<bodyfmt::MeshResource>(cart.shapes[1].geometry);
+  const auto& package = bodyfmt::geometry_get<bodyfmt::MeshResource>(cart.shapes[2].geometry);
   CHECK(fs::equivalent(plate.resolved_path, kData + "pkgroot/mypkg/meshes/cube.stl"));
   CHECK(plate.resolved_path == package.resolved_path);
   CHECK(plate.mesh >= 0);
@@ -147,7 +157,7 @@ TEST_CASE("load: file:// URIs and a missing mesh file name the resolved path") {
                                   cube + "\n      - type: Resource\n        uri: missing/part.stl\n");
   const bodyfmt::Link& a = r.link("A");
   REQUIRE(a.shapes.size() == 2);
-  CHECK(std::get<bodyfmt::MeshResource>(a.shapes[0].geometry).mesh >= 0);
+  CHECK(bodyfmt::geometry_get<bodyfmt::MeshResource>(a.shapes[0].geometry).mesh >= 0);
   auto d = r.take("mesh-file-missing");
   CHECK(d.message.find("missing/part.stl") != std::string::npos);
   CHECK(d.location.line == 9);  // the uri: value that names it, not the Resource node on line 8
@@ -213,7 +223,7 @@ TEST_CASE("load: mesh-heavy corpus models resolve every mesh") {
     int meshes = 0;
     for (const bodyfmt::Link& link : r.m().links) {
       for (const bodyfmt::Shape& shape : link.shapes) {
-        if (const auto* mesh = std::get_if<bodyfmt::MeshResource>(&shape.geometry)) {
+        if (const auto* mesh = bodyfmt::geometry_if<bodyfmt::MeshResource>(shape.geometry)) {
           ++meshes;
           CAPTURE(mesh->uri);
           CHECK(mesh->mesh >= 0);

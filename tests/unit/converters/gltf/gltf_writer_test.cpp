@@ -165,7 +165,7 @@ void check_round_trip(const fs::path& path) {
       REQUIRE(link_nodes.count(link.name));
       const aiNode* n = link_nodes[link.name];
       // World transform at zero joint positions: the model node's Z-up -> Y-up turn times X_WL.
-      const Eigen::Matrix4d want = z_up_to_y_up() * e->derived.X_WL[i].matrix();
+      const Eigen::Matrix4d want = z_up_to_y_up() * Eigen::Affine3d(e->derived.X_WL[i]).matrix();
       const Eigen::Matrix4d got = world_of(n);
       for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 4; ++c) CHECK_MESSAGE(close(got(r, c), want(r, c), 1e-6), r << "," << c);

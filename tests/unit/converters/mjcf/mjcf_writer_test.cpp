@@ -147,7 +147,7 @@ std::string compare(const Model& model, const Derived& derived, const mjModel* m
     if ((rebuilt - I).cwiseAbs().maxCoeff() > tol * std::max(scale, 1.0))
       return fmt::format("{}: principal frame differs by {}", link.name, (rebuilt - I).cwiseAbs().maxCoeff());
     // Frames at qpos0.
-    const Eigen::Isometry3d& X = derived.X_WL[i];
+    const Eigen::AffineCompact3d& X = derived.X_WL[i];
     if ((v3(d->xpos + 3 * b) - X.translation()).cwiseAbs().maxCoeff() > tol) return link.name + ": origin differs";
     if ((m3(d->xmat + 9 * b) - X.linear()).cwiseAbs().maxCoeff() > tol) return link.name + ": orientation differs";
     if (mp.mass > 0 && (v3(d->xipos + 3 * b) - X * mp.center_of_mass).cwiseAbs().maxCoeff() > tol)

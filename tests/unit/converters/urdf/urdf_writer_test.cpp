@@ -122,7 +122,7 @@ std::string round_trip_problem(const Model& model, const Derived& derived, const
     if (!uj) return "link " + link.name + ": no joint";
     if (uj->parent_link_name != model.links[static_cast<std::size_t>(link.parent)].name)
       return "joint parent of " + link.name;
-    if (max_abs_diff(iso(uj->parent_to_joint_origin_transform), link.X_PL) > 1e-9)
+    if (max_abs_diff(iso(uj->parent_to_joint_origin_transform), Eigen::Isometry3d(link.X_PL.matrix())) > 1e-9)
       return "joint origin of " + link.name;
     const bool revolute = link.joint_type == JointType::kRevolute, prismatic = link.joint_type == JointType::kPrismatic;
     if (revolute || prismatic) {
