@@ -104,17 +104,17 @@ struct MeshResource {
 };
 
 /// A value kept on the heap and copied deeply. Reads as the value it holds (a moved-from
-/// Boxed holds nothing and may only be assigned or destroyed).
+/// HeapValue holds nothing and may only be assigned or destroyed).
 template <typename T>
-class Boxed {
+class HeapValue {
  public:
-  Boxed() : value_(std::make_unique<T>()) {}
-  Boxed(T value) : value_(std::make_unique<T>(std::move(value))) {}  // NOLINT: implicit, as the value
-  Boxed(const Boxed& other) : value_(std::make_unique<T>(*other)) {}
-  Boxed(Boxed&&) noexcept = default;
-  Boxed& operator=(const Boxed& other) { return *this = *other; }
-  Boxed& operator=(Boxed&&) noexcept = default;
-  Boxed& operator=(T value) {
+  HeapValue() : value_(std::make_unique<T>()) {}
+  HeapValue(T value) : value_(std::make_unique<T>(std::move(value))) {}  // NOLINT: implicit, as the value
+  HeapValue(const HeapValue& other) : value_(std::make_unique<T>(*other)) {}
+  HeapValue(HeapValue&&) noexcept = default;
+  HeapValue& operator=(const HeapValue& other) { return *this = *other; }
+  HeapValue& operator=(HeapValue&&) noexcept = default;
+  HeapValue& operator=(T value) {
     value_ = std::make_unique<T>(std::move(value));
     return *this;
   }
@@ -129,12 +129,12 @@ class Boxed {
   std::unique_ptr<T> value_;
 };
 
-/// The geometry of a shape. The alternatives that hold vectors or strings are Boxed, so that
+/// The geometry of a shape. The alternatives that hold vectors or strings are kept in a HeapValue, so that
 /// the variant is sized by the primitives (32 bytes instead of 160): a model of 100,000 box
 /// shapes does not carry room for a mesh resource in each. Read them with geometry_if and
 /// geometry_get; the primitives also with std::get_if and std::get.
-using Geometry = std::variant<Box, Sphere, Cylinder, Cone, Capsule, Boxed<Extrusion>, Boxed<ElevationGrid>,
-                              Boxed<IndexedFaceSet>, Boxed<TriangleMeshGeometry>, Boxed<MeshResource>>;
+using Geometry = std::variant<Box, Sphere, Cylinder, Cone, Capsule, HeapValue<Extrusion>, HeapValue<ElevationGrid>,
+                              HeapValue<IndexedFaceSet>, HeapValue<TriangleMeshGeometry>, HeapValue<MeshResource>>;
 
 namespace detail {
 template <typename T>
@@ -142,26 +142,26 @@ struct GeometryStorage {
   using type = T;
 };
 template <typename T>
-struct GeometryStorage<Boxed<T>>;  // name the geometry type, not its storage
+struct GeometryStorage<HeapValue<T>>;  // name the geometry type, not its storage
 template <>
 struct GeometryStorage<Extrusion> {
-  using type = Boxed<Extrusion>;
+  using type = HeapValue<Extrusion>;
 };
 template <>
 struct GeometryStorage<ElevationGrid> {
-  using type = Boxed<ElevationGrid>;
+  using type = HeapValue<ElevationGrid>;
 };
 template <>
 struct GeometryStorage<IndexedFaceSet> {
-  using type = Boxed<IndexedFaceSet>;
+  using type = HeapValue<IndexedFaceSet>;
 };
 template <>
 struct GeometryStorage<TriangleMeshGeometry> {
-  using type = Boxed<TriangleMeshGeometry>;
+  using type = HeapValue<TriangleMeshGeometry>;
 };
 template <>
 struct GeometryStorage<MeshResource> {
-  using type = Boxed<MeshResource>;
+  using type = HeapValue<MeshResource>;
 };
 }  // namespace detail
 
@@ -189,11 +189,11 @@ bool geometry_is(const Geometry& geometry) {
 }
 /// A geometry alternative as its geometry type (for std::visit over a Geometry).
 template <typename T>
-const T& unboxed(const T& value) {
+const T& geometry_value(const T& value) {
   return value;
 }
 template <typename T>
-const T& unboxed(const Boxed<T>& value) {
+const T& geometry_value(const HeapValue<T>& value) {
   return *value;
 }
 
@@ -418,10 +418,10 @@ class LinkSources {
     int line = 0;
     int column = 0;
   };
-  FileName file_;  ///< the file of the fields in in_file_
-  Position at_[kFieldCount];
   std::unique_ptr<FileName[]> other_files_;  ///< per field, for those not in in_file_; null until needed
+  FileName file_;                            ///< the file of the fields in in_file_
   std::uint16_t in_file_ = 0;                ///< bit per field: written in file_
+  Position at_[kFieldCount];
   static_assert(kFieldCount <= 16);
 };
 
@@ -438,8 +438,8 @@ struct Link {
   Eigen::AffineCompact3d X_PL = Eigen::AffineCompact3d::Identity();
 
   JointType joint_type = JointType::kFixed;
+  int joint_id = -1;                    // beside joint_type: Link is 16-byte aligned (X_PL), padding counts
   Eigen::Vector3d joint_axis{0, 0, 1};  ///< link frame; not normalised (Choreonoid does not)
-  int joint_id = -1;
   double joint_range_lower = -kUnlimited;
   double joint_range_upper = kUnlimited;
   double velocity_lower = -kUnlimited;

@@ -90,7 +90,7 @@ class Comparer {
     }
     std::visit(
         [&](const auto& stored) {
-          const auto& a = unboxed(stored);
+          const auto& a = geometry_value(stored);
           using T = std::decay_t<decltype(a)>;
           const T& b = geometry_get<T>(gb);
           if constexpr (std::is_same_v<T, Box>) {
