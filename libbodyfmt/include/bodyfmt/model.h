@@ -428,6 +428,7 @@ class LinkSources {
 struct Link {
   std::string name;
   HeapString joint_name;
+  SourceLocation source;  // up here and joint_id beside joint_type: no padding before X_PL (16-byte aligned)
   LinkIndex parent = -1;
   std::vector<LinkIndex> children;
 
@@ -438,7 +439,7 @@ struct Link {
   Eigen::AffineCompact3d X_PL = Eigen::AffineCompact3d::Identity();
 
   JointType joint_type = JointType::kFixed;
-  int joint_id = -1;                    // beside joint_type: Link is 16-byte aligned (X_PL), padding counts
+  int joint_id = -1;
   Eigen::Vector3d joint_axis{0, 0, 1};  ///< link frame; not normalised (Choreonoid does not)
   double joint_range_lower = -kUnlimited;
   double joint_range_upper = kUnlimited;
@@ -455,7 +456,6 @@ struct Link {
   std::vector<Shape> shapes;
   std::vector<SceneFrame> frames;  ///< parents come before their children
 
-  SourceLocation source;
   LinkSources sources;
 };
 
