@@ -1,3 +1,5 @@
+#include "derived/frames_internal.h"
+
 #include <bodyfmt/derived.h>
 #include <bodyfmt/rules.h>
 #include <bodyfmt/tessellate.h>
@@ -102,7 +104,7 @@ namespace {
 void report_overflow(const Model& model, const Derived& d, DiagnosticSink& sink) {
   // A far-off root can bring a world frame back into range while the root-relative one
   // overflows, so both are checked.
-  const std::vector<Eigen::Isometry3d> X_RL = compute_root_relative_frames(model);
+  const std::vector<Eigen::AffineCompact3d> X_RL = detail::compact_root_relative_frames(model);
   for (std::size_t i = 0; i < model.links.size(); ++i) {
     const Link& link = model.links[i];
     const MassProperties& m = d.mass[i];
@@ -151,9 +153,7 @@ Derived compute_derived(const Model& model, DiagnosticSink& sink) {
     d.mass.push_back(compute_mass_properties(link));
     d.total_mass += d.mass.back().mass;
   }
-  const std::vector<Eigen::Isometry3d> X_WL = compute_world_frames(model);
-  d.X_WL.reserve(X_WL.size());
-  for (const Eigen::Isometry3d& X : X_WL) d.X_WL.emplace_back(X.affine());
+  d.X_WL = detail::compact_world_frames(model);
   report_overflow(model, d, sink);
   d.bounds = compute_link_bounds(model, sink);
   return d;

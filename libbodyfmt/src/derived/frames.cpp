@@ -1,3 +1,5 @@
+#include "derived/frames_internal.h"
+
 #include <bodyfmt/derived.h>
 
 namespace bodyfmt {
@@ -16,18 +18,19 @@ Eigen::Isometry3d joint_motion(const Link& link, double q) {
   return X;
 }
 
-std::vector<Eigen::Isometry3d> frames(const Model& model, const std::vector<double>& q,
-                                      const Eigen::Isometry3d& X_W_root) {
-  std::vector<Eigen::Isometry3d> X(model.links.size(), Eigen::Isometry3d::Identity());
+// Every storage multiplies transforms alike (linear and translation parts), so the compact
+// frames hold the same values as the isometries.
+template <typename Frame>
+std::vector<Frame> frames(const Model& model, const std::vector<double>& q, const Frame& X_W_root) {
+  std::vector<Frame> X(model.links.size(), Frame::Identity());
   for (std::size_t i = 0; i < model.links.size(); ++i) {
     const Link& link = model.links[i];
     const double qi = i < q.size() ? q[i] : 0.0;
     if (link.parent < 0) {
-      X[i] = X_W_root * joint_motion(link, qi);
+      X[i] = Frame((X_W_root * joint_motion(link, qi)).matrix());
     } else {
       // Links are in depth-first order, so the parent's frame is already known.
-      X[i] =
-          Eigen::Isometry3d((X[static_cast<std::size_t>(link.parent)] * link.X_PL * joint_motion(link, qi)).matrix());
+      X[i] = Frame((X[static_cast<std::size_t>(link.parent)] * link.X_PL * joint_motion(link, qi)).matrix());
     }
   }
   return X;
@@ -43,5 +46,18 @@ std::vector<Eigen::Isometry3d> compute_world_frames(const Model& model, const st
   if (model.links.empty()) return {};
   return frames(model, q, Eigen::Isometry3d(model.root().X_PL.matrix()));
 }
+
+namespace detail {
+
+std::vector<Eigen::AffineCompact3d> compact_root_relative_frames(const Model& model) {
+  return frames(model, {}, Eigen::AffineCompact3d::Identity());
+}
+
+std::vector<Eigen::AffineCompact3d> compact_world_frames(const Model& model) {
+  if (model.links.empty()) return {};
+  return frames(model, {}, model.root().X_PL);
+}
+
+}  // namespace detail
 
 }  // namespace bodyfmt
