@@ -22,7 +22,8 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/libbodyfmt/include/bodyfmt
   FILES_MATCHING PATTERN "*.h")
 
 # Tools: every executable defined in these folders (so new tools are installed without
-# touching this file). Installed tools find libbodyfmt through a relative RPATH.
+# touching this file). The tools link libbodyfmt statically (bodyfmt::static), so they need no
+# RPATH; they find the assimp module in the library folder (src/mesh/assimp_module.cpp).
 set(BODYFMT_TOOL_DIRS tools)
 # Developer utilities that build the docs; not installed.
 set(BODYFMT_INTERNAL_TOOLS rules_doc)
@@ -35,8 +36,6 @@ foreach(_dir IN LISTS BODYFMT_TOOL_DIRS)
   foreach(_target IN LISTS _targets)
     get_target_property(_type ${_target} TYPE)
     if(_type STREQUAL "EXECUTABLE" AND NOT _target IN_LIST BODYFMT_INTERNAL_TOOLS)
-      set_target_properties(${_target} PROPERTIES
-        INSTALL_RPATH "$ORIGIN/../${CMAKE_INSTALL_LIBDIR}")
       install(TARGETS ${_target} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
     endif()
   endforeach()

@@ -44,3 +44,23 @@ if(at EQUAL -1)
 endif()
 
 run("run" "${consumer_build}/package_consumer" "${SOURCE_DIR}/examples/simpletank.body")
+
+# The installed tools link libbodyfmt statically and look for the assimp module in the library
+# folder, before the module's build folder (libbodyfmt/src/mesh/assimp_module.cpp). bodyinfo must
+# import the OBJ of square_mesh.body (its visual box is the rectangle's corners, [0, 0, 0] ..
+# [2, 1, 0]) with the installed module: the dynamic loader's log names the file it mapped.
+execute_process(COMMAND "${CMAKE_COMMAND}" -E env LD_DEBUG=files
+                        "${prefix}/bin/bodyinfo" --format yaml "${SOURCE_DIR}/tests/package/square_mesh.body"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR err MATCHES "mesh-importer-unavailable")
+  message(FATAL_ERROR "package test: installed bodyinfo could not import an OBJ mesh (exit ${rc}):\n${out}${err}")
+endif()
+if(NOT out MATCHES "visual_bbox: \\[0, 0, 0, 2, 1, 0\\]")
+  message(FATAL_ERROR "package test: installed bodyinfo read the wrong box for square.obj:\n${out}")
+endif()
+string(REGEX MATCH "file=[^ ]*libbodyfmt_assimp\\.so \\[0\\];  generating link map" module_loaded "${err}")
+string(FIND "${module_loaded}" "file=${prefix}/" at)
+if(NOT at EQUAL 0)
+  message(FATAL_ERROR "package test: installed bodyinfo loaded the assimp module from outside the prefix: "
+                      "'${module_loaded}'")
+endif()

@@ -2,10 +2,12 @@
 
 #include <bodyfmt/rules.h>
 #include "mesh/assimp_reader.h"  // the entry point's declaration, for its type
+#include "mesh/vrml_reader.h"    // resolve_relative, passed to the module
 
 #include <dlfcn.h>
 
 #include <mutex>
+#include <vector>
 
 namespace bodyfmt::mesh {
 
@@ -13,9 +15,16 @@ namespace {
 
 // The module's file name; libbodyfmt/CMakeLists.txt sets the same name on the module target.
 constexpr const char* kModuleName = "libbodyfmt_assimp.so";
-constexpr const char* kAssimpEntryPoint = "bodyfmt_assimp_read_v1";
+constexpr const char* kAssimpEntryPoint = "bodyfmt_assimp_read_v2";
 
-using EntryPoint = decltype(&bodyfmt_assimp_read_v1);
+using EntryPoint = decltype(&bodyfmt_assimp_read_v2);
+
+const AssimpHost kHost = {
+    [](DiagnosticSink& sink, const char* rule_id, const SourceLocation& where, std::string message) {
+      report_rule(sink, rule_id, where, std::move(message));
+    },
+    &resolve_relative,
+};
 
 struct Module {
   EntryPoint read = nullptr;
@@ -23,9 +32,9 @@ struct Module {
   std::string error;  // why it could not be loaded, when read is null
 };
 
-/// The directory of the file that holds libbodyfmt itself: the module is installed (and built)
-/// next to it, so it is found without LD_LIBRARY_PATH or an RPATH in every executable.
-std::string library_directory() {
+/// The directory of the file that holds libbodyfmt's code: libbodyfmt.so, or the executable that
+/// links libbodyfmt statically (the project's tools).
+std::string code_directory() {
   Dl_info info{};
   if (dladdr(reinterpret_cast<void*>(&import_with_assimp), &info) == 0 || !info.dli_fname) return {};
   const std::string file = info.dli_fname;
@@ -33,18 +42,44 @@ std::string library_directory() {
   return slash == std::string::npos ? std::string() : file.substr(0, slash + 1);
 }
 
+/// Where the module may be, most likely first. It is built and installed next to libbodyfmt.so,
+/// so it is found without LD_LIBRARY_PATH or an RPATH: beside libbodyfmt.so; for an installed
+/// tool, in the library folder relative to the tool's (BODYFMT_MODULE_FROM_BINDIR, "../lib/");
+/// for an executable of the build tree that links libbodyfmt statically (tools, tests), in
+/// the build folder of the module (BODYFMT_MODULE_BUILD_DIR).
+std::vector<std::string> candidate_paths() {
+  const std::string here = code_directory();
+  std::vector<std::string> paths{here + kModuleName};
+#ifdef BODYFMT_MODULE_FROM_BINDIR
+  if (!here.empty()) paths.push_back(here + BODYFMT_MODULE_FROM_BINDIR + kModuleName);
+#endif
+#ifdef BODYFMT_MODULE_BUILD_DIR
+  paths.push_back(std::string(BODYFMT_MODULE_BUILD_DIR) + kModuleName);
+#endif
+  return paths;
+}
+
 Module load_module() {
   Module module;
-  module.path = library_directory() + kModuleName;
   // RTLD_LOCAL: assimp's symbols stay out of the global namespace of the host program.
   // The handle is never closed: the scene trees are allocated by the module (make_shared),
   // so their control blocks' code lives there and must outlive every cached tree.
-  void* handle = dlopen(module.path.c_str(), RTLD_NOW | RTLD_LOCAL);
-  if (!handle) {
-    const char* error = dlerror();
-    module.error = error ? error : "dlopen failed";
-    return module;
+  void* handle = nullptr;
+  for (const std::string& path : candidate_paths()) {
+    handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (handle) {
+      module.path = path;
+      break;
+    }
+    // Reported when none loads: the first place, where the module belongs.
+    if (module.path.empty()) {
+      const char* error = dlerror();
+      module.path = path;
+      module.error = error ? error : "dlopen failed";
+    }
   }
+  if (!handle) return module;
+  module.error.clear();
   dlerror();  // clear, so that a null result below is told apart from a null symbol
   void* symbol = dlsym(handle, kAssimpEntryPoint);
   if (!symbol) {
@@ -75,7 +110,7 @@ SceneTree import_with_assimp(const std::string& path, DiagnosticSink& sink, cons
     return nullptr;
   }
   SceneTree tree;
-  m.read(path.c_str(), &sink, &where, &tree);
+  m.read(&kHost, path.c_str(), &sink, &where, &tree);
   return tree;
 }
 

@@ -1,8 +1,5 @@
 #include "mesh/assimp_reader.h"
 
-#include <bodyfmt/rules.h>
-#include "mesh/vrml_reader.h"  // resolve_relative
-
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -49,7 +46,7 @@ std::optional<Material> convert_material(const aiMaterial& src) {
   return m;
 }
 
-std::optional<Texture> convert_texture(const aiMaterial& src, const std::string& path) {
+std::optional<Texture> convert_texture(const AssimpHost& host, const aiMaterial& src, const std::string& path) {
   aiString uri;
   if (src.GetTextureCount(aiTextureType_DIFFUSE) == 0 || src.GetTexture(aiTextureType_DIFFUSE, 0, &uri) != AI_SUCCESS ||
       uri.length == 0) {
@@ -57,7 +54,7 @@ std::optional<Texture> convert_texture(const aiMaterial& src, const std::string&
   }
   Texture texture;
   texture.uri = uri.C_Str();
-  if (texture.uri.front() != '*') texture.resolved_path = resolve_relative(path, texture.uri);  // '*n' = embedded
+  if (texture.uri.front() != '*') texture.resolved_path = host.resolve_relative(path, texture.uri);  // '*n' = embedded
   return texture;
 }
 
@@ -107,7 +104,8 @@ std::shared_ptr<SceneNode> convert_node(const aiScene& scene, const aiNode& src,
 
 }  // namespace
 
-SceneTree read_with_assimp(const std::string& path, DiagnosticSink& sink, const SourceLocation& where) {
+SceneTree read_with_assimp(const AssimpHost& host, const std::string& path, DiagnosticSink& sink,
+                           const SourceLocation& where) {
   Assimp::Importer importer;
   // Keep COLLADA's <unit> scale and <up_axis> conversion off: Choreonoid's Assimp loader reads
   // the raw node transforms (assimp's Y-up conversion would turn Z-up robot parts sideways).
@@ -118,7 +116,7 @@ SceneTree read_with_assimp(const std::string& path, DiagnosticSink& sink, const 
   const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType;
   const aiScene* scene = importer.ReadFile(path, flags);
   if (!scene || !scene->mRootNode || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE)) {
-    report_rule(sink, "mesh-parse", where, "cannot read mesh file \"" + path + "\": " + importer.GetErrorString());
+    host.report(sink, "mesh-parse", where, "cannot read mesh file \"" + path + "\": " + importer.GetErrorString());
     return nullptr;
   }
   std::vector<MeshPart> meshes;
@@ -128,7 +126,7 @@ SceneTree read_with_assimp(const std::string& path, DiagnosticSink& sink, const 
     const unsigned material = scene->mMeshes[i]->mMaterialIndex;
     if (material < scene->mNumMaterials && scene->mMaterials[material]) {
       part.material = convert_material(*scene->mMaterials[material]);
-      part.texture = convert_texture(*scene->mMaterials[material], path);
+      part.texture = convert_texture(host, *scene->mMaterials[material], path);
     }
     meshes.push_back(std::move(part));
   }
@@ -137,7 +135,8 @@ SceneTree read_with_assimp(const std::string& path, DiagnosticSink& sink, const 
 
 }  // namespace bodyfmt::mesh
 
-extern "C" void bodyfmt_assimp_read_v1(const char* path, bodyfmt::DiagnosticSink* sink,
-                                       const bodyfmt::SourceLocation* where, bodyfmt::mesh::SceneTree* out) {
-  *out = bodyfmt::mesh::read_with_assimp(path, *sink, *where);
+extern "C" void bodyfmt_assimp_read_v2(const bodyfmt::mesh::AssimpHost* host, const char* path,
+                                       bodyfmt::DiagnosticSink* sink, const bodyfmt::SourceLocation* where,
+                                       bodyfmt::mesh::SceneTree* out) {
+  *out = bodyfmt::mesh::read_with_assimp(*host, path, *sink, *where);
 }
