@@ -14,18 +14,6 @@ MappingReader::MappingReader(LoadContext& ctx, const yaml::NodeRef& mapping, std
     consumed_.assign(mapping_->entries().size(), false);
     for (const yaml::MapEntry& entry : mapping_->entries()) key_filter_ |= filter_bit(entry.key);
   }
-  legacy_.reserve(32);  // a link's mapping records about twenty spellings
-}
-
-std::uint64_t MappingReader::filter_bit(std::string_view key) {
-  if (key.empty()) return 0;
-  const auto first = static_cast<unsigned char>(key.front());
-  const auto last = static_cast<unsigned char>(key.back());
-  return std::uint64_t{1} << ((key.size() * 7 + first + last * 3) & 63);
-}
-
-const yaml::MapEntry* MappingReader::find(std::string_view key) const {
-  return (key_filter_ & filter_bit(key)) != 0 ? mapping_->find(key) : nullptr;
 }
 
 void MappingReader::consume(const yaml::MapEntry* entry) {
@@ -43,8 +31,11 @@ yaml::NodeRef MappingReader::take(KeyNames names) {
   bool modern = true;
   // Recorded for report_unknown, which drops repeats: a lookup here would cost every take()
   // a scan of the spellings so far.
-  for (auto legacy = names.begin(); legacy != names.end(); ++legacy)
-    if (legacy != names.begin()) legacy_.emplace_back(*legacy, *names.begin());
+  for (auto legacy = names.begin(); legacy != names.end(); ++legacy) {
+    if (legacy == names.begin()) continue;
+    if (legacy_.empty()) legacy_.reserve(32);  // a link's mapping records about twenty spellings
+    legacy_.emplace_back(*legacy, *names.begin());
+  }
   for (std::string_view name : names) {
     if (const yaml::MapEntry* entry = find(name)) {
       consume(entry);

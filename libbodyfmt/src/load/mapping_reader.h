@@ -55,9 +55,17 @@ class MappingReader {
   std::string_view modern_of(std::string_view name) const;
   void consume(const yaml::MapEntry* entry);
   /// The mapping's entry `key`; most of a link's forty spellings are absent, and the filter
-  /// rules nearly all of those out without a scan of the entries.
-  const yaml::MapEntry* find(std::string_view key) const;
-  static std::uint64_t filter_bit(std::string_view key);
+  /// rules nearly all of those out without a scan of the entries. Inline: take() calls it
+  /// once per spelling.
+  const yaml::MapEntry* find(std::string_view key) const {
+    return (key_filter_ & filter_bit(key)) != 0 ? mapping_->find(key) : nullptr;
+  }
+  static std::uint64_t filter_bit(std::string_view key) {
+    if (key.empty()) return 0;
+    const auto first = static_cast<unsigned char>(key.front());
+    const auto last = static_cast<unsigned char>(key.back());
+    return std::uint64_t{1} << ((key.size() * 7 + first + last * 3) & 63);
+  }
 
   // A link's mapping is read with some forty take() calls: the bookkeeping is flat and
   // allocates once per mapping, not once per key.
