@@ -4,17 +4,29 @@
 
 #include <algorithm>
 #include <iterator>
+#include <ostream>
 
 #include <cmath>
 
 namespace bodyfmt::tools {
 namespace {
 
+void append_number(std::string& out, double v) {
+  if (std::isinf(v) || std::abs(v) >= kUnlimited) {
+    out += v > 0 ? ".inf" : "-.inf";
+  } else if (std::isnan(v)) {
+    out += ".nan";
+  } else if (v == 0) {
+    out += '0';  // no "-0"
+  } else {
+    fmt::format_to(std::back_inserter(out), "{}", v);
+  }
+}
+
 std::string number(double v) {
-  if (std::isinf(v) || std::abs(v) >= kUnlimited) return v > 0 ? ".inf" : "-.inf";
-  if (std::isnan(v)) return ".nan";
-  if (v == 0) return "0";  // no "-0"
-  return fmt::format("{}", v);
+  std::string out;
+  append_number(out, v);
+  return out;
 }
 
 template <typename Vector>
@@ -53,14 +65,27 @@ std::string pair(double lo, double hi) { return "[" + number(lo) + ", " + number
 
 double degrees(double radians) { return radians * 180.0 / M_PI; }
 
-std::string range_text(const Link& link) {
-  if (link.joint_type != JointType::kRevolute && link.joint_type != JointType::kPrismatic) return "";
-  if (link.joint_range_lower <= -kUnlimited && link.joint_range_upper >= kUnlimited) return "unlimited";
+// " range ..." of a revolute or prismatic joint.
+void append_range(std::string& out, const Link& link) {
+  if (link.joint_type != JointType::kRevolute && link.joint_type != JointType::kPrismatic) return;
+  if (link.joint_range_lower <= -kUnlimited && link.joint_range_upper >= kUnlimited) {
+    out += " range unlimited";
+    return;
+  }
   auto end = [&](double v) {
-    if (std::abs(v) >= kUnlimited) return std::string(v > 0 ? "+inf" : "-inf");
-    return link.joint_type == JointType::kRevolute ? fmt::format("{:.4g} deg", degrees(v)) : fmt::format("{:.4g} m", v);
+    if (std::abs(v) >= kUnlimited) {
+      out += v > 0 ? "+inf" : "-inf";
+    } else if (link.joint_type == JointType::kRevolute) {
+      fmt::format_to(std::back_inserter(out), "{:.4g} deg", degrees(v));
+    } else {
+      fmt::format_to(std::back_inserter(out), "{:.4g} m", v);
+    }
   };
-  return "[" + end(link.joint_range_lower) + ", " + end(link.joint_range_upper) + "]";
+  out += " range [";
+  end(link.joint_range_lower);
+  out += ", ";
+  end(link.joint_range_upper);
+  out += ']';
 }
 
 // Links are stored in depth-first pre-order (model.h), so one pass in order prints the tree;
@@ -69,7 +94,7 @@ std::string range_text(const Link& link) {
 constexpr int kMaxIndent = 32;
 
 void summary_link(std::string& out, const Model& model, const Derived& derived, LinkIndex i, int depth) {
-  // Appended in place: one line per link of a 100,000-link model.
+  // Appended in place, without temporary strings: one line per link of a 100,000-link model.
   const Link& link = model.links[static_cast<std::size_t>(i)];
   const MassProperties& m = derived.mass[static_cast<std::size_t>(i)];
   auto to = std::back_inserter(out);
@@ -81,35 +106,39 @@ void summary_link(std::string& out, const Model& model, const Derived& derived, 
   if (link.joint_id >= 0) fmt::format_to(to, " #{}", link.joint_id);
   if (link.joint_type == JointType::kRevolute || link.joint_type == JointType::kPrismatic ||
       link.joint_type == JointType::kPseudoContinuousTrack) {
-    out += " axis ";
-    out += list(link.joint_axis);
+    out += " axis [";
+    for (Eigen::Index k = 0; k < link.joint_axis.size(); ++k) {
+      if (k > 0) out += ", ";
+      append_number(out, link.joint_axis[k]);
+    }
+    out += ']';
   }
-  const std::string range = range_text(link);
-  if (!range.empty()) {
-    out += " range ";
-    out += range;
-  }
+  append_range(out, link);
   fmt::format_to(to, ")  {:.6g} kg\n", m.mass);
 }
 
-void summary_links(std::string& out, const Model& model, const Derived& derived) {
+}  // namespace
+
+void write_summary(std::ostream& os, const Model& model, const Derived& derived) {
+  // Written in blocks: the text of a 100,000-link chain is 14 MB, which need not be held whole.
+  constexpr std::size_t kBlock = 64 * 1024;
+  std::string out;
+  out.reserve(kBlock + 1024);
+  out += fmt::format("{}: {} links, {} joints, {} devices, {:.6g} kg, format {} ({})\n", model.name, model.links.size(),
+                     model.num_joints(), model.devices.size(), derived.total_mass, model.format_version,
+                     model.angles_in_degrees ? "degrees" : "radians");
+  out += "links:\n";
+  // Links are in depth-first pre-order, so a parent's depth is known before its children's.
   std::vector<int> depth(model.links.size(), 1);
   for (LinkIndex i = 0; i < static_cast<LinkIndex>(model.links.size()); ++i) {
     const LinkIndex parent = model.links[static_cast<std::size_t>(i)].parent;
     if (parent >= 0) depth[static_cast<std::size_t>(i)] = depth[static_cast<std::size_t>(parent)] + 1;
     summary_link(out, model, derived, i, depth[static_cast<std::size_t>(i)]);
+    if (out.size() >= kBlock) {
+      os.write(out.data(), static_cast<std::streamsize>(out.size()));
+      out.clear();
+    }
   }
-}
-
-}  // namespace
-
-std::string format_summary(const Model& model, const Derived& derived) {
-  std::string out;
-  out += fmt::format("{}: {} links, {} joints, {} devices, {:.6g} kg, format {} ({})\n", model.name, model.links.size(),
-                     model.num_joints(), model.devices.size(), derived.total_mass, model.format_version,
-                     model.angles_in_degrees ? "degrees" : "radians");
-  out += "links:\n";
-  summary_links(out, model, derived);
   if (!model.devices.empty()) {
     out += "devices:\n";
     for (const Device& d : model.devices)
@@ -123,7 +152,7 @@ std::string format_summary(const Model& model, const Derived& derived) {
       out += fmt::format("  {} {} - {}\n", j.type, model.links[static_cast<std::size_t>(j.link1)].name,
                          model.links[static_cast<std::size_t>(j.link2)].name);
   }
-  return out;
+  os.write(out.data(), static_cast<std::streamsize>(out.size()));
 }
 
 std::string format_reference_yaml(const Model& model, const Derived& derived, const std::vector<LinkBounds>& boxes,

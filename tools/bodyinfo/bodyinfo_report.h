@@ -6,12 +6,14 @@
 #include <bodyfmt/diagnostic.h>
 #include <bodyfmt/model.h>
 
+#include <iosfwd>
 #include <string>
 #include <vector>
 
 namespace bodyfmt::tools {
 
-std::string format_summary(const Model& model, const Derived& derived);
+/// The summary for people: one line per link, indented by depth.
+void write_summary(std::ostream& out, const Model& model, const Derived& derived);
 /// `boxes`: Choreonoid's scene-graph boxes (compute_choreonoid_bounds), which the reference
 /// values were taken from.
 std::string format_reference_yaml(const Model& model, const Derived& derived, const std::vector<LinkBounds>& boxes,

@@ -46,7 +46,7 @@ int main(int argc, char** argv) {
   if (format == "yaml") {
     std::cout << tools::format_reference_yaml(*model, derived, choreonoid_boxes, diagnostics);
   } else {
-    std::cout << tools::format_summary(*model, derived);
+    tools::write_summary(std::cout, *model, derived);
   }
   return tools::exit_code(diagnostics, policy->exit, false);
 }

@@ -9,10 +9,15 @@
 #include "text/text_util.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <map>
 #include <utility>
+
+#ifdef __linux__
+#include <sys/mman.h>
+#endif
 
 namespace bodyfmt::detail {
 namespace {
@@ -45,6 +50,19 @@ const std::vector<std::string_view> kKnownInfoKeys = {"standard_pose",
 const std::vector<std::string_view> kHeaderKeys = {"format",       "format_version", "angle_unit",
                                                    "name",         "root_link",      "links",
                                                    "extra_joints", "body_handlers",  "model_file"};
+
+/// Asks for transparent huge pages in the 2 MiB-aligned part of `bytes` at `data`, an array
+/// that is about to be written front to back once: a page fault per 2 MiB instead of one per
+/// 4 KiB (the link array of a 100,000-link file is 60 MB). Only a hint, and none outside Linux.
+void advise_huge_pages([[maybe_unused]] const void* data, [[maybe_unused]] std::size_t bytes) {
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  constexpr std::uintptr_t kHugePage = std::uintptr_t{1} << 21;
+  const auto at = reinterpret_cast<std::uintptr_t>(data);
+  const std::uintptr_t begin = (at + kHugePage - 1) & ~(kHugePage - 1);
+  const std::uintptr_t end = (at + bytes) & ~(kHugePage - 1);
+  if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
+#endif
+}
 
 }  // namespace
 
@@ -128,6 +146,7 @@ class BodyReader::LinkStream : public yaml::SequenceConsumer {
     const std::size_t bound = lines - std::min(lines, static_cast<std::size_t>(first_line));
     model_.links.reserve(std::min(bound, kLargestReservation));
     entries_.reserve(std::min(bound, kLargestReservation));
+    advise_huge_pages(model_.links.data(), model_.links.capacity() * sizeof(Link));
   }
 
   BodyReader& reader_;
@@ -462,18 +481,16 @@ std::vector<LinkIndex> depth_first_order(LinkIndex root, const std::vector<std::
 }  // namespace
 
 BodyReader::LinkNames BodyReader::index_link_names(const Model& model) {
-  LinkNames names;
-  names.by_name.reserve(model.links.size());
+  LinkNames names{NameIndex(model.links.size()), NameIndex()};
   for (LinkIndex i = 0; i < static_cast<LinkIndex>(model.links.size()); ++i) {
     const Link& link = model.links[at(i)];
     if (link.name.empty()) continue;
-    auto [it, inserted] = names.by_name.emplace(link.name, i);
-    if (!inserted) {
+    if (auto first = names.by_name.insert(link.name, i)) {
       ctx_.report("structure-duplicate-link", link.sources.name(),
                   "duplicated link name \"" + link.name + "\" (first defined at line " +
-                      std::to_string(model.links[at(it->second)].sources.name().line) + ")");
+                      std::to_string(model.links[at(*first)].sources.name().line) + ")");
     }
-    if (!link.joint_name.empty() && !names.by_joint_name.emplace(link.joint_name, i).second)
+    if (!link.joint_name.empty() && names.by_joint_name.insert(link.joint_name, i))
       ctx_.report("structure-duplicate-joint-name", link.source, "duplicated joint name \"" + link.joint_name + "\"");
   }
   return names;
@@ -499,11 +516,10 @@ std::vector<LinkIndex> BodyReader::link_parents(const Model& model, const std::v
                   "add parent: PARENT_LINK");
       continue;
     }
-    auto it = names.by_name.find(entry.parent_name);
-    if (it == names.by_name.end()) {
+    const std::optional<LinkIndex> found = names.by_name.find(entry.parent_name);
+    if (!found) {
       if (known.empty()) {
-        known.reserve(names.by_name.size());
-        for (const auto& [name, index] : names.by_name) known.push_back(name);
+        known = names.by_name.names();
         std::sort(known.begin(), known.end());
       }
       std::string_view guess = text::suggest(entry.parent_name, known);
@@ -513,13 +529,13 @@ std::vector<LinkIndex> BodyReader::link_parents(const Model& model, const std::v
       continue;
     }
     // A parent chain that comes back to this link is a cycle (§5.2).
-    if (roots.root_of(it->second) == i) {
+    if (roots.root_of(*found) == i) {
       ctx_.report("structure-cycle", entry.parent_site,
                   "adding \"" + link.name + "\" to link \"" + entry.parent_name + "\" would make a cycle");
       continue;
     }
-    parent[at(i)] = it->second;
-    roots.attach(i, it->second);
+    parent[at(i)] = *found;
+    roots.attach(i, *found);
   }
   return parent;
 }
@@ -588,13 +604,13 @@ bool BodyReader::build_tree(Model& model, const std::vector<LinkEntry>& entries,
   const LinkNames names = index_link_names(model);
   LinkIndex root = 0;
   if (root_link) {
-    auto it = names.by_name.find(std::string(root_link->scalar()));
-    if (it == names.by_name.end()) {
+    const std::optional<LinkIndex> found = names.by_name.find(root_link->scalar());
+    if (!found) {
       ctx_.report("structure-root-link", root_link.use_site(),
                   "link \"" + std::string(root_link->scalar()) + "\" specified in root_link is not defined");
       return false;
     }
-    root = it->second;
+    root = *found;
   }
   const std::vector<LinkIndex> parent = link_parents(model, entries, names, root);
   std::vector<std::vector<LinkIndex>> children(model.links.size());

@@ -6,6 +6,7 @@
 
 #include "load/elements.h"
 #include "load/load_context.h"
+#include "load/name_index.h"
 
 #include <map>
 #include <memory>
@@ -63,8 +64,8 @@ class BodyReader {
   bool build_tree(Model& model, const std::vector<struct LinkEntry>& entries, const yaml::NodeRef& root_link);
   /// Views of the names in `Model::links`: valid while the links are neither added nor moved.
   struct LinkNames {
-    std::unordered_map<std::string_view, LinkIndex> by_name;
-    std::unordered_map<std::string_view, LinkIndex> by_joint_name;
+    NameIndex by_name;
+    NameIndex by_joint_name;
   };
   LinkNames index_link_names(const Model& model);
   std::vector<LinkIndex> link_parents(const Model& model, const std::vector<struct LinkEntry>& entries,

@@ -224,7 +224,8 @@ void ElementReader::read_part(const yaml::NodeRef& node, ModelPart part, const E
   }
   if (auto shape = r.take({"shape"})) read_shape(shape, inner);
   read_elements(r.take({"elements"}), inner);
-  r.report_unknown(with(kTransformKeys, {"resource", "shape"}));
+  static const std::vector<std::string_view> kPartKeys = with(kTransformKeys, {"resource", "shape"});
+  r.report_unknown(kPartKeys);
 }
 
 void ElementReader::read_rigid_body(const yaml::NodeRef& node, const ElementFrame& frame) {
@@ -256,7 +257,9 @@ void ElementReader::read_rigid_body(const yaml::NodeRef& node, const ElementFram
   link().mass_contributions.push_back(c);
   ++rigid_bodies_;
   read_elements(r.take({"elements"}), inner);
-  r.report_unknown(with(kTransformKeys, {"center_of_mass", "mass", "inertia"}));
+  static const std::vector<std::string_view> kRigidBodyKeys =
+      with(kTransformKeys, {"center_of_mass", "mass", "inertia"});
+  r.report_unknown(kRigidBodyKeys);
 }
 
 void ElementReader::read_shape(const yaml::NodeRef& node, const ElementFrame& frame) {
@@ -283,7 +286,9 @@ void ElementReader::read_shape(const yaml::NodeRef& node, const ElementFrame& fr
                 "move it under appearance");
   }
   r.take({"is_meta_scene"});
-  r.report_unknown(with(kTransformKeys, {"geometry", "appearance", "is_meta_scene"}));
+  static const std::vector<std::string_view> kShapeKeys =
+      with(kTransformKeys, {"geometry", "appearance", "is_meta_scene"});
+  r.report_unknown(kShapeKeys);
   add_shape(std::move(shape), inner);
 }
 

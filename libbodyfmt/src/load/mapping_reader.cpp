@@ -10,8 +10,10 @@ namespace bodyfmt::detail {
 
 MappingReader::MappingReader(LoadContext& ctx, const yaml::NodeRef& mapping, std::string what)
     : ctx_(ctx), mapping_(mapping), what_(std::move(what)) {
-  if (mapping_ && mapping_->is_mapping()) consumed_.assign(mapping_->entries().size(), false);
-  legacy_.reserve(32);  // a link's mapping records about twenty spellings
+  if (mapping_ && mapping_->is_mapping()) {
+    consumed_.assign(mapping_->entries().size(), false);
+    for (const yaml::MapEntry& entry : mapping_->entries()) key_filter_ |= filter_bit(entry.key);
+  }
 }
 
 void MappingReader::consume(const yaml::MapEntry* entry) {
@@ -29,10 +31,13 @@ yaml::NodeRef MappingReader::take(KeyNames names) {
   bool modern = true;
   // Recorded for report_unknown, which drops repeats: a lookup here would cost every take()
   // a scan of the spellings so far.
-  for (std::string_view name : names)
-    if (name != *names.begin()) legacy_.emplace_back(name, *names.begin());
+  for (auto legacy = names.begin(); legacy != names.end(); ++legacy) {
+    if (legacy == names.begin()) continue;
+    if (legacy_.empty()) legacy_.reserve(32);  // a link's mapping records about twenty spellings
+    legacy_.emplace_back(*legacy, *names.begin());
+  }
   for (std::string_view name : names) {
-    if (const yaml::MapEntry* entry = mapping_->find(name)) {
+    if (const yaml::MapEntry* entry = find(name)) {
       consume(entry);
       if (!modern) {
         // Located at the key: that is the text to change. Take() found no earlier spelling in
@@ -53,12 +58,12 @@ yaml::NodeRef MappingReader::take(KeyNames names) {
 
 bool MappingReader::has(KeyNames names) const {
   if (!mapping_ || !mapping_->is_mapping()) return false;
-  return std::any_of(names.begin(), names.end(), [&](std::string_view n) { return mapping_->find(n) != nullptr; });
+  return std::any_of(names.begin(), names.end(), [&](std::string_view n) { return find(n) != nullptr; });
 }
 
 void MappingReader::ignore(std::string_view name) {
   if (!mapping_ || !mapping_->is_mapping()) return;
-  if (const yaml::MapEntry* entry = mapping_->find(name)) consume(entry);
+  if (const yaml::MapEntry* entry = find(name)) consume(entry);
 }
 
 bool MappingReader::unique_guess(std::string_view key, const std::vector<std::string_view>& candidates,
@@ -78,12 +83,15 @@ bool MappingReader::has_spelling_of(std::string_view modern) const {
   return false;
 }
 
+bool MappingReader::has_unknown() const {
+  if (!mapping_ || !mapping_->is_mapping()) return false;
+  for (std::size_t i = 0; i < consumed_.size(); ++i)
+    if (!consumed_[i] && !mapping_->entries()[i].merged) return true;
+  return false;
+}
+
 void MappingReader::report_unknown(const std::vector<std::string_view>& known) {
-  if (!mapping_ || !mapping_->is_mapping()) return;
-  bool any_unknown = false;
-  for (std::size_t i = 0; i < consumed_.size() && !any_unknown; ++i)
-    any_unknown = !consumed_[i] && !mapping_->entries()[i].merged;
-  if (!any_unknown) return;
+  if (!has_unknown()) return;
   // Legacy spellings are candidates too (a typo of `jointRange` is closer to it than to
   // `joint_range`); the hint then names the modern spelling.
   std::vector<std::string_view> candidates = known;

@@ -4,6 +4,7 @@
 
 #include "load/load_context.h"
 
+#include <cstdint>
 #include <initializer_list>
 #include <optional>
 #include <string>
@@ -32,6 +33,10 @@ class MappingReader {
   /// (edit distance) is a probable typo: `load-unknown-key` warning with a did-you-mean hint.
   /// Other keys are kept as info by Choreonoid: `load-info-key` note.
   void report_unknown(const std::vector<std::string_view>& known);
+  /// The same; the list is copied only when there is something to report.
+  void report_unknown(std::initializer_list<std::string_view> known) {
+    if (has_unknown()) report_unknown(std::vector<std::string_view>(known));
+  }
 
   const yaml::NodeRef& node() const { return mapping_; }
   const std::string& what() const { return what_; }
@@ -41,18 +46,33 @@ class MappingReader {
   /// No candidate other than a spelling of `guess` is as close to `key`.
   bool unique_guess(std::string_view key, const std::vector<std::string_view>& candidates,
                     std::string_view guess) const;
+  /// A key of the mapping was neither taken nor ignored (nor merged).
+  bool has_unknown() const;
   /// A legacy spelling of `modern` is a key of the mapping.
   bool has_spelling_of(std::string_view modern) const;
 
   /// The modern spelling of a legacy one seen by take(), or "" when `name` is none.
   std::string_view modern_of(std::string_view name) const;
   void consume(const yaml::MapEntry* entry);
+  /// The mapping's entry `key`; most of a link's forty spellings are absent, and the filter
+  /// rules nearly all of those out without a scan of the entries. Inline: take() calls it
+  /// once per spelling.
+  const yaml::MapEntry* find(std::string_view key) const {
+    return (key_filter_ & filter_bit(key)) != 0 ? mapping_->find(key) : nullptr;
+  }
+  static std::uint64_t filter_bit(std::string_view key) {
+    if (key.empty()) return 0;
+    const auto first = static_cast<unsigned char>(key.front());
+    const auto last = static_cast<unsigned char>(key.back());
+    return std::uint64_t{1} << ((key.size() * 7 + first + last * 3) & 63);
+  }
 
   // A link's mapping is read with some forty take() calls: the bookkeeping is flat and
   // allocates once per mapping, not once per key.
   LoadContext& ctx_;
   yaml::NodeRef mapping_;
   std::string what_;
+  std::uint64_t key_filter_ = 0;                                       ///< filter_bit of every key of the mapping
   std::vector<bool> consumed_;                                         ///< per entry of the mapping
   std::vector<std::pair<std::string_view, std::string_view>> legacy_;  ///< legacy spelling, modern
 };

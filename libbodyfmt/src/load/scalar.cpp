@@ -3,6 +3,7 @@
 #include "text/text_util.h"
 
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <string_view>
@@ -43,7 +44,23 @@ bool report_if_not_finite(LoadContext& ctx, const yaml::NodeRef& ref, double val
 
 }  // namespace
 
+std::optional<double> parse_plain_decimal(std::string_view text) {
+  // from_chars reads the decimal forms strtod reads, without the sign '+', leading blanks,
+  // hexadecimal, inf and nan; only a text that starts like a decimal number and is read whole
+  // and in range is taken, so it means what strtod makes of it: both round correctly.
+  const char* p = text.data();
+  const char* const end = p + text.size();
+  const char* digits = p != end && *p == '-' ? p + 1 : p;
+  if (digits != end && *digits == '.') ++digits;
+  if (digits == end || *digits < '0' || *digits > '9') return std::nullopt;
+  double value = 0;
+  const auto [stop, error] = std::from_chars(p, end, value);
+  if (error != std::errc() || stop != end) return std::nullopt;
+  return value;
+}
+
 std::optional<double> parse_double_exact(std::string_view text) {
+  if (auto value = parse_plain_decimal(text)) return value;
   if (text.empty()) return std::nullopt;
   const char* begin = text.data();
   char* end = nullptr;
@@ -55,7 +72,8 @@ std::optional<double> parse_double_exact(std::string_view text) {
 std::optional<double> required_double(LoadContext& ctx, const yaml::NodeRef& ref) {
   if (!is_scalar(ctx, ref, "a number")) return std::nullopt;
   const std::string_view text = ref->scalar();
-  const char* begin = text.data();  // NUL-terminated
+  if (auto value = parse_plain_decimal(text)) return value;  // finite and whole: nothing to report
+  const char* begin = text.data();                           // NUL-terminated
   char* end = nullptr;
   double value = std::strtod(begin, &end);
   if (is_yaml_special_float(text)) {

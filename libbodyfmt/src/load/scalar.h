@@ -7,6 +7,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 
 namespace bodyfmt::detail {
 
@@ -24,5 +25,9 @@ std::optional<bool> optional_bool(LoadContext& ctx, const yaml::NodeRef& ref);
 /// Parses a whole scalar as a double, nothing else (no diagnostics). `text.data()` must be
 /// NUL-terminated, as a yaml::Node's scalar is.
 std::optional<double> parse_double_exact(std::string_view text);
+
+/// The fast path of both: `text` when it is a whole, finite decimal number such as `-0.25`
+/// or `1e-3` (the value strtod gives), nullopt for anything else, which strtod then reads.
+std::optional<double> parse_plain_decimal(std::string_view text);
 
 }  // namespace bodyfmt::detail

@@ -22,27 +22,42 @@ bool is_sequence_of_sequences(const yaml::NodeRef& ref) {
 
 }  // namespace
 
+namespace {
+
+// Reads the `size` numbers of sequence `ref` into `out` (the caller checked the size); false
+// at the first one that fails, which is reported. No heap: a link reads several of these.
+bool read_items(LoadContext& ctx, const yaml::NodeRef& ref, double* out) {
+  for (const yaml::NodeRef& item : ref->items()) {
+    auto x = required_double(ctx, ref.child(item));
+    if (!x) return false;
+    *out++ = *x;
+  }
+  return true;
+}
+
+bool has_size(LoadContext& ctx, const yaml::NodeRef& ref, int size) {
+  if (!expect_sequence(ctx, ref, "this value")) return false;
+  if (static_cast<int>(ref->items().size()) == size) return true;
+  ctx.report("load-vector-size", ref,
+             "a " + std::to_string(size) + "-element vector is expected, found " + std::to_string(ref->items().size()) +
+                 " elements");
+  return false;
+}
+
+}  // namespace
+
 std::optional<Eigen::VectorXd> read_vector(LoadContext& ctx, const yaml::NodeRef& ref, int size) {
-  if (!expect_sequence(ctx, ref, "this value")) return std::nullopt;
-  if (static_cast<int>(ref->items().size()) != size) {
-    ctx.report("load-vector-size", ref,
-               "a " + std::to_string(size) + "-element vector is expected, found " +
-                   std::to_string(ref->items().size()) + " elements");
-    return std::nullopt;
-  }
+  if (!has_size(ctx, ref, size)) return std::nullopt;
   Eigen::VectorXd v(size);
-  for (int i = 0; i < size; ++i) {
-    auto x = required_double(ctx, ref.child(ref->items()[static_cast<std::size_t>(i)]));
-    if (!x) return std::nullopt;
-    v[i] = *x;
-  }
+  if (!read_items(ctx, ref, v.data())) return std::nullopt;
   return v;
 }
 
 std::optional<Eigen::Vector3d> read_vec3(LoadContext& ctx, const yaml::NodeRef& ref) {
-  auto v = read_vector(ctx, ref, 3);
-  if (!v) return std::nullopt;
-  return Eigen::Vector3d(*v);
+  if (!has_size(ctx, ref, 3)) return std::nullopt;
+  Eigen::Vector3d v;
+  if (!read_items(ctx, ref, v.data())) return std::nullopt;
+  return v;
 }
 
 std::optional<Eigen::Vector3d> read_optional_vec3(LoadContext& ctx, const yaml::NodeRef& ref) {
@@ -120,9 +135,8 @@ std::optional<Eigen::Matrix3d> read_inertia(LoadContext& ctx, const yaml::NodeRe
                "the number of elements of an inertia value must be six or nine, found " + std::to_string(n));
     return std::nullopt;
   }
-  auto values = read_numbers(ctx, ref);
-  if (!values) return std::nullopt;
-  const std::vector<double>& v = *values;
+  double v[9];
+  if (!read_items(ctx, ref, v)) return std::nullopt;
   Eigen::Matrix3d I;
   if (n == 6) {
     I << v[0], v[1], v[2], v[1], v[3], v[4], v[2], v[4], v[5];

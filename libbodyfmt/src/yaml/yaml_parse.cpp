@@ -238,7 +238,7 @@ class TreeBuilder {
       Key key;
       key.text = document_.store(value);
       key.location = where;
-      key.span = scalar_span(value, where, e.start_mark, e.end_mark, scalar.style);
+      key.span = scalar_span(value, where, e);
       accept_key(frames_.back(), key);
       frames_.back().expecting_key = false;
       return;
@@ -246,7 +246,7 @@ class TreeBuilder {
     Node* node = begin_node(NodeKind::kScalar, e.start_mark, scalar.anchor, scalar.tag);
     node->set_scalar(document_.store(value));
     node->plain = plain;
-    node->span = scalar_span(value, node->location, e.start_mark, e.end_mark, scalar.style);
+    node->span = scalar_span(value, node->location, e);
     // `key:` with nothing after it: the empty value has no text of its own; it is reported at
     // its key rather than at wherever libyaml's scanner stood.
     if (node->plain && node->scalar().empty() && scalar.anchor == nullptr && scalar.tag == nullptr &&
@@ -282,14 +282,18 @@ class TreeBuilder {
 
   // Where the scalar's value is written verbatim, for fix-its: after its properties, inside its
   // quotes, on its first line, and only when the text equals the value (no escapes, no folding).
-  TextSpan scalar_span(std::string_view value, const SourceLocation& where, const yaml_mark_t& start,
-                       const yaml_mark_t& end, yaml_scalar_style_t style) {
+  TextSpan scalar_span(std::string_view value, const SourceLocation& where, const yaml_event_t& e) {
+    const yaml_mark_t& start = e.start_mark;
+    const yaml_mark_t& end = e.end_mark;
+    const yaml_scalar_style_t style = e.data.scalar.style;
+    const bool has_properties = e.data.scalar.anchor != nullptr || e.data.scalar.tag != nullptr;
     TextSpan span;
     if (!utf8_ || value.empty()) return span;
     const bool quoted = style == YAML_SINGLE_QUOTED_SCALAR_STYLE || style == YAML_DOUBLE_QUOTED_SCALAR_STYLE;
     if (style != YAML_PLAIN_SCALAR_STYLE && !quoted) return span;
     const std::size_t first = offset(start);
-    std::size_t begin = scan_node_text(text_, first).content;
+    // The mark is at the first property (`&a`, `!tag`) when there are any, else at the value.
+    std::size_t begin = has_properties ? scan_node_text(text_, first).content : first;
     std::size_t stop = offset(end);
     if (quoted) {
       ++begin;
@@ -514,8 +518,10 @@ class TreeBuilder {
     constexpr std::size_t kScanLimit = 16;
     const std::size_t count = entries_.size() - frame.first_child;
     if (count <= kScanLimit) {
+      // Keys are never empty here; the first byte settles most mismatches without memcmp.
       for (std::size_t i = frame.first_child; i < entries_.size(); ++i) {
-        if (entries_[i].key == key) return i;
+        const std::string_view other = entries_[i].key;
+        if (other.size() == key.size() && other[0] == key[0] && other == key) return i;
       }
       return std::string_view::npos;
     }
