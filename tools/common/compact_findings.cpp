@@ -58,7 +58,7 @@ CompactFindings::Text CompactFindings::store(std::uint16_t rule, std::string_vie
   const std::string_view middle = message.substr(prefix, message.size() - prefix - suffix);
   const std::size_t size = lengths.size() + middle.size();
   if (blocks_.empty() || used_in_last_block_ + size > kBlockBytes) {
-    blocks_.push_back(std::make_unique<char[]>(std::max(kBlockBytes, size)));
+    blocks_.emplace_back(new char[std::max(kBlockBytes, size)]);  // not zeroed: pages are touched as they fill
     used_in_last_block_ = 0;
   }
   const Text stored{static_cast<std::uint32_t>(blocks_.size() - 1), static_cast<std::uint32_t>(used_in_last_block_),
