@@ -137,31 +137,20 @@ using Geometry = std::variant<Box, Sphere, Cylinder, Cone, Capsule, HeapValue<Ex
                               HeapValue<IndexedFaceSet>, HeapValue<TriangleMeshGeometry>, HeapValue<MeshResource>>;
 
 namespace detail {
+template <typename T, typename Variant>
+struct IsAlternative;
+template <typename T, typename... Ts>
+struct IsAlternative<T, std::variant<Ts...>> : std::bool_constant<(std::is_same_v<T, Ts> || ...)> {};
+template <typename T>
+struct IsHeapValue : std::false_type {};
+template <typename T>
+struct IsHeapValue<HeapValue<T>> : std::true_type {};
+/// How a geometry type is stored in Geometry: itself (the primitives) or in a HeapValue.
 template <typename T>
 struct GeometryStorage {
-  using type = T;
-};
-template <typename T>
-struct GeometryStorage<HeapValue<T>>;  // name the geometry type, not its storage
-template <>
-struct GeometryStorage<Extrusion> {
-  using type = HeapValue<Extrusion>;
-};
-template <>
-struct GeometryStorage<ElevationGrid> {
-  using type = HeapValue<ElevationGrid>;
-};
-template <>
-struct GeometryStorage<IndexedFaceSet> {
-  using type = HeapValue<IndexedFaceSet>;
-};
-template <>
-struct GeometryStorage<TriangleMeshGeometry> {
-  using type = HeapValue<TriangleMeshGeometry>;
-};
-template <>
-struct GeometryStorage<MeshResource> {
-  using type = HeapValue<MeshResource>;
+  static_assert(!IsHeapValue<T>::value, "name the geometry type, not its storage");
+  using type = std::conditional_t<IsAlternative<T, Geometry>::value, T, HeapValue<T>>;
+  static_assert(IsAlternative<type, Geometry>::value, "name a geometry type (Box, ..., MeshResource)");
 };
 }  // namespace detail
 

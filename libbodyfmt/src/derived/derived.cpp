@@ -98,6 +98,15 @@ bool computable(const MassProperties& m) {
 
 namespace {
 
+/// The contribution of `link` with the largest `measure`, or nullptr when it has none.
+template <typename Measure>
+const MassContribution* largest_contribution(const Link& link, Measure measure) {
+  const MassContribution* largest = nullptr;
+  for (const MassContribution& c : link.mass_contributions)
+    if (!largest || measure(c) > measure(*largest)) largest = &c;
+  return largest;
+}
+
 // Every loaded number is finite, but sums and products of huge ones need not be: a RigidBody
 // 1e306 m from its link makes the parallel-axis term infinite. Said once per link, at the
 // values that combine, so that no tool writes or simulates the NaN that follows.
@@ -108,30 +117,25 @@ void report_overflow(const Model& model, const Derived& d, DiagnosticSink& sink)
   for (std::size_t i = 0; i < model.links.size(); ++i) {
     const Link& link = model.links[i];
     const MassProperties& m = d.mass[i];
-    const bool mass_finite = std::isfinite(m.mass) && m.center_of_mass.allFinite() && m.inertia.allFinite();
     const bool frame_finite = d.X_WL[i].matrix().allFinite() && X_RL[i].matrix().allFinite();
-    const double largest_moment = mass_finite ? m.inertia.cwiseAbs().maxCoeff() : 0;
-    if (mass_finite && frame_finite && largest_moment > kLargestComputableInertia) {
+    if (computable(m) && frame_finite) continue;
+    const bool mass_finite = std::isfinite(m.mass) && m.center_of_mass.allFinite() && m.inertia.allFinite();
+    if (mass_finite && frame_finite) {  // finite, but too large to decompose
       // The culprit: the contribution with the largest own or parallel-axis term.
-      const auto size = [](const MassContribution& c) {
+      const MassContribution* largest = largest_contribution(link, [](const MassContribution& c) {
         return c.inertia.cwiseAbs().maxCoeff() + std::abs(c.mass) * c.center_of_mass.squaredNorm();
-      };
-      const MassContribution* largest = nullptr;
-      for (const MassContribution& c : link.mass_contributions)
-        if (!largest || size(c) > size(*largest)) largest = &c;
+      });
       report_rule(
           sink, "derived-not-finite", largest && largest->source.known() ? largest->source : link.source,
           fmt::format("the combined inertia of link \"{}\" reaches {:g} kg·m², beyond {:g}, where its principal "
                       "moments and every balanced or exported tensor overflow to infinity or NaN",
-                      link.name, largest_moment, kLargestComputableInertia),
+                      link.name, m.inertia.cwiseAbs().maxCoeff(), kLargestComputableInertia),
           "no body has an inertia this large (the Earth's is 8e37 kg·m²); check the exponents");
       continue;
     }
-    if (mass_finite && frame_finite) continue;
     // The culprit of an overflowing sum is the contribution farthest out.
-    const MassContribution* farthest = nullptr;
-    for (const MassContribution& c : link.mass_contributions)
-      if (!farthest || c.center_of_mass.norm() > farthest->center_of_mass.norm()) farthest = &c;
+    const MassContribution* farthest =
+        largest_contribution(link, [](const MassContribution& c) { return c.center_of_mass.norm(); });
     const SourceLocation at = !mass_finite && farthest && farthest->source.known()  ? farthest->source
                               : !frame_finite && link.sources.translation().known() ? link.sources.translation()
                                                                                     : link.source;
