@@ -78,12 +78,33 @@ std::vector<LinkBounds> compute_choreonoid_bounds(const Model& model, Diagnostic
   return bounds;
 }
 
+namespace {
+
+// The box of compute_shape_mesh(model, shape), without building that mesh: each vertex is
+// placed by the same product as append_mesh's, so the box is the same to the bit. Imported
+// parts are boxed one by one rather than copied into one mesh first.
+BoundingBox shape_bounds(const Model& model, const Shape& shape, DiagnosticSink& sink) {
+  const auto* resource = geometry_if<MeshResource>(shape.geometry);
+  if (resource == nullptr) {
+    return bounding_box(tessellate(shape.geometry, shape.division_number, sink, shape.source, TexCoords::kNone),
+                        shape.X_LS);
+  }
+  BoundingBox box;
+  if (resource->mesh >= 0 && resource->mesh < static_cast<MeshIndex>(model.meshes.size())) {
+    for (const MeshPart& part : model.meshes[static_cast<std::size_t>(resource->mesh)].parts)
+      box.add(bounding_box(part.mesh, shape.X_LS));
+  }
+  return box;
+}
+
+}  // namespace
+
 std::vector<LinkBounds> compute_link_bounds(const Model& model, DiagnosticSink& outer) {
   GeometryAlreadyReported sink(outer);
   std::vector<LinkBounds> bounds(model.links.size());
   for (std::size_t i = 0; i < model.links.size(); ++i) {
     for (const Shape& shape : model.links[i].shapes) {
-      const BoundingBox box = bounding_box(compute_shape_mesh(model, shape, sink));
+      const BoundingBox box = shape_bounds(model, shape, sink);
       if (shape.visual) bounds[i].visual.add(box);
       if (shape.collision) bounds[i].collision.add(box);
     }

@@ -11,13 +11,17 @@ namespace bodyfmt::detail {
 MappingReader::MappingReader(LoadContext& ctx, const yaml::NodeRef& mapping, std::string what)
     : ctx_(ctx), mapping_(mapping), what_(std::move(what)) {
   if (mapping_ && mapping_->is_mapping()) {
-    consumed_.assign(mapping_->entries().size(), false);
+    if (mapping_->entries().size() > kInlineEntries) consumed_large_.assign(mapping_->entries().size(), false);
     for (const yaml::MapEntry& entry : mapping_->entries()) key_filter_ |= filter_bit(entry.key);
   }
 }
 
 void MappingReader::consume(const yaml::MapEntry* entry) {
-  consumed_[static_cast<std::size_t>(entry - mapping_->entries().begin())] = true;
+  const auto i = static_cast<std::size_t>(entry - mapping_->entries().begin());
+  if (consumed_large_.empty())
+    consumed_small_ |= std::uint64_t{1} << i;
+  else
+    consumed_large_[i] = true;
 }
 
 std::string_view MappingReader::modern_of(std::string_view name) const {
@@ -85,8 +89,8 @@ bool MappingReader::has_spelling_of(std::string_view modern) const {
 
 bool MappingReader::has_unknown() const {
   if (!mapping_ || !mapping_->is_mapping()) return false;
-  for (std::size_t i = 0; i < consumed_.size(); ++i)
-    if (!consumed_[i] && !mapping_->entries()[i].merged) return true;
+  for (std::size_t i = 0; i < mapping_->entries().size(); ++i)
+    if (!consumed(i) && !mapping_->entries()[i].merged) return true;
   return false;
 }
 
@@ -102,7 +106,7 @@ void MappingReader::report_unknown(const std::vector<std::string_view>& known) {
                    candidates.end());
   for (std::size_t i = 0; i < mapping_->entries().size(); ++i) {
     const yaml::MapEntry& entry = mapping_->entries()[i];
-    if (consumed_[i] || entry.merged) continue;
+    if (consumed(i) || entry.merged) continue;
     std::string_view guess = text::suggest(entry.key, candidates);
     if (std::string_view modern = modern_of(guess); !modern.empty()) guess = modern;
     if (!guess.empty()) {

@@ -67,13 +67,19 @@ class MappingReader {
     return std::uint64_t{1} << ((key.size() * 7 + first + last * 3) & 63);
   }
 
-  // A link's mapping is read with some forty take() calls: the bookkeeping is flat and
-  // allocates once per mapping, not once per key.
+  // A link's mapping is read with some forty take() calls: the bookkeeping is flat.
   LoadContext& ctx_;
   yaml::NodeRef mapping_;
   std::string what_;
-  std::uint64_t key_filter_ = 0;                                       ///< filter_bit of every key of the mapping
-  std::vector<bool> consumed_;                                         ///< per entry of the mapping
+  std::uint64_t key_filter_ = 0;  ///< filter_bit of every key of the mapping
+  // Which entries were taken or ignored: a bit each, inline for the mappings of up to 64 keys
+  // that models are made of (three or four per link), so that reading one allocates nothing.
+  static constexpr std::size_t kInlineEntries = 64;
+  bool consumed(std::size_t i) const {
+    return consumed_large_.empty() ? ((consumed_small_ >> i) & 1U) != 0 : consumed_large_[i];
+  }
+  std::uint64_t consumed_small_ = 0;
+  std::vector<bool> consumed_large_;  ///< instead, for a mapping of more than kInlineEntries keys
   std::vector<std::pair<std::string_view, std::string_view>> legacy_;  ///< legacy spelling, modern
 };
 

@@ -82,3 +82,25 @@ links:
   CHECK(pos(d) == Pos{5, 5});
   r.expect_clean();
 }
+
+// MappingReader keeps what it consumed in one inline word up to 64 keys and in a vector
+// beyond: a key at either side of that boundary must be read, and every other one reported.
+TEST_CASE("load: mappings of 64 and of 65 keys read the last key and report each unread one") {
+  for (int extras : {62, 63}) {
+    CAPTURE(extras);
+    std::string text = "links:\n  - name: A\n";
+    for (int i = 0; i < extras; ++i) text += "    kept_as_information_" + std::to_string(i) + ": 1\n";
+    text += "    mass: 2.5\n";  // the mapping's entry 63 (inline bit 63), or 64 (the vector)
+    auto r = load_v2(text);
+    REQUIRE(r.link("A").mass_contributions.size() == 1);
+    CHECK(r.link("A").mass_contributions[0].mass == 2.5);
+    int reported = 0;
+    while (r.has("load-info-key")) {
+      auto d = r.take("load-info-key");
+      CHECK(d.message.find("mass") == std::string::npos);
+      ++reported;
+    }
+    CHECK(reported == extras);
+    r.expect_clean();  // nor is "mass" reported as a misspelling of itself
+  }
+}
