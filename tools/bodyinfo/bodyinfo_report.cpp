@@ -1,5 +1,6 @@
 #include "bodyinfo_report.h"
 
+#include <fmt/compile.h>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -19,7 +20,7 @@ void append_number(std::string& out, double v) {
   } else if (v == 0) {
     out += '0';  // no "-0"
   } else {
-    fmt::format_to(std::back_inserter(out), "{}", v);
+    fmt::format_to(std::back_inserter(out), FMT_COMPILE("{}"), v);
   }
 }
 
@@ -76,9 +77,9 @@ void append_range(std::string& out, const Link& link) {
     if (std::abs(v) >= kUnlimited) {
       out += v > 0 ? "+inf" : "-inf";
     } else if (link.joint_type == JointType::kRevolute) {
-      fmt::format_to(std::back_inserter(out), "{:.4g} deg", degrees(v));
+      fmt::format_to(std::back_inserter(out), FMT_COMPILE("{:.4g} deg"), degrees(v));
     } else {
-      fmt::format_to(std::back_inserter(out), "{:.4g} m", v);
+      fmt::format_to(std::back_inserter(out), FMT_COMPILE("{:.4g} m"), v);
     }
   };
   out += " range [";
@@ -94,16 +95,17 @@ void append_range(std::string& out, const Link& link) {
 constexpr int kMaxIndent = 32;
 
 void summary_link(std::string& out, const Model& model, const Derived& derived, LinkIndex i, int depth) {
-  // Appended in place, without temporary strings: one line per link of a 100,000-link model.
+  // Appended in place, without temporary strings, through format strings parsed at compile
+  // time (parsing them at run time was 2 % of bodyinfo on a 100,000-link chain).
   const Link& link = model.links[static_cast<std::size_t>(i)];
   const MassProperties& m = derived.mass[static_cast<std::size_t>(i)];
   auto to = std::back_inserter(out);
   out.append(static_cast<std::size_t>(std::min(depth, kMaxIndent) * 2), ' ');
-  if (depth > kMaxIndent) fmt::format_to(to, "[depth {}] ", depth);
+  if (depth > kMaxIndent) fmt::format_to(to, FMT_COMPILE("[depth {}] "), depth);
   out += link.name;
   out += "  (";
   out += joint_type_name(link.joint_type);
-  if (link.joint_id >= 0) fmt::format_to(to, " #{}", link.joint_id);
+  if (link.joint_id >= 0) fmt::format_to(to, FMT_COMPILE(" #{}"), link.joint_id);
   if (link.joint_type == JointType::kRevolute || link.joint_type == JointType::kPrismatic ||
       link.joint_type == JointType::kPseudoContinuousTrack) {
     out += " axis [";
@@ -114,7 +116,7 @@ void summary_link(std::string& out, const Model& model, const Derived& derived, 
     out += ']';
   }
   append_range(out, link);
-  fmt::format_to(to, ")  {:.6g} kg\n", m.mass);
+  fmt::format_to(to, FMT_COMPILE(")  {:.6g} kg\n"), m.mass);
 }
 
 }  // namespace

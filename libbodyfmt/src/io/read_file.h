@@ -4,13 +4,26 @@
 // anything is read.
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 
 namespace bodyfmt::detail {
 
-/// Text of the regular file at `path`, or nullopt with `why` set to a reason for the user
+/// A file's bytes in a buffer that nothing writes before the read does: a std::string of the
+/// file's size would be zero-filled first, 24 MB for a 100,000-link model.
+struct FileBytes {
+  std::unique_ptr<char[]> data;
+  std::size_t size = 0;
+  std::string_view view() const { return {data.get(), size}; }
+};
+
+/// The bytes of the regular file at `path`, or nullopt with `why` set to a reason for the user
 /// ("no such file", "is a directory, not a file", "is larger than the limit of N bytes", ...).
+std::optional<FileBytes> read_regular_file_bytes(const std::string& path, std::uintmax_t max_bytes, std::string& why);
+
+/// The same, as a string.
 std::optional<std::string> read_regular_file(const std::string& path, std::uintmax_t max_bytes, std::string& why);
 
 /// Checks what read_regular_file checks, without reading (for files another library reads).

@@ -161,7 +161,7 @@ class BodyReader::LinkStream : public yaml::SequenceConsumer {
   double format_version_ = 0;
 };
 
-std::optional<Model> BodyReader::read(const std::string& text, const std::string& file_name, bool top_level) {
+std::optional<Model> BodyReader::read(std::string_view text, const std::string& file_name, bool top_level) {
   bool read_again = false;
   std::optional<Model> model = read_once(text, file_name, top_level, options_.stream_links, read_again);
   if (!read_again) return model;
@@ -169,7 +169,7 @@ std::optional<Model> BodyReader::read(const std::string& text, const std::string
   return again.read_once(text, file_name, top_level, false, read_again);
 }
 
-std::optional<Model> BodyReader::read_once(const std::string& text, const std::string& file_name, bool top_level,
+std::optional<Model> BodyReader::read_once(std::string_view text, const std::string& file_name, bool top_level,
                                            bool stream, bool& read_again) {
   struct ChainEntry {  // recursion detection for SubBody includes (§11.2)
     std::vector<std::string>& chain;

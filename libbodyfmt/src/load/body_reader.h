@@ -32,7 +32,7 @@ class BodyReader {
   BodyReader(const LoadOptions& options, DiagnosticSink& sink, LoadSession& session);
   ~BodyReader();
   /// `top_level`: the file the user asked for (imports meshes once everything is read).
-  std::optional<Model> read(const std::string& text, const std::string& file_name, bool top_level = true);
+  std::optional<Model> read(std::string_view text, const std::string& file_name, bool top_level = true);
 
  private:
   class LinkStream;
@@ -51,7 +51,7 @@ class BodyReader {
 
   /// One reading of the file; sets `read_again` when links read during the parse turn out to
   /// have been read with the wrong header (written after `links`, see LinkStream).
-  std::optional<Model> read_once(const std::string& text, const std::string& file_name, bool top_level, bool stream,
+  std::optional<Model> read_once(std::string_view text, const std::string& file_name, bool top_level, bool stream,
                                  bool& read_again);
   bool read_header(LoadContext& ctx, const yaml::NodeRef& root, Model& model);
   void read_links(const yaml::NodeRef& links, Model& model, std::vector<struct LinkEntry>& entries);

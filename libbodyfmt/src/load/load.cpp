@@ -9,18 +9,10 @@
 
 namespace bodyfmt {
 
-std::optional<Model> load_body(const std::string& path, const LoadOptions& options, DiagnosticSink& sink) {
-  std::string why;
-  const std::optional<std::string> text = detail::read_regular_file(path, options.max_file_bytes, why);
-  if (!text) {
-    report_rule(sink, "io-read", SourceLocation{path, 0, 0}, "cannot read \"" + path + "\": " + why);
-    return std::nullopt;
-  }
-  return load_body_string(*text, path, options, sink);
-}
+namespace {
 
-std::optional<Model> load_body_string(const std::string& text, const std::string& file_name, const LoadOptions& options,
-                                      DiagnosticSink& sink) {
+std::optional<Model> load_body_text(std::string_view text, const std::string& file_name, const LoadOptions& options,
+                                    DiagnosticSink& sink) {
   try {
     detail::LoadSession session;
     detail::BodyReader reader(options, sink, session);
@@ -31,6 +23,23 @@ std::optional<Model> load_body_string(const std::string& text, const std::string
                 std::string("internal error while loading: ") + e.what());
     return std::nullopt;
   }
+}
+
+}  // namespace
+
+std::optional<Model> load_body(const std::string& path, const LoadOptions& options, DiagnosticSink& sink) {
+  std::string why;
+  const std::optional<detail::FileBytes> bytes = detail::read_regular_file_bytes(path, options.max_file_bytes, why);
+  if (!bytes) {
+    report_rule(sink, "io-read", SourceLocation{path, 0, 0}, "cannot read \"" + path + "\": " + why);
+    return std::nullopt;
+  }
+  return load_body_text(bytes->view(), path, options, sink);
+}
+
+std::optional<Model> load_body_string(const std::string& text, const std::string& file_name, const LoadOptions& options,
+                                      DiagnosticSink& sink) {
+  return load_body_text(text, file_name, options, sink);
 }
 
 }  // namespace bodyfmt
