@@ -30,7 +30,7 @@ class FileName {
 
   const std::string& str() const;
   operator const std::string&() const { return str(); }  // NOLINT: reads as a string
-  bool empty() const { return str().empty(); }
+  bool empty() const { return id_ == 0; }                // the empty name is never interned
   const char* c_str() const { return str().c_str(); }
 
   friend bool operator==(FileName a, FileName b) { return a.id_ == b.id_; }

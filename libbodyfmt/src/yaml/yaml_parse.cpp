@@ -177,6 +177,7 @@ class TreeBuilder {
   // and move to the arena, in one piece, when it closes.
   struct Frame {
     Node* node = nullptr;
+    bool mapping = false;            // node->is_mapping(), asked for every event without a load of the node
     bool is_key = false;             // the collection itself is a (complex) mapping key
     std::size_t count_at_start = 0;  // expanded_count_ before this collection was opened
     std::size_t first_child = 0;     // index into items_ or entries_
@@ -252,7 +253,7 @@ class TreeBuilder {
     // `key:` with nothing after it: the empty value has no text of its own; it is reported at
     // its key rather than at wherever libyaml's scanner stood.
     if (node->plain && node->scalar().empty() && scalar.anchor == nullptr && scalar.tag == nullptr &&
-        !frames_.empty() && frames_.back().node->is_mapping() && !frames_.back().expecting_key) {
+        !frames_.empty() && frames_.back().mapping && !frames_.back().expecting_key) {
       node->location = frames_.back().key.location;
     }
     finish_scalar(node);
@@ -311,9 +312,7 @@ class TreeBuilder {
     return span;
   }
 
-  bool in_key_position() const {
-    return !frames_.empty() && frames_.back().node->is_mapping() && frames_.back().expecting_key;
-  }
+  bool in_key_position() const { return !frames_.empty() && frames_.back().mapping && frames_.back().expecting_key; }
 
   Node* begin_node(NodeKind kind, const yaml_mark_t& mark, const yaml_char_t* anchor, const yaml_char_t* tag) {
     Node* node = document_.make_node();
@@ -385,6 +384,7 @@ class TreeBuilder {
     const bool streamed = streamable && offer_to_stream(*node);
     Frame frame;
     frame.node = node;
+    frame.mapping = node->is_mapping();
     frame.is_key = in_key_position();
     frame.count_at_start = expanded_count_ - (frame.is_key ? 0 : 1);
     frame.first_child = node->is_mapping() ? entries_.size() : items_.size();
@@ -479,7 +479,7 @@ class TreeBuilder {
       return;
     }
     Frame& frame = frames_.back();
-    if (frame.node->is_sequence()) {
+    if (!frame.mapping) {
       items_.push_back(ref);
     } else if (frame.expecting_key) {
       Key key;
