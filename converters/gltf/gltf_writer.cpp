@@ -127,6 +127,21 @@ class ReleaseAfterCopy : public Assimp::ProgressHandler {
   bool released_ = false;
 };
 
+// Passes findings on, counting them.
+class CountingSink : public DiagnosticSink {
+ public:
+  explicit CountingSink(DiagnosticSink& inner) : inner_(inner) {}
+  void report(Diagnostic d) override {
+    ++count_;
+    inner_.report(std::move(d));
+  }
+  int count() const { return count_; }
+
+ private:
+  DiagnosticSink& inner_;
+  int count_ = 0;
+};
+
 class Writer {
  public:
   Writer(const Model& model, const Derived& derived, const GltfOptions& options, converters::OutputSet& output,
@@ -164,6 +179,8 @@ class Writer {
   int material_index(const Material& material, int texture);
   int texture_index(const Texture& texture, const SourceLocation& at);
   std::vector<Part> parts_of(const Shape& shape);
+  static void with_normals(const Shape& shape, Part& part);
+  static std::string primitive_key(const Shape& shape, TexCoords uv);
 
   const Model& model_;
   const Derived& derived_;
@@ -175,6 +192,10 @@ class Writer {
   std::unique_ptr<aiScene> scene_;
   std::vector<aiMesh*> meshes_;
   std::unordered_map<std::uint64_t, std::vector<unsigned>> meshes_by_hash_;
+  // The mesh (with normals) of each primitive met, by primitive_key(): a generated model
+  // repeats one box many times, and tessellating it and computing its normals again for each
+  // was 8 % of exporting a 100,000-link chain.
+  std::unordered_map<std::string, TriangleMesh> primitive_meshes_;
   std::map<std::string, int> material_keys_;
   std::map<std::string, int> texture_keys_;  ///< resolved path + wrap modes -> texture
   std::map<std::string, int> image_keys_;    ///< resolved path -> image
@@ -195,18 +216,52 @@ std::vector<Writer::Part> Writer::parts_of(const Shape& shape) {
       parts.push_back(std::move(p));
     }
   } else {
-    GeometryAlreadyReported filtered(sink_);
     // Texture coordinates only for a textured shape: they split vertices along seams.
     const TexCoords uv = shape.appearance.texture ? TexCoords::kGenerate : TexCoords::kNone;
+    const std::string key = primitive_key(shape, uv);
+    if (auto known = primitive_meshes_.find(key); !key.empty() && known != primitive_meshes_.end()) {
+      parts.push_back({known->second, shape.appearance.material, shape.appearance.texture});
+      return parts;
+    }
+    GeometryAlreadyReported filtered(sink_);
+    CountingSink counted(filtered);
     parts.push_back(
-        {compute_shape_local_mesh(model_, shape, filtered, uv), shape.appearance.material, shape.appearance.texture});
+        {compute_shape_local_mesh(model_, shape, counted, uv), shape.appearance.material, shape.appearance.texture});
+    with_normals(shape, parts.back());
+    // A primitive that said something is tessellated again where it recurs, to say it there too.
+    if (!key.empty() && counted.count() == 0) primitive_meshes_.emplace(key, parts.back().mesh);
+    return parts;
   }
-  const std::optional<double> crease = crease_angle_of(shape.geometry);
-  for (Part& p : parts) {
-    const bool has_normals = p.mesh.normals.size() == p.mesh.vertices.size() && !p.mesh.vertices.empty();
-    if (crease || !has_normals) p.mesh = with_vertex_normals(p.mesh, crease.value_or(0.0));
-  }
+  for (Part& p : parts) with_normals(shape, p);
   return parts;
+}
+
+void Writer::with_normals(const Shape& shape, Part& part) {
+  const std::optional<double> crease = crease_angle_of(shape.geometry);
+  const bool has_normals = part.mesh.normals.size() == part.mesh.vertices.size() && !part.mesh.vertices.empty();
+  if (crease || !has_normals) part.mesh = with_vertex_normals(part.mesh, crease.value_or(0.0));
+}
+
+std::string Writer::primitive_key(const Shape& shape, TexCoords uv) {
+  // The bytes of everything the mesh of a primitive depends on; "" for other geometry.
+  std::string key;
+  auto add = [&key](const auto& value) { key.append(reinterpret_cast<const char*>(&value), sizeof value); };
+  const Geometry& g = shape.geometry;
+  if (const auto* box = geometry_if<Box>(g)) {
+    add(box->size.x()), add(box->size.y()), add(box->size.z());
+  } else if (const auto* sphere = geometry_if<Sphere>(g)) {
+    add(sphere->radius);
+  } else if (const auto* cylinder = geometry_if<Cylinder>(g)) {
+    add(cylinder->radius), add(cylinder->height), add(cylinder->top), add(cylinder->bottom);
+  } else if (const auto* cone = geometry_if<Cone>(g)) {
+    add(cone->radius), add(cone->height), add(cone->bottom);
+  } else if (const auto* capsule = geometry_if<Capsule>(g)) {
+    add(capsule->radius), add(capsule->height);
+  } else {
+    return key;
+  }
+  add(g.index()), add(shape.division_number), add(uv);
+  return key;
 }
 
 int Writer::texture_index(const Texture& texture, const SourceLocation& at) {

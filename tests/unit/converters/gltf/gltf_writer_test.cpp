@@ -206,6 +206,10 @@ TEST_CASE("gltf: sheared and mirrored shapes are baked and round-trip") {
   check_round_trip(fs::path(BODYFMT_EXAMPLES_DIR) / "arm.body");
 }
 
+TEST_CASE("gltf: a recurring primitive reuses its mesh, and one that differs in any value does not") {
+  check_round_trip(kData / "repeated_primitives.body");
+}
+
 TEST_CASE("gltf: losses are reported at their source lines, once each") {
   const fs::path path = kData / "losses.body";
   auto e = export_model(path);
