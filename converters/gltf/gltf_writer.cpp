@@ -627,7 +627,7 @@ std::uint32_t Writer::write_link(std::uint32_t parent, std::size_t index) {
     for (int c = 0; c < 3; ++c) inertia.push_back(mp.inertia(r, c));
   x["inertia"] = std::move(inertia);
   if (link.joint_type == JointType::kPseudoContinuousTrack) {
-    loss(converters::LossKind::kTracks, link.sources.joint_type().known() ? link.sources.joint_type() : link.source,
+    loss(converters::LossKind::kTracks, source_of(link, LinkSources::kJointType),
          fmt::format("the belt motion of the continuous track '{}'", link.name),
          "the link and its shapes are kept; extras.joint_type says it is a track");
   }

@@ -46,20 +46,6 @@ constexpr double kFlatBoxHalfThickness = 1e-6;
 // Distance between the two connect points that make a hinge extra joint.
 constexpr double kHingePointSpacing = 0.1;
 
-SourceLocation first_known(std::initializer_list<SourceLocation> locations) {
-  for (const SourceLocation& l : locations)
-    if (l.known()) return l;
-  return {};
-}
-
-SourceLocation inertia_location(const Link& link) {
-  const SourceLocation* rigid_body = nullptr;
-  for (const MassContribution& c : link.mass_contributions)
-    if (!rigid_body && !c.from_link_keys && c.source.known()) rigid_body = &c.source;
-  return first_known(
-      {link.sources.inertia(), rigid_body ? *rigid_body : SourceLocation{}, link.sources.mass(), link.source});
-}
-
 std::string quat_text(const Eigen::Matrix3d& R) {
   Eigen::Quaterniond q(R);
   q.normalize();
@@ -250,7 +236,7 @@ bool Writer::prepare_inertials() {
     }
     if (!(mp.mass >= 0)) {
       report_rule(
-          sink_, "inertia-nonpositive-mass", first_known({link.sources.mass(), link.source}),
+          sink_, "inertia-nonpositive-mass", source_of(link, LinkSources::kMass),
           fmt::format("link \"{}\" has mass {} kg; MuJoCo refuses negative masses", link.name, format_number(mp.mass)));
       ok = false;
       continue;
@@ -263,7 +249,7 @@ bool Writer::prepare_inertials() {
     const std::string hint =
         balanced ? "nearest valid inertia (link axes, about the centre of mass): " + tensor_text(*balanced) : "";
     if (!options_.balance_inertia) {
-      report_rule(sink_, rule, inertia_location(link),
+      report_rule(sink_, rule, inertia_source(link),
                   fmt::format("principal moments {} of link \"{}\" are refused by MuJoCo ({}); the model is not "
                               "written",
                               moments_text(p.moments), link.name,
@@ -277,7 +263,7 @@ bool Writer::prepare_inertials() {
     const Eigen::Matrix3d before = out.inertia;
     out.inertia = balanced ? *balanced : Eigen::Matrix3d::Zero();
     changed(
-        i, inertia_location(link),
+        i, inertia_source(link),
         fmt::format("the inertia {} of link \"{}\" (principal moments {}, {}); written balanced "
                     "(--balance-inertia, bodyfmt::balance_inertia) as {} (principal moments {})",
                     tensor_text(before), link.name, moments_text(p.moments),
@@ -306,7 +292,7 @@ bool Writer::prepare_inertials() {
     const double mass = std::max(in.mass, kMinMovingMass);
     const Eigen::Matrix3d inertia = p.axes * moments.asDiagonal() * p.axes.transpose();
     const Link& link = model_.links[i];
-    changed(i, inertia_location(link),
+    changed(i, inertia_source(link),
             fmt::format("the mass {} kg and principal moments {} of moving link \"{}\" (MuJoCo refuses a moving body "
                         "below mjMINVAL = 1e-15 when no fixed child carries mass); written as mass {} kg and "
                         "principal moments {}",
@@ -350,7 +336,7 @@ void Writer::write_inertial(XMLElement* body, std::size_t index) {
 
 void Writer::write_joint(XMLElement* body, std::size_t index) {
   const Link& link = model_.links[index];
-  const SourceLocation joint_at = first_known({link.sources.joint_type(), link.source});
+  const SourceLocation joint_at = source_of(link, LinkSources::kJointType);
   switch (link.joint_type) {
     case JointType::kFixed: return;
     case JointType::kFree:
@@ -390,14 +376,14 @@ void Writer::write_joint(XMLElement* body, std::size_t index) {
     // ids and qpos stay as in the model) in the narrowest range MuJoCo accepts.
     const double upper = lo < hi ? hi : std::nextafter(lo, kUnlimited);
     if (upper != hi)
-      changed(index, first_known({link.sources.joint_range(), link.source}),
+      changed(index, source_of(link, LinkSources::kJointRange),
               fmt::format("the zero-width range [{0}, {0}] of '{1}' (written [{0}, {2}])", format_number(lo), link.name,
                           format_number(upper)));
     j->SetAttribute("range", fmt::format("{} {}", format_number(lo), format_number(upper)).c_str());
   } else {
     j->SetAttribute("limited", "false");
     if (lo_finite || hi_finite) {
-      loss(converters::LossKind::kJoints, body, first_known({link.sources.joint_range(), link.source}),
+      loss(converters::LossKind::kJoints, body, source_of(link, LinkSources::kJointRange),
            fmt::format("the one-sided range [{}, {}] of '{}' (MuJoCo limits need both bounds; written unlimited)",
                        lo_finite ? format_number(lo) : "-inf", hi_finite ? format_number(hi) : "inf", link.name));
     }
@@ -409,7 +395,7 @@ void Writer::write_joint(XMLElement* body, std::size_t index) {
   if (velocity_limited && options_.actuators != Actuators::kVelocity) lost.push_back("velocity");
   if (effort_limited && options_.actuators == Actuators::kNone) lost.push_back("effort");
   if (!lost.empty()) {
-    loss(converters::LossKind::kJoints, body, first_known({link.sources.joint_velocity(), link.source}),
+    loss(converters::LossKind::kJoints, body, source_of(link, LinkSources::kJointVelocity),
          fmt::format("the {} limits of '{}' (MuJoCo joints have none)", fmt::join(lost, " and "), link.name),
          lost.size() == 2 || lost[0] == "velocity" ? "--actuators velocity writes them as control and force ranges"
                                                    : "--actuators writes it as a force range");
@@ -896,7 +882,7 @@ bool Writer::run() {
     const Link& link = model_.links[i];
     if (link.parent >= 0 && !detached(link)) depth[i] = depth[static_cast<std::size_t>(link.parent)] + 1;
     if (depth[i] > kMaxBodyDepth) {
-      fatal("export-write", first_known({link.sources.name(), link.source}),
+      fatal("export-write", source_of(link, LinkSources::kName),
             fmt::format("link \"{}\" is {} bodies deep; MuJoCo 2.2.2 reads MJCF with tinyxml2, which stops at 100 "
                         "nested elements ({} nested bodies), so nothing is written",
                         link.name, depth[i], kMaxBodyDepth));
@@ -932,7 +918,7 @@ bool Writer::run() {
   std::vector<XMLElement*> bodies(model_.links.size(), nullptr);
   for (std::size_t i = 0; i < model_.links.size(); ++i) {
     const Link& link = model_.links[i];
-    const SourceLocation name_at = first_known({link.sources.name(), link.source});
+    const SourceLocation name_at = source_of(link, LinkSources::kName);
     check_name(link.name, "link", name_at);
     if (link.name == "world")
       fatal("export-name-conflict", name_at, "a link named 'world' clashes with MuJoCo's world body");

@@ -453,14 +453,12 @@ void Writer::write_joint(std::size_t index, const std::string& joint_name) {
       break;
     case JointType::kPseudoContinuousTrack:
       comment(j, fmt::format("pseudo_continuous_track axis {}", format_vector(link.joint_axis)));
-      loss(converters::LossKind::kTracks, j,
-           link.sources.joint_type().known() ? link.sources.joint_type() : link.source,
+      loss(converters::LossKind::kTracks, j, source_of(link, LinkSources::kJointType),
            fmt::format("the pseudo_continuous_track of '{}' (a fixed joint is written; axis {})", link.name,
                        format_vector(link.joint_axis)));
       break;
     case JointType::kFree:
-      loss(converters::LossKind::kJoints, j,
-           link.sources.joint_type().known() ? link.sources.joint_type() : link.source,
+      loss(converters::LossKind::kJoints, j, source_of(link, LinkSources::kJointType),
            fmt::format("the free joint of the non-root link '{}' (a fixed joint is written)", link.name));
       break;
     case JointType::kFixed: break;
@@ -533,7 +531,7 @@ bool Writer::run() {
   const Link& root = model_.root();
   if (options_.floating_base) {
     if (link_names_.count("world")) {
-      fatal("export-name-conflict", root.sources.name().known() ? root.sources.name() : root.source,
+      fatal("export-name-conflict", source_of(root, LinkSources::kName),
             "--floating-base adds a link named 'world', but the model already has one");
     } else {
       element(robot_, "link")->SetAttribute("name", "world");
@@ -549,13 +547,12 @@ bool Writer::run() {
 
   for (std::size_t i = 0; i < model_.links.size(); ++i) {
     const Link& link = model_.links[i];
-    check_name(link.name, "link", link.sources.name().known() ? link.sources.name() : link.source);
+    check_name(link.name, "link", source_of(link, LinkSources::kName));
     XMLElement* link_el = element(robot_, "link");
     link_el->SetAttribute("name", link.name.c_str());
     if (i == 0 && !options_.floating_base) {
       if (!link.X_PL.isApprox(Eigen::AffineCompact3d::Identity(), 0)) {
-        loss(converters::LossKind::kDynamics, link_el,
-             link.sources.translation().known() ? link.sources.translation() : link.source,
+        loss(converters::LossKind::kDynamics, link_el, source_of(link, LinkSources::kTranslation),
              "the root link's initial pose", "--floating-base writes it as the origin of a joint to a 'world' link");
       }
       if (link.joint_type != JointType::kFree && link.joint_type != JointType::kFixed) {

@@ -85,13 +85,13 @@ std::vector<CheckResult> run_generic_checks(const Model& model, const Derived& d
     double lowest = std::numeric_limits<double>::infinity();
     BoundingBox box;
     for (const ContactPoint& p : sim->contact_points()) {
-      const Eigen::Vector3d x = Eigen::Isometry3d(derived.X_WL[p.link].matrix()) * p.position_in_link;
+      const Eigen::Vector3d x = as_isometry(derived.X_WL[p.link]) * p.position_in_link;
       lowest = std::min(lowest, x.z() - p.radius);
       box.add(x - Eigen::Vector3d(0, 0, p.radius));
       box.add(x + Eigen::Vector3d(0, 0, p.radius));
     }
     const double drop = 0.02;
-    Eigen::Isometry3d X(model.root().X_PL.matrix());
+    Eigen::Isometry3d X = as_isometry(model.root().X_PL);
     X.translation().z() += drop - lowest;
     sim->set_root_pose(X);
     const double mass = derived.total_mass;

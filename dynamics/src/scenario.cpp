@@ -195,7 +195,7 @@ bool run_scenario(const Model& model, const Derived& derived, const ScenarioSpec
   if (!sim) return false;
   const std::size_t n = model.links.size();
   // Initial state.
-  Eigen::Isometry3d X(model.root().X_PL.matrix());
+  Eigen::Isometry3d X = as_isometry(model.root().X_PL);
   if (scenario.position) X.translation() = *scenario.position;
   if (scenario.yaw) X.linear() = Eigen::AngleAxisd(*scenario.yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   for (const auto& [link, q] : scenario.joints) sim->set_joint_position(link, q);

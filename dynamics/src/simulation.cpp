@@ -38,14 +38,6 @@ std::string matrix_text(const Eigen::Matrix3d& I) {
   return fmt::format("[{:g}, {:g}, {:g}, {:g}, {:g}, {:g}]", I(0, 0), I(0, 1), I(0, 2), I(1, 1), I(1, 2), I(2, 2));
 }
 
-SourceLocation inertia_location(const Link& link) {
-  if (link.sources.inertia().known()) return link.sources.inertia();
-  for (const MassContribution& c : link.mass_contributions)
-    if (!c.from_link_keys && c.source.known()) return c.source;
-  if (link.sources.mass().known()) return link.sources.mass();
-  return link.source;
-}
-
 /// The state the contact and servo forces read besides Simbody's State: commands that live
 /// outside it (spec §2.3 "Policy for track commands": the integrator restarts when they change).
 struct Commands {
@@ -222,7 +214,7 @@ std::unique_ptr<Simulation> Simulation::build(const Model& model, const Derived&
     const Link& link = model.links[i];
     const MassProperties& mp = derived.mass[i];
     if (!std::isfinite(mp.mass) || mp.mass < 0 || !mp.center_of_mass.allFinite() || !mp.inertia.allFinite()) {
-      report_rule(sink, "inertia-nonpositive-mass", link.sources.mass().known() ? link.sources.mass() : link.source,
+      report_rule(sink, "inertia-nonpositive-mass", source_of(link, LinkSources::kMass),
                   fmt::format("link \"{}\" has mass {:g} kg; Simbody cannot simulate it", link.name, mp.mass));
       ok = false;
       continue;
@@ -237,7 +229,7 @@ std::unique_ptr<Simulation> Simulation::build(const Model& model, const Derived&
     if (!options.balance_inertia) {
       const char* rule = validity.negative_moment ? "inertia-not-positive-definite" : "inertia-triangle";
       report_rule(
-          sink, rule, inertia_location(link),
+          sink, rule, inertia_source(link),
           fmt::format("principal moments {} of link \"{}\" are not physical ({}); Simbody refuses them, so "
                       "nothing was simulated",
                       moments, link.name,
@@ -250,7 +242,7 @@ std::unique_ptr<Simulation> Simulation::build(const Model& model, const Derived&
       continue;
     }
     m.inertias[i] = balanced ? *balanced : Eigen::Matrix3d::Zero();
-    report_rule(sink, "dynamics-inertia-balanced", inertia_location(link),
+    report_rule(sink, "dynamics-inertia-balanced", inertia_source(link),
                 fmt::format("link \"{}\": inertia {} (principal moments {}) is not physical; simulated with the "
                             "balanced tensor {} (--balance-inertia, bodyfmt::balance_inertia, as body2mjcf writes it)",
                             link.name, matrix_text(inertia), moments, matrix_text(m.inertias[i])));

@@ -296,7 +296,7 @@ std::vector<CheckResult> run_tank_suite(const Model& model, const Derived& deriv
   results.push_back(relative("system mass", probe->total_mass(), mass, 1e-9, "kg"));
   Eigen::Vector3d com_model = Eigen::Vector3d::Zero();
   for (std::size_t k = 0; k < model.links.size(); ++k)
-    com_model += derived.mass[k].mass * (Eigen::Isometry3d(derived.X_WL[k].matrix()) * derived.mass[k].center_of_mass);
+    com_model += derived.mass[k].mass * (as_isometry(derived.X_WL[k]) * derived.mass[k].center_of_mass);
   com_model /= mass;
   results.push_back(absolute("centre of mass at the file pose (distance)", (probe->center_of_mass() - com_model).norm(),
                              0, 1e-9, "m"));

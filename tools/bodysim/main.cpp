@@ -128,8 +128,7 @@ int main(int argc, char** argv) {
   if (collected.error_count() > 0) return finish(true, "the model has errors; nothing was simulated");
   if (model->links.size() > max_links) {
     const Link& first_over = model->links[max_links];
-    report_rule(sink, "dynamics-model-size",
-                first_over.sources.name().known() ? first_over.sources.name() : first_over.source,
+    report_rule(sink, "dynamics-model-size", source_of(first_over, LinkSources::kName),
                 fmt::format("the model has {} links, more than bodysim simulates (--max-links {}); this is link {}, "
                             "the first over the limit",
                             model->links.size(), max_links, max_links + 1),

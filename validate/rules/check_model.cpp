@@ -17,15 +17,6 @@ void RuleContext::report(std::string_view rule_id, const SourceLocation& locatio
   report_rule(sink, rule_id, std::move(at), std::move(message), std::move(fix_hint));
 }
 
-SourceLocation first_known(std::initializer_list<SourceLocation> locations) {
-  const SourceLocation* last = nullptr;
-  for (const SourceLocation& l : locations) {
-    if (l.known()) return l;
-    last = &l;
-  }
-  return last ? *last : SourceLocation{};
-}
-
 std::string num(double value) {
   if (value == 0) return "0";  // also -0
   return fmt::format("{:.6g}", value);

@@ -27,24 +27,9 @@ std::string nearest_valid(const Eigen::Matrix3d& inertia) {
                      num(I(0, 0)), num(I(0, 1)), num(I(0, 2)), num(I(1, 1)), num(I(1, 2)), num(I(2, 2)));
 }
 
-// The first RigidBody node that contributes to the link, if any.
-const SourceLocation* rigid_body_source(const Link& link) {
-  for (const MassContribution& c : link.mass_contributions)
-    if (!c.from_link_keys && c.source.known()) return &c.source;
-  return nullptr;
-}
-
-// The most specific place a link's mass data is written.
-SourceLocation inertia_location(const Link& link) {
-  const SourceLocation none;
-  const SourceLocation* rigid_body = rigid_body_source(link);
-  return first_known({link.sources.inertia(), rigid_body ? *rigid_body : none, link.sources.mass(), link.source});
-}
-
+// The most specific place a link's mass is written (inertia_source() for its inertia).
 SourceLocation mass_location(const Link& link) {
-  const SourceLocation none;
-  const SourceLocation* rigid_body = rigid_body_source(link);
-  return first_known({link.sources.mass(), rigid_body ? *rigid_body : none, link.sources.inertia(), link.source});
+  return first_known({link.sources.mass(), rigid_body_source(link), link.sources.inertia(), link.source});
 }
 
 /// Per link: welded to the world (a fixed root and its fixed descendants, e.g. floors). One
@@ -90,7 +75,7 @@ void check_link(const RuleContext& ctx, LinkIndex index, bool welded) {
   const MassProperties& mp = ctx.derived.mass[index];
   const PrincipalInertia p = principal_inertia(mp.inertia);
   const double trace = p.moments.sum();
-  const SourceLocation at = inertia_location(link);
+  const SourceLocation at = inertia_source(link);
   // Formatted only for a finding: most links have none.
   const auto moments = [&] {
     return fmt::format("({}, {}, {})", num(p.moments[0]), num(p.moments[1]), num(p.moments[2]));
@@ -188,7 +173,7 @@ void check_moving(const RuleContext& ctx, LinkIndex index, bool has_valid_welded
     return;
   }
   if (p.moments[0] < 0) return;  // inertia-not-positive-definite
-  ctx.report("inertia-tiny", inertia_location(link),
+  ctx.report("inertia-tiny", inertia_source(link),
              fmt::format("link \"{}\" moves ({}) but its mass {} kg or smallest principal moment {} kg·m² is below "
                          "MuJoCo's mjMINVAL {}",
                          link.name, joint, num(mp.mass), num(p.moments[0]), num(kMjMinVal)),

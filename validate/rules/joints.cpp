@@ -16,7 +16,7 @@ void check_ids(const RuleContext& ctx) {
   for (LinkIndex i = 0; i < static_cast<LinkIndex>(ctx.model.links.size()); ++i) {
     const Link& link = ctx.model.links[i];
     if (link.joint_id < 0) continue;
-    const SourceLocation at = first_known({link.sources.joint_id(), link.source});
+    const SourceLocation at = source_of(link, LinkSources::kJointId);
     if (link.joint_type == JointType::kFixed) {
       ctx.report("joint-id-on-fixed", at,
                  fmt::format("link \"{}\" has joint_id {} but its joint is fixed", link.name, link.joint_id),
@@ -51,7 +51,7 @@ void check_ids(const RuleContext& ctx) {
   const Link& link = ctx.model.links[after_gap];
   std::string list = fmt::format("{}", fmt::join(shown, ", "));
   if (static_cast<long long>(shown.size()) < missing) list += fmt::format(", ... ({} in all)", missing);
-  ctx.report("joint-id-gap", first_known({link.sources.joint_id(), link.source}),
+  ctx.report("joint-id-gap", source_of(link, LinkSources::kJointId),
              fmt::format("joint ids are not contiguous: {} {} missing below the largest id {}", list,
                          missing == 1 ? "is" : "are", first.rbegin()->first),
              "number the joints 0..n-1; Choreonoid reserves a joint slot for every missing id");
@@ -59,7 +59,7 @@ void check_ids(const RuleContext& ctx) {
 
 void check_axis(const RuleContext& ctx, const Link& link) {
   if (!is_one_dof(link) && link.joint_type != JointType::kPseudoContinuousTrack) return;
-  const SourceLocation at = first_known({link.sources.joint_axis(), link.source});
+  const SourceLocation at = source_of(link, LinkSources::kJointAxis);
   const double norm = link.joint_axis.norm();
   if (norm < 1e-9) {
     ctx.report("joint-axis-zero", at,
@@ -78,7 +78,7 @@ void check_axis(const RuleContext& ctx, const Link& link) {
 
 void check_range(const RuleContext& ctx, const Link& link) {
   if (!is_one_dof(link)) return;
-  const SourceLocation at = first_known({link.sources.joint_range(), link.source});
+  const SourceLocation at = source_of(link, LinkSources::kJointRange);
   const double lo = link.joint_range_lower, hi = link.joint_range_upper;
   const bool revolute = link.joint_type == JointType::kRevolute;
   const double shown = revolute && ctx.model.angles_in_degrees ? 180 / kPi : 1.0;
@@ -102,7 +102,7 @@ void check_velocity(const RuleContext& ctx, const Link& link) {
   if (!is_one_dof(link) && link.joint_type != JointType::kPseudoContinuousTrack) return;
   const double lo = link.velocity_lower, hi = link.velocity_upper;
   if (lo <= 0 && 0 <= hi) return;
-  const SourceLocation at = first_known({link.sources.joint_velocity(), link.source});
+  const SourceLocation at = source_of(link, LinkSources::kJointVelocity);
   const bool revolute = link.joint_type == JointType::kRevolute;
   const double shown = revolute && ctx.model.angles_in_degrees ? 180 / kPi : 1.0;
   const char* unit = revolute ? (ctx.model.angles_in_degrees ? " deg/s" : " rad/s") : " m/s";

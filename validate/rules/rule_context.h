@@ -23,9 +23,6 @@ struct RuleContext {
               std::string fix_hint = {}) const;
 };
 
-/// The first known location of the list (line > 0), else the last one.
-SourceLocation first_known(std::initializer_list<SourceLocation> locations);
-
 /// Shortest round-trip-ish form for messages: 6 significant digits, no trailing zeros.
 std::string num(double value);
 /// "[a, b, c]".

@@ -61,7 +61,7 @@ void check_radian_range(const RuleContext& ctx, const Link& link) {
       as_degrees.push_back(num(meant));
     }
   }
-  ctx.report("units-range-looks-radian", first_known({link.sources.joint_range(), link.source}),
+  ctx.report("units-range-looks-radian", source_of(link, LinkSources::kJointRange),
              fmt::format("joint range [{}] of link \"{}\" is read in degrees but looks like radians (it would be "
                          "[{}] degrees)",
                          fmt::join(as_written, ", "), link.name, fmt::join(as_degrees, ", ")),
@@ -77,7 +77,7 @@ void check_prismatic_range(const RuleContext& ctx, const Link& link) {
   for (double v : {link.joint_range_lower, link.joint_range_upper})
     if (std::abs(v) < kUnlimited) worst = std::max(worst, std::abs(v));
   if (worst <= kPrismaticLimit) return;
-  ctx.report("units-prismatic-millimetres", first_known({link.sources.joint_range(), link.source}),
+  ctx.report("units-prismatic-millimetres", source_of(link, LinkSources::kJointRange),
              fmt::format("prismatic joint range [{}, {}] of link \"{}\" reaches {} m, which looks like millimetres",
                          limit(link.joint_range_lower), limit(link.joint_range_upper), link.name, num(worst)),
              fmt::format("prismatic ranges are metres: joint_range: [{}, {}]", limit(link.joint_range_lower / 1000),

@@ -72,7 +72,7 @@ BoundingBox transform_box(const Eigen::Affine3d& transform, const BoundingBox& b
 struct Derived {
   std::vector<MassProperties> mass;
   /// World link frames at zero joint positions, in the 3x4 storage of Link::X_PL (with a
-  /// point, convert to Isometry3d first, as compute_world_frames gives them).
+  /// point, use as_isometry(), as compute_world_frames gives them).
   std::vector<Eigen::AffineCompact3d> X_WL;
   std::vector<LinkBounds> bounds;  ///< tight
   double total_mass = 0;

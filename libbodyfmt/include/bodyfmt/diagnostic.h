@@ -6,6 +6,7 @@
 /// something (SDFormat's error list, Drake's diagnostic policy).
 
 #include <cstdint>
+#include <initializer_list>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -56,6 +57,10 @@ struct SourceLocation {
   }
   friend bool operator!=(const SourceLocation& a, const SourceLocation& b) { return !(a == b); }
 };
+
+/// The first known location of the list (line > 0), else the last one: findings point at the
+/// most specific place that was written.
+SourceLocation first_known(std::initializer_list<SourceLocation> locations);
 
 /// How far a fix-it may be applied without asking (docs/rules.md, "Fix-its").
 enum class FixSafety {

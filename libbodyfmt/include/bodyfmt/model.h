@@ -423,8 +423,7 @@ struct Link {
 
   /// Offset of this link (= its joint frame) in the parent link frame; for the root, its
   /// initial pose in the world. A rigid transform, kept in the 3x4 storage of shapes and
-  /// frames (products with transforms are exact; with a point, convert to Isometry3d first:
-  /// its 4x4 product rounds differently).
+  /// frames (products with transforms are exact; with a point, use as_isometry(X_PL)).
   Eigen::AffineCompact3d X_PL = Eigen::AffineCompact3d::Identity();
 
   JointType joint_type = JointType::kFixed;
@@ -447,6 +446,18 @@ struct Link {
 
   LinkSources sources;
 };
+
+/// A 3x4 transform (Link::X_PL, Derived::X_WL) as the isometry to multiply points with: the
+/// 3x4 and 4x4 storages round a transform-point product differently, and this keeps the
+/// values the tools gave before links kept their frames in 3x4.
+inline Eigen::Isometry3d as_isometry(const Eigen::AffineCompact3d& X) { return Eigen::Isometry3d(X.matrix()); }
+/// Where `field` of `link` was written, or the link's own location when it was not.
+SourceLocation source_of(const Link& link, LinkSources::Field field);
+/// The first RigidBody node that gives `link` mass (not its link-level keys); unknown if none.
+SourceLocation rigid_body_source(const Link& link);
+/// The most specific place the link's inertia is written: its inertia key, its first RigidBody,
+/// its mass key, else the link itself.
+SourceLocation inertia_source(const Link& link);
 
 // ---------------------------------------------------------------------------------------
 // Devices (body-format-spec §10)

@@ -44,7 +44,7 @@ std::vector<Eigen::Isometry3d> compute_root_relative_frames(const Model& model, 
 
 std::vector<Eigen::Isometry3d> compute_world_frames(const Model& model, const std::vector<double>& q) {
   if (model.links.empty()) return {};
-  return frames(model, q, Eigen::Isometry3d(model.root().X_PL.matrix()));
+  return frames(model, q, as_isometry(model.root().X_PL));
 }
 
 namespace detail {

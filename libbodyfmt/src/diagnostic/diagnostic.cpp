@@ -66,6 +66,15 @@ const std::string& FileName::str() const {
   return *(*page)[id_ & (kPageSize - 1)].load(std::memory_order_acquire);
 }
 
+SourceLocation first_known(std::initializer_list<SourceLocation> locations) {
+  const SourceLocation* last = nullptr;
+  for (const SourceLocation& l : locations) {
+    if (l.known()) return l;
+    last = &l;
+  }
+  return last ? *last : SourceLocation{};
+}
+
 std::string_view severity_name(Severity severity) {
   switch (severity) {
     case Severity::kNote: return "note";

@@ -52,6 +52,20 @@ void LinkSources::set(Field field, const SourceLocation& at) {
   if (other_files_) other_files_[field] = at.file;
 }
 
+SourceLocation source_of(const Link& link, LinkSources::Field field) {
+  return first_known({link.sources.get(field), link.source});
+}
+
+SourceLocation rigid_body_source(const Link& link) {
+  for (const MassContribution& c : link.mass_contributions)
+    if (!c.from_link_keys && c.source.known()) return c.source;
+  return {};
+}
+
+SourceLocation inertia_source(const Link& link) {
+  return first_known({link.sources.inertia(), rigid_body_source(link), link.sources.mass(), link.source});
+}
+
 LinkIndex Model::find_link(std::string_view link_name) const {
   for (std::size_t i = 0; i < links.size(); ++i)
     if (links[i].name == link_name) return static_cast<LinkIndex>(i);
