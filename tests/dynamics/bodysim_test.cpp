@@ -2,6 +2,8 @@
 // --balance-inertia) and on examples/scouttank.body, the exit-code contract, and `run`.
 #include <doctest/doctest.h>
 
+#include <unistd.h>
+
 #include <sys/wait.h>
 
 #include <cmath>
@@ -21,7 +23,10 @@ struct Run {
 };
 
 Run bodysim(const std::string& args) {
-  const std::filesystem::path err = std::filesystem::temp_directory_path() / "bodysim_test_stderr.txt";
+  // One file per test process: ctest -j runs these cases side by side, and a shared file let
+  // one case read another's stderr (a sanitizer CI run lost [dynamics-inertia-balanced] so).
+  const std::filesystem::path err =
+      std::filesystem::temp_directory_path() / ("bodysim_test_stderr_" + std::to_string(getpid()) + ".txt");
   const std::string command = std::string("'") + BODYFMT_BODYSIM + "' " + args + " 2>'" + err.string() + "'";
   Run run;
   FILE* pipe = popen(command.c_str(), "r");
@@ -35,6 +40,8 @@ Run bodysim(const std::string& args) {
   std::stringstream text;
   text << in.rdbuf();
   run.all = run.out + text.str();
+  in.close();
+  std::filesystem::remove(err);
   return run;
 }
 
