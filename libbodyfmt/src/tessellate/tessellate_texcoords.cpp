@@ -7,7 +7,7 @@
 // i, longitude j), not from the positions, so that no angle is recovered through atan2 and the
 // seam falls exactly on the vertices at -Z.
 
-#include "derived/tessellate_internal.h"
+#include "tessellate/tessellate_internal.h"
 
 #include <algorithm>
 #include <cmath>

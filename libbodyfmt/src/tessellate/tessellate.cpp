@@ -2,7 +2,7 @@
 // MeshGenerator vertex by vertex (src/Util/MeshGenerator.cpp) so that exported meshes match
 // what Choreonoid shows; validation follows the loader's rules in §9 and §13.
 
-#include "derived/tessellate_internal.h"
+#include "tessellate/tessellate_internal.h"
 
 #include <bodyfmt/rules.h>
 

@@ -14,7 +14,7 @@
 // (the first three items), so that its vertices, and the boxes Choreonoid reports, are
 // reproduced.
 
-#include "derived/tessellate_internal.h"
+#include "tessellate/tessellate_internal.h"
 
 #include <fmt/format.h>
 
