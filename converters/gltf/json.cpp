@@ -1,6 +1,6 @@
 #include "json.h"
 
-#include "text/text_util.h"
+#include <bodyfmt/text.h>
 
 #include <fmt/format.h>
 

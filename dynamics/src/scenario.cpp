@@ -1,65 +1,31 @@
 #include <bodyfmt/dynamics/scenario.h>
 
 #include <bodyfmt/rules.h>
-
-// The library's private YAML layer: scenarios are read with the same YAML dialect and 1-based
-// positions as the body files.
-#include "load/scalar.h"
-#include "text/text_util.h"
-#include "yaml/yaml_node.h"
+#include <bodyfmt/yaml.h>  // as the body files are read: the same bounded reader, dialect and positions
 
 #include <fmt/format.h>
 
 #include <cmath>
-#include <fstream>
 #include <set>
-#include <sstream>
 
 namespace bodyfmt::dynamics {
 namespace {
 
-class Reader {
+class Reader : public YamlReader {
  public:
-  Reader(const Model& model, DiagnosticSink& sink) : model_(model), sink_(sink) {}
+  Reader(const Model& model, DiagnosticSink& sink) : YamlReader(sink, "dynamics-scenario"), model_(model) {}
 
-  void error(const yaml::NodeRef& at, std::string message) {
-    report_rule(sink_, "dynamics-scenario", at.use_site(), std::move(message));
-    ok = false;
-  }
-  void error_key(const yaml::MapEntry& entry, std::string message) {
-    report_rule(sink_, "dynamics-scenario", entry.key_location, std::move(message));
-    ok = false;
-  }
-
-  std::optional<double> number(const yaml::NodeRef& node, const std::string& what) {
-    std::optional<double> v = node->is_scalar() ? detail::parse_double_exact(node->scalar()) : std::nullopt;
-    if (!v || !std::isfinite(*v)) {
-      error(node, what + " must be a number");
-      return std::nullopt;
-    }
-    return v;
-  }
-
-  bool mapping(const yaml::NodeRef& node, const std::string& what) {
-    if (node->is_mapping()) return true;
-    error(node, what + " must be a mapping");
-    return false;
-  }
+  void error_key(const YamlEntry& entry, std::string message) { error(entry.key_location, std::move(message)); }
 
   /// Checks that every key of `node` is one of `keys`.
-  void keys(const yaml::NodeRef& node, std::initializer_list<const char*> allowed) {
-    for (const yaml::MapEntry& entry : node->entries()) {
-      bool known = false;
-      std::string list;
-      for (const char* k : allowed) {
-        known = known || entry.key == k;
-        list += (list.empty() ? "" : ", ") + std::string(k);
-      }
-      if (!known) error_key(entry, fmt::format("unknown key '{}' (keys: {})", entry.key, list));
-    }
+  void keys(const YamlNode& node, const std::vector<std::string_view>& allowed) {
+    std::string list;
+    for (std::string_view k : allowed) list += (list.empty() ? "" : ", ") + std::string(k);
+    for (const YamlEntry& entry : unknown_keys(node, allowed))
+      error_key(entry, fmt::format("unknown key '{}' (keys: {})", entry.key, list));
   }
 
-  LinkIndex link(const yaml::MapEntry& entry, bool want_joint, bool want_track) {
+  LinkIndex link(const YamlEntry& entry, bool want_joint, bool want_track) {
     const LinkIndex index = model_.find_link(entry.key);
     if (index < 0) {
       error_key(entry, fmt::format("the model has no link \"{}\"", entry.key));
@@ -77,33 +43,24 @@ class Reader {
     return index;
   }
 
-  bool ok = true;
-
  private:
   const Model& model_;
-  DiagnosticSink& sink_;
 };
 
 }  // namespace
 
 std::optional<ScenarioSpec> read_scenario(const std::string& path, const Model& model, DiagnosticSink& sink) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) {
-    report_rule(sink, "io-read", SourceLocation{path, 0, 0}, "cannot read the scenario \"" + path + "\"");
-    return std::nullopt;
-  }
-  std::stringstream buffer;
-  buffer << file.rdbuf();
-  const std::unique_ptr<yaml::Document> document = yaml::parse_yaml(buffer.str(), path, yaml::ParseOptions{}, sink);
+  const std::optional<YamlDocument> document =
+      read_yaml_file(path, sink, YamlLimits{}, "the scenario \"" + path + "\"");
   if (!document) return std::nullopt;
   Reader r(model, sink);
   ScenarioSpec spec;
-  const yaml::NodeRef& root = document->root;
+  const YamlNode root = document->root();
   if (!r.mapping(root, "a scenario")) return std::nullopt;
   r.keys(root, {"duration", "sample", "initial", "commands"});
   bool has_duration = false;
-  for (const yaml::MapEntry& entry : root->entries()) {
-    const yaml::NodeRef& value = entry.value;
+  for (const YamlEntry& entry : root.entries()) {
+    const YamlNode& value = entry.value;
     if (entry.key == "duration" || entry.key == "sample") {
       if (std::optional<double> v = r.number(value, "'" + std::string(entry.key) + "'")) {
         if (!(*v > 0)) r.error(value, "'" + std::string(entry.key) + "' must be positive");
@@ -112,23 +69,22 @@ std::optional<ScenarioSpec> read_scenario(const std::string& path, const Model& 
       }
     } else if (entry.key == "initial" && r.mapping(value, "'initial'")) {
       r.keys(value, {"on_floor", "position", "yaw", "joints"});
-      for (const yaml::MapEntry& e : value->entries()) {
+      for (const YamlEntry& e : value.entries()) {
         if (e.key == "on_floor") {
-          std::optional<bool> b = e.value->is_scalar() ? text::parse_bool_word(e.value->scalar()) : std::nullopt;
-          if (!b) r.error(e.value, "'on_floor' must be true or false");
+          std::optional<bool> b = r.boolean(e.value, "'on_floor'");
           spec.on_floor = b.value_or(false);
         } else if (e.key == "position") {
-          if (!e.value->is_sequence() || e.value->items().size() != 3) {
+          if (!e.value.is_sequence() || e.value.items().size() != 3) {
             r.error(e.value, "'position' must be a list of three numbers (m)");
             continue;
           }
           Eigen::Vector3d p;
-          for (int k = 0; k < 3; ++k) p[k] = r.number(e.value->items()[k], "a coordinate").value_or(0);
+          for (int k = 0; k < 3; ++k) p[k] = r.number(e.value.items()[k], "a coordinate").value_or(0);
           spec.position = p;
         } else if (e.key == "yaw") {
           spec.yaw = r.number(e.value, "'yaw' (rad)");
         } else if (e.key == "joints" && r.mapping(e.value, "'joints'")) {
-          for (const yaml::MapEntry& j : e.value->entries()) {
+          for (const YamlEntry& j : e.value.entries()) {
             const LinkIndex link = r.link(j, true, false);
             if (std::optional<double> q = r.number(j.value, "a joint position (rad or m)"); q && link >= 0)
               spec.joints[link] = *q;
@@ -136,37 +92,39 @@ std::optional<ScenarioSpec> read_scenario(const std::string& path, const Model& 
         }
       }
     } else if (entry.key == "commands") {
-      if (!value->is_sequence()) {
+      if (!value.is_sequence()) {
         r.error(value, "'commands' must be a list");
         continue;
       }
       double last = 0;
       std::set<LinkIndex> has_gain;  // a servo keeps its gains until a later command changes them
-      for (const yaml::NodeRef& item : value->items()) {
+      for (const YamlNode& item : value.items()) {
         if (!r.mapping(item, "a command")) continue;
         r.keys(item, {"time", "tracks", "joints"});
         ScenarioCommand command;
-        const yaml::MapEntry* time = item->find("time");
+        const std::optional<YamlEntry> time = item.find("time");
         if (!time) {
           r.error(item, "a command needs 'time' (s)");
         } else if (std::optional<double> t = r.number(time->value, "'time'")) {
           if (*t < last) r.error(time->value, "commands must be in time order");
           command.time = last = *t;
         }
-        if (const yaml::MapEntry* tracks = item->find("tracks"); tracks && r.mapping(tracks->value, "'tracks'")) {
-          for (const yaml::MapEntry& t : tracks->value->entries()) {
+        if (const std::optional<YamlEntry> tracks = item.find("tracks");
+            tracks && r.mapping(tracks->value, "'tracks'")) {
+          for (const YamlEntry& t : tracks->value.entries()) {
             const LinkIndex link = r.link(t, false, true);
             if (std::optional<double> v = r.number(t.value, "a track speed (m/s)"); v && link >= 0)
               command.tracks[link] = *v;
           }
         }
-        if (const yaml::MapEntry* joints = item->find("joints"); joints && r.mapping(joints->value, "'joints'")) {
-          for (const yaml::MapEntry& j : joints->value->entries()) {
+        if (const std::optional<YamlEntry> joints = item.find("joints");
+            joints && r.mapping(joints->value, "'joints'")) {
+          for (const YamlEntry& j : joints->value.entries()) {
             const LinkIndex link = r.link(j, true, false);
             if (!r.mapping(j.value, "a joint command")) continue;
             r.keys(j.value, {"target", "p", "d", "torque"});
             ScenarioServo servo;
-            for (const yaml::MapEntry& field : j.value->entries()) {
+            for (const YamlEntry& field : j.value.entries()) {
               std::optional<double> v = r.number(field.value, "'" + std::string(field.key) + "'");
               if (field.key == "target") servo.target = v;
               if (field.key == "p") servo.p = v;
@@ -184,8 +142,8 @@ std::optional<ScenarioSpec> read_scenario(const std::string& path, const Model& 
     }
   }
   if (!has_duration) r.error(root, "a scenario needs 'duration' (s)");
-  if (r.ok && spec.duration / spec.sample > 1e7) r.error(root, "'duration' / 'sample' gives more than 1e7 rows");
-  if (!r.ok) return std::nullopt;
+  if (r.ok() && spec.duration / spec.sample > 1e7) r.error(root, "'duration' / 'sample' gives more than 1e7 rows");
+  if (!r.ok()) return std::nullopt;
   return spec;
 }
 

@@ -5,60 +5,95 @@
 //   fail_on: warning                          # or error
 //   werror: true
 //
-// Read with the project's own YAML parser (yaml/yaml_node.h), so that the config and the body
-// files share one YAML dialect and positions are 1-based like every other diagnostic.
+// Read with libbodyfmt's YAML API (bodyfmt/yaml.h), so that the config and the body files share
+// one YAML dialect, one bounded file reader and 1-based positions like every other diagnostic.
 
 #include "check_config.h"
 
 #include <bodyfmt/diagnostic_policy.h>
 #include <bodyfmt/rules.h>
-
-// The library's private YAML layer and text utilities: the config is the tools' concern, but
-// it is read with the same YAML dialect and positions as the body files.
-#include "text/text_util.h"
-#include "yaml/yaml_node.h"
+#include <bodyfmt/yaml.h>
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 namespace bodyfmt::tools {
 namespace {
 
-void error(DiagnosticSink& sink, SourceLocation location, std::string message, std::string hint = {}) {
-  report_rule(sink, "config-invalid", std::move(location), std::move(message), std::move(hint));
-}
+constexpr const char* kRule = "config-invalid";
 
 /// A scalar or a sequence of scalars, each a rule id or pattern the rule table knows.
-bool read_rules(const yaml::NodeRef& node, const std::string& key, DiagnosticSink& sink,
-                std::vector<std::string>& out) {
-  std::vector<yaml::NodeRef> items;
-  if (node->is_null()) return true;
-  if (node->is_scalar()) {
+bool read_rules(YamlReader& r, const YamlNode& node, const std::string& key, std::vector<std::string>& out) {
+  std::vector<YamlNode> items;
+  if (node.is_null()) return true;
+  if (node.is_scalar()) {
     items.push_back(node);
-  } else if (node->is_sequence()) {
-    items.assign(node->items().begin(), node->items().end());
+  } else if (node.is_sequence()) {
+    items = node.items();
   } else {
-    error(sink, node.use_site(), "'" + key + "' must be a list of rule ids");
+    r.error(node, "'" + key + "' must be a list of rule ids");
     return false;
   }
   bool ok = true;
-  for (const yaml::NodeRef& item : items) {
-    if (!item->is_scalar()) {
-      error(sink, item.use_site(), "'" + key + "' must be a list of rule ids");
+  for (const YamlNode& item : items) {
+    if (!item.is_scalar()) {
+      r.error(item, "'" + key + "' must be a list of rule ids");
       ok = false;
       continue;
     }
-    const std::string id(item->scalar());
+    const std::string id(item.scalar());
     std::string problem = check_rule_pattern(id);
     if (!problem.empty()) {
-      error(sink, item.use_site(), problem);
+      r.error(item, problem);
       ok = false;
       continue;
     }
     out.push_back(id);
   }
   return ok;
+}
+
+std::optional<CheckConfig> read_document(std::optional<YamlDocument> document, CollectingSink& yaml_sink,
+                                         const std::string& path, DiagnosticSink& sink) {
+  YamlReader r(sink, kRule);
+  bool yaml_ok = document.has_value();
+  for (Diagnostic& d : yaml_sink.diagnostics()) {
+    if (d.severity == Severity::kWarning || d.severity == Severity::kNote || d.rule_id == "io-read") {
+      sink.report(std::move(d));  // e.g. a duplicated key: the config is still usable
+    } else {
+      r.error(d.location, "malformed YAML: " + d.message);
+    }
+  }
+  if (!yaml_ok || !r.ok()) return std::nullopt;
+
+  CheckConfig config;
+  config.path = path;
+  const YamlNode root = document->root();
+  if (root.is_null()) return config;  // an empty file is a valid, empty config
+  if (!root.is_mapping()) {
+    r.error(root, "a .bodycheck.yaml must be a mapping", "keys: disable, enable, fail_on, werror");
+    return std::nullopt;
+  }
+  r.known_keys(root, {"disable", "enable", "fail_on", "werror"}, ".bodycheck.yaml");
+  for (const YamlEntry& entry : root.entries()) {
+    const std::string key(entry.key);
+    const YamlNode& value = entry.value;
+    if (key == "disable" || key == "enable") {
+      read_rules(r, value, key, key == "disable" ? config.disable : config.enable);
+    } else if (key == "fail_on") {
+      const std::string v = value.is_scalar() ? std::string(value.scalar()) : std::string();
+      if (v == "error") {
+        config.fail_on = Severity::kError;
+      } else if (v == "warning") {
+        config.fail_on = Severity::kWarning;
+      } else {
+        r.error(value, "'fail_on' must be 'error' or 'warning'");
+      }
+    } else if (key == "werror") {
+      if (std::optional<bool> b = r.boolean(value, "'werror'")) config.werror = *b;
+    }
+  }
+  if (!r.ok()) return std::nullopt;
+  return config;
 }
 
 }  // namespace
@@ -85,68 +120,14 @@ std::string find_config(const std::string& file) {
 
 std::optional<CheckConfig> read_config_string(const std::string& text, const std::string& path, DiagnosticSink& sink) {
   CollectingSink yaml_sink;
-  auto document = yaml::parse_yaml(text, path, yaml::ParseOptions{}, yaml_sink);
-  bool yaml_ok = document != nullptr;
-  for (Diagnostic& d : yaml_sink.diagnostics()) {
-    if (d.severity == Severity::kWarning || d.severity == Severity::kNote) {
-      sink.report(std::move(d));  // e.g. a duplicated key: the config is still usable
-    } else {
-      error(sink, d.location, "malformed YAML: " + d.message);
-      yaml_ok = false;
-    }
-  }
-  if (!yaml_ok) return std::nullopt;
-
-  CheckConfig config;
-  config.path = path;
-  const yaml::NodeRef& root = document->root;
-  if (root->is_null()) return config;  // an empty file is a valid, empty config
-  if (!root->is_mapping()) {
-    error(sink, root.use_site(), "a .bodycheck.yaml must be a mapping", "keys: disable, enable, fail_on, werror");
-    return std::nullopt;
-  }
-  bool ok = true;
-  for (const yaml::MapEntry& entry : root->entries()) {
-    const std::string key(entry.key);
-    const yaml::NodeRef& value = entry.value;
-    if (key == "disable" || key == "enable") {
-      ok &= read_rules(value, key, sink, key == "disable" ? config.disable : config.enable);
-    } else if (key == "fail_on") {
-      const std::string v = value->is_scalar() ? std::string(value->scalar()) : std::string();
-      if (v == "error") {
-        config.fail_on = Severity::kError;
-      } else if (v == "warning") {
-        config.fail_on = Severity::kWarning;
-      } else {
-        error(sink, value.use_site(), "'fail_on' must be 'error' or 'warning'");
-        ok = false;
-      }
-    } else if (key == "werror") {
-      if (std::optional<bool> b = value->is_scalar() ? text::parse_bool_word(value->scalar()) : std::nullopt) {
-        config.werror = *b;
-      } else {
-        error(sink, value.use_site(), "'werror' must be true or false");
-        ok = false;
-      }
-    } else {
-      error(sink, entry.key_location, "unknown key '" + key + "' in .bodycheck.yaml",
-            "keys: disable, enable, fail_on, werror");
-      ok = false;
-    }
-  }
-  if (!ok) return std::nullopt;
-  return config;
+  std::optional<YamlDocument> document = parse_yaml_text(text, path, yaml_sink);
+  return read_document(std::move(document), yaml_sink, path, sink);
 }
 
 std::optional<CheckConfig> read_config(const std::string& path, DiagnosticSink& sink) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in.is_open()) {
-    report_rule(sink, "io-read", SourceLocation{path, 0, 0}, "cannot read the configuration file");
-    return std::nullopt;
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return read_config_string(text.str(), path, sink);
+  CollectingSink yaml_sink;
+  std::optional<YamlDocument> document = read_yaml_file(path, yaml_sink, YamlLimits{}, "the configuration file");
+  return read_document(std::move(document), yaml_sink, path, sink);
 }
 
 }  // namespace bodyfmt::tools

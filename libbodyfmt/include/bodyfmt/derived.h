@@ -2,12 +2,13 @@
 /// Data derived from a Model once and shared by validators, writers and the dynamics checker.
 
 #include <bodyfmt/diagnostic.h>
+#include <bodyfmt/export.h>
 #include <bodyfmt/model.h>
 #include <bodyfmt/tessellate.h>
 
 #include <vector>
 
-namespace bodyfmt {
+namespace BODYFMT_API bodyfmt {
 
 /// Combines a link's rigid-body contributions (body-format-spec §6.4): total mass, centre
 /// of mass in the link frame, inertia about the centre of mass in link axes. A link with no

@@ -5,6 +5,8 @@
 /// DiagnosticSink they were given and carry on with a safe value where that still means
 /// something (SDFormat's error list, Drake's diagnostic policy).
 
+#include <bodyfmt/export.h>
+
 #include <cstdint>
 #include <initializer_list>
 #include <optional>
@@ -12,7 +14,7 @@
 #include <string_view>
 #include <vector>
 
-namespace bodyfmt {
+namespace BODYFMT_API bodyfmt {
 
 enum class Severity { kNote, kWarning, kError, kFatal };
 

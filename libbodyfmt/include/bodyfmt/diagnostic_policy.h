@@ -11,6 +11,7 @@
 /// (tools/common/check_config.h).
 
 #include <bodyfmt/diagnostic.h>
+#include <bodyfmt/export.h>
 
 #include <iosfwd>
 #include <map>
@@ -21,7 +22,7 @@
 #include <string_view>
 #include <vector>
 
-namespace bodyfmt {
+namespace BODYFMT_API bodyfmt {
 
 /// Per-rule switches. A rule pattern is a rule id or a family prefix ending in `*`
 /// (`units-*`). A rule is off when a disable pattern matches it and no enable pattern does:

@@ -4,6 +4,7 @@
 /// same model as the original before it is written.
 
 #include <bodyfmt/diagnostic.h>
+#include <bodyfmt/export.h>
 #include <bodyfmt/model.h>
 
 #include <optional>
@@ -11,7 +12,7 @@
 #include <string_view>
 #include <vector>
 
-namespace bodyfmt {
+namespace BODYFMT_API bodyfmt {
 
 /// `text` with `fixes` (all of one file) applied. Identical edits (text shared through an
 /// alias, reported once per use) are applied once. Returns nullopt with `why` set when an edit

@@ -3,11 +3,13 @@
 /// shared by bodycheck's inertia rules and fix hint, the exporters and the dynamics checker, so
 /// that every tool reports and writes the same numbers.
 
+#include <bodyfmt/export.h>
+
 #include <Eigen/Core>
 
 #include <optional>
 
-namespace bodyfmt {
+namespace BODYFMT_API bodyfmt {
 
 /// (I + Iᵀ) / 2. Choreonoid keeps the 9 numbers as given; every consumer that needs a tensor
 /// (URDF, MJCF, Simbody) needs a symmetric one.

@@ -2,6 +2,7 @@
 /// Loading a Choreonoid Body file into a Model.
 
 #include <bodyfmt/diagnostic.h>
+#include <bodyfmt/export.h>
 #include <bodyfmt/model.h>
 
 #include <cstddef>
@@ -11,7 +12,7 @@
 #include <string>
 #include <vector>
 
-namespace bodyfmt {
+namespace BODYFMT_API bodyfmt {
 
 struct LoadOptions {
   /// "Billion laughs" guard: the document's node count with every alias expanded. A

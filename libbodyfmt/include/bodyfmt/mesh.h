@@ -2,6 +2,8 @@
 /// Triangle meshes: what the tessellator and the mesh importers produce, and what the
 /// exporters and the dynamics checker consume.
 
+#include <bodyfmt/export.h>
+
 #include <Eigen/Geometry>
 
 #include <array>
@@ -9,7 +11,7 @@
 #include <string>
 #include <vector>
 
-namespace bodyfmt {
+namespace BODYFMT_API bodyfmt {
 
 /// Surface material in VRML97 terms, as Choreonoid reads it (body-format-spec §8.7).
 struct Material {

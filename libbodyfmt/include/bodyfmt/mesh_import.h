@@ -6,6 +6,7 @@
 /// src/mesh/VRML_READER.md), and through assimp `.stl`, `.obj`, `.dae`, `.gltf`, `.glb`.
 
 #include <bodyfmt/diagnostic.h>
+#include <bodyfmt/export.h>
 #include <bodyfmt/model.h>
 
 #include <cstdint>
@@ -16,7 +17,7 @@
 #include <tuple>
 #include <vector>
 
-namespace bodyfmt {
+namespace BODYFMT_API bodyfmt {
 
 struct MeshImportOptions {
   /// `node` / `fragment`: the first scene node of this name in depth-first order (VRML DEF

@@ -6,6 +6,7 @@
 /// Every element keeps the source location of the text that defined it.
 
 #include <bodyfmt/diagnostic.h>
+#include <bodyfmt/export.h>
 #include <bodyfmt/mesh.h>
 
 #include <Eigen/Geometry>
@@ -23,7 +24,7 @@
 #include <variant>
 #include <vector>
 
-namespace bodyfmt {
+namespace BODYFMT_API bodyfmt {
 
 using LinkIndex = int;  ///< index into Model::links; -1 = none
 using MeshIndex = int;  ///< index into Model::meshes; -1 = not loaded

@@ -5,6 +5,7 @@
 /// is deterministic. The writers never throw on odd input and never print.
 
 #include <bodyfmt/diagnostic.h>
+#include <bodyfmt/export.h>
 
 #include <iosfwd>
 #include <map>
@@ -13,7 +14,7 @@
 #include <string_view>
 #include <vector>
 
-namespace bodyfmt {
+namespace BODYFMT_API bodyfmt {
 
 /// What a run checked and found.
 struct Report {

@@ -4,12 +4,13 @@
 /// `--enable` / `--disable`. An id is never reused.
 
 #include <bodyfmt/diagnostic.h>
+#include <bodyfmt/export.h>
 
 #include <string>
 #include <string_view>
 #include <vector>
 
-namespace bodyfmt {
+namespace BODYFMT_API bodyfmt {
 
 struct RuleInfo {
   std::string_view id;         ///< kebab-case with a family prefix, e.g. "inertia-triangle"

@@ -11,6 +11,7 @@
 /// Nothing here throws, prints or aborts.
 
 #include <bodyfmt/diagnostic.h>
+#include <bodyfmt/export.h>
 #include <bodyfmt/mesh.h>
 #include <bodyfmt/model.h>
 
@@ -19,7 +20,7 @@
 #include <array>
 #include <vector>
 
-namespace bodyfmt {
+namespace BODYFMT_API bodyfmt {
 
 /// How an Extrusion's cross-sections are placed where Choreonoid's MeshGenerator does not
 /// build a rotation. A spine whose points are all collinear is turned by Choreonoid with the

@@ -1,6 +1,9 @@
 #pragma once
 // Small text utilities below the loader and the diagnostics: did-you-mean spelling, the YAML
-// 1.1 boolean words, line splitting and JSON string quoting. No YAML, no model.
+// 1.1 boolean words and line splitting. No YAML, no model. (JSON and XML quoting are public:
+// bodyfmt/text.h.)
+
+#include <bodyfmt/text.h>
 
 #include <optional>
 #include <string>
@@ -24,9 +27,5 @@ std::optional<bool> parse_bool_word(std::string_view word);
 std::vector<std::string> split_lines(std::string_view text);
 /// The same lines as views into `text`, without copying them.
 std::vector<std::string_view> line_views(std::string_view text);
-
-/// JSON text for `s` between quotes: `"` `\` and control characters escaped, UTF-8 kept,
-/// invalid UTF-8 bytes replaced by U+FFFD.
-std::string json_quote(std::string_view s);
 
 }  // namespace bodyfmt::text

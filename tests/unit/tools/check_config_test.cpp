@@ -3,6 +3,9 @@
 
 #include <doctest/doctest.h>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 
@@ -49,8 +52,32 @@ TEST_CASE("policy: config keys and located errors for a malformed config") {
   expect_error("disable: [yaml-duplicat-key]\n", 1, 11, "did you mean 'yaml-duplicate-key'");
   expect_error("fail_on: sometimes\n", 1, 10, "'fail_on' must be");
   expect_error("werror: maybe\n", 1, 9, "'werror' must be");
-  expect_error("# x\ndisabled: [a]\n", 2, 1, "unknown key 'disabled'");
+  expect_error("# x\ndisabled: [a]\n", 2, 1, "unknown key 'disabled' in .bodycheck.yaml; did you mean 'disable'?");
+  expect_error("failon: error\n", 1, 1, "did you mean 'fail_on'?");
+  expect_error("strict: true\n", 1, 1, "unknown key 'strict' in .bodycheck.yaml");
   expect_error("disable: {a: 1}\n", 1, 10, "list of rule ids");
   expect_error("- a\n", 1, 1, "must be a mapping");
   expect_error("disable: [a\n", 2, 1, "malformed YAML");
+}
+
+TEST_CASE("policy: a config that is not a regular file is refused before it is read") {
+  // The model loader's bounded reader: /dev/zero was read without end, a FIFO blocked.
+  namespace fs = std::filesystem;
+  const fs::path fifo = fs::temp_directory_path() / ("bodyfmt_config_fifo_" + std::to_string(getpid()));
+  fs::remove(fifo);
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  for (const std::string& path : {std::string("/dev/zero"), fifo.string()}) {
+    CollectingSink sink;
+    CHECK(!read_config(path, sink));
+    REQUIRE(sink.diagnostics().size() == 1);
+    const Diagnostic& d = sink.diagnostics()[0];
+    CHECK(d.rule_id == "io-read");
+    CHECK(d.location == SourceLocation{path, 0, 0});
+    CHECK(d.message == "cannot read the configuration file: is not a regular file (a device, a FIFO or a socket)");
+  }
+  fs::remove(fifo);
+  CollectingSink missing;
+  CHECK(!read_config("no/such/.bodycheck.yaml", missing));
+  REQUIRE(missing.diagnostics().size() == 1);
+  CHECK(missing.diagnostics()[0].message == "cannot read the configuration file: no such file");
 }

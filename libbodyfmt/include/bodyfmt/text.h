@@ -1,0 +1,30 @@
+#pragma once
+/// Quoting text for the formats the tools write: JSON strings and XML 1.0 text. One copy for
+/// the reports (JSON, SARIF), the writers (URDF, MJCF, glTF) and any later tool.
+
+#include <bodyfmt/export.h>
+
+#include <string>
+#include <string_view>
+
+namespace BODYFMT_API bodyfmt {
+namespace text {
+
+/// JSON text for `s` between quotes: `"` `\` and control characters escaped, UTF-8 kept,
+/// invalid UTF-8 bytes replaced by U+FFFD.
+std::string json_quote(std::string_view s);
+
+/// Escapes & < > " ' for use in XML attribute values and text. (tinyxml2 escapes attributes
+/// itself; this is for hand-written XML and for tests.)
+std::string xml_escape(std::string_view text);
+
+/// Text that is safe inside an XML comment: "--" and a trailing "-" are broken up with a
+/// space, and characters XML 1.0 forbids are replaced by '?'.
+std::string xml_comment_text(std::string_view text);
+
+/// True when every byte is allowed in an XML 1.0 document (no control characters other than
+/// tab, newline and carriage return) and the text is valid UTF-8.
+bool is_xml_text(std::string_view text);
+
+}  // namespace text
+}  // namespace bodyfmt
