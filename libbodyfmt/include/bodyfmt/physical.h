@@ -8,16 +8,19 @@
 ///
 /// The location rule: a finding points at the key that carries the defect, falling back to the
 /// link itself when that key is not written.
-///   - A mass (inertia-nonpositive-mass: negative, or zero on a moving link): mass_source().
-///   - A combined inertia (inertia-not-positive-definite, inertia-triangle, inertia-tiny, and
-///     the tools' notes that they balanced or raised it): inertia_source().
+///   - A mass (inertia-nonpositive-mass: negative, or zero on a moving link): mass_source(),
+///     which for a negative mass is the contribution that makes it negative.
+///   - A combined inertia (inertia-not-positive-definite, inertia-triangle, inertia-tiny):
+///     inertia_source().
 ///   - An asymmetric tensor (inertia-asymmetric): the contribution that carries it, i.e. the
 ///     link's inertia key for the link-level keys, else the RigidBody node.
 ///   - A joint axis (joint-axis-zero, joint-axis-not-unit): the joint_axis key; a joint range
 ///     (joint-range-reversed, joint-range-zero-width): the joint_range key.
-/// A tool that reports a consequence of a finding under a rule of its own (body2mjcf's
-/// export-value-changed, bodysim's dynamics-inertia-balanced) reports it at the finding's
-/// location too (report_physical_as).
+/// A tool that reports what it does about a finding under a rule of its own (body2mjcf's
+/// export-value-changed when it balances an inertia or raises a massless moving link to its
+/// floor, bodysim's dynamics-inertia-balanced) reports it at the finding's location too
+/// (report_physical_as), so a massless link's floor is at its mass, a balanced tensor at its
+/// inertia.
 
 #include <bodyfmt/derived.h>
 #include <bodyfmt/diagnostic.h>
