@@ -7,6 +7,7 @@
 #include <bodyfmt/converters/staged_files.h>
 #include <bodyfmt/converters/transforms.h>
 #include <bodyfmt/inertia.h>
+#include <bodyfmt/physical.h>
 #include <bodyfmt/rules.h>
 
 #include <fmt/format.h>
@@ -64,12 +65,6 @@ std::string tensor_text(const Eigen::Matrix3d& I) {
 }
 
 double radians_to_degrees(double a) { return a * 180.0 / M_PI; }
-
-/// A link that MuJoCo gives degrees of freedom: a moving joint, or a free one.
-bool is_moving(const Model& model, std::size_t index) {
-  const JointType t = model.links[index].joint_type;
-  return t == JointType::kRevolute || t == JointType::kPrismatic || t == JointType::kFree;
-}
 
 /// MuJoCo allows free joints only on bodies of the world body, so a free non-root link becomes
 /// a top-level body at its initial world pose: a 6-DoF joint to the parent and a free body in
@@ -222,81 +217,72 @@ bool Writer::prepare_inertials() {
   const std::size_t n = model_.links.size();
   inertials_.resize(n);
   inertia_notes_.resize(n);
-  bool ok = true;
   for (std::size_t i = 0; i < n; ++i) {
-    const Link& link = model_.links[i];
     const MassProperties& mp = derived_.mass[i];
     Inertial& out = inertials_[i];
     out.mass = mp.mass;
     out.com = mp.center_of_mass;
     out.inertia = symmetrized_inertia(mp.inertia);
-    if (!computable(mp)) {  // compute_derived reported it (derived-not-finite)
-      ok = false;
+  }
+  // What is physical, and which moving bodies MuJoCo refuses, is the gate's; a link that is not
+  // computable was reported by compute_derived (derived-not-finite).
+  PhysicalOptions gate;
+  gate.balance_inertia = options_.balance_inertia;
+  const PhysicalVerdict verdict = assess_physical(model_, derived_, gate);
+  for (const PhysicalFinding& f : verdict.findings) {
+    const std::size_t i = static_cast<std::size_t>(f.link);
+    const Link& link = model_.links[i];
+    if (f.defect == PhysicalDefect::kNegativeMass) {
+      report_physical(sink_, f,
+                      fmt::format("link \"{}\" has mass {} kg; MuJoCo refuses negative masses", link.name,
+                                  format_number(derived_.mass[i].mass)));
       continue;
     }
-    if (!(mp.mass >= 0)) {
-      report_rule(
-          sink_, "inertia-nonpositive-mass", source_of(link, LinkSources::kMass),
-          fmt::format("link \"{}\" has mass {} kg; MuJoCo refuses negative masses", link.name, format_number(mp.mass)));
-      ok = false;
-      continue;
-    }
-    const PrincipalInertia p = principal_inertia(out.inertia);
-    const InertiaValidity validity = inertia_validity(p);
-    if (validity.valid()) continue;
-    const std::optional<Eigen::Matrix3d> balanced = balance_inertia(out.inertia);
-    const char* rule = validity.negative_moment ? "inertia-not-positive-definite" : "inertia-triangle";
+    if (f.defect != PhysicalDefect::kNotPositiveDefinite && f.defect != PhysicalDefect::kTriangle) continue;
+    if (verdict.links[i].negative_mass) continue;  // refused for its mass
+    const PrincipalInertia& p = f.principal;
     const std::string hint =
-        balanced ? "nearest valid inertia (link axes, about the centre of mass): " + tensor_text(*balanced) : "";
-    if (!options_.balance_inertia) {
-      report_rule(sink_, rule, inertia_source(link),
-                  fmt::format("principal moments {} of link \"{}\" are refused by MuJoCo ({}); the model is not "
-                              "written",
-                              moments_text(p.moments), link.name,
-                              validity.negative_moment
-                                  ? "a negative moment"
-                                  : fmt::format("A + B - C = {} < 0", format_number(validity.triangle_margin))),
-                  hint + (hint.empty() ? "" : "; ") + "--balance-inertia writes it");
-      ok = false;
+        f.balanced ? "nearest valid inertia (link axes, about the centre of mass): " + tensor_text(*f.balanced) : "";
+    if (!f.balanced_by_policy) {
+      report_physical(sink_, f,
+                      fmt::format("principal moments {} of link \"{}\" are refused by MuJoCo ({}); the model is not "
+                                  "written",
+                                  moments_text(p.moments), link.name,
+                                  f.validity.negative_moment
+                                      ? "a negative moment"
+                                      : fmt::format("A + B - C = {} < 0", format_number(f.validity.triangle_margin))),
+                      hint + (hint.empty() ? "" : "; ") + "--balance-inertia writes it");
       continue;
     }
+    Inertial& out = inertials_[i];
     const Eigen::Matrix3d before = out.inertia;
-    out.inertia = balanced ? *balanced : Eigen::Matrix3d::Zero();
-    changed(
-        i, inertia_source(link),
-        fmt::format("the inertia {} of link \"{}\" (principal moments {}, {}); written balanced "
-                    "(--balance-inertia, bodyfmt::balance_inertia) as {} (principal moments {})",
-                    tensor_text(before), link.name, moments_text(p.moments),
-                    validity.negative_moment ? "a negative moment"
-                                             : fmt::format("A + B - C = {}", format_number(validity.triangle_margin)),
-                    tensor_text(out.inertia), moments_text(principal_inertia(out.inertia).moments)));
+    out.inertia = f.balanced_inertia();
+    changed(i, f.at,
+            fmt::format("the inertia {} of link \"{}\" (principal moments {}, {}); written balanced "
+                        "(--balance-inertia, bodyfmt::balance_inertia) as {} (principal moments {})",
+                        tensor_text(before), link.name, moments_text(p.moments),
+                        f.validity.negative_moment
+                            ? "a negative moment"
+                            : fmt::format("A + B - C = {}", format_number(f.validity.triangle_margin)),
+                        tensor_text(out.inertia), moments_text(principal_inertia(out.inertia).moments)));
   }
-  if (!ok) return false;
+  if (!verdict.masses_usable) return false;
 
-  // mjCModel refuses a moving body whose mass or a principal moment is below mjMINVAL unless a
-  // body welded to it carries both; reverse depth-first order visits children first.
-  auto accepted = [&](std::size_t k) {
-    return inertials_[k].mass >= kMjMinVal && principal_inertia(inertials_[k].inertia).moments[0] >= kMjMinVal;
-  };
-  std::vector<bool> carried(n, false);
-  for (std::size_t k = n; k-- > 1;) {
-    const Link& c = model_.links[k];
-    if (c.parent < 0 || is_moving(model_, k)) continue;
-    if (carried[k] || accepted(k)) carried[static_cast<std::size_t>(c.parent)] = true;
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!is_moving(model_, i) || carried[i] || accepted(i)) continue;
+  // A moving body MuJoCo refuses (below mjMINVAL, no welded descendant that carries mass) is
+  // written with the documented floor.
+  for (const PhysicalFinding& f : verdict.findings) {
+    if (f.defect != PhysicalDefect::kMovingMassless && f.defect != PhysicalDefect::kMovingBelowMinimum) continue;
+    const std::size_t i = static_cast<std::size_t>(f.link);
     Inertial& in = inertials_[i];
-    const PrincipalInertia p = principal_inertia(in.inertia);
+    const PrincipalInertia& p = f.principal;
     const Eigen::Vector3d moments = p.moments.cwiseMax(kMinMovingInertia);
     const double mass = std::max(in.mass, kMinMovingMass);
     const Eigen::Matrix3d inertia = p.axes * moments.asDiagonal() * p.axes.transpose();
-    const Link& link = model_.links[i];
-    changed(i, inertia_source(link),
+    changed(i, f.at,
             fmt::format("the mass {} kg and principal moments {} of moving link \"{}\" (MuJoCo refuses a moving body "
                         "below mjMINVAL = 1e-15 when no fixed child carries mass); written as mass {} kg and "
                         "principal moments {}",
-                        format_number(in.mass), moments_text(p.moments), link.name, format_number(mass),
+                        format_number(in.mass), moments_text(p.moments), model_.links[i].name, format_number(mass),
                         moments_text(moments)));
     in.mass = mass;
     in.inertia = inertia;

@@ -4,6 +4,7 @@
 #include "simbody_contact.h"
 
 #include <bodyfmt/inertia.h>
+#include <bodyfmt/physical.h>
 #include <bodyfmt/rules.h>
 
 #include <Simbody.h>
@@ -207,47 +208,50 @@ std::unique_ptr<Simulation> Simulation::build(const Model& model, const Derived&
   const std::size_t n = model.links.size();
   if (n == 0 || derived.mass.size() != n) return nullptr;
 
-  // Mass properties: refuse what Simbody would throw on, unless asked to balance.
-  bool ok = true;
+  // Mass properties: refuse what Simbody would throw on, unless asked to balance. What is
+  // physical is the gate's; a link whose mass properties are not computable was reported by
+  // compute_derived (derived-not-finite).
   m.inertias.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < n; ++i) m.inertias[i] = symmetrized_inertia(derived.mass[i].inertia);
+  PhysicalOptions gate;
+  gate.balance_inertia = options.balance_inertia;
+  const PhysicalVerdict verdict = assess_physical(model, derived, gate);
+  for (const PhysicalFinding& f : verdict.findings) {
+    const std::size_t i = static_cast<std::size_t>(f.link);
     const Link& link = model.links[i];
-    const MassProperties& mp = derived.mass[i];
-    if (!std::isfinite(mp.mass) || mp.mass < 0 || !mp.center_of_mass.allFinite() || !mp.inertia.allFinite()) {
-      report_rule(sink, "inertia-nonpositive-mass", source_of(link, LinkSources::kMass),
-                  fmt::format("link \"{}\" has mass {:g} kg; Simbody cannot simulate it", link.name, mp.mass));
-      ok = false;
+    if (f.defect == PhysicalDefect::kNegativeMass) {
+      report_physical(
+          sink, f,
+          fmt::format("link \"{}\" has mass {:g} kg; Simbody cannot simulate it", link.name, derived.mass[i].mass));
       continue;
     }
-    const Eigen::Matrix3d inertia = symmetrized_inertia(mp.inertia);
-    m.inertias[i] = inertia;
-    const PrincipalInertia p = principal_inertia(inertia);
-    const InertiaValidity validity = inertia_validity(p);
-    if (validity.valid()) continue;
-    const std::optional<Eigen::Matrix3d> balanced = balance_inertia(inertia);
+    if (f.defect != PhysicalDefect::kNotPositiveDefinite && f.defect != PhysicalDefect::kTriangle) continue;
+    if (verdict.links[i].negative_mass) continue;  // refused for its mass
+    const PrincipalInertia& p = f.principal;
     const std::string moments = fmt::format("({:g}, {:g}, {:g})", p.moments[0], p.moments[1], p.moments[2]);
-    if (!options.balance_inertia) {
-      const char* rule = validity.negative_moment ? "inertia-not-positive-definite" : "inertia-triangle";
-      report_rule(
-          sink, rule, inertia_source(link),
+    if (!f.balanced_by_policy) {
+      report_physical(
+          sink, f,
           fmt::format("principal moments {} of link \"{}\" are not physical ({}); Simbody refuses them, so "
                       "nothing was simulated",
                       moments, link.name,
-                      validity.negative_moment ? std::string("a negative moment")
-                                               : fmt::format("A + B - C = {:g} < 0", validity.triangle_margin)),
-          (balanced ? "nearest valid inertia (link axes, about the centre of mass): " + matrix_text(*balanced) + "; "
-                    : std::string()) +
+                      f.validity.negative_moment ? std::string("a negative moment")
+                                                 : fmt::format("A + B - C = {:g} < 0", f.validity.triangle_margin)),
+          (f.balanced
+               ? "nearest valid inertia (link axes, about the centre of mass): " + matrix_text(*f.balanced) + "; "
+               : std::string()) +
               "--balance-inertia simulates with it");
-      ok = false;
       continue;
     }
-    m.inertias[i] = balanced ? *balanced : Eigen::Matrix3d::Zero();
-    report_rule(sink, "dynamics-inertia-balanced", inertia_source(link),
-                fmt::format("link \"{}\": inertia {} (principal moments {}) is not physical; simulated with the "
-                            "balanced tensor {} (--balance-inertia, bodyfmt::balance_inertia, as body2mjcf writes it)",
-                            link.name, matrix_text(inertia), moments, matrix_text(m.inertias[i])));
+    const Eigen::Matrix3d inertia = m.inertias[i];
+    m.inertias[i] = f.balanced_inertia();
+    report_physical_as(
+        sink, "dynamics-inertia-balanced", f,
+        fmt::format("link \"{}\": inertia {} (principal moments {}) is not physical; simulated with the "
+                    "balanced tensor {} (--balance-inertia, bodyfmt::balance_inertia, as body2mjcf writes it)",
+                    link.name, matrix_text(inertia), moments, matrix_text(m.inertias[i])));
   }
-  if (!ok) return nullptr;
+  if (!verdict.masses_usable) return nullptr;
 
   // Mobilized bodies in link order (parents come first).
   m.mobod.resize(n);

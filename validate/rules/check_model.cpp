@@ -29,11 +29,6 @@ std::string limit(double value) {
   return num(value);
 }
 
-bool is_moving(const Link& link) {
-  return link.joint_type == JointType::kRevolute || link.joint_type == JointType::kPrismatic ||
-         link.joint_type == JointType::kFree;
-}
-
 bool is_one_dof(const Link& link) {
   return link.joint_type == JointType::kRevolute || link.joint_type == JointType::kPrismatic;
 }
@@ -51,7 +46,10 @@ BoundingBox geometry_bounds(const Derived& derived, LinkIndex link) {
 
 void check_model(const Model& model, const Derived& derived, const CheckOptions& options, DiagnosticSink& sink) {
   if (model.links.empty()) return;
-  const detail::RuleContext ctx{model, derived, options, sink};
+  PhysicalOptions physical_options;
+  physical_options.symmetry_tolerance = options.inertia_symmetry_tolerance;
+  const PhysicalVerdict physical = assess_physical(model, derived, physical_options);
+  const detail::RuleContext ctx{model, derived, options, sink, physical};
   detail::check_structure(ctx);
   detail::check_joints(ctx);
   detail::check_units(ctx);

@@ -57,44 +57,51 @@ void check_ids(const RuleContext& ctx) {
              "number the joints 0..n-1; Choreonoid reserves a joint slot for every missing id");
 }
 
-void check_axis(const RuleContext& ctx, const Link& link) {
-  if (!is_one_dof(link) && link.joint_type != JointType::kPseudoContinuousTrack) return;
-  const SourceLocation at = source_of(link, LinkSources::kJointAxis);
-  const double norm = link.joint_axis.norm();
-  if (norm < 1e-9) {
-    ctx.report("joint-axis-zero", at,
-               fmt::format("joint axis of link \"{}\" is the zero vector {}", link.name, vec(link.joint_axis)),
+// Axis and range: what is usable is the gate's (bodyfmt/physical.h); these rules word it.
+void report_axis(const RuleContext& ctx, const PhysicalFinding& f, const Link& link) {
+  if (f.defect == PhysicalDefect::kAxisZero) {
+    ctx.report(f, fmt::format("joint axis of link \"{}\" is the zero vector {}", link.name, vec(link.joint_axis)),
                "give the axis a direction, e.g. joint_axis: Z");
     return;
   }
-  if (std::abs(norm - 1) > 1e-6) {
-    ctx.report("joint-axis-not-unit", at,
-               fmt::format("joint axis {} of link \"{}\" has length {}; Choreonoid does not normalise it, so "
-                           "velocities and displacements are scaled by it",
-                           vec(link.joint_axis), link.name, num(norm)),
-               fmt::format("joint_axis: {}", vec(link.joint_axis / norm)));
-  }
+  const double norm = link.joint_axis.norm();
+  ctx.report(f,
+             fmt::format("joint axis {} of link \"{}\" has length {}; Choreonoid does not normalise it, so "
+                         "velocities and displacements are scaled by it",
+                         vec(link.joint_axis), link.name, num(norm)),
+             fmt::format("joint_axis: {}", vec(link.joint_axis / norm)));
 }
 
-void check_range(const RuleContext& ctx, const Link& link) {
-  if (!is_one_dof(link)) return;
-  const SourceLocation at = source_of(link, LinkSources::kJointRange);
+void report_range(const RuleContext& ctx, const PhysicalFinding& f, const Link& link) {
   const double lo = link.joint_range_lower, hi = link.joint_range_upper;
   const bool revolute = link.joint_type == JointType::kRevolute;
   const double shown = revolute && ctx.model.angles_in_degrees ? 180 / kPi : 1.0;
   const char* unit = revolute ? (ctx.model.angles_in_degrees ? " deg" : " rad") : " m";
   auto written = [&](double v) { return std::abs(v) >= kUnlimited ? limit(v) : num(v * shown) + unit; };
-  if (lo > hi) {
+  if (f.defect == PhysicalDefect::kRangeReversed) {
     ctx.report(
-        "joint-range-reversed", at,
+        f,
         fmt::format("joint range of link \"{}\" is reversed: lower {} > upper {}", link.name, written(lo), written(hi)),
         fmt::format("write joint_range: [{}, {}]", limit(hi * (std::abs(hi) < kUnlimited ? shown : 1)),
                     limit(lo * (std::abs(lo) < kUnlimited ? shown : 1))));
-  } else if (lo == hi) {
-    ctx.report("joint-range-zero-width", at,
+  } else {
+    ctx.report(f,
                fmt::format("joint range of link \"{}\" has zero width ({} .. {}): the joint cannot move", link.name,
                            written(lo), written(hi)),
                "use joint_type: fixed for a joint that must not move");
+  }
+}
+
+void check_axes_and_ranges(const RuleContext& ctx) {
+  for (const PhysicalFinding& f : ctx.physical.findings) {
+    const Link& link = ctx.model.links[static_cast<std::size_t>(f.link)];
+    switch (f.defect) {
+      case PhysicalDefect::kAxisZero:
+      case PhysicalDefect::kAxisNotUnit: report_axis(ctx, f, link); break;
+      case PhysicalDefect::kRangeReversed:
+      case PhysicalDefect::kRangeZeroWidth: report_range(ctx, f, link); break;
+      default: break;  // the inertia rules' (inertia.cpp)
+    }
   }
 }
 
@@ -118,11 +125,8 @@ void check_velocity(const RuleContext& ctx, const Link& link) {
 
 void check_joints(const RuleContext& ctx) {
   check_ids(ctx);
-  for (const Link& link : ctx.model.links) {
-    check_axis(ctx, link);
-    check_range(ctx, link);
-    check_velocity(ctx, link);
-  }
+  check_axes_and_ranges(ctx);
+  for (const Link& link : ctx.model.links) check_velocity(ctx, link);
 }
 
 }  // namespace bodyfmt::validate::detail

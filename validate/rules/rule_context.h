@@ -1,11 +1,13 @@
 #pragma once
 // Shared helpers for the rule families in validate/rules/. Internal: not installed.
 
+#include <bodyfmt/physical.h>
 #include <bodyfmt/validate.h>
 
 #include <initializer_list>
 #include <string>
 #include <string_view>
+#include <utility>
 
 namespace bodyfmt::validate::detail {
 
@@ -17,10 +19,17 @@ struct RuleContext {
   const Derived& derived;
   const CheckOptions& options;
   DiagnosticSink& sink;
+  /// The physical-validity gate's verdict (bodyfmt/physical.h): the inertia and joint rules
+  /// report its findings.
+  const PhysicalVerdict& physical;
 
   /// Reports `rule_id` with its default severity from the rule table (asserts the row exists).
   void report(std::string_view rule_id, const SourceLocation& location, std::string message,
               std::string fix_hint = {}) const;
+  /// Reports a finding of the gate: its rule, at its location.
+  void report(const PhysicalFinding& finding, std::string message, std::string fix_hint = {}) const {
+    report(finding.rule(), finding.at, std::move(message), std::move(fix_hint));
+  }
 };
 
 /// Shortest round-trip-ish form for messages: 6 significant digits, no trailing zeros.
@@ -29,10 +38,6 @@ std::string num(double value);
 std::string vec(const Eigen::Vector3d& v);
 /// A limit for messages: a number, or "unlimited" for the sentinel.
 std::string limit(double value);
-
-/// A joint that moves in a simulation: revolute, prismatic, free (also a free root).
-/// Fixed and pseudo_continuous_track joints are kinematically fixed (body-format-spec §6.2).
-bool is_moving(const Link& link);
 
 /// Joint types whose axis and range mean something: revolute, prismatic.
 bool is_one_dof(const Link& link);
