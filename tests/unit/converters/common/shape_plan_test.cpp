@@ -329,6 +329,17 @@ TEST_CASE("shape plan: a mesh file is referenced as it is where the target can, 
   REQUIRE(part.collision_dropped.has_value());
   CHECK(part.collision_dropped->kind == LossKind::kGeometry);
   check_at_shape(*part.collision_dropped);
+
+  // A material the shape gives wins over the part's own.
+  Planned blue(fmt::format(R"(      - type: Shape
+        geometry: {{type: Resource, uri: "{}/square.obj"}}
+        appearance: {{material: {{diffuse: [0, 0, 1]}}}}
+)",
+                           kMeshDir),
+               mjcf_like());
+  REQUIRE(blue.only_piece().material.has_value());
+  CHECK(blue.only_piece().material->diffuse_color.x() == 0.0);
+  CHECK(blue.only_piece().material->diffuse_color.z() == 1.0);
 }
 
 TEST_CASE("shape plan: a target that collides with hulls keeps a mesh with a volume, and a visual-only flat one") {
