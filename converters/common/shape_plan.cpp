@@ -94,7 +94,8 @@ class Planner {
 
 ShapePlan Planner::plan() {
   const Appearance& appearance = shape_.appearance;
-  if (appearance.texture) loss(LossKind::kTextures, fmt::format("the texture '{}'", appearance.texture->uri), "colours are kept");
+  if (appearance.texture)
+    loss(LossKind::kTextures, fmt::format("the texture '{}'", appearance.texture->uri), "colours are kept");
   if (!target_.emissive_color && appearance.material && !appearance.material->emissive_color.isZero(0))
     loss(LossKind::kMaterials, "an emissive colour", fmt::format("{} materials have one rgba colour", target_.name));
   if (shape_.visual || shape_.collision) geometry();
@@ -114,7 +115,8 @@ void Planner::geometry() {
       // A flat box is Choreonoid's stand-in for a plane: it gets a thickness no contact can
       // tell apart.
       piece.size = 2 * half.cwiseMax(target_.min_box_half_edge);
-      loss(LossKind::kGeometry, fmt::format("a box with a zero edge (written with edges {})", format_vector(piece.size)),
+      loss(LossKind::kGeometry,
+           fmt::format("a box with a zero edge (written with edges {})", format_vector(piece.size)),
            fmt::format("{} geoms need positive sizes", target_.name));
     }
     primitive(PlannedPiece::Kind::kBox, Eigen::Matrix3d::Identity(), std::move(piece));
@@ -233,7 +235,8 @@ void Planner::mesh_piece(std::shared_ptr<const TriangleMesh> mesh, std::string k
   }
   if (!spans)
     piece.collision_dropped = PlannedLoss{
-        LossKind::kGeometry, shape_.source,
+        LossKind::kGeometry,
+        shape_.source,
         fmt::format("the collision geometry of a flat or degenerate {} ({} collides with convex hulls, which "
                     "need a volume; only its visual geom is written)",
                     geometry_type_name(shape_.geometry), target_.name),

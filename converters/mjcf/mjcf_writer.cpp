@@ -144,12 +144,16 @@ class Writer : converters::XmlWriter {
   const MjcfOptions& options_;
   // MuJoCo 2.2.2 writes capsules, refuses zero sizes and collides with convex hulls; its
   // materials have an emission, and it reads meshes from STL files only.
-  const converters::ShapeTarget shape_target_{"MuJoCo", /*capsule=*/true, kFlatBoxHalfThickness,
-                                              /*hull_collision=*/true, /*emissive_color=*/true, nullptr};
+  const converters::ShapeTarget shape_target_{"MuJoCo",
+                                              /*capsule=*/true,
+                                              kFlatBoxHalfThickness,
+                                              /*hull_collision=*/true,
+                                              /*emissive_color=*/true,
+                                              nullptr};
   XMLElement* mujoco_ = nullptr;
   XMLElement* asset_ = nullptr;
   std::vector<Inertial> inertials_;
-  std::vector<std::vector<std::string>> inertia_notes_;      // per link, commented before <inertial>
+  std::vector<std::vector<std::string>> inertia_notes_;  // per link, commented before <inertial>
   converters::MaterialNames<Material> materials_;
   std::map<std::string, std::string> mesh_by_key_;
   std::vector<std::tuple<std::string, std::string, Eigen::Vector3d>> mesh_assets_;  // name, file, scale

@@ -110,14 +110,17 @@ class Writer : converters::XmlWriter {
   }
 
   const UrdfOptions& options_;
-  const converters::ShapeTarget shape_target_{
-      kTarget, /*capsule=*/false, /*min_box_half_edge=*/0, /*hull_collision=*/false, /*emissive_color=*/false,
-      [this](const MeshResource& res) { return references_as_is(res); }};
+  const converters::ShapeTarget shape_target_{kTarget,
+                                              /*capsule=*/false,
+                                              /*min_box_half_edge=*/0,
+                                              /*hull_collision=*/false,
+                                              /*emissive_color=*/false,
+                                              [this](const MeshResource& res) { return references_as_is(res); }};
   /// Holds the children of <robot> until flush() prints them; its own tags are printed apart.
   XMLElement* robot_ = nullptr;
   std::string text_;  // the URDF file, printed as it is built
   XmlStringPrinter printer_{text_};
-  std::size_t materials_at_ = 0;  // where in text_ the named materials go
+  std::size_t materials_at_ = 0;                      // where in text_ the named materials go
   converters::MaterialNames<std::string> materials_;  // by rgba, with it
   const std::string mesh_folder_ = converters::generated_folder(options_.mesh_folder, "meshes", output_, model_.name);
   converters::StagedFiles staged_{output_, mesh_folder_};

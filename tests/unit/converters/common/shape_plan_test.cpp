@@ -33,7 +33,8 @@ const std::string kMeshDir = (std::filesystem::path(BODYFMT_TEST_DATA_DIR) / "me
 /// One link whose `elements:` are `elements` (indented by 6), planned for its first shape.
 /// Line 9 of the loaded text is the first line of `elements`.
 struct Planned {
-  Planned(const std::string& elements, const ShapeTarget& target) : loaded(test::load_v2(R"(
+  Planned(const std::string& elements, const ShapeTarget& target)
+      : loaded(test::load_v2(R"(
 name: T
 links:
   - name: L

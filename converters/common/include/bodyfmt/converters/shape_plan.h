@@ -51,7 +51,8 @@ struct PlannedPiece {
   Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();
   Eigen::Vector3d size = Eigen::Vector3d::Zero();  ///< box edges
   double radius = 0;                               ///< sphere, cylinder, capsule
-  double length = 0;  ///< cylinder, capsule: the length of the axis (of the straight part)
+  /// Cylinder: its length; capsule: the length of its straight part.
+  double length = 0;
   /// kMesh: the vertices to write (linear part baked in when it shears or mirrors), staged once
   /// per `key` under a name from `stem`.
   std::shared_ptr<const TriangleMesh> mesh;
