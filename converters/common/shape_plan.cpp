@@ -60,9 +60,8 @@ class Planner {
         sink_(sink),
         material_(shape_.appearance.material),
         sr_(decompose(shape_.X_LS.linear())),
-        shape_key_(fmt::format("shape:{}:{}", link_index, shape_index)),
-        stem_(fmt::format("{}_{}", link_.name,
-                          shape_.name.empty() ? fmt::format("shape{}", shape_index) : shape_.name.str())) {}
+        link_index_(link_index),
+        shape_index_(shape_index) {}
 
   ShapePlan plan();
 
@@ -76,6 +75,12 @@ class Planner {
   void primitive(PlannedPiece::Kind kind, const Eigen::Matrix3d& turn, PlannedPiece piece);
   void mesh_piece(std::shared_ptr<const TriangleMesh> mesh, std::string key, std::string stem,
                   const std::optional<Material>& material);
+  // Only meshes need these: a model of many primitives does not format them.
+  std::string shape_key() const { return fmt::format("shape:{}:{}", link_index_, shape_index_); }
+  std::string stem() const {
+    return fmt::format("{}_{}", link_.name,
+                       shape_.name.empty() ? fmt::format("shape{}", shape_index_) : shape_.name.str());
+  }
   bool uniform() const {
     return sr_ && nearly_equal(sr_->scale.x(), sr_->scale.y()) && nearly_equal(sr_->scale.x(), sr_->scale.z());
   }
@@ -87,8 +92,8 @@ class Planner {
   DiagnosticSink& sink_;
   const std::optional<Material> material_;
   const std::optional<ScaledRotation> sr_;
-  const std::string shape_key_;
-  const std::string stem_;
+  const std::size_t link_index_;
+  const std::size_t shape_index_;
   ShapePlan plan_;
 };
 
@@ -164,7 +169,7 @@ void Planner::tessellated(bool report_scale) {
     loss(LossKind::kGeometry, fmt::format("an empty {} (nothing to draw)", geometry_type_name(shape_.geometry)));
     return;
   }
-  mesh_piece(std::move(mesh), shape_key_, stem_, material_);
+  mesh_piece(std::move(mesh), shape_key(), stem(), material_);
 }
 
 void Planner::mesh_resource(const MeshResource& res) {
@@ -195,7 +200,7 @@ void Planner::mesh_resource(const MeshResource& res) {
     const MeshPart& part = asset.parts[p];
     if (part.mesh.empty()) continue;
     const std::string key = fmt::format("asset:{}:{}", res.mesh, p);
-    mesh_piece(borrowed(part.mesh), sr_ ? key : key + ":" + shape_key_,
+    mesh_piece(borrowed(part.mesh), sr_ ? key : key + ":" + shape_key(),
                asset.parts.size() > 1 ? fmt::format("{}_{}", asset_stem, p) : asset_stem,
                material_ ? material_ : part.material);
   }
