@@ -4,8 +4,10 @@
 #include <bodyfmt/converters/names.h>
 #include <bodyfmt/converters/numbers.h>
 #include <bodyfmt/converters/preflight.h>
+#include <bodyfmt/converters/shape_plan.h>
 #include <bodyfmt/converters/staged_files.h>
 #include <bodyfmt/converters/transforms.h>
+#include <bodyfmt/converters/xml_writer.h>
 #include <bodyfmt/inertia.h>
 #include <bodyfmt/physical.h>
 #include <bodyfmt/rules.h>
@@ -26,7 +28,6 @@ namespace bodyfmt::mjcf {
 namespace {
 
 namespace fs = std::filesystem;
-using converters::decompose;
 using converters::format_number;
 std::string vec3(const Eigen::Vector3d& v) { return converters::format_vector(v); }
 using converters::nearly_equal;
@@ -71,36 +72,6 @@ double radians_to_degrees(double a) { return a * 180.0 / M_PI; }
 /// the world give the same motion, only the coordinates differ.
 bool detached(const Link& link) { return link.parent >= 0 && link.joint_type == JointType::kFree; }
 
-/// Whether qhull can build the convex hull MuJoCo collides with: at least 4 distinct points
-/// that span three dimensions (a flat or sliver mesh fails with "qhull error"). Only corners
-/// of triangles count: the mesh file holds no others, whatever the model's vertex list has.
-bool spans_volume(const TriangleMesh& mesh) {
-  std::vector<char> used(mesh.vertices.size(), 0);
-  std::vector<Eigen::Vector3d> points;
-  for (const auto& triangle : mesh.triangles)
-    for (int i : triangle)
-      if (!used[i]) {
-        used[i] = 1;
-        points.push_back(mesh.vertices[i]);
-      }
-  if (points.size() < 4) return false;
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (const auto& v : points) mean += v;
-  mean /= static_cast<double>(points.size());
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  for (const auto& v : points) covariance += (v - mean) * (v - mean).transpose();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::max());
-  Eigen::Vector3d hi = -lo;
-  for (const auto& v : points) {
-    const Eigen::Vector3d p = solver.eigenvectors().transpose() * (v - mean);
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  const Eigen::Vector3d extent = hi - lo;
-  return extent.minCoeff() > 1e-6 * extent.maxCoeff() && extent.maxCoeff() > 1e-9;
-}
-
 /// What is written in <inertial>: the link's mass properties after balancing and the
 /// small-mass floor.
 struct Inertial {
@@ -114,35 +85,19 @@ struct Piece {
   Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();
   std::function<void(XMLElement*)> geometry;
   std::optional<Material> material;
-  bool collidable = true;  ///< false for a mesh MuJoCo cannot hull
+  /// A mesh MuJoCo cannot hull: written as a visual geom only, and this reported.
+  std::optional<converters::PlannedLoss> collision_dropped;
 };
 
-class Writer {
+class Writer : converters::XmlWriter {
  public:
   Writer(const Model& model, const Derived& derived, const MjcfOptions& options, converters::OutputSet& output,
          DiagnosticSink& sink)
-      : model_(model), derived_(derived), options_(options), output_(output), sink_(sink) {}
+      : XmlWriter(model, derived, output, kTarget, sink), options_(options) {}
 
   bool run();
 
  private:
-  XMLElement* element(XMLElement* parent, const char* name) {
-    XMLElement* e = doc_.NewElement(name);
-    parent->InsertEndChild(e);
-    return e;
-  }
-  void comment(XMLElement* parent, const std::string& text) {
-    parent->InsertEndChild(doc_.NewComment((" " + converters::xml_comment_text(text) + " ").c_str()));
-  }
-  void loss(converters::LossKind kind, XMLElement* parent, const SourceLocation& at, const std::string& what,
-            const std::string& hint = {}) {
-    converters::report_loss(sink_, at, kTarget, kind, what, hint);
-    comment(parent, "export-loss: " + what);
-  }
-  void fatal(std::string_view rule, const SourceLocation& at, std::string message) {
-    report_rule(sink_, rule, at, std::move(message));
-    failed_ = true;
-  }
   /// A value the export changed so that MuJoCo accepts it: a loss of the value as given,
   /// reported now and commented in the link's body when it is written.
   void changed(std::size_t link_index, const SourceLocation& at, const std::string& what) {
@@ -150,11 +105,6 @@ class Writer {
     // cannot load the body otherwise; a warning with the old and new values.
     report_rule(sink_, "export-value-changed", at, "MuJoCo cannot accept " + what);
     inertia_notes_[link_index].push_back("export-value-changed: " + what);
-  }
-  void check_name(const std::string& name, const char* what, const SourceLocation& at) {
-    if (!converters::is_xml_text(name))
-      fatal("export-xml-text", at,
-            fmt::format("{} name cannot be written in XML (control characters or invalid UTF-8)", what));
   }
   std::string unique(std::set<std::string>& used, std::string name) {
     if (used.count(name)) {
@@ -173,10 +123,9 @@ class Writer {
   void write_inertial(XMLElement* body, std::size_t index);
   void write_joint(XMLElement* body, std::size_t index);
   void write_shapes(XMLElement* body, std::size_t index);
-  std::vector<Piece> pieces(XMLElement* body, const Link& link, std::size_t link_index, std::size_t shape_index,
-                            const Shape& shape);
-  void add_mesh_piece(std::vector<Piece>& out, const std::string& key, const std::string& stem,
-                      const TriangleMesh& mesh, const Eigen::Affine3d& X_LS, const std::optional<Material>& material);
+  std::vector<Piece> pieces(XMLElement* body, std::size_t link_index, std::size_t shape_index);
+  /// The name of the <mesh> asset of a planned mesh, staged as STL; empty when it cannot be.
+  std::string mesh_piece(const converters::PlannedPiece& planned);
   std::string mesh_asset(const std::string& file, const Eigen::Vector3d& scale);
   std::string material_name(const Material& material);
   void write_devices(XMLElement* body, std::size_t index);
@@ -187,19 +136,20 @@ class Writer {
   void write_actuators();
   void write_keyframe();
 
-  const Model& model_;
-  const Derived& derived_;
   const MjcfOptions& options_;
-  converters::OutputSet& output_;
-  DiagnosticSink& sink_;
-  tinyxml2::XMLDocument doc_;
+  // MuJoCo 2.2.2 writes capsules, refuses zero sizes and collides with convex hulls; its
+  // materials have an emission, and it reads meshes from STL files only.
+  const converters::ShapeTarget shape_target_{"MuJoCo",
+                                              /*capsule=*/true,
+                                              kFlatBoxHalfThickness,
+                                              /*hull_collision=*/true,
+                                              /*emissive_color=*/true,
+                                              nullptr};
   XMLElement* mujoco_ = nullptr;
   XMLElement* asset_ = nullptr;
-  bool failed_ = false;
   std::vector<Inertial> inertials_;
-  std::vector<std::vector<std::string>> inertia_notes_;      // per link, commented before <inertial>
-  std::vector<std::pair<std::string, Material>> materials_;  // first-use order
-  std::map<std::string, std::string> material_by_key_;
+  std::vector<std::vector<std::string>> inertia_notes_;  // per link, commented before <inertial>
+  converters::MaterialNames<Material> materials_;
   std::map<std::string, std::string> mesh_by_key_;
   std::vector<std::tuple<std::string, std::string, Eigen::Vector3d>> mesh_assets_;  // name, file, scale
   const std::string mesh_folder_ = converters::generated_folder(options_.mesh_folder, "assets", output_, model_.name);
@@ -392,12 +342,7 @@ std::string Writer::material_name(const Material& m) {
   const std::string key = fmt::format("{}|{}|{}|{}|{}|{}", vec3(m.diffuse_color), vec3(m.specular_color),
                                       vec3(m.emissive_color), format_number(m.specular_exponent),
                                       format_number(m.transparency), format_number(m.ambient_intensity));
-  auto it = material_by_key_.find(key);
-  if (it != material_by_key_.end()) return it->second;
-  std::string name = fmt::format("material_{}", materials_.size());
-  materials_.emplace_back(name, m);
-  material_by_key_.emplace(key, name);
-  return name;
+  return materials_.name(key, m);
 }
 
 std::string Writer::mesh_asset(const std::string& file, const Eigen::Vector3d& scale) {
@@ -413,170 +358,55 @@ std::string Writer::mesh_asset(const std::string& file, const Eigen::Vector3d& s
   return name;
 }
 
-void Writer::add_mesh_piece(std::vector<Piece>& out, const std::string& key, const std::string& stem,
-                            const TriangleMesh& mesh, const Eigen::Affine3d& X_LS,
-                            const std::optional<Material>& material) {
-  Piece piece;
-  piece.material = material;
-  piece.origin.translation() = X_LS.translation();
-  TriangleMesh written = mesh;
-  Eigen::Vector3d scale = Eigen::Vector3d::Ones();
-  std::string file_key = key;
-  if (auto sr = decompose(X_LS.linear())) {
-    piece.origin.linear() = sr->rotation;
-    scale = sr->scale;
-    TriangleMesh scaled = mesh;
-    for (auto& v : scaled.vertices) v = v.cwiseProduct(scale);
-    piece.collidable = spans_volume(scaled);
-  } else {
-    // Shear or mirror: bake the linear part into the vertices (a mirror flips the winding).
-    const Eigen::Matrix3d L = X_LS.linear();
-    for (auto& v : written.vertices) v = L * v;
-    written.normals.clear();
-    if (L.determinant() < 0)
-      for (auto& t : written.triangles) std::swap(t[1], t[2]);
-    file_key += ":baked";
-    piece.collidable = spans_volume(written);
-  }
+std::string Writer::mesh_piece(const converters::PlannedPiece& planned) {
   std::string error;
   const std::optional<std::string> relative =
-      staged_.mesh(file_key, stem, written, std::nullopt, converters::MeshFormat::kStl, error);
+      staged_.mesh(planned.key, planned.stem, *planned.mesh, std::nullopt, converters::MeshFormat::kStl, error);
   if (!relative) {
     fatal("export-write", model_.source, error);
-    return;
+    return {};
   }
   // <mesh file> is relative to the compiler's meshdir (the staging folder).
   const std::string prefix = mesh_folder_ + "/";
   const std::string file = relative->rfind(prefix, 0) == 0 ? relative->substr(prefix.size()) : *relative;
-  const std::string name = mesh_asset(file, scale);
-  piece.geometry = [name](XMLElement* g) {
-    g->SetAttribute("type", "mesh");
-    g->SetAttribute("mesh", name.c_str());
-  };
-  out.push_back(std::move(piece));
+  return mesh_asset(file, planned.scale);
 }
 
-std::vector<Piece> Writer::pieces(XMLElement* body, const Link& link, std::size_t link_index, std::size_t shape_index,
-                                  const Shape& shape) {
+std::vector<Piece> Writer::pieces(XMLElement* body, std::size_t link_index, std::size_t shape_index) {
+  converters::ShapePlan plan = converters::plan_shape(model_, link_index, shape_index, shape_target_, sink_);
+  for (const converters::PlannedLoss& planned : plan.losses) loss(body, planned);
   std::vector<Piece> out;
-  const std::optional<Material>& material = shape.appearance.material;
-  const std::string shape_key = fmt::format("shape:{}:{}", link_index, shape_index);
-  const std::string stem =
-      fmt::format("{}_{}", link.name, shape.name.empty() ? fmt::format("shape{}", shape_index) : shape.name.str());
-  const auto sr = decompose(shape.X_LS.linear());
-  auto tessellated = [&](bool report_scale) {
-    if (report_scale) {
-      loss(converters::LossKind::kGeometry, body, shape.source,
-           fmt::format("a non-uniformly scaled {} as a primitive", geometry_type_name(shape.geometry)),
-           "written as a tessellated mesh");
-    }
-    GeometryAlreadyReported filtered(sink_);
-    TriangleMesh mesh = compute_shape_local_mesh(model_, shape, filtered);
-    if (mesh.empty()) {
-      loss(converters::LossKind::kGeometry, body, shape.source,
-           fmt::format("an empty {} (nothing to draw)", geometry_type_name(shape.geometry)));
-      return;
-    }
-    add_mesh_piece(out, shape_key, stem, mesh, shape.X_LS, material);
-  };
-  auto primitive = [&](std::function<void(XMLElement*)> fill, const Eigen::Matrix3d& extra_rotation) {
+  for (converters::PlannedPiece& planned : plan.pieces) {
     Piece piece;
-    piece.origin.linear() = sr->rotation * extra_rotation;
-    piece.origin.translation() = shape.X_LS.translation();
-    piece.geometry = std::move(fill);
-    piece.material = material;
+    piece.origin = planned.origin;
+    piece.material = planned.material;
+    piece.collision_dropped = std::move(planned.collision_dropped);
+    auto typed = [](const char* type, std::string size) {
+      return [type, size = std::move(size)](XMLElement* g) {
+        g->SetAttribute("type", type);
+        g->SetAttribute("size", size.c_str());
+      };
+    };
+    // MuJoCo sizes are half edges and half lengths.
+    auto round = [&planned] { return format_number(planned.radius) + " " + format_number(planned.length / 2); };
+    using Kind = converters::PlannedPiece::Kind;
+    switch (planned.kind) {
+      case Kind::kBox: piece.geometry = typed("box", vec3(planned.size / 2)); break;
+      case Kind::kSphere: piece.geometry = typed("sphere", format_number(planned.radius)); break;
+      case Kind::kCylinder: piece.geometry = typed("cylinder", round()); break;
+      case Kind::kCapsule: piece.geometry = typed("capsule", round()); break;
+      case Kind::kMesh:
+      case Kind::kMeshFile: {  // no file is referenced as it is (shape_target_)
+        const std::string name = mesh_piece(planned);
+        if (name.empty()) continue;
+        piece.geometry = [name](XMLElement* g) {
+          g->SetAttribute("type", "mesh");
+          g->SetAttribute("mesh", name.c_str());
+        };
+        break;
+      }
+    }
     out.push_back(std::move(piece));
-  };
-  auto uniform = [&]() {
-    return sr && nearly_equal(sr->scale.x(), sr->scale.y()) && nearly_equal(sr->scale.x(), sr->scale.z());
-  };
-  // body-format-spec §19: Body cylinders and capsules run along +Y, MuJoCo's along +Z;
-  // Rx(-90°) maps +Z onto +Y exactly.
-  const Eigen::Matrix3d z_to_y = Eigen::AngleAxisd(-M_PI / 2, Eigen::Vector3d::UnitX()).toRotationMatrix();
-
-  if (const auto* box = std::get_if<Box>(&shape.geometry); box && sr) {
-    Eigen::Vector3d half = box->size.cwiseProduct(sr->scale) / 2;
-    if ((half.array() <= 0).any()) {
-      // MuJoCo refuses zero sizes; a flat box (Choreonoid's stand-in for a plane) gets a
-      // thickness no contact can tell apart.
-      half = half.cwiseMax(kFlatBoxHalfThickness);
-      loss(converters::LossKind::kGeometry, body, shape.source,
-           fmt::format("a box with a zero edge (written with edges {})", vec3(Eigen::Vector3d(2 * half))),
-           "MuJoCo geoms need positive sizes");
-    }
-    primitive(
-        [half](XMLElement* g) {
-          g->SetAttribute("type", "box");
-          g->SetAttribute("size", vec3(half).c_str());
-        },
-        Eigen::Matrix3d::Identity());
-  } else if (const auto* sphere = std::get_if<Sphere>(&shape.geometry)) {
-    if (uniform()) {
-      const double r = sphere->radius * sr->scale.x();
-      primitive(
-          [r](XMLElement* g) {
-            g->SetAttribute("type", "sphere");
-            g->SetAttribute("size", format_number(r).c_str());
-          },
-          Eigen::Matrix3d::Identity());
-    } else {
-      tessellated(true);
-    }
-  } else if (const auto* cyl = std::get_if<Cylinder>(&shape.geometry)) {
-    if (sr && nearly_equal(sr->scale.x(), sr->scale.z())) {
-      if (!cyl->top || !cyl->bottom)
-        loss(converters::LossKind::kGeometry, body, shape.source, "a cylinder without its top or bottom cap",
-             "MuJoCo cylinders are closed");
-      const double r = cyl->radius * sr->scale.x();
-      const double half = cyl->height * sr->scale.y() / 2;
-      primitive(
-          [r, half](XMLElement* g) {
-            g->SetAttribute("type", "cylinder");
-            g->SetAttribute("size", fmt::format("{} {}", format_number(r), format_number(half)).c_str());
-          },
-          z_to_y);
-    } else {
-      tessellated(true);
-    }
-  } else if (const auto* cap = std::get_if<Capsule>(&shape.geometry)) {
-    if (uniform()) {
-      const double r = cap->radius * sr->scale.x();
-      const double half = cap->height * sr->scale.x() / 2;
-      primitive(
-          [r, half](XMLElement* g) {
-            g->SetAttribute("type", "capsule");
-            g->SetAttribute("size", fmt::format("{} {}", format_number(r), format_number(half)).c_str());
-          },
-          z_to_y);
-    } else {
-      tessellated(true);
-    }
-  } else if (const auto* res = geometry_if<MeshResource>(shape.geometry)) {
-    if (res->mesh < 0 || static_cast<std::size_t>(res->mesh) >= model_.meshes.size() ||
-        model_.meshes[static_cast<std::size_t>(res->mesh)].parts.empty()) {
-      loss(converters::LossKind::kGeometry, body, shape.source,
-           fmt::format("mesh '{}', which could not be loaded; the shape is left out", res->uri));
-      return out;
-    }
-    const MeshAsset& asset = model_.meshes[static_cast<std::size_t>(res->mesh)];
-    bool textured = false;
-    for (const MeshPart& part : asset.parts) textured = textured || part.texture.has_value();
-    if (textured)
-      loss(converters::LossKind::kTextures, body, shape.source, fmt::format("the texture of mesh '{}'", res->uri),
-           "colours are kept");
-    // Every part is written as its own STL (MuJoCo 2.2.2 reads no DAE and no colours from
-    // files), so each keeps its own material.
-    const std::string asset_stem = fs::path(asset.path).stem().string() + (asset.node.empty() ? "" : "_" + asset.node);
-    for (std::size_t p = 0; p < asset.parts.size(); ++p) {
-      const MeshPart& part = asset.parts[p];
-      if (part.mesh.empty()) continue;
-      const std::string key = fmt::format("asset:{}:{}", res->mesh, p);
-      const std::string part_stem = asset.parts.size() > 1 ? fmt::format("{}_{}", asset_stem, p) : asset_stem;
-      add_mesh_piece(out, sr ? key : key + ":" + shape_key, part_stem, part.mesh, shape.X_LS,
-                     material ? material : part.material);
-    }
-  } else {
-    tessellated(false);
   }
   return out;
 }
@@ -585,21 +415,12 @@ void Writer::write_shapes(XMLElement* body, std::size_t index) {
   const Link& link = model_.links[index];
   for (std::size_t s = 0; s < link.shapes.size(); ++s) {
     const Shape& shape = link.shapes[s];
-    if (shape.appearance.texture)
-      loss(converters::LossKind::kTextures, body, shape.source,
-           fmt::format("the texture '{}'", shape.appearance.texture->uri), "colours are kept");
-    if (!shape.visual && !shape.collision) continue;
-    for (Piece& piece : pieces(body, link, index, s, shape)) {
+    for (Piece& piece : pieces(body, index, s)) {
       // body-format-spec §7.3: under Visual visual only, under Collision collision only, under
       // neither both. Visual geoms: group 2, no contact, no mass; collision geoms: group 3.
-      if (shape.collision && !piece.collidable) {
-        loss(converters::LossKind::kGeometry, body, shape.source,
-             fmt::format("the collision geometry of a flat or degenerate {} (MuJoCo collides with convex hulls, "
-                         "which need a volume; only its visual geom is written)",
-                         geometry_type_name(shape.geometry)));
-      }
+      if (piece.collision_dropped) loss(body, *piece.collision_dropped);
       for (bool visual : {true, false}) {
-        if (visual ? !shape.visual : !shape.collision || !piece.collidable) continue;
+        if (visual ? !shape.visual : !shape.collision || piece.collision_dropped) continue;
         XMLElement* g = element(body, "geom");
         place(g, piece.origin);
         piece.geometry(g);
@@ -621,7 +442,7 @@ std::string Writer::site(XMLElement* body, const Device& device, std::size_t dev
   const Link& link = model_.links[static_cast<std::size_t>(device.link)];
   const std::string name = unique(
       site_names_, device.name.empty() ? fmt::format("{}_{}_{}", link.name, device.type, device_index) : device.name);
-  check_name(name, "device", device.source);
+  check_xml_name(name, "device", device.source);
   XMLElement* s = element(body, "site");
   s->SetAttribute("name", name.c_str());
   place(s, device.X_LD);
@@ -665,7 +486,7 @@ void Writer::write_devices(XMLElement* body, std::size_t index) {
       XMLElement* c = element(body, "camera");
       const std::string name = unique(
           camera_names_, device.name.empty() ? fmt::format("{}_camera_{}", model_.links[index].name, d) : device.name);
-      check_name(name, "device", device.source);
+      check_xml_name(name, "device", device.source);
       c->SetAttribute("name", name.c_str());
       c->SetAttribute("mode", "fixed");
       place(c, X);
@@ -691,7 +512,7 @@ void Writer::write_devices(XMLElement* body, std::size_t index) {
       XMLElement* l = element(body, "light");
       const std::string name = unique(
           light_names_, device.name.empty() ? fmt::format("{}_light_{}", model_.links[index].name, d) : device.name);
-      check_name(name, "device", device.source);
+      check_xml_name(name, "device", device.source);
       l->SetAttribute("name", name.c_str());
       l->SetAttribute("mode", "fixed");
       l->SetAttribute("pos", vec3(device.X_LD.translation()).c_str());
@@ -851,12 +672,7 @@ void Writer::write_keyframe() {
 }
 
 bool Writer::run() {
-  if (model_.links.empty() || derived_.mass.size() != model_.links.size() ||
-      derived_.X_WL.size() != model_.links.size()) {
-    fatal("internal-error", model_.source, "the model has no links or its derived data is missing");
-    output_.fail();
-    return false;
-  }
+  if (!has_derived_data()) return false;
   if (!prepare_inertials()) {
     output_.fail();
     return false;
@@ -879,11 +695,9 @@ bool Writer::run() {
   doc_.InsertEndChild(doc_.NewDeclaration());
   mujoco_ = doc_.NewElement("mujoco");
   doc_.InsertEndChild(mujoco_);
-  if (!converters::is_xml_text(model_.name))
-    fatal("export-xml-text", model_.source,
-          "the body name cannot be written in XML (control characters or invalid UTF-8)");
+  check_body_name();
   mujoco_->SetAttribute("model", model_.name.empty() ? "body" : model_.name.c_str());
-  comment(mujoco_, fmt::format("Generated by body2mjcf from {}", fs::path(model_.source_file).filename().string()));
+  generated_by(mujoco_, "body2mjcf");
   // Every unit and default that matters is written: radians, limits only where stated, the
   // inertials as given (no mass from geoms, no bounds, no balancing by MuJoCo).
   XMLElement* compiler = element(mujoco_, "compiler");
@@ -905,7 +719,7 @@ bool Writer::run() {
   for (std::size_t i = 0; i < model_.links.size(); ++i) {
     const Link& link = model_.links[i];
     const SourceLocation name_at = source_of(link, LinkSources::kName);
-    check_name(link.name, "link", name_at);
+    check_xml_name(link.name, "link", name_at);
     if (link.name == "world")
       fatal("export-name-conflict", name_at, "a link named 'world' clashes with MuJoCo's world body");
     // Links are in depth-first pre-order, so a parent's element exists before its children.
@@ -946,15 +760,11 @@ bool Writer::run() {
   }
   write_keyframe();
 
-  for (const auto& [name, m] : materials_) {
+  for (const auto& [name, m] : materials_.named()) {
     XMLElement* e = element(asset_, "material");
     e->SetAttribute("name", name.c_str());
-    // Colours are fractions (appearance-value-range reports others); MuJoCo refuses a float overflow.
-    const Eigen::Vector4d rgba =
-        Eigen::Vector4d(m.diffuse_color.x(), m.diffuse_color.y(), m.diffuse_color.z(), 1.0 - m.transparency)
-            .cwiseMax(0.0)
-            .cwiseMin(1.0);
-    e->SetAttribute("rgba", converters::format_vector(rgba).c_str());
+    // Clamped: MuJoCo refuses a float overflow.
+    e->SetAttribute("rgba", converters::format_vector(converters::clamped_rgba(m)).c_str());
     // MuJoCo has scalar specular, shininess and emission (emission scales rgba): the colours'
     // means, and the exponent back on VRML's 0..1 shininess (exponent = 127 shininess + 1).
     e->SetAttribute("specular", format_number(std::clamp(m.specular_color.mean(), 0.0, 1.0)).c_str());
@@ -971,26 +781,16 @@ bool Writer::run() {
   }
   if (asset_->NoChildren()) mujoco_->DeleteChild(asset_);
 
-  if (failed_) {
-    output_.fail();
-    return false;
-  }
   tinyxml2::XMLPrinter printer;
-  doc_.Print(&printer);
-  output_.set_main(std::string(printer.CStr(), static_cast<std::size_t>(printer.CStrSize() - 1)));
-  return true;
+  if (!failed_) doc_.Print(&printer);
+  return finish(std::string(printer.CStr(), static_cast<std::size_t>(printer.CStrSize() - 1)));
 }
 
 }  // namespace
 
 bool write_mjcf(const Model& model, const Derived& derived, const MjcfOptions& options, converters::OutputSet& output,
                 DiagnosticSink& sink) {
-  if (!converters::check_joints(model, sink)) {
-    output.fail();
-    return false;
-  }
-  Writer writer(model, derived, options, output, sink);
-  return writer.run();
+  return converters::write_xml<Writer>(model, derived, options, output, sink);
 }
 
 }  // namespace bodyfmt::mjcf

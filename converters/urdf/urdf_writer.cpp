@@ -7,11 +7,12 @@
 #include <bodyfmt/converters/names.h>
 #include <bodyfmt/converters/numbers.h>
 #include <bodyfmt/converters/preflight.h>
+#include <bodyfmt/converters/shape_plan.h>
 #include <bodyfmt/converters/staged_files.h>
 #include <bodyfmt/converters/transforms.h>
+#include <bodyfmt/converters/xml_writer.h>
 #include <bodyfmt/inertia.h>
 #include <bodyfmt/rules.h>
-#include <bodyfmt/tessellate.h>
 
 #include <fmt/format.h>
 #include <tinyxml2.h>
@@ -48,9 +49,7 @@ using tinyxml2::XMLElement;
 
 constexpr std::string_view kTarget = "URDF";
 
-using converters::decompose;
 using converters::finite_or_stand_in;
-using converters::nearly_equal;
 using converters::rpy_of;
 
 std::string lower_extension(const std::string& path) {
@@ -67,43 +66,26 @@ struct Piece {
   std::optional<Material> material;
 };
 
-class Writer {
+class Writer : converters::XmlWriter {
  public:
+  /// Prints the URDF as it is built, a link at a time, with the named materials put in last.
+  bool run();
   Writer(const Model& model, const Derived& derived, const UrdfOptions& options, converters::OutputSet& output,
          DiagnosticSink& sink)
-      : model_(model), derived_(derived), options_(options), output_(output), sink_(sink) {}
-
-  bool run();
+      : XmlWriter(model, derived, output, kTarget, sink), options_(options) {}
 
  private:
-  XMLElement* element(XMLElement* parent, const char* name) {
-    XMLElement* e = doc_.NewElement(name);
-    parent->InsertEndChild(e);
-    return e;
-  }
-  void comment(XMLElement* parent, const std::string& text) {
-    parent->InsertEndChild(doc_.NewComment((" " + converters::xml_comment_text(text) + " ").c_str()));
-  }
-  void loss(converters::LossKind kind, XMLElement* parent, const SourceLocation& at, const std::string& what,
-            const std::string& hint = {}) {
-    converters::report_loss(sink_, at, kTarget, kind, what, hint);
-    comment(parent, "export-loss: " + what);
-  }
-  /// Reports a rule whose table severity is fatal and marks the export failed.
-  void fatal(std::string_view rule, const SourceLocation& at, std::string message) {
-    report_rule(sink_, rule, at, std::move(message));
-    failed_ = true;
-  }
   /// Reports names URDF tools cannot use; fails on names XML cannot hold.
   void check_name(const std::string& name, const char* what, const SourceLocation& at);
   void origin(XMLElement* parent, const Eigen::Affine3d& X, bool always = false);
   void write_inertial(XMLElement* link_el, std::size_t index);
   void write_shapes(XMLElement* link_el, std::size_t link_index);
-  std::vector<Piece> pieces(XMLElement* link_el, const Link& link, std::size_t link_index, std::size_t shape_index,
-                            const Shape& shape);
-  void add_mesh_pieces(std::vector<Piece>& out, const std::string& key, const std::string& stem,
-                       const TriangleMesh& mesh, const Eigen::Affine3d& X_LS, const std::optional<Material>& material,
-                       double extra_scale = 1.0);
+  std::vector<Piece> pieces(XMLElement* link_el, std::size_t link_index, std::size_t shape_index);
+  /// Whether mesh files are copied beside the URDF (--copy-meshes, --package-uri).
+  bool copies() const { return options_.copy_meshes || !options_.package_uri.empty(); }
+  /// Whether a mesh file is referenced (or copied) as it is rather than converted.
+  bool references_as_is(const MeshResource& res) const;
+  std::string mesh_file_target(const MeshResource& res);
   std::string stage_mesh(const std::string& key, const std::string& stem, const TriangleMesh& mesh,
                          const std::optional<Material>& material);
   std::string stage_file_copy(const std::string& source_path);
@@ -127,25 +109,31 @@ class Writer {
     if (!(scale.array() == 1.0).all()) m->SetAttribute("scale", format_vector(scale).c_str());
   }
 
-  const Model& model_;
-  const Derived& derived_;
   const UrdfOptions& options_;
-  converters::OutputSet& output_;
-  DiagnosticSink& sink_;
-  tinyxml2::XMLDocument doc_;
+  const converters::ShapeTarget shape_target_{kTarget,
+                                              /*capsule=*/false,
+                                              /*min_box_half_edge=*/0,
+                                              /*hull_collision=*/false,
+                                              /*emissive_color=*/false,
+                                              [this](const MeshResource& res) { return references_as_is(res); }};
   /// Holds the children of <robot> until flush() prints them; its own tags are printed apart.
   XMLElement* robot_ = nullptr;
   std::string text_;  // the URDF file, printed as it is built
   XmlStringPrinter printer_{text_};
-  std::size_t materials_at_ = 0;  // where in text_ the named materials go
-  bool failed_ = false;
-  std::vector<std::pair<std::string, std::string>> materials_;  // name, rgba; first-use order
-  std::map<std::string, std::string> material_by_rgba_;
+  std::size_t materials_at_ = 0;                      // where in text_ the named materials go
+  converters::MaterialNames<std::string> materials_;  // by rgba, with it
   const std::string mesh_folder_ = converters::generated_folder(options_.mesh_folder, "meshes", output_, model_.name);
   converters::StagedFiles staged_{output_, mesh_folder_};
   std::set<std::string> link_names_;
   std::vector<XMLElement*> pending_joints_;
 };
+
+}  // namespace
+
+bool write_urdf(const Model& model, const Derived& derived, const UrdfOptions& options, converters::OutputSet& output,
+                DiagnosticSink& sink) {
+  return converters::write_xml<Writer>(model, derived, options, output, sink);
+}
 
 void Writer::flush() {
   for (const tinyxml2::XMLNode* child = robot_->FirstChild(); child; child = child->NextSibling())
@@ -154,11 +142,7 @@ void Writer::flush() {
 }
 
 void Writer::check_name(const std::string& name, const char* what, const SourceLocation& at) {
-  if (!converters::is_xml_text(name)) {
-    fatal("export-xml-text", at,
-          fmt::format("{} name cannot be written in XML (control characters or invalid UTF-8)", what));
-    return;
-  }
+  if (!check_xml_name(name, what, at)) return;
   const std::string problem = converters::urdf_name_problem(name);
   if (!problem.empty()) {
     report_rule(sink_, "export-name", at,
@@ -194,18 +178,9 @@ void Writer::write_inertial(XMLElement* link_el, std::size_t index) {
 }
 
 std::string Writer::material_name(const Material& material) {
-  // Colours are fractions (appearance-value-range reports others): written clamped.
-  const Eigen::Vector4d rgba = Eigen::Vector4d(material.diffuse_color.x(), material.diffuse_color.y(),
-                                               material.diffuse_color.z(), 1.0 - material.transparency)
-                                   .cwiseMax(0.0)
-                                   .cwiseMin(1.0);
-  const std::string key = format_vector(rgba);
-  auto it = material_by_rgba_.find(key);
-  if (it != material_by_rgba_.end()) return it->second;
-  std::string name = fmt::format("material_{}", materials_.size());
-  materials_.emplace_back(name, key);
-  material_by_rgba_.emplace(key, name);
-  return name;
+  // A URDF material is one colour: materials of the same colour share a name.
+  const std::string rgba = format_vector(converters::clamped_rgba(material));
+  return materials_.name(rgba, rgba);
 }
 
 std::string Writer::stage_mesh(const std::string& key, const std::string& stem, const TriangleMesh& mesh,
@@ -223,153 +198,68 @@ std::string Writer::stage_file_copy(const std::string& source_path) {
   return relative.value_or(std::string());
 }
 
-void Writer::add_mesh_pieces(std::vector<Piece>& out, const std::string& key, const std::string& stem,
-                             const TriangleMesh& mesh, const Eigen::Affine3d& X_LS,
-                             const std::optional<Material>& material, double extra_scale) {
-  Piece piece;
-  piece.material = material;
-  if (auto sr = decompose(X_LS.linear())) {
-    // Rigid placement plus a per-axis scale: the mesh file is shared, <mesh scale> scales it.
-    piece.origin.linear() = sr->rotation;
-    piece.origin.translation() = X_LS.translation();
-    const std::string relative = stage_mesh(key, stem, mesh, material);
-    const Eigen::Vector3d scale = sr->scale * extra_scale;
-    piece.geometry = [this, relative, scale](XMLElement* g) { write_mesh_geometry(g, uri(relative), scale); };
-  } else {
-    // Shear or mirror: bake the linear part into the vertices (mirrors flip the winding back).
-    TriangleMesh baked = mesh;
-    const Eigen::Matrix3d L = X_LS.linear() * extra_scale;
-    for (auto& v : baked.vertices) v = L * v;
-    baked.normals.clear();
-    if (L.determinant() < 0) {
-      for (auto& t : baked.triangles) std::swap(t[1], t[2]);
-    }
-    piece.origin.translation() = X_LS.translation();
-    const std::string relative = stage_mesh(key + ":baked", stem, baked, material);
-    piece.geometry = [this, relative](XMLElement* g) {
-      write_mesh_geometry(g, uri(relative), Eigen::Vector3d::Ones());
-    };
-  }
-  out.push_back(std::move(piece));
+bool Writer::references_as_is(const MeshResource& res) const {
+  const std::string ext = lower_extension(res.resolved_path);
+  const bool usable_as_is =
+      (ext == ".stl" || ext == ".dae" || ext == ".obj") && res.node.empty() && !res.y_up && !res.resolved_path.empty();
+  // A copy is a file the user asked for in --mesh-format: one in another format is converted,
+  // and so is an ASCII STL (MuJoCo reads binary STL only).
+  const bool in_wanted_format = ext == "." + std::string(converters::mesh_format_extension(options_.mesh_format)) &&
+                                (ext != ".stl" || is_binary_stl(res.resolved_path));
+  return usable_as_is && (!copies() || in_wanted_format);
 }
 
-std::vector<Piece> Writer::pieces(XMLElement* link_el, const Link& link, std::size_t link_index,
-                                  std::size_t shape_index, const Shape& shape) {
-  std::vector<Piece> out;
-  const std::optional<Material>& material = shape.appearance.material;
-  const std::string shape_key = fmt::format("shape:{}:{}", link_index, shape_index);
-  const std::string stem =
-      fmt::format("{}_{}", link.name, shape.name.empty() ? fmt::format("shape{}", shape_index) : shape.name.str());
-  const auto sr = decompose(shape.X_LS.linear());
-  auto tessellated = [&](bool report_scale) {
-    if (report_scale) {
-      loss(converters::LossKind::kGeometry, link_el, shape.source,
-           fmt::format("a non-uniformly scaled {} as a primitive", geometry_type_name(shape.geometry)),
-           "written as a tessellated mesh");
-    }
-    GeometryAlreadyReported filtered(sink_);
-    TriangleMesh mesh = compute_shape_local_mesh(model_, shape, filtered);
-    if (mesh.empty()) {
-      loss(converters::LossKind::kGeometry, link_el, shape.source,
-           fmt::format("an empty {} (nothing to draw)", geometry_type_name(shape.geometry)));
-      return;
-    }
-    add_mesh_pieces(out, shape_key, stem, mesh, shape.X_LS, material);
-  };
-  auto primitive = [&](std::function<void(XMLElement*)> fill, const Eigen::Matrix3d& extra_rotation) {
-    Piece piece;
-    piece.origin.linear() = sr->rotation * extra_rotation;
-    piece.origin.translation() = shape.X_LS.translation();
-    piece.geometry = std::move(fill);
-    piece.material = material;
-    out.push_back(std::move(piece));
-  };
+std::string Writer::mesh_file_target(const MeshResource& res) {
+  if (copies()) return uri(stage_file_copy(res.resolved_path));
+  std::error_code ec;
+  std::string target =
+      fs::relative(fs::absolute(res.resolved_path, ec), fs::absolute(output_.directory(), ec), ec).generic_string();
+  if (target.empty()) target = fs::absolute(res.resolved_path, ec).generic_string();
+  return target;
+}
 
-  if (const auto* box = std::get_if<Box>(&shape.geometry); box && sr) {
-    const Eigen::Vector3d size = box->size.cwiseProduct(sr->scale);
-    primitive([this, size](XMLElement* g) { element(g, "box")->SetAttribute("size", format_vector(size).c_str()); },
-              Eigen::Matrix3d::Identity());
-  } else if (const auto* sphere = std::get_if<Sphere>(&shape.geometry)) {
-    if (sr && nearly_equal(sr->scale.x(), sr->scale.y()) && nearly_equal(sr->scale.x(), sr->scale.z())) {
-      const double r = sphere->radius * sr->scale.x();
-      primitive([this, r](XMLElement* g) { element(g, "sphere")->SetAttribute("radius", format_number(r).c_str()); },
-                Eigen::Matrix3d::Identity());
-    } else {
-      tessellated(true);
-    }
-  } else if (const auto* cyl = std::get_if<Cylinder>(&shape.geometry)) {
-    if (sr && nearly_equal(sr->scale.x(), sr->scale.z())) {
-      if (!cyl->top || !cyl->bottom) {
-        loss(converters::LossKind::kGeometry, link_el, shape.source, "a cylinder without its top or bottom cap",
-             "URDF cylinders are closed");
+std::vector<Piece> Writer::pieces(XMLElement* link_el, std::size_t link_index, std::size_t shape_index) {
+  converters::ShapePlan plan = converters::plan_shape(model_, link_index, shape_index, shape_target_, sink_);
+  for (const converters::PlannedLoss& planned : plan.losses) loss(link_el, planned);
+  std::vector<Piece> out;
+  for (const converters::PlannedPiece& planned : plan.pieces) {
+    Piece piece;
+    piece.origin = planned.origin;
+    piece.material = planned.material;
+    using Kind = converters::PlannedPiece::Kind;
+    switch (planned.kind) {
+      case Kind::kBox:
+        piece.geometry = [this, size = planned.size](XMLElement* g) {
+          element(g, "box")->SetAttribute("size", format_vector(size).c_str());
+        };
+        break;
+      case Kind::kSphere:
+        piece.geometry = [this, r = planned.radius](XMLElement* g) {
+          element(g, "sphere")->SetAttribute("radius", format_number(r).c_str());
+        };
+        break;
+      case Kind::kCylinder:
+      case Kind::kCapsule:  // not in shape_target_: planned as a mesh
+        piece.geometry = [this, r = planned.radius, h = planned.length](XMLElement* g) {
+          XMLElement* c = element(g, "cylinder");
+          c->SetAttribute("radius", format_number(r).c_str());
+          c->SetAttribute("length", format_number(h).c_str());
+        };
+        break;
+      case Kind::kMesh: {
+        const std::string relative = stage_mesh(planned.key, planned.stem, *planned.mesh, planned.material);
+        piece.geometry = [this, relative, scale = planned.scale](XMLElement* g) {
+          write_mesh_geometry(g, uri(relative), scale);
+        };
+        break;
       }
-      const double r = cyl->radius * sr->scale.x();
-      const double h = cyl->height * sr->scale.y();
-      // body-format-spec §19: a Body cylinder runs along +Y, a URDF cylinder along +Z.
-      // Rx(-90°) maps +Z onto +Y exactly (Choreonoid's importer uses +90°; the shape is symmetric).
-      primitive(
-          [this, r, h](XMLElement* g) {
-            XMLElement* c = element(g, "cylinder");
-            c->SetAttribute("radius", format_number(r).c_str());
-            c->SetAttribute("length", format_number(h).c_str());
-          },
-          Eigen::AngleAxisd(-M_PI / 2, Eigen::Vector3d::UnitX()).toRotationMatrix());
-    } else {
-      tessellated(true);
+      case Kind::kMeshFile:
+        piece.geometry = [this, target = mesh_file_target(*planned.file), scale = planned.scale](XMLElement* g) {
+          write_mesh_geometry(g, target, scale);
+        };
+        break;
     }
-  } else if (const auto* res = geometry_if<MeshResource>(shape.geometry)) {
-    if (res->mesh < 0 || static_cast<std::size_t>(res->mesh) >= model_.meshes.size() ||
-        model_.meshes[static_cast<std::size_t>(res->mesh)].parts.empty()) {
-      loss(converters::LossKind::kGeometry, link_el, shape.source,
-           fmt::format("mesh '{}', which could not be loaded; the shape is left out", res->uri));
-      return out;
-    }
-    const MeshAsset& asset = model_.meshes[static_cast<std::size_t>(res->mesh)];
-    const std::string ext = lower_extension(res->resolved_path);
-    const bool usable_as_is = (ext == ".stl" || ext == ".dae" || ext == ".obj") && res->node.empty() && !res->y_up &&
-                              !res->resolved_path.empty();
-    const bool copy = options_.copy_meshes || !options_.package_uri.empty();
-    bool textured = false;
-    for (const MeshPart& part : asset.parts) textured = textured || part.texture.has_value();
-    if (textured)
-      loss(converters::LossKind::kTextures, link_el, shape.source, fmt::format("the texture of mesh '{}'", res->uri),
-           "colours are kept");
-    // A copy is a file the user asked for in --mesh-format: one in another format is converted,
-    // and so is an ASCII STL (MuJoCo reads binary STL only).
-    const bool in_wanted_format = ext == "." + std::string(converters::mesh_format_extension(options_.mesh_format)) &&
-                                  (ext != ".stl" || is_binary_stl(res->resolved_path));
-    if (usable_as_is && sr && (!copy || in_wanted_format)) {
-      std::string target;
-      if (copy) {
-        target = uri(stage_file_copy(res->resolved_path));
-      } else {
-        std::error_code ec;
-        target = fs::relative(fs::absolute(res->resolved_path, ec), fs::absolute(output_.directory(), ec), ec)
-                     .generic_string();
-        if (target.empty()) target = fs::absolute(res->resolved_path, ec).generic_string();
-      }
-      Piece piece;
-      piece.origin.linear() = sr->rotation;
-      piece.origin.translation() = shape.X_LS.translation();
-      const Eigen::Vector3d scale = sr->scale * res->length_scale;
-      piece.geometry = [this, target, scale](XMLElement* g) { write_mesh_geometry(g, target, scale); };
-      piece.material = material;
-      out.push_back(std::move(piece));
-    } else {
-      // Converted: one mesh file per part, so that each keeps its own colour.
-      const std::string asset_stem =
-          fs::path(asset.path).stem().string() + (asset.node.empty() ? "" : "_" + asset.node);
-      for (std::size_t p = 0; p < asset.parts.size(); ++p) {
-        const MeshPart& part = asset.parts[p];
-        if (part.mesh.empty()) continue;
-        const std::string key = fmt::format("asset:{}:{}", res->mesh, p);
-        const std::string part_stem = asset.parts.size() > 1 ? fmt::format("{}_{}", asset_stem, p) : asset_stem;
-        add_mesh_pieces(out, sr ? key : key + ":" + shape_key, part_stem, part.mesh, shape.X_LS,
-                        material ? material : part.material);
-      }
-    }
-  } else {
-    tessellated(false);
+    out.push_back(std::move(piece));
   }
   return out;
 }
@@ -379,16 +269,7 @@ void Writer::write_shapes(XMLElement* link_el, std::size_t link_index) {
   std::vector<std::pair<XMLElement*, Piece>> collisions;
   for (std::size_t s = 0; s < link.shapes.size(); ++s) {
     const Shape& shape = link.shapes[s];
-    if (shape.appearance.texture) {
-      loss(converters::LossKind::kTextures, link_el, shape.source,
-           fmt::format("the texture '{}'", shape.appearance.texture->uri), "colours are kept");
-    }
-    if (shape.appearance.material && !shape.appearance.material->emissive_color.isZero(0)) {
-      loss(converters::LossKind::kMaterials, link_el, shape.source, "an emissive colour",
-           "URDF materials have one rgba colour");
-    }
-    if (!shape.visual && !shape.collision) continue;
-    for (Piece& piece : pieces(link_el, link, link_index, s, shape)) {
+    for (Piece& piece : pieces(link_el, link_index, s)) {
       // Body-format-spec §7.3: a shape under Visual is visual only, under Collision collision
       // only, under neither both.
       for (const char* kind : {"visual", "collision"}) {
@@ -501,24 +382,17 @@ void Writer::write_joint(std::size_t index, const std::string& joint_name) {
 }
 
 bool Writer::run() {
-  if (model_.links.empty() || derived_.mass.size() != model_.links.size()) {
-    fatal("internal-error", model_.source, "the model has no links or its derived data is missing");
-    output_.fail();
-    return false;
-  }
+  if (!has_derived_data()) return false;
   robot_ = doc_.NewElement("robot");
   doc_.InsertEndChild(robot_);
-  if (!converters::is_xml_text(model_.name)) {
-    fatal("export-xml-text", model_.source,
-          "the body name cannot be written in XML (control characters or invalid UTF-8)");
-  }
+  check_body_name();
   // The declaration tinyxml2 writes for a document (PushHeader writes a shorter one).
   tinyxml2::XMLDeclaration* declaration = doc_.NewDeclaration();
   declaration->Accept(&printer_);
   doc_.DeleteNode(declaration);
   printer_.OpenElement("robot");
   printer_.PushAttribute("name", model_.name.empty() ? "robot" : model_.name.c_str());
-  comment(robot_, fmt::format("Generated by body2urdf from {}", fs::path(model_.source_file).filename().string()));
+  generated_by(robot_, "body2urdf");
   if (options_.mujoco_compiler) {
     // MuJoCo's URDF reader strips the folders of mesh paths unless told not to; ROS ignores
     // the element.
@@ -608,15 +482,11 @@ bool Writer::run() {
 
   flush();
 
-  if (failed_) {
-    output_.fail();
-    return false;
-  }
   // Named materials go first, where every reader finds them before their use. They are known
   // only now: printed apart (at the depth of <robot>'s children) and put in after the header.
   std::string materials_text;
   printer_.redirect(materials_text);
-  for (const auto& [name, rgba] : materials_) {
+  for (const auto& [name, rgba] : materials_.named()) {
     XMLElement* m = element(robot_, "material");
     m->SetAttribute("name", name.c_str());
     element(m, "color")->SetAttribute("rgba", rgba.c_str());
@@ -625,20 +495,7 @@ bool Writer::run() {
   printer_.redirect(text_);
   printer_.CloseElement();
   text_.insert(materials_at_, materials_text);
-  output_.set_main(std::move(text_));
-  return true;
-}
-
-}  // namespace
-
-bool write_urdf(const Model& model, const Derived& derived, const UrdfOptions& options, converters::OutputSet& output,
-                DiagnosticSink& sink) {
-  if (!converters::check_joints(model, sink)) {
-    output.fail();
-    return false;
-  }
-  Writer writer(model, derived, options, output, sink);
-  return writer.run();
+  return finish(std::move(text_));
 }
 
 }  // namespace bodyfmt::urdf

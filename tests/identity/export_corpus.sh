@@ -1,27 +1,48 @@
 #!/usr/bin/env bash
-# Exports every corpus model with one body2urdf binary into OUT_DIR, once per option set that
-# changes what is written (STL meshes, DAE meshes with copies and a package URI), and records
-# each run's exit code. Two runs of this script, with the body2urdf of two commits, are
-# compared with `diff -r` to show that a refactor left every byte of the output as it was.
+# Exports every .body model under INPUT_DIR with the exporters in BIN_DIR (body2urdf, body2mjcf,
+# body2gltf) into OUT_DIR, once per option set that changes what is written, and records each
+# run's exit code and diagnostics. Two runs of this script, with the exporters of two commits,
+# are compared with `diff -r` (compare.sh does both) to show that a refactor left every byte of
+# the output as it was.
 #
-#   tests/identity/export_corpus.sh BODY2URDF CORPUS_DIR OUT_DIR
+#   tests/identity/export_corpus.sh BIN_DIR INPUT_DIR OUT_DIR
+#
+# Variants: body2urdf with STL meshes, and with DAE meshes, copies and a package URI;
+# body2mjcf as given and with --balance-inertia (more models are written); body2gltf as .gltf
+# (visual model, texture files beside it) and as .glb with --both.
 set -euo pipefail
-body2urdf=$1 corpus=$2 out=$3
+bin=$1 input=$2 out=$3
+for tool in body2urdf body2mjcf body2gltf; do
+  [ -x "$bin/$tool" ] || { echo "export_corpus.sh: no executable $bin/$tool" >&2; exit 2; }
+done
 mkdir -p "$out"
 : > "$out/exit_codes.txt"
+printf '<package format="3"><name>corpus</name></package>\n' > "$out/package.xml"
+
+# export VARIANT REL EXTENSION TOOL ARGS...: one run, its output under OUT_DIR/VARIANT/REL.
+export_one() {
+  local variant=$1 rel=$2 extension=$3 tool=$4
+  shift 4
+  local stem=${rel%.body}
+  local dir="$out/$variant/$(dirname "$rel")"
+  mkdir -p "$dir"
+  local target="$dir/$(basename "$stem").$extension"
+  set +e
+  "$bin/$tool" -q "$@" "$input/$rel" -o "$target" 2> "$target.stderr"
+  local code=$?
+  set -e
+  # Diagnostics name the output file; the folder differs between the two runs compared.
+  sed -i "s|$out/||g" "$target.stderr"
+  echo "$variant $rel $code" >> "$out/exit_codes.txt"
+}
+
 while IFS= read -r -d '' model; do
-  rel=${model#"$corpus"/}
-  stem=${rel%.body}
-  for variant in stl dae; do
-    dir="$out/$variant/$(dirname "$rel")"
-    mkdir -p "$dir"
-    args=()
-    [ "$variant" = dae ] && args=(--mesh-format dae --copy-meshes --package-uri package://corpus)
-    [ "$variant" = dae ] && [ ! -e "$out/dae/package.xml" ] && mkdir -p "$out/dae" && printf '<package format="3"><name>corpus</name></package>\n' > "$out/dae/package.xml"
-    set +e
-    "$body2urdf" -q "${args[@]}" "$model" -o "$dir/$(basename "$stem").urdf" 2>/dev/null
-    code=$?
-    set -e
-    echo "$variant $rel $code" >> "$out/exit_codes.txt"
-  done
-done < <(find "$corpus" -name '*.body' -print0 | sort -z)
+  rel=${model#"$input"/}
+  export_one urdf-stl "$rel" urdf body2urdf
+  # The package root is OUT_DIR (its package.xml), so the URIs are the same in both runs.
+  export_one urdf-dae "$rel" urdf body2urdf --mesh-format dae --copy-meshes --package-uri package://corpus
+  export_one mjcf "$rel" xml body2mjcf
+  export_one mjcf-balanced "$rel" xml body2mjcf --balance-inertia
+  export_one gltf "$rel" gltf body2gltf
+  export_one glb-both "$rel" glb body2gltf --both
+done < <(find "$input" -name '*.body' -print0 | sort -z)
