@@ -1,0 +1,390 @@
+// urdf2body from the command line: URDF -> body -> URDF (body2urdf) must give the same tree,
+// read back by urdfdom, with forward kinematics computed here from urdfdom's models (not from
+// bodyfmt's frames); body -> URDF -> body on the corpus; exit codes and located errors.
+#include "support/run_command.h"
+
+#include <bodyfmt/derived.h>
+#include <bodyfmt/load.h>
+
+#include <doctest/doctest.h>
+#include <fmt/format.h>
+#include <urdf_parser/urdf_parser.h>
+
+#include <Eigen/Geometry>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <random>
+#include <sstream>
+
+namespace bodyfmt::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string quote(const fs::path& p) { return "'" + p.string() + "'"; }
+
+std::string read(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("bodyfmt_urdf2body_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+// A random URDF tree: every joint type urdf2body maps, random origins, axes, limits,
+// inertials with rotated frames, and box, cylinder and sphere shapes with origins.
+std::string random_urdf(unsigned seed, int links) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::uniform_real_distribution<double> pos(0.1, 2);
+  auto v3 = [&] { return fmt::format("{} {} {}", u(rng), u(rng), u(rng)); };
+  std::string out = fmt::format("<robot name=\"r{}\">\n", seed);
+  for (int i = 0; i < links; ++i) {
+    out += fmt::format("  <link name=\"l{}\">\n", i);
+    if (i % 5 != 4) {
+      const double a = pos(rng), b = pos(rng), c = pos(rng);
+      // A positive-definite tensor with products of inertia: diagonal-dominant.
+      out += fmt::format(
+          "    <inertial><origin xyz=\"{}\" rpy=\"{}\"/><mass value=\"{}\"/>"
+          "<inertia ixx=\"{}\" ixy=\"{}\" ixz=\"{}\" iyy=\"{}\" iyz=\"{}\" izz=\"{}\"/></inertial>\n",
+          v3(), v3(), pos(rng), a + b, 0.1 * u(rng), 0.1 * u(rng), b + c, 0.1 * u(rng), a + c);
+    }
+    out += fmt::format(
+        "    <visual><origin xyz=\"{}\" rpy=\"{}\"/><geometry><box size=\"{} {} {}\"/></geometry></visual>\n", v3(),
+        v3(), pos(rng), pos(rng), pos(rng));
+    out += fmt::format(
+        "    <collision><origin xyz=\"{}\" rpy=\"{}\"/><geometry><cylinder radius=\"{}\" "
+        "length=\"{}\"/></geometry></collision>\n",
+        v3(), v3(), pos(rng), pos(rng));
+    out += fmt::format("    <collision><geometry><sphere radius=\"{}\"/></geometry></collision>\n", pos(rng));
+    out += "  </link>\n";
+  }
+  const char* types[] = {"revolute", "continuous", "prismatic", "fixed"};
+  for (int i = 1; i < links; ++i) {
+    const int parent = static_cast<int>(rng() % static_cast<unsigned>(i));
+    const char* type = types[rng() % 4];
+    out += fmt::format("  <joint name=\"j{}\" type=\"{}\"><parent link=\"l{}\"/><child link=\"l{}\"/>", i, type, parent,
+                       i);
+    out += fmt::format("<origin xyz=\"{}\" rpy=\"{}\"/><axis xyz=\"{}\"/>", v3(), v3(), v3());
+    if (std::string(type) != "fixed")
+      out += fmt::format("<limit lower=\"{}\" upper=\"{}\" effort=\"{}\" velocity=\"{}\"/>", -pos(rng), pos(rng),
+                         10 * pos(rng), pos(rng));
+    out += "</joint>\n";
+  }
+  return out + "</robot>\n";
+}
+
+Eigen::Isometry3d iso(const urdf::Pose& p) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.translation() = Eigen::Vector3d(p.position.x, p.position.y, p.position.z);
+  X.linear() = Eigen::Quaterniond(p.rotation.w, p.rotation.x, p.rotation.y, p.rotation.z).toRotationMatrix();
+  return X;
+}
+Eigen::Vector3d vec(const urdf::Vector3& v) { return Eigen::Vector3d(v.x, v.y, v.z); }
+
+bool close(double a, double b, double scale = 1.0) {
+  return std::abs(a - b) <= 1e-9 * std::max({std::abs(a), std::abs(b), scale});
+}
+bool close(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+  return (a - b).norm() <= 1e-9 * std::max({a.norm(), b.norm(), 1.0});
+}
+
+// Link frames in the world from urdfdom's joints alone: X_WC = X_WP * origin * motion(q).
+std::map<std::string, Eigen::Isometry3d> forward_kinematics(const urdf::ModelInterface& model,
+                                                            const std::map<std::string, double>& q) {
+  std::map<std::string, Eigen::Isometry3d> X_W;
+  std::vector<urdf::LinkConstSharedPtr> stack{model.getRoot()};
+  X_W[model.getRoot()->name] = Eigen::Isometry3d::Identity();
+  while (!stack.empty()) {
+    urdf::LinkConstSharedPtr link = stack.back();
+    stack.pop_back();
+    for (const auto& child : link->child_links) {
+      const urdf::JointSharedPtr& j = child->parent_joint;
+      Eigen::Isometry3d X = X_W.at(link->name) * iso(j->parent_to_joint_origin_transform);
+      const Eigen::Vector3d axis = vec(j->axis).normalized();
+      const double value = q.count(j->name) ? q.at(j->name) : 0.0;
+      if (j->type == urdf::Joint::REVOLUTE || j->type == urdf::Joint::CONTINUOUS)
+        X.rotate(Eigen::AngleAxisd(value, axis));
+      else if (j->type == urdf::Joint::PRISMATIC)
+        X.translate(value * axis);
+      X_W[child->name] = X;
+      stack.push_back(child);
+    }
+  }
+  return X_W;
+}
+
+// The inertia in link axes: URDF's tensor is given in the inertial frame.
+Eigen::Matrix3d link_inertia(const urdf::Inertial& in) {
+  Eigen::Matrix3d I;
+  I << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
+  const Eigen::Matrix3d R = iso(in.origin).linear();
+  return R * I * R.transpose();
+}
+
+// "" when two links' visuals (or collisions) have the same origins, types and sizes.
+template <typename T>
+std::string same_shapes(const std::string& name, const char* kind, const std::vector<T>& a, const std::vector<T>& b) {
+  if (a.size() != b.size()) return fmt::format("link {}: {} {} then {}", name, kind, a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (!close(iso(a[i]->origin).matrix(), iso(b[i]->origin).matrix()))
+      return fmt::format("link {}: {} {} origin", name, kind, i);
+    const auto& ga = a[i]->geometry;
+    const auto& gb = b[i]->geometry;
+    if (ga->type != gb->type) return fmt::format("link {}: {} {} type", name, kind, i);
+    if (auto box = std::dynamic_pointer_cast<urdf::Box>(ga)) {
+      if (!close(vec(box->dim), vec(std::dynamic_pointer_cast<urdf::Box>(gb)->dim)))
+        return fmt::format("link {}: box size", name);
+    } else if (auto c = std::dynamic_pointer_cast<urdf::Cylinder>(ga)) {
+      auto other = std::dynamic_pointer_cast<urdf::Cylinder>(gb);
+      if (!close(c->radius, other->radius) || !close(c->length, other->length))
+        return fmt::format("link {}: cylinder", name);
+    } else if (auto s = std::dynamic_pointer_cast<urdf::Sphere>(ga)) {
+      if (!close(s->radius, std::dynamic_pointer_cast<urdf::Sphere>(gb)->radius))
+        return fmt::format("link {}: sphere", name);
+    }
+  }
+  return "";
+}
+
+// "" when `b` has the same tree as `a`, else the first difference.
+std::string same_tree(const urdf::ModelInterface& a, const urdf::ModelInterface& b, unsigned seed) {
+  if (a.links_.size() != b.links_.size()) return fmt::format("{} links, then {}", a.links_.size(), b.links_.size());
+  if (a.joints_.size() != b.joints_.size())
+    return fmt::format("{} joints, then {}", a.joints_.size(), b.joints_.size());
+  for (const auto& [name, la] : a.links_) {
+    auto it = b.links_.find(name);
+    if (it == b.links_.end()) return "link " + name + " is gone";
+    const urdf::Link& lb = *it->second;
+    const double ma = la->inertial ? la->inertial->mass : 0, mb = lb.inertial ? lb.inertial->mass : 0;
+    if (!close(ma, mb)) return fmt::format("link {}: mass {} then {}", name, ma, mb);
+    if (ma != 0) {
+      if (!close(vec(la->inertial->origin.position), vec(lb.inertial->origin.position)))
+        return "link " + name + ": centre of mass";
+      if (!close(link_inertia(*la->inertial), link_inertia(*lb.inertial))) return "link " + name + ": inertia";
+    }
+    const std::string shapes = same_shapes(name, "visual", la->visual_array, lb.visual_array) +
+                               same_shapes(name, "collision", la->collision_array, lb.collision_array);
+    if (!shapes.empty()) return shapes;
+  }
+  std::mt19937 rng(seed);
+  for (const auto& [name, ja] : a.joints_) {
+    auto it = b.joints_.find(name);
+    if (it == b.joints_.end()) return "joint " + name + " is gone";
+    const urdf::Joint& jb = *it->second;
+    if (ja->type != jb.type) return fmt::format("joint {}: type {} then {}", name, ja->type, jb.type);
+    if (ja->parent_link_name != jb.parent_link_name || ja->child_link_name != jb.child_link_name)
+      return "joint " + name + ": parent or child";
+    if (!close(iso(ja->parent_to_joint_origin_transform).matrix(), iso(jb.parent_to_joint_origin_transform).matrix()))
+      return "joint " + name + ": origin";
+    if (ja->type == urdf::Joint::FIXED) continue;
+    if (!close(vec(ja->axis).normalized(), vec(jb.axis).normalized())) return "joint " + name + ": axis";
+    if (ja->type != urdf::Joint::CONTINUOUS &&
+        (!close(ja->limits->lower, jb.limits->lower) || !close(ja->limits->upper, jb.limits->upper)))
+      return "joint " + name + ": range";
+    if (!close(ja->limits->velocity, jb.limits->velocity) || !close(ja->limits->effort, jb.limits->effort))
+      return "joint " + name + ": velocity or effort";
+  }
+  // Forward kinematics at 100 random configurations within the limits.
+  for (int k = 0; k < 100; ++k) {
+    std::map<std::string, double> q;
+    for (const auto& [name, j] : a.joints_) {
+      if (!j->limits) continue;
+      const double lo = j->type == urdf::Joint::CONTINUOUS ? -M_PI : j->limits->lower;
+      const double hi = j->type == urdf::Joint::CONTINUOUS ? M_PI : j->limits->upper;
+      q[name] = std::uniform_real_distribution<double>(lo, hi)(rng);
+    }
+    const auto fa = forward_kinematics(a, q);
+    const auto fb = forward_kinematics(b, q);
+    for (const auto& [name, X] : fa) {
+      const Eigen::Isometry3d& Y = fb.at(name);
+      if ((X.translation() - Y.translation()).norm() > 1e-9 || (X.linear() - Y.linear()).norm() > 1e-9)
+        return fmt::format("link {}: frame differs at configuration {} by {} m", name, k,
+                           (X.translation() - Y.translation()).norm());
+    }
+  }
+  return "";
+}
+
+TEST_CASE("urdf2body: URDF -> body -> URDF keeps the tree, the inertias and forward kinematics") {
+  const fs::path dir = scratch("round_trip");
+  int compared = 0;
+  for (unsigned seed = 1; seed <= 20; ++seed) {
+    CAPTURE(seed);
+    const std::string text = random_urdf(seed, 3 + static_cast<int>(seed % 17));
+    std::ofstream(dir / "in.urdf") << text;
+    const CommandResult import = run_command(std::string(BODYFMT_URDF2BODY) + " in.urdf -o in.body", dir.string());
+    REQUIRE_MESSAGE(import.status == 0, import.output);
+    const CommandResult exported = run_command(std::string(BODYFMT_BODY2URDF) + " in.body -o out.urdf", dir.string());
+    REQUIRE_MESSAGE(exported.status <= 1, exported.output);
+    auto a = urdf::parseURDF(text);
+    auto b = urdf::parseURDF(read(dir / "out.urdf"));
+    REQUIRE(a);
+    REQUIRE(b);
+    CHECK(same_tree(*a, *b, seed) == "");
+    ++compared;
+  }
+  CHECK(compared == 20);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("urdf2body: the round-trip comparison catches each defect (mutants)") {
+  // One defect per mutant in the re-exported URDF; same_tree must name each.
+  const std::string base = random_urdf(7, 6);
+  auto original = urdf::parseURDF(base);
+  REQUIRE(original);
+  CHECK(same_tree(*original, *original, 7) == "");
+  // {where (searched from the end), what, replacement}: each changes one value of one element.
+  const std::vector<std::tuple<std::string, std::string, std::string>> mutants = {
+      {"<inertial>", "<mass value=\"", "<mass value=\"1"},                  // a mass
+      {"<inertial>", "<inertia ixx=\"", "<inertia ixx=\"1"},                // an inertia
+      {"<inertial>", "<origin xyz=\"", "<origin xyz=\"1"},                  // a centre of mass
+      {"type=\"continuous\"", "type=\"continuous\"", "type=\"revolute\""},  // a joint type
+      {"type=\"continuous\"", "<axis xyz=\"", "<axis xyz=\"1"},             // an axis (changes FK)
+      {"type=\"prismatic\"", "<limit lower=\"", "<limit lower=\"-1"},       // a range
+      {"type=\"prismatic\"", "velocity=\"", "velocity=\"1"},                // a velocity limit
+      {"<joint", "<origin xyz=\"", "<origin xyz=\"1"},                      // a joint origin
+      {"<box size=\"", "<box size=\"", "<box size=\"2"},                    // a box size
+      {"<collision><origin", "<origin xyz=\"", "<origin xyz=\"1"},          // a collision origin (a cylinder)
+      {"<sphere radius=\"", "<sphere radius=\"", "<sphere radius=\"3"},     // a sphere
+  };
+  for (const auto& [where, from, to] : mutants) {
+    CAPTURE(where);
+    CAPTURE(from);
+    std::string text = base;
+    const std::size_t anchor = text.rfind(where);
+    REQUIRE(anchor != std::string::npos);
+    const std::size_t at = text.find(from, anchor);
+    REQUIRE(at != std::string::npos);
+    text.replace(at, from.size(), to);
+    auto mutated = urdf::parseURDF(text);
+    if (!mutated) continue;  // urdfdom refuses it: nothing to compare
+    CHECK(same_tree(*original, *mutated, 7) != "");
+  }
+}
+
+TEST_CASE("urdf2body: exit codes, standard output, --strict and --allow-loss, located errors") {
+  const fs::path dir = scratch("cli");
+  const std::string tool = BODYFMT_URDF2BODY;
+  std::ofstream(dir / "mimic.urdf")
+      << "<robot name=\"m\">\n  <link name=\"a\"/><link name=\"b\"/>\n"
+         "  <joint name=\"j\" type=\"continuous\"><parent link=\"a\"/><child link=\"b\"/>\n"
+         "    <mimic joint=\"x\"/></joint>\n</robot>\n";
+  std::ofstream(dir / "broken.urdf") << "<robot name=\"m\">\n  <link name=\"a\">\n</robot>\n";
+  std::ofstream(dir / "orphan.urdf")
+      << "<robot name=\"m\">\n  <link name=\"a\"/>\n"
+         "  <joint name=\"j\" type=\"fixed\"><parent link=\"a\"/><child link=\"zz\"/></joint>\n"
+         "</robot>\n";
+  CHECK(run_command(tool + " --help", dir.string()).status == 0);
+  CHECK(run_command(tool + " --version", dir.string()).output.find("urdf2body ") == 0);
+  CHECK(run_command(tool + " mimic.urdf", dir.string()).status == 2);  // -o is required
+
+  CommandResult lossy = run_command(tool + " mimic.urdf -o m.body", dir.string());
+  CHECK(lossy.status == 1);
+  CHECK(lossy.output.find("mimic.urdf:4:5: warning:") != std::string::npos);
+  CHECK(fs::exists(dir / "m.body"));
+  CHECK(run_command(tool + " mimic.urdf -o m2.body --allow-loss joints", dir.string()).status == 0);
+  CommandResult strict = run_command(tool + " mimic.urdf -o m3.body --strict", dir.string());
+  CHECK(strict.status == 2);
+  CHECK_FALSE(fs::exists(dir / "m3.body"));
+  CommandResult to_stdout = run_command(tool + " mimic.urdf -o - --allow-loss joints", dir.string(), false);
+  CHECK(to_stdout.status == 0);
+  CHECK(to_stdout.output == read(dir / "m.body"));
+  CommandResult from_stdin = run_command(tool + " - -o - --allow-loss joints < mimic.urdf", dir.string(), false);
+  CHECK(from_stdin.status == 0);
+
+  CommandResult broken = run_command(tool + " broken.urdf -o b.body", dir.string());
+  CHECK(broken.status == 2);
+  // tinyxml2 reports a mismatched end tag at the start of the element left open (line 2).
+  CHECK(broken.output.find("broken.urdf:2:") != std::string::npos);
+  CHECK(broken.output.find("[import-syntax]") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "b.body"));
+  CommandResult orphan = run_command(tool + " orphan.urdf -o o.body", dir.string());
+  CHECK(orphan.status == 2);
+  CHECK(orphan.output.find("orphan.urdf:3:57: error:") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "o.body"));
+  // The URDF is an input: never written over.
+  CHECK(run_command(tool + " mimic.urdf -o mimic.urdf", dir.string()).status == 2);
+  CHECK(read(dir / "mimic.urdf").find("<robot") == 0);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("urdf2body: the output loads without warnings and is byte-identical run to run") {
+  const fs::path dir = scratch("load");
+  std::ofstream(dir / "r.urdf") << random_urdf(3, 12);
+  REQUIRE(run_command(std::string(BODYFMT_URDF2BODY) + " r.urdf -o a.body", dir.string()).status == 0);
+  REQUIRE(run_command(std::string(BODYFMT_URDF2BODY) + " r.urdf -o b.body", dir.string()).status == 0);
+  CHECK(read(dir / "a.body") == read(dir / "b.body"));
+  CollectingSink sink;
+  auto model = load_body((dir / "a.body").string(), LoadOptions{}, sink);
+  REQUIRE(model);
+  for (const Diagnostic& d : sink.diagnostics()) CHECK_MESSAGE(d.severity < Severity::kWarning, d.message);
+  CHECK(model->links.size() == 12);
+  fs::remove_all(dir);
+}
+
+// body -> URDF (--floating-base, so that the root's joint and pose are kept) -> body: links,
+// masses and frames as the corpus model had them, for every model whose export reported no loss.
+TEST_CASE("urdf2body: body -> URDF -> body on the corpus") {
+  const fs::path corpus = fs::path(BODYFMT_SHARED_DIR) / "corpus" / "choreonoid";
+  if (!fs::exists(corpus)) {
+    FAIL_CHECK("the shared corpus is missing");
+    return;
+  }
+  const fs::path dir = scratch("corpus");
+  int exported = 0, lossless = 0, compared = 0;
+  std::vector<fs::path> bodies;
+  for (const auto& e : fs::recursive_directory_iterator(corpus))
+    if (e.path().extension() == ".body") bodies.push_back(e.path());
+  std::sort(bodies.begin(), bodies.end());
+  for (const fs::path& body : bodies) {
+    CAPTURE(body.string());
+    CollectingSink original_sink;
+    auto original = load_body(body.string(), LoadOptions{}, original_sink);
+    if (!original) continue;
+    const CommandResult to_urdf = run_command(
+        std::string(BODYFMT_BODY2URDF) + " " + quote(body) + " --floating-base --copy-meshes -o m.urdf", dir.string());
+    if (to_urdf.status == 2) continue;
+    ++exported;
+    if (to_urdf.output.find("[export-loss]") != std::string::npos) continue;
+    ++lossless;
+    const CommandResult back = run_command(std::string(BODYFMT_URDF2BODY) + " m.urdf -o m.body", dir.string());
+    REQUIRE_MESSAGE(back.status == 0, back.output);
+    CollectingSink sink;
+    auto again = load_body((dir / "m.body").string(), LoadOptions{}, sink);
+    REQUIRE(again);
+    REQUIRE(again->links.size() == original->links.size());
+    const auto frames_a = compute_world_frames(*original);
+    const auto frames_b = compute_world_frames(*again);
+    for (std::size_t i = 0; i < original->links.size(); ++i) {
+      const Link& la = original->links[i];
+      const LinkIndex j = again->find_link(la.name);
+      REQUIRE_MESSAGE(j >= 0, la.name);
+      const Link& lb = again->links[static_cast<std::size_t>(j)];
+      CHECK(lb.joint_type == la.joint_type);
+      CHECK((la.parent < 0 ? std::string() : original->links[static_cast<std::size_t>(la.parent)].name) ==
+            (lb.parent < 0 ? std::string() : again->links[static_cast<std::size_t>(lb.parent)].name));
+      const MassProperties ma = compute_mass_properties(la), mb = compute_mass_properties(lb);
+      CHECK(close(ma.mass, mb.mass));
+      CHECK(close(ma.center_of_mass, mb.center_of_mass));
+      CHECK(close(ma.inertia, mb.inertia));
+      CHECK(close(frames_a[i].matrix(), frames_b[static_cast<std::size_t>(j)].matrix()));
+    }
+    ++compared;
+  }
+  MESSAGE("corpus: " << bodies.size() << " bodies, " << exported << " exported, " << lossless << " without losses, "
+                     << compared << " compared after the round trip");
+  CHECK(compared > 0);
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace bodyfmt::test
