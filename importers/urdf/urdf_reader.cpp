@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <tinyxml2.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -216,8 +217,11 @@ void Reader::read_inertial(const XMLElement* e, Link& link) {
       if (auto x = number(inertia, names[i])) v[i] = *x;
     }
     I << v[0], v[1], v[2], v[1], v[3], v[4], v[2], v[4], v[5];
+    // A negative moment beyond rounding (exporters write -5e-20 for a zero, which bodycheck's
+    // inertia rules report as a zero inertia).
+    const double largest = std::max({std::abs(v[0]), std::abs(v[3]), std::abs(v[5])});
     for (int i : {0, 3, 5})
-      if (v[i] < 0)
+      if (v[i] < -std::max(1e-9 * largest, 1e-12))
         report("import-mass", at_.at(inertia, names[i]),
                fmt::format("link '{}' has a negative moment of inertia {}={}", link.name, names[i], v[i]));
   }
@@ -507,7 +511,6 @@ std::optional<Model> Reader::read() {
                  : std::string("the document has no element"));
     return std::nullopt;
   }
-  at_.index(robot);
 
   Model model;
   model.name = robot->Attribute("name") ? robot->Attribute("name") : "";
@@ -561,7 +564,7 @@ std::optional<Model> Reader::read() {
       loss(at_.at(e), LossKind::kDynamics,
            fmt::format("the <gazebo> extension{}",
                        e->Attribute("reference") ? fmt::format(" for '{}'", e->Attribute("reference")) : ""));
-    } else {
+    } else if (!named(e, "mujoco")) {  // MuJoCo's compiler hints (body2urdf writes them): nothing of the robot
       report("import-unknown-element", at_.at(e),
              fmt::format("<{}> in a <robot> is not URDF; it is ignored", e->Name()));
     }

@@ -38,31 +38,39 @@ int XmlPositions::find_on_line(int line, std::string_view needle, std::size_t fr
   return -1;
 }
 
-void XmlPositions::index(const tinyxml2::XMLElement* root) {
-  std::vector<const tinyxml2::XMLElement*> stack{root};
-  while (!stack.empty()) {
-    const tinyxml2::XMLElement* e = stack.back();
-    stack.pop_back();
-    at(e);
-    std::vector<const tinyxml2::XMLElement*> children;
-    for (const tinyxml2::XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) children.push_back(c);
-    stack.insert(stack.end(), children.rbegin(), children.rend());
+namespace {
+
+// The element before `e` in document order (the previous sibling's last descendant, else the
+// parent), or nullptr.
+const tinyxml2::XMLElement* previous_in_document(const tinyxml2::XMLElement* e) {
+  if (const tinyxml2::XMLElement* p = e->PreviousSiblingElement()) {
+    while (const tinyxml2::XMLElement* last = p->LastChildElement()) p = last;
+    return p;
   }
+  const tinyxml2::XMLNode* parent = e->Parent();
+  return parent ? parent->ToElement() : nullptr;
 }
 
-SourceLocation XmlPositions::at(const tinyxml2::XMLElement* element) {
+}  // namespace
+
+int XmlPositions::element_column(const tinyxml2::XMLElement* element) const {
   const int line = element->GetLineNum();
-  auto known = element_columns_.find(element);
-  if (known != element_columns_.end()) return SourceLocation{file_, line, known->second};
-  std::size_t& cursor = line_cursor_[line];
-  const int found = find_on_line(line, std::string("<") + element->Name(), cursor, true);
-  const int column = found < 0 ? 0 : found + 1;
-  if (found >= 0) cursor = static_cast<std::size_t>(found) + 1;
-  element_columns_.emplace(element, column);
-  return SourceLocation{file_, line, column};
+  int before = 0;  // elements of the same name earlier on this line
+  for (const tinyxml2::XMLElement* p = previous_in_document(element); p && p->GetLineNum() == line;
+       p = previous_in_document(p))
+    if (std::strcmp(p->Name(), element->Name()) == 0) ++before;
+  const std::string needle = std::string("<") + element->Name();
+  int found = find_on_line(line, needle, 0, true);
+  for (; found >= 0 && before > 0; --before)
+    found = find_on_line(line, needle, static_cast<std::size_t>(found) + 1, true);
+  return found < 0 ? 0 : found + 1;
 }
 
-SourceLocation XmlPositions::at(const tinyxml2::XMLElement* element, const char* attribute) {
+SourceLocation XmlPositions::at(const tinyxml2::XMLElement* element) const {
+  return SourceLocation{file_, element->GetLineNum(), element_column(element)};
+}
+
+SourceLocation XmlPositions::at(const tinyxml2::XMLElement* element, const char* attribute) const {
   const SourceLocation start = at(element);
   const tinyxml2::XMLAttribute* a = element->FindAttribute(attribute);
   if (!a) return start;

@@ -246,6 +246,15 @@ TEST_CASE("urdf import: located structure errors") {
     CHECK(pos(r.take("import-structure")) == Pos{3, 9});
     r.expect_clean();
   }
+  SUBCASE("two roots on one line: the second <link> of the line") {
+    LoadResult r = import_text(R"(
+<robot name="x">
+  <link name="a"/><link name="b"/>
+</robot>
+)");
+    CHECK(pos(r.take("import-structure")) == Pos{2, 25});
+    r.expect_clean();
+  }
   SUBCASE("a cycle below the root") {
     LoadResult r = import_text(R"(
 <robot name="x">
