@@ -331,6 +331,69 @@ TEST_CASE("urdf2body: the output loads without warnings and is byte-identical ru
   fs::remove_all(dir);
 }
 
+// Choreonoid ships SR1 in both formats. The imported SR1.urdf must have SR1.body's links, joint
+// ids, masses, centres of mass, inertias and frames at 100 random configurations. The URDF itself
+// differs from the body where the test says so.
+TEST_CASE("urdf2body: Choreonoid's SR1.urdf against its SR1.body") {
+  const fs::path sr1 = fs::path(BODYFMT_SHARED_DIR) / "corpus" / "choreonoid" / "SR1";
+  REQUIRE(fs::exists(sr1 / "SR1.urdf"));
+  const fs::path dir = scratch("sr1");
+  const CommandResult import =
+      run_command(std::string(BODYFMT_URDF2BODY) + " " + quote(sr1 / "SR1.urdf") + " -o SR1.body", dir.string());
+  // The URDF's visuals name materials 'Appearance2' ... that it never defines (urdfdom warns too).
+  CHECK(import.status == 0);
+  CHECK(import.output.find("[import-material]") != std::string::npos);
+  CollectingSink sink_a, sink_b;
+  auto body = load_body((sr1 / "SR1.body").string(), LoadOptions{}, sink_a);
+  auto imported = load_body((dir / "SR1.body").string(), LoadOptions{}, sink_b);
+  REQUIRE(body);
+  REQUIRE(imported);
+  REQUIRE(imported->links.size() == body->links.size());
+  std::vector<LinkIndex> to_imported;
+  for (const Link& a : body->links) {
+    CAPTURE(a.name);
+    const LinkIndex j = imported->find_link(a.name);
+    REQUIRE(j >= 0);
+    to_imported.push_back(j);
+    const Link& b = imported->links[static_cast<std::size_t>(j)];
+    CHECK(a.joint_type == b.joint_type);
+    CHECK(a.joint_id == b.joint_id);
+    const MassProperties ma = compute_mass_properties(a), mb = compute_mass_properties(b);
+    CHECK(close(ma.mass, mb.mass));
+    CHECK(close(ma.center_of_mass, mb.center_of_mass));
+    CHECK(close(ma.inertia, mb.inertia));
+    if (a.joint_type != JointType::kRevolute) continue;
+    // SR1.urdf rounds ±90° and ±180° to ±1.57 and ±3.14 rad...
+    CHECK(std::abs(a.joint_range_lower - b.joint_range_lower) < 0.0016);
+    CHECK(std::abs(a.joint_range_upper - b.joint_range_upper) < 0.0016);
+    // ...and gives every joint a velocity limit (10 rad/s; 0 for RARM_ELBOW) where the body has none.
+    CHECK(a.velocity_upper == kUnlimited);
+    CHECK((b.velocity_upper == 10 || (a.name == "RARM_ELBOW" && b.velocity_upper == 0)));
+  }
+  // The cameras and sensors (with the camera shapes on CHEST) are not in SR1.urdf.
+  CHECK(body->devices.size() == 7);
+  CHECK(imported->devices.empty());
+  // SR1.body places its free root WAIST 0.7135 m up; a URDF has no initial pose, so frames are
+  // compared relative to the root.
+  CHECK(body->links[0].X_PL.translation() == Eigen::Vector3d(0, 0, 0.7135));
+  CHECK(imported->links[0].X_PL.translation() == Eigen::Vector3d::Zero());
+  std::mt19937 rng(27);
+  std::uniform_real_distribution<double> angle(-M_PI, M_PI);
+  for (int k = 0; k < 100; ++k) {
+    std::vector<double> q(body->links.size()), q_imported(imported->links.size());
+    for (std::size_t i = 0; i < q.size(); ++i) q_imported[static_cast<std::size_t>(to_imported[i])] = q[i] = angle(rng);
+    const auto fa = compute_root_relative_frames(*body, q);
+    const auto fb = compute_root_relative_frames(*imported, q_imported);
+    for (std::size_t i = 0; i < q.size(); ++i) {
+      CAPTURE(body->links[i].name);
+      const Eigen::Isometry3d& b = fb[static_cast<std::size_t>(to_imported[i])];
+      REQUIRE((fa[i].translation() - b.translation()).norm() <= 1e-9);
+      REQUIRE((fa[i].linear() - b.linear()).norm() <= 1e-9);
+    }
+  }
+  fs::remove_all(dir);
+}
+
 // body -> URDF (--floating-base, so that the root's joint and pose are kept) -> body: links,
 // masses and frames as the corpus model had them, for every model whose export reported no loss.
 TEST_CASE("urdf2body: body -> URDF -> body on the corpus") {
