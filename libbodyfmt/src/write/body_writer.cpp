@@ -167,11 +167,16 @@ class Writer {
   void write_shape(const Shape& shape, int indent) {
     const Eigen::Matrix3d L = shape.X_LS.linear();
     // A placement that scales: a Transform node carries it (body-format-spec §4.4: R diag(s)).
-    const Eigen::Vector3d scale(L.col(0).norm(), L.col(1).norm(), L.col(2).norm());
-    const Eigen::Matrix3d R = L * scale.cwiseInverse().asDiagonal();
-    const bool rigid = (scale.array() == 1.0).all();
+    // L = R diag(scale) with R a rotation; a mirror goes into the sign of the x scale.
+    Eigen::Vector3d scale(L.col(0).norm(), L.col(1).norm(), L.col(2).norm());
+    Eigen::Matrix3d R = L * scale.cwiseInverse().asDiagonal();
+    if (R.determinant() < 0) {
+      scale.x() = -scale.x();
+      R.col(0) = -R.col(0);
+    }
     const bool rotation_and_scale =
-        scale.minCoeff() > 0 && (R.transpose() * R - Eigen::Matrix3d::Identity()).norm() < 1e-12 && R.determinant() > 0;
+        scale.cwiseAbs().minCoeff() > 0 && (R.transpose() * R - Eigen::Matrix3d::Identity()).norm() < 1e-12;
+    const bool rigid = rotation_and_scale && (scale.array() == 1.0).all();
     auto place = [&](int at, const Eigen::Matrix3d& rotation_part) {
       if (!shape.X_LS.translation().isZero(0)) line(at, "translation: " + vec(shape.X_LS.translation()));
       if (std::string r = rotation(rotation_part); !r.empty()) line(at, "rotation: " + r);
@@ -184,7 +189,7 @@ class Writer {
     } else {
       if (!rotation_and_scale)
         report_not_written(sink_, shape.source, "geometry",
-                           "a shear or mirror in a shape's placement (its rotation and per-axis scale are written)");
+                           "a shear in a shape's placement (its rotation and per-axis scale are written)");
       line(at, "- type: Transform");
       place(at + 2, R);
       line(at + 2, "scale: " + vec(scale));

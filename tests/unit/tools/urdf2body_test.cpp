@@ -12,6 +12,7 @@
 
 #include <Eigen/Geometry>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -135,8 +136,15 @@ template <typename T>
 std::string same_shapes(const std::string& name, const char* kind, const std::vector<T>& a, const std::vector<T>& b) {
   if (a.size() != b.size()) return fmt::format("link {}: {} {} then {}", name, kind, a.size(), b.size());
   for (std::size_t i = 0; i < a.size(); ++i) {
-    if (!close(iso(a[i]->origin).matrix(), iso(b[i]->origin).matrix()))
-      return fmt::format("link {}: {} {} origin", name, kind, i);
+    // A mesh is placed by its origin and scale together (a scale of 1 -1 -1 may come back as a
+    // 180° turn with scale 1).
+    auto placement = [](const auto& shape) {
+      Eigen::Matrix4d X = iso(shape->origin).matrix();
+      if (auto mesh = std::dynamic_pointer_cast<urdf::Mesh>(shape->geometry))
+        X.topLeftCorner<3, 3>() *= vec(mesh->scale).asDiagonal();
+      return X;
+    };
+    if (!close(placement(a[i]), placement(b[i]))) return fmt::format("link {}: {} {} placement", name, kind, i);
     const auto& ga = a[i]->geometry;
     const auto& gb = b[i]->geometry;
     if (ga->type != gb->type) return fmt::format("link {}: {} {} type", name, kind, i);
@@ -187,11 +195,14 @@ std::string same_tree(const urdf::ModelInterface& a, const urdf::ModelInterface&
       return "joint " + name + ": origin";
     if (ja->type == urdf::Joint::FIXED) continue;
     if (!close(vec(ja->axis).normalized(), vec(jb.axis).normalized())) return "joint " + name + ": axis";
-    if (ja->type != urdf::Joint::CONTINUOUS &&
-        (!close(ja->limits->lower, jb.limits->lower) || !close(ja->limits->upper, jb.limits->upper)))
+    if (ja->type != urdf::Joint::CONTINUOUS && ja->type != urdf::Joint::FLOATING &&
+        (!ja->limits || !jb.limits || !close(ja->limits->lower, jb.limits->lower) ||
+         !close(ja->limits->upper, jb.limits->upper)))
       return "joint " + name + ": range";
-    if (!close(ja->limits->velocity, jb.limits->velocity) || !close(ja->limits->effort, jb.limits->effort))
-      return "joint " + name + ": velocity or effort";
+    // A continuous joint without <limit> comes back with body2urdf's stand-in 1e30 (no limit).
+    const double va = ja->limits ? ja->limits->velocity : 1e30, ea = ja->limits ? ja->limits->effort : 1e30;
+    const double vb = jb.limits ? jb.limits->velocity : 1e30, eb = jb.limits ? jb.limits->effort : 1e30;
+    if (!close(va, vb) || !close(ea, eb)) return "joint " + name + ": velocity or effort";
   }
   // Forward kinematics at 100 random configurations within the limits.
   for (int k = 0; k < 100; ++k) {
@@ -328,6 +339,77 @@ TEST_CASE("urdf2body: the output loads without warnings and is byte-identical ru
   REQUIRE(model);
   for (const Diagnostic& d : sink.diagnostics()) CHECK_MESSAGE(d.severity < Severity::kWarning, d.message);
   CHECK(model->links.size() == 12);
+  fs::remove_all(dir);
+}
+
+// A root 'world' link without content on one fixed or floating joint (urdf2body makes its child
+// a fixed or free root, which body2urdf --floating-base writes back the same way).
+bool world_fixes_root(const urdf::ModelInterface& model) {
+  const urdf::LinkConstSharedPtr& root = model.getRoot();
+  if (root->name != "world" || root->inertial || !root->visual_array.empty() || !root->collision_array.empty() ||
+      root->child_joints.size() != 1)
+    return false;
+  const int type = root->child_joints.front()->type;
+  return type == urdf::Joint::FIXED || type == urdf::Joint::FLOATING;
+}
+
+// Public URDF collections (not part of the project): BODYFMT_URDF_COLLECTIONS=DIR:DIR... runs
+// every URDF under them that urdfdom reads through urdf2body, bodycheck and body2urdf, and the
+// round-trip comparison above; each failure is printed with its cause. Without the variable it
+// says so and checks nothing.
+TEST_CASE("urdf2body: public URDF collections (BODYFMT_URDF_COLLECTIONS)") {
+  const char* collections = std::getenv("BODYFMT_URDF_COLLECTIONS");
+  if (!collections || !*collections) {
+    MESSAGE("not run: set BODYFMT_URDF_COLLECTIONS to folders of URDF files");
+    return;
+  }
+  const fs::path dir = scratch("collections");
+  std::stringstream list(collections);
+  for (std::string root; std::getline(list, root, ':');) {
+    std::vector<fs::path> files;
+    for (const auto& e : fs::recursive_directory_iterator(root))
+      if (e.path().extension() == ".urdf") files.push_back(e.path());
+    std::sort(files.begin(), files.end());
+    int parsed = 0, imported = 0, checked = 0, exported = 0, same = 0;
+    for (const fs::path& file : files) {
+      const std::string text = read(file);
+      auto original = urdf::parseURDF(text);
+      if (!original) continue;
+      ++parsed;
+      const CommandResult import =
+          run_command(std::string(BODYFMT_URDF2BODY) + " -q " + quote(file) + " -o m.body", dir.string());
+      if (import.status > 1) {
+        MESSAGE(file.string() << ": import exit " << import.status << ": " << import.output.substr(0, 300));
+        continue;
+      }
+      ++imported;
+      const CommandResult check = run_command(std::string(BODYFMT_BODYCHECK) + " -q --no-config m.body", dir.string());
+      if (check.status > 1) {
+        MESSAGE(file.string() << ": bodycheck exit " << check.status << ": " << check.output.substr(0, 300));
+        continue;
+      }
+      ++checked;
+      const CommandResult back =
+          run_command(std::string(BODYFMT_BODY2URDF) + " -q m.body -o m.urdf" +
+                          // a 'world' root came in as a fixed (or free) root: written back as such
+                          (world_fixes_root(*original) ? " --floating-base" : ""),
+                      dir.string());
+      if (back.status > 1) {
+        MESSAGE(file.string() << ": body2urdf exit " << back.status << ": " << back.output.substr(0, 300));
+        continue;
+      }
+      ++exported;
+      auto again = urdf::parseURDF(read(dir / "m.urdf"));
+      const std::string problem = again ? same_tree(*original, *again, 1) : "urdfdom cannot read the export";
+      if (problem.empty())
+        ++same;
+      else
+        MESSAGE(file.string() << ": round trip: " << problem);
+    }
+    MESSAGE(root << ": " << files.size() << " URDF, " << parsed << " read by urdfdom, " << imported
+                 << " imported (exit 0/1), " << checked << " checked by bodycheck, " << exported << " exported back, "
+                 << same << " the same tree");
+  }
   fs::remove_all(dir);
 }
 
