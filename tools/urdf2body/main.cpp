@@ -10,6 +10,7 @@
 #include <bodyfmt/converters/output_set.h>
 #include <bodyfmt/rules.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -83,9 +84,16 @@ int main(int argc, char** argv) {
   }
   const std::vector<Diagnostic>& diagnostics = collected.diagnostics();
   front.print(diagnostics);
-  if (!written)
-    front.print_error(
-        output + " was not written" +
-        (front.may_write(diagnostics) ? std::string() : ": the URDF has errors (--best-effort writes it anyway)"));
+  if (!written) {
+    const bool strict_losses = std::any_of(diagnostics.begin(), diagnostics.end(), [](const Diagnostic& d) {
+      return d.rule_id == "export-loss" && d.severity >= Severity::kError;
+    });
+    std::string why;
+    if (strict_losses)
+      why = ": --strict makes every loss an error";
+    else if (!front.may_write(diagnostics))
+      why = ": the URDF has errors (--best-effort writes it anyway)";
+    front.print_error(output + " was not written" + why);
+  }
   return tools::exit_code(diagnostics, policy->exit, !written);
 }
