@@ -328,6 +328,38 @@ TEST_CASE("urdf2body: exit codes, standard output, --strict and --allow-loss, lo
   fs::remove_all(dir);
 }
 
+TEST_CASE("urdf2body: --copy-meshes copies each mesh once beside the body; the body refers to the copies") {
+  const fs::path dir = scratch("copy");
+  fs::create_directories(dir / "pkg/meshes");
+  fs::create_directories(dir / "pkg/urdf");
+  fs::create_directories(dir / "out");
+  std::ofstream(dir / "pkg/package.xml") << "<package><name>pkg</name></package>\n";
+  const std::string stl =
+      "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+      "endloop\nendfacet\nendsolid t\n";
+  std::ofstream(dir / "pkg/meshes/part.stl") << stl;
+  std::ofstream(dir / "pkg/urdf/r.urdf")
+      << "<robot name=\"r\"><link name=\"a\">"
+         "<visual><geometry><mesh filename=\"package://pkg/meshes/part.stl\"/></geometry></visual>"
+         "<collision><geometry><mesh filename=\"../meshes/part.stl\" scale=\"2 2 2\"/></geometry></collision>"
+         "</link></robot>\n";
+  const CommandResult r =
+      run_command(std::string(BODYFMT_URDF2BODY) + " pkg/urdf/r.urdf -o out/r.body --copy-meshes", dir.string());
+  REQUIRE_MESSAGE(r.status == 0, r.output);
+  CHECK(read(dir / "out/meshes/r/part.stl") == stl);
+  const std::string body = read(dir / "out/r.body");
+  CHECK(body.find("uri: \"meshes/r/part.stl\"") != std::string::npos);
+  CHECK(body.find("part_2") == std::string::npos);  // one copy for both references
+  CollectingSink sink;
+  auto model = load_body((dir / "out/r.body").string(), LoadOptions{}, sink);
+  REQUIRE(model);
+  REQUIRE(model->links.at(0).shapes.size() == 2);
+  CHECK(geometry_get<MeshResource>(model->links[0].shapes[0].geometry).resolved_path ==
+        fs::weakly_canonical(dir / "out/meshes/r/part.stl").string());
+  CHECK_FALSE(model->meshes.empty());
+  fs::remove_all(dir);
+}
+
 TEST_CASE("urdf2body: the output loads without warnings and is byte-identical run to run") {
   const fs::path dir = scratch("load");
   std::ofstream(dir / "r.urdf") << random_urdf(3, 12);
