@@ -52,6 +52,7 @@ void copy_mesh_files(bodyfmt::Model& model, bodyfmt::converters::OutputSet& out,
   for (Link& link : model.links)
     for (Shape& shape : link.shapes)
       if (auto* mesh = geometry_if<MeshResource>(shape.geometry); mesh && !mesh->resolved_path.empty()) {
+        out.protect(mesh->resolved_path, "a mesh");
         std::string error;
         if (auto relative = staged.copy(mesh->resolved_path, error))
           mesh->uri = *relative;
@@ -84,6 +85,7 @@ int main(int argc, char** argv) {
   CollectingSink collected;
   DiagnosticPolicy sink(collected, policy->options);  // --strict: export-loss is an error
   bool written = false;
+  bool commit_failed = false;
   if (auto input = front.open_input(path, sink)) {
     if (auto text = read_text(*input, front.load_options().max_file_bytes, sink)) {
       urdf_import::UrdfImportOptions options;
@@ -101,7 +103,10 @@ int main(int argc, char** argv) {
         if (copy_meshes) copy_mesh_files(*model, out, sink);
         std::string body = write_body(*model, write_options, sink);
         out.set_main(std::move(body));
-        if (front.may_write(collected.diagnostics())) written = out.commit(sink);
+        if (front.may_write(collected.diagnostics())) {
+          written = out.commit(sink);
+          commit_failed = !written;  // reported with its reason (export-write)
+        }
       }
     }
   }
@@ -114,7 +119,7 @@ int main(int argc, char** argv) {
     std::string why;
     if (strict_losses)
       why = ": --strict makes every loss an error";
-    else if (!front.may_write(diagnostics))
+    else if (!commit_failed && !front.may_write(diagnostics))
       why = ": the URDF has errors (--best-effort writes it anyway)";
     front.print_error(output + " was not written" + why);
   }

@@ -357,6 +357,17 @@ TEST_CASE("urdf2body: --copy-meshes copies each mesh once beside the body; the b
   CHECK(geometry_get<MeshResource>(model->links[0].shapes[0].geometry).resolved_path ==
         fs::weakly_canonical(dir / "out/meshes/r/part.stl").string());
   CHECK_FALSE(model->meshes.empty());
+  // A source mesh where its copy would go is never written over; nothing is written.
+  fs::create_directories(dir / "self/meshes/r");
+  std::ofstream(dir / "self/meshes/r/part.stl") << "solid other\nendsolid other\n";
+  std::ofstream(dir / "self/r.urdf")
+      << "<robot name=\"r\"><link name=\"a\"><visual><geometry><mesh filename=\"meshes/r/part.stl\"/>"
+         "</geometry></visual></link></robot>\n";
+  CHECK(
+      run_command(std::string(BODYFMT_URDF2BODY) + " r.urdf -o r.body --copy-meshes", (dir / "self").string()).status ==
+      2);
+  CHECK(read(dir / "self/meshes/r/part.stl") == "solid other\nendsolid other\n");
+  CHECK_FALSE(fs::exists(dir / "self/r.body"));
   fs::remove_all(dir);
 }
 
