@@ -4,7 +4,7 @@
 set -euo pipefail
 clang_format=$1 source_dir=$2
 cd "$source_dir"
-mapfile -d '' files < <(find libbodyfmt validate converters tools examples bench tests \
+mapfile -d '' files < <(find libbodyfmt validate converters importers tools examples bench tests \
   \( -path tests/data -prune \) -o \( -name '*.cpp' -o -name '*.h' \) -type f -print0 | sort -z)
 bad=0
 for f in "${files[@]}"; do

@@ -46,7 +46,8 @@ std::string rules_markdown() {
                                                                              {"mesh", "Meshes"},
                                                                              {"subbody", "SubBody"},
                                                                              {"extra-joint", "Extra joints"},
-                                                                             {"device", "Devices"}};
+                                                                             {"device", "Devices"},
+                                                                             {"import", "Importers"}};
   std::map<std::string, std::vector<const RuleInfo*>> by_family;
   for (const RuleInfo& rule : all_rules()) by_family[family(rule.id)].push_back(&rule);
 

@@ -239,6 +239,25 @@ std::vector<RuleInfo> make_table() {
        "a material colour component or transparency is outside 0..1; Choreonoid keeps it and its renderer clamps it",
        "exporters must write the clamped value (MuJoCo refuses a colour of 4e68), and the author likely mistyped it",
        ""},
+      // Importers (importers/, each format's SUPPORT.md)
+      {"import-syntax", F, "the input is not well-formed XML, or its document element is not <robot>",
+       "nothing can be imported from it", ""},
+      {"import-structure", E,
+       "the URDF is not one tree: a joint names a missing link, a second root, a cycle, a link with two parent "
+       "joints, a duplicate name, or a required element or attribute is missing",
+       "urdfdom refuses such a file, and a body needs one tree", ""},
+      {"import-value", E,
+       "a URDF value does not read: not a finite number, a wrong count, an unknown joint type, a "
+       "zero joint axis",
+       "the imported model would hold a value the author did not write", ""},
+      {"import-mass", E, "a negative mass or moment of inertia in a URDF <inertial>",
+       "no physical body has one; simulators refuse or explode on it", ""},
+      {"import-mesh", E, "a URDF mesh file cannot be found (the URI and every place searched are listed)",
+       "the body would refer to a file that does not exist", ""},
+      {"import-material", W, "a URDF visual names a material that is not defined",
+       "the shape is imported without colour", ""},
+      {"import-unknown-element", W, "an element URDF does not define (an extension of another tool)",
+       "its content is not imported", ""},
       // Dynamics checker (dynamics/, bodysim)
       {"dynamics-contact-geometry", W,
        "bodysim --contact simbody could not turn a collision shape into Simbody contact geometry (a Brick needs a "

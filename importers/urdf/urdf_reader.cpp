@@ -1,0 +1,724 @@
+#include "urdf_reader.h"
+
+#include "package_paths.h"
+#include "xml_positions.h"
+
+#include <bodyfmt/converters/loss.h>
+#include <bodyfmt/converters/numbers.h>
+#include <bodyfmt/rules.h>
+
+#include <fmt/format.h>
+#include <tinyxml2.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <unordered_map>
+
+namespace bodyfmt::urdf_import {
+namespace {
+
+namespace fs = std::filesystem;
+using converters::LossKind;
+using tinyxml2::XMLElement;
+
+constexpr std::string_view kTarget = "a Choreonoid .body";
+
+bool named(const XMLElement* e, const char* name) { return std::strcmp(e->Name(), name) == 0; }
+
+struct JointInfo {
+  const XMLElement* element = nullptr;
+  std::string name;
+  std::string parent;
+  std::string child;
+};
+
+class Reader {
+ public:
+  Reader(std::string_view text, const std::string& file, const UrdfImportOptions& options, DiagnosticSink& sink)
+      : text_(text), file_(file), options_(options), sink_(sink), at_(text, file) {
+    search_.package_paths = options.package_paths;
+    search_.use_ros_package_path = options.use_ros_package_path;
+    search_.urdf_folder = fs::path(file).parent_path();
+    std::error_code ec;
+    output_folder_ =
+        fs::absolute(options.output_folder.empty() ? fs::path(".") : options.output_folder, ec).lexically_normal();
+  }
+
+  std::optional<Model> read();
+
+ private:
+  void report(std::string_view rule, const SourceLocation& at, std::string message, std::string hint = {}) {
+    report_rule(sink_, rule, at, std::move(message), std::move(hint));
+  }
+  void loss(const SourceLocation& at, LossKind kind, std::string_view what, std::string_view hint = {}) {
+    converters::report_loss(sink_, at, kTarget, kind, what, hint);
+  }
+
+  // Values. Each reports `import-value` at the attribute and returns nullopt when it does not read.
+  std::optional<std::vector<double>> numbers(const XMLElement* e, const char* attribute, std::size_t count);
+  std::optional<double> number(const XMLElement* e, const char* attribute);
+  std::optional<Eigen::Vector3d> vec3(const XMLElement* e, const char* attribute) {
+    auto v = numbers(e, attribute, 3);
+    if (!v) return std::nullopt;
+    return Eigen::Vector3d((*v)[0], (*v)[1], (*v)[2]);
+  }
+  std::string required_name(const XMLElement* e, const char* attribute, const char* what);
+  Eigen::Isometry3d origin(const XMLElement* parent);
+
+  void read_material(const XMLElement* e, bool top_level);
+  void read_link(const XMLElement* e, Link& link);
+  void read_inertial(const XMLElement* e, Link& link);
+  void read_shape(const XMLElement* e, Link& link, bool visual);
+  std::optional<Geometry> read_geometry(const XMLElement* geometry, Eigen::Isometry3d& X_LS, Eigen::Vector3d& scale);
+  void read_joint(const JointInfo& joint, Link& link, bool is_root_child_of_world);
+  void report_unknown_children(const XMLElement* e, std::initializer_list<const char*> known, const char* where);
+  std::string mesh_uri(const XMLElement* mesh, const std::string& filename, std::string& resolved);
+
+  std::string_view text_;
+  std::string file_;
+  const UrdfImportOptions& options_;
+  DiagnosticSink& sink_;
+  XmlPositions at_;
+  MeshSearch search_;
+  fs::path output_folder_;
+  std::map<std::string, Material> materials_;
+  std::unordered_map<std::string, std::pair<std::string, std::string>> mesh_cache_;  // uri -> relative, resolved
+  std::unordered_map<std::string, bool> mesh_reported_;
+};
+
+std::optional<std::vector<double>> Reader::numbers(const XMLElement* e, const char* attribute, std::size_t count) {
+  const char* text = e->Attribute(attribute);
+  if (!text) return std::nullopt;
+  std::vector<double> values;
+  const char* p = text;
+  const char* end = text + std::strlen(text);
+  while (true) {
+    while (p < end && std::strchr(" \t\r\n", *p)) ++p;
+    if (p == end) break;
+    if (*p == '+') ++p;  // from_chars takes no plus sign; URDF writers do emit them
+    double v = 0;
+    auto [next, ec] = std::from_chars(p, end, v);
+    if (ec != std::errc() || (next < end && !std::strchr(" \t\r\n", *next)) || !std::isfinite(v)) {
+      report("import-value", at_.at(e, attribute),
+             fmt::format("{}=\"{}\" is not {}", attribute, text,
+                         count == 1 ? "a finite number" : fmt::format("{} finite numbers", count)));
+      return std::nullopt;
+    }
+    values.push_back(v);
+    p = next;
+  }
+  if (values.size() != count) {
+    report("import-value", at_.at(e, attribute),
+           fmt::format("{}=\"{}\" has {} numbers, {} expected", attribute, text, values.size(), count));
+    return std::nullopt;
+  }
+  return values;
+}
+
+std::optional<double> Reader::number(const XMLElement* e, const char* attribute) {
+  auto v = numbers(e, attribute, 1);
+  if (!v) return std::nullopt;
+  return v->front();
+}
+
+std::string Reader::required_name(const XMLElement* e, const char* attribute, const char* what) {
+  const char* value = e->Attribute(attribute);
+  if (!value || !*value) {
+    report("import-structure", at_.at(e), fmt::format("this {} has no {} attribute", what, attribute));
+    return {};
+  }
+  return value;
+}
+
+// URDF's origin: xyz, then rpy as R = Rz(yaw) Ry(pitch) Rx(roll).
+Eigen::Isometry3d Reader::origin(const XMLElement* parent) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  const XMLElement* o = parent->FirstChildElement("origin");
+  if (!o) return X;
+  if (auto xyz = vec3(o, "xyz")) X.translation() = *xyz;
+  if (auto rpy = vec3(o, "rpy"))
+    X.linear() =
+        (Eigen::AngleAxisd(rpy->z(), Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(rpy->y(), Eigen::Vector3d::UnitY()) *
+         Eigen::AngleAxisd(rpy->x(), Eigen::Vector3d::UnitX()))
+            .toRotationMatrix();
+  return X;
+}
+
+void Reader::report_unknown_children(const XMLElement* e, std::initializer_list<const char*> known, const char* where) {
+  for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    bool is_known = false;
+    for (const char* k : known) is_known = is_known || named(c, k);
+    if (!is_known)
+      report("import-unknown-element", at_.at(c),
+             fmt::format("<{}> in a {} is not URDF; it is ignored", c->Name(), where));
+  }
+}
+
+void Reader::read_material(const XMLElement* e, bool top_level) {
+  const char* name = e->Attribute("name");
+  const XMLElement* color = e->FirstChildElement("color");
+  if (const XMLElement* texture = e->FirstChildElement("texture"))
+    loss(at_.at(texture), LossKind::kTextures,
+         fmt::format("the texture '{}'", texture->Attribute("filename") ? texture->Attribute("filename") : ""),
+         "the colour is kept");
+  if (!color) {
+    if (top_level && !e->FirstChildElement("texture"))
+      report("import-structure", at_.at(e), "a top-level <material> needs a <color>");
+    return;
+  }
+  auto rgba = numbers(color, "rgba", 4);
+  if (!rgba) {
+    if (!color->Attribute("rgba")) report("import-structure", at_.at(color), "<color> has no rgba attribute");
+    return;
+  }
+  Material m;
+  m.diffuse_color = Eigen::Vector3d((*rgba)[0], (*rgba)[1], (*rgba)[2]);
+  m.transparency = 1.0 - (*rgba)[3];
+  if (name && *name) materials_.emplace(name, m);  // the first definition wins, as in urdfdom
+}
+
+void Reader::read_inertial(const XMLElement* e, Link& link) {
+  MassContribution c;
+  c.from_link_keys = true;
+  c.source = at_.at(e);
+  const Eigen::Isometry3d X_LC = origin(e);
+  c.center_of_mass = X_LC.translation();
+  if (const XMLElement* o = e->FirstChildElement("origin")) {
+    link.sources.set(LinkSources::kCenterOfMass, at_.at(o));
+  }
+  const XMLElement* mass = e->FirstChildElement("mass");
+  if (!mass) {
+    report("import-structure", at_.at(e), "this <inertial> has no <mass>");
+  } else if (auto m = number(mass, "value")) {
+    c.mass = *m;
+    link.sources.set(LinkSources::kMass, at_.at(mass, "value"));
+    c.source = at_.at(mass, "value");
+    if (*m < 0)
+      report("import-mass", at_.at(mass, "value"), fmt::format("link '{}' has a negative mass {}", link.name, *m));
+  } else if (!mass->Attribute("value")) {
+    report("import-structure", at_.at(mass), "<mass> has no value attribute");
+  }
+  const XMLElement* inertia = e->FirstChildElement("inertia");
+  Eigen::Matrix3d I = Eigen::Matrix3d::Zero();
+  if (!inertia) {
+    report("import-structure", at_.at(e), "this <inertial> has no <inertia>");
+  } else {
+    link.sources.set(LinkSources::kInertia, at_.at(inertia));
+    const char* names[6] = {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"};
+    double v[6] = {0, 0, 0, 0, 0, 0};
+    for (int i = 0; i < 6; ++i) {
+      if (!inertia->Attribute(names[i])) {
+        report("import-structure", at_.at(inertia), fmt::format("<inertia> has no {} attribute", names[i]));
+        continue;
+      }
+      if (auto x = number(inertia, names[i])) v[i] = *x;
+    }
+    I << v[0], v[1], v[2], v[1], v[3], v[4], v[2], v[4], v[5];
+    // A negative moment beyond rounding (exporters write -5e-20 for a zero, which bodycheck's
+    // inertia rules report as a zero inertia).
+    const double largest = std::max({std::abs(v[0]), std::abs(v[3]), std::abs(v[5])});
+    for (int i : {0, 3, 5})
+      if (v[i] < -std::max(1e-9 * largest, 1e-12))
+        report("import-mass", at_.at(inertia, names[i]),
+               fmt::format("link '{}' has a negative moment of inertia {}={}", link.name, names[i], v[i]));
+  }
+  // The tensor is given in the inertial frame; the link keeps it in link axes (rpy rotates it).
+  c.inertia = X_LC.linear() * I * X_LC.linear().transpose();
+  if (c.mass == 0 && (!I.isZero(0) || !c.center_of_mass.isZero(0)))
+    loss(c.source, LossKind::kDynamics,
+         fmt::format("the inertia and centre of mass of the massless link '{}' (Choreonoid ignores both when the "
+                     "mass is 0, body-format-spec §6.4)",
+                     link.name));
+  link.mass_contributions.push_back(c);
+}
+
+std::string Reader::mesh_uri(const XMLElement* mesh, const std::string& filename, std::string& resolved) {
+  if (!options_.resolve_meshes) return filename;
+  auto cached = mesh_cache_.find(filename);
+  if (cached == mesh_cache_.end()) {
+    const MeshLookup found = find_mesh(filename, search_);
+    std::string relative;
+    if (!found.path.empty()) {
+      relative = fs::path(found.path).lexically_relative(output_folder_).generic_string();
+      if (relative.empty()) relative = fs::path(found.path).generic_string();
+    } else {
+      std::string message = fmt::format("the mesh '{}' cannot be found", filename);
+      if (!found.problem.empty()) message += ": " + found.problem;
+      if (!found.searched.empty()) {
+        message += "; searched:";
+        for (const std::string& place : found.searched) message += "\n  " + place;
+      }
+      report("import-mesh", at_.at(mesh, "filename"), message,
+             filename.rfind("package://", 0) == 0 ? "give the folder holding the package with --package-path" : "");
+    }
+    cached = mesh_cache_.emplace(filename, std::make_pair(relative, found.path)).first;
+  } else if (cached->second.second.empty()) {
+    report("import-mesh", at_.at(mesh, "filename"), fmt::format("the mesh '{}' cannot be found (see above)", filename));
+  }
+  resolved = cached->second.second;
+  return cached->second.first.empty() ? filename : cached->second.first;
+}
+
+std::optional<Geometry> Reader::read_geometry(const XMLElement* g, Eigen::Isometry3d& X_LS, Eigen::Vector3d& scale) {
+  const XMLElement* shape = g->FirstChildElement();
+  if (!shape) {
+    report("import-structure", at_.at(g), "this <geometry> is empty");
+    return std::nullopt;
+  }
+  if (shape->NextSiblingElement())
+    report("import-structure", at_.at(shape->NextSiblingElement()),
+           "a <geometry> holds one shape; this one is ignored");
+  auto require = [&](const char* attribute) -> std::optional<double> {
+    if (!shape->Attribute(attribute)) {
+      report("import-structure", at_.at(shape), fmt::format("<{}> has no {} attribute", shape->Name(), attribute));
+      return std::nullopt;
+    }
+    return number(shape, attribute);
+  };
+  if (named(shape, "box")) {
+    if (!shape->Attribute("size")) {
+      report("import-structure", at_.at(shape), "<box> has no size attribute");
+      return std::nullopt;
+    }
+    auto size = vec3(shape, "size");
+    if (!size) return std::nullopt;
+    return Geometry(Box{*size});
+  }
+  if (named(shape, "sphere")) {
+    auto r = require("radius");
+    if (!r) return std::nullopt;
+    return Geometry(Sphere{*r});
+  }
+  if (named(shape, "cylinder")) {
+    auto r = require("radius");
+    auto h = require("length");
+    if (!r || !h) return std::nullopt;
+    // URDF's cylinder runs along Z, Choreonoid's along Y: Rx(+90°) maps +Y onto +Z (written
+    // with exact zeros and ones, so that nothing but the origin's rounding enters).
+    Eigen::Matrix3d Rx90;
+    Rx90 << 1, 0, 0, 0, 0, -1, 0, 1, 0;
+    X_LS.linear() = X_LS.linear() * Rx90;
+    Cylinder c;
+    c.radius = *r;
+    c.height = *h;
+    return Geometry(c);
+  }
+  if (named(shape, "mesh")) {
+    const char* filename = shape->Attribute("filename");
+    if (!filename || !*filename) {
+      report("import-structure", at_.at(shape), "<mesh> has no filename attribute");
+      return std::nullopt;
+    }
+    if (shape->Attribute("scale"))
+      if (auto s = vec3(shape, "scale")) scale = *s;
+    MeshResource mesh;
+    mesh.uri = mesh_uri(shape, filename, mesh.resolved_path);
+    mesh.uri_source = at_.at(shape, "filename");
+    return Geometry(HeapValue<MeshResource>(std::move(mesh)));
+  }
+  if (named(shape, "capsule")) {
+    // Not URDF 1.0, but urdfdom-based tools (Drake, Gazebo's parser) read it: a Z-axis capsule
+    // whose length is the cylindrical part.
+    auto r = require("radius");
+    auto h = require("length");
+    if (!r || !h) return std::nullopt;
+    Eigen::Matrix3d Rx90;
+    Rx90 << 1, 0, 0, 0, 0, -1, 0, 1, 0;
+    X_LS.linear() = X_LS.linear() * Rx90;
+    Capsule c;
+    c.radius = *r;
+    c.height = *h;
+    return Geometry(c);
+  }
+  report("import-value", at_.at(shape), fmt::format("<{}> is not a URDF geometry", shape->Name()));
+  return std::nullopt;
+}
+
+void Reader::read_shape(const XMLElement* e, Link& link, bool visual) {
+  report_unknown_children(e, {"origin", "geometry", "material"}, visual ? "<visual>" : "<collision>");
+  const XMLElement* g = e->FirstChildElement("geometry");
+  if (!g) {
+    report("import-structure", at_.at(e), fmt::format("this <{}> has no <geometry>", e->Name()));
+    return;
+  }
+  Eigen::Isometry3d X_LS = origin(e);
+  Eigen::Vector3d scale(1, 1, 1);
+  auto geometry = read_geometry(g, X_LS, scale);
+  if (!geometry) return;
+  Shape shape;
+  if (const char* name = e->Attribute("name")) shape.name = name;
+  shape.geometry = std::move(*geometry);
+  shape.X_LS = Eigen::AffineCompact3d(X_LS.matrix().topRows<3>());
+  if (scale != Eigen::Vector3d(1, 1, 1)) shape.X_LS.linear() = shape.X_LS.linear() * scale.asDiagonal();
+  shape.visual = visual;
+  shape.collision = !visual;
+  shape.source = at_.at(e);
+  if (visual) {
+    if (const XMLElement* m = e->FirstChildElement("material")) {
+      read_material(m, false);
+      const char* name = m->Attribute("name");
+      if (m->FirstChildElement("color")) {
+        // An inline colour applies here even when the name was defined before.
+        if (auto rgba = numbers(m->FirstChildElement("color"), "rgba", 4)) {
+          Material mat;
+          mat.diffuse_color = Eigen::Vector3d((*rgba)[0], (*rgba)[1], (*rgba)[2]);
+          mat.transparency = 1.0 - (*rgba)[3];
+          shape.appearance.material = mat;
+        }
+      } else if (name && *name) {
+        auto it = materials_.find(name);
+        if (it != materials_.end())
+          shape.appearance.material = it->second;
+        else if (!m->FirstChildElement("texture"))
+          report("import-material", at_.at(m, "name"), fmt::format("the material '{}' is not defined", name),
+                 "define it at the top level with a <color rgba>");
+      }
+    }
+  }
+  link.shapes.push_back(std::move(shape));
+}
+
+void Reader::read_link(const XMLElement* e, Link& link) {
+  report_unknown_children(e, {"inertial", "visual", "collision"}, "<link>");
+  const XMLElement* inertial = e->FirstChildElement("inertial");
+  if (inertial) {
+    read_inertial(inertial, link);
+    if (inertial->NextSiblingElement("inertial"))
+      report("import-structure", at_.at(inertial->NextSiblingElement("inertial")),
+             "a link has one <inertial>; this one is ignored");
+  } else {
+    // URDF: a link without <inertial> has no mass (a frame); Choreonoid would give it 1 kg.
+    MassContribution c;
+    c.from_link_keys = true;
+    c.mass = 0;
+    c.source = at_.at(e);
+    link.mass_contributions.push_back(c);
+  }
+  for (const XMLElement* v = e->FirstChildElement("visual"); v; v = v->NextSiblingElement("visual"))
+    read_shape(v, link, true);
+  for (const XMLElement* c = e->FirstChildElement("collision"); c; c = c->NextSiblingElement("collision"))
+    read_shape(c, link, false);
+}
+
+void Reader::read_joint(const JointInfo& joint, Link& link, bool collapsed_world) {
+  const XMLElement* e = joint.element;
+  report_unknown_children(
+      e, {"origin", "parent", "child", "axis", "limit", "dynamics", "mimic", "safety_controller", "calibration"},
+      "<joint>");
+  link.joint_name = joint.name;
+  const Eigen::Isometry3d X_PJ = origin(e);
+  link.X_PL = Eigen::AffineCompact3d(X_PJ.matrix().topRows<3>());
+  if (const XMLElement* o = e->FirstChildElement("origin")) {
+    link.sources.set(LinkSources::kTranslation, at_.at(o));
+    link.sources.set(LinkSources::kRotation, at_.at(o));
+  }
+  link.sources.set(LinkSources::kJointType, at_.at(e, "type"));
+  const std::string type = e->Attribute("type") ? e->Attribute("type") : "";
+  const bool revolute = type == "revolute" || type == "continuous";
+  const bool prismatic = type == "prismatic";
+  if (revolute)
+    link.joint_type = JointType::kRevolute;
+  else if (prismatic)
+    link.joint_type = JointType::kPrismatic;
+  else if (type == "floating")
+    link.joint_type = JointType::kFree;
+  else if (type == "fixed")
+    link.joint_type = JointType::kFixed;
+  else if (type == "planar") {
+    link.joint_type = JointType::kFixed;
+    loss(at_.at(e, "type"), LossKind::kJoints,
+         fmt::format("the planar joint '{}' (written as a fixed joint)", joint.name));
+  } else {
+    report(
+        "import-value", at_.at(e, "type"),
+        type.empty() ? std::string("this joint has no type attribute") : fmt::format("unknown joint type '{}'", type),
+        "revolute, continuous, prismatic, fixed, floating or planar");
+  }
+  (void)collapsed_world;
+  if (revolute || prismatic) {
+    Eigen::Vector3d axis(1, 0, 0);  // URDF's default
+    if (const XMLElement* a = e->FirstChildElement("axis")) {
+      link.sources.set(LinkSources::kJointAxis, at_.at(a, "xyz"));
+      if (a->Attribute("xyz"))
+        if (auto v = vec3(a, "xyz")) axis = *v;
+    }
+    if (axis.norm() == 0) {
+      report("import-value", link.sources.joint_axis().known() ? link.sources.joint_axis() : at_.at(e),
+             fmt::format("joint '{}' has a zero axis", joint.name));
+    } else {
+      axis.normalize();  // urdfdom normalises; Choreonoid's body loader does not (body-format-spec §4.5)
+    }
+    link.joint_axis = axis;
+    const XMLElement* limit = e->FirstChildElement("limit");
+    if (limit) {
+      link.sources.set(LinkSources::kJointRange, at_.at(limit));
+      // body2urdf writes 1e30 where Choreonoid has no limit (converters/common/numbers.h).
+      auto bounded = [](double v) { return std::abs(v) >= converters::kUnlimitedStandIn ? kUnlimited : v; };
+      if (type != "continuous") {
+        const double lower = limit->Attribute("lower") ? number(limit, "lower").value_or(0) : 0.0;
+        const double upper = limit->Attribute("upper") ? number(limit, "upper").value_or(0) : 0.0;
+        link.joint_range_lower = lower <= -converters::kUnlimitedStandIn ? -kUnlimited : lower;
+        link.joint_range_upper = upper >= converters::kUnlimitedStandIn ? kUnlimited : upper;
+      }
+      if (limit->Attribute("velocity"))
+        if (auto v = number(limit, "velocity")) {
+          link.sources.set(LinkSources::kJointVelocity, at_.at(limit, "velocity"));
+          link.velocity_upper = bounded(std::abs(*v));
+          link.velocity_lower = -link.velocity_upper;
+        }
+      if (limit->Attribute("effort"))
+        if (auto v = number(limit, "effort")) {
+          link.effort_upper = bounded(std::abs(*v));
+          link.effort_lower = -link.effort_upper;
+        }
+    } else if (type != "continuous") {
+      report("import-structure", at_.at(e), fmt::format("the {} joint '{}' has no <limit>", type, joint.name),
+             "add <limit lower upper effort velocity> (urdfdom refuses the joint without it)");
+    }
+  }
+  if (const XMLElement* d = e->FirstChildElement("dynamics")) {
+    const double damping = d->Attribute("damping") ? number(d, "damping").value_or(0) : 0.0;
+    const double friction = d->Attribute("friction") ? number(d, "friction").value_or(0) : 0.0;
+    if (damping != 0 || friction != 0)
+      loss(at_.at(d), LossKind::kDynamics,
+           fmt::format("the damping {} and friction {} of joint '{}'", converters::format_number(damping),
+                       converters::format_number(friction), joint.name));
+  }
+  if (const XMLElement* m = e->FirstChildElement("mimic"))
+    loss(at_.at(m), LossKind::kJoints,
+         fmt::format("joint '{}' mimicking '{}' (it moves on its own)", joint.name,
+                     m->Attribute("joint") ? m->Attribute("joint") : ""));
+  if (const XMLElement* s = e->FirstChildElement("safety_controller"))
+    loss(at_.at(s), LossKind::kJoints, fmt::format("the safety controller of joint '{}'", joint.name));
+  if (const XMLElement* c = e->FirstChildElement("calibration"))
+    loss(at_.at(c), LossKind::kJoints, fmt::format("the calibration of joint '{}'", joint.name));
+}
+
+std::optional<Model> Reader::read() {
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(text_.data(), text_.size()) != tinyxml2::XML_SUCCESS) {
+    report("import-syntax", at_.at_line(doc.ErrorLineNum()),
+           fmt::format("the URDF is not well-formed XML: {}", doc.ErrorStr() ? doc.ErrorStr() : "parse error"));
+    return std::nullopt;
+  }
+  const XMLElement* robot = doc.RootElement();
+  if (!robot || !named(robot, "robot")) {
+    report("import-syntax", robot ? at_.at(robot) : at_.at_line(1),
+           robot ? fmt::format("the document element is <{}>, not <robot>", robot->Name())
+                 : std::string("the document has no element"));
+    return std::nullopt;
+  }
+
+  Model model;
+  model.name = robot->Attribute("name") ? robot->Attribute("name") : "";
+  model.source_file = file_;
+  model.format_version = 2.0;
+  model.source = at_.at(robot);
+
+  // Pass 1: names, materials, what is lost.
+  std::vector<const XMLElement*> links;
+  std::vector<JointInfo> joints;
+  std::unordered_map<std::string, std::size_t> link_index;  // name -> index in links
+  std::unordered_map<std::string, std::size_t> joint_index;
+  for (const XMLElement* e = robot->FirstChildElement(); e; e = e->NextSiblingElement()) {
+    if (named(e, "link")) {
+      const std::string name = required_name(e, "name", "<link>");
+      if (name.empty()) continue;
+      if (!link_index.emplace(name, links.size()).second) {
+        report("import-structure", at_.at(e, "name"),
+               fmt::format("a second link named '{}' (the first is at line {})", name,
+                           links[link_index[name]]->GetLineNum()));
+        continue;
+      }
+      links.push_back(e);
+    } else if (named(e, "joint")) {
+      JointInfo j;
+      j.element = e;
+      j.name = required_name(e, "name", "<joint>");
+      const XMLElement* parent = e->FirstChildElement("parent");
+      const XMLElement* child = e->FirstChildElement("child");
+      if (!parent || !child) {
+        report("import-structure", at_.at(e),
+               fmt::format("joint '{}' has no <{}>", j.name, parent ? "child" : "parent"));
+        continue;
+      }
+      j.parent = required_name(parent, "link", "<parent>");
+      j.child = required_name(child, "link", "<child>");
+      if (j.name.empty() || j.parent.empty() || j.child.empty()) continue;
+      if (!joint_index.emplace(j.name, joints.size()).second) {
+        report("import-structure", at_.at(e, "name"),
+               fmt::format("a second joint named '{}' (the first is at line {})", j.name,
+                           joints[joint_index[j.name]].element->GetLineNum()));
+        continue;
+      }
+      joints.push_back(j);
+    } else if (named(e, "material")) {
+      read_material(e, true);
+    } else if (named(e, "transmission")) {
+      loss(at_.at(e), LossKind::kDynamics,
+           fmt::format("the transmission '{}'", e->Attribute("name") ? e->Attribute("name") : ""));
+    } else if (named(e, "gazebo")) {
+      loss(at_.at(e), LossKind::kDynamics,
+           fmt::format("the <gazebo> extension{}",
+                       e->Attribute("reference") ? fmt::format(" for '{}'", e->Attribute("reference")) : ""));
+    } else if (!named(e, "mujoco")) {  // MuJoCo's compiler hints (body2urdf writes them): nothing of the robot
+      report("import-unknown-element", at_.at(e),
+             fmt::format("<{}> in a <robot> is not URDF; it is ignored", e->Name()));
+    }
+  }
+  if (links.empty()) {
+    report("import-structure", at_.at(robot), "the robot has no links");
+    return std::nullopt;
+  }
+
+  // Pass 2: the tree. Each link has at most one parent joint.
+  std::vector<int> parent_joint(links.size(), -1);
+  std::vector<std::vector<int>> child_joints(links.size());
+  for (std::size_t j = 0; j < joints.size(); ++j) {
+    const JointInfo& joint = joints[j];
+    auto parent = link_index.find(joint.parent);
+    auto child = link_index.find(joint.child);
+    bool ok = true;
+    for (auto [found, end, which] :
+         {std::tuple(parent, link_index.end(), "parent"), std::tuple(child, link_index.end(), "child")}) {
+      if (found == end) {
+        const XMLElement* ref = joint.element->FirstChildElement(which);
+        report("import-structure", at_.at(ref, "link"),
+               fmt::format("joint '{}' names the {} link '{}', which is not defined", joint.name, which,
+                           std::strcmp(which, "parent") == 0 ? joint.parent : joint.child));
+        ok = false;
+      }
+    }
+    if (!ok) continue;
+    if (parent->second == child->second) {
+      report("import-structure", at_.at(joint.element->FirstChildElement("child"), "link"),
+             fmt::format("joint '{}' joins link '{}' to itself", joint.name, joint.child));
+      continue;
+    }
+    int& existing = parent_joint[child->second];
+    if (existing >= 0) {
+      report("import-structure", at_.at(joint.element->FirstChildElement("child"), "link"),
+             fmt::format("link '{}' is the child of a second joint '{}' (the first is '{}' at line {})", joint.child,
+                         joint.name, joints[static_cast<std::size_t>(existing)].name,
+                         joints[static_cast<std::size_t>(existing)].element->GetLineNum()));
+      continue;
+    }
+    existing = static_cast<int>(j);
+    child_joints[parent->second].push_back(static_cast<int>(j));
+  }
+  std::vector<std::size_t> roots;
+  for (std::size_t i = 0; i < links.size(); ++i)
+    if (parent_joint[i] < 0) roots.push_back(i);
+  if (roots.empty()) {
+    const JointInfo& j = joints[static_cast<std::size_t>(parent_joint[0])];
+    report("import-structure", at_.at(j.element),
+           fmt::format("the links form a cycle: every link is the child of a joint (joint '{}' closes one)", j.name));
+    return std::nullopt;
+  }
+  for (std::size_t r = 1; r < roots.size(); ++r)
+    report("import-structure", at_.at(links[roots[r]], "name"),
+           fmt::format("link '{}' is a second root (no joint has it as child; the first root is '{}' at line {})",
+                       links[roots[r]]->Attribute("name"), links[roots[0]]->Attribute("name"),
+                       links[roots[0]]->GetLineNum()),
+           "join it to the tree with a joint");
+
+  // A root named "world" without mass or shapes, with one fixed or floating joint, is the
+  // convention for fixing (or freeing) the base in the world: the child becomes the root with
+  // that joint type and pose (the form body2urdf --floating-base writes).
+  std::size_t root = roots[0];
+  int root_joint = -1;
+  {
+    const XMLElement* r = links[root];
+    if (std::strcmp(r->Attribute("name"), "world") == 0 && !r->FirstChildElement() && child_joints[root].size() == 1) {
+      const JointInfo& j = joints[static_cast<std::size_t>(child_joints[root][0])];
+      const char* type = j.element->Attribute("type");
+      if (type && (std::strcmp(type, "fixed") == 0 || std::strcmp(type, "floating") == 0)) {
+        root_joint = child_joints[root][0];
+        root = link_index[j.child];
+      }
+    }
+  }
+
+  // Joint ids: the document order of the movable joints.
+  std::vector<int> joint_id(joints.size(), -1);
+  {
+    int next = 0;
+    for (std::size_t j = 0; j < joints.size(); ++j) {
+      const char* type = joints[j].element->Attribute("type");
+      if (static_cast<int>(j) == root_joint || !type) continue;
+      if (!std::strcmp(type, "revolute") || !std::strcmp(type, "continuous") || !std::strcmp(type, "prismatic"))
+        joint_id[j] = next++;
+    }
+  }
+
+  // Pass 3: depth-first pre-order from the root, children in joint document order.
+  std::vector<bool> visited(links.size(), false);
+  std::vector<std::pair<std::size_t, LinkIndex>> stack{{root, -1}};
+  model.links.reserve(links.size());
+  while (!stack.empty()) {
+    auto [i, parent] = stack.back();
+    stack.pop_back();
+    visited[i] = true;
+    const XMLElement* e = links[i];
+    model.links.emplace_back();
+    const LinkIndex index = static_cast<LinkIndex>(model.links.size()) - 1;
+    Link& link = model.links.back();
+    link.name = e->Attribute("name");
+    link.source = at_.at(e);
+    link.sources.set(LinkSources::kName, at_.at(e, "name"));
+    link.parent = parent;
+    if (parent >= 0) {
+      const JointInfo& joint = joints[static_cast<std::size_t>(parent_joint[i])];
+      link.sources.set(LinkSources::kParent, at_.at(joint.element->FirstChildElement("parent"), "link"));
+      read_joint(joint, link, false);
+      link.joint_id = joint_id[static_cast<std::size_t>(parent_joint[i])];
+      if (link.joint_id >= 0) link.sources.set(LinkSources::kJointId, at_.at(joint.element));
+      model.links[static_cast<std::size_t>(parent)].children.push_back(index);
+    } else if (root_joint >= 0) {
+      read_joint(joints[static_cast<std::size_t>(root_joint)], link, true);
+    } else {
+      link.joint_type = JointType::kFree;  // URDF's root is not attached to anything
+    }
+    read_link(e, model.links[static_cast<std::size_t>(index)]);
+    const std::vector<int>& children = child_joints[i];
+    for (auto it = children.rbegin(); it != children.rend(); ++it)
+      stack.emplace_back(link_index[joints[static_cast<std::size_t>(*it)].child], index);
+  }
+  std::vector<std::string> cycle;
+  for (std::size_t i = 0; i < links.size(); ++i)
+    if (!visited[i] && parent_joint[i] >= 0 && !(i == roots[0] && root_joint >= 0)) {
+      // Unreached links with a parent joint: they hang from a cycle (or from a second root).
+      bool under_root = false;
+      std::size_t at = i;
+      for (std::size_t steps = 0; steps <= links.size() && parent_joint[at] >= 0; ++steps)
+        at = link_index[joints[static_cast<std::size_t>(parent_joint[at])].parent];
+      under_root = parent_joint[at] < 0;
+      if (!under_root) cycle.push_back(links[i]->Attribute("name"));
+    }
+  if (!cycle.empty()) {
+    std::string names;
+    for (const std::string& n : cycle) names += (names.empty() ? "'" : ", '") + n + "'";
+    const std::size_t first = link_index[cycle.front()];
+    const JointInfo& j = joints[static_cast<std::size_t>(parent_joint[first])];
+    report("import-structure", at_.at(j.element),
+           fmt::format("the joints form a cycle through the links {} (joint '{}' is on it)", names, j.name));
+  }
+  return model;
+}
+
+}  // namespace
+
+std::optional<Model> import_urdf(std::string_view text, const std::string& file_name, const UrdfImportOptions& options,
+                                 DiagnosticSink& sink) {
+  try {
+    return Reader(text, file_name, options, sink).read();
+  } catch (const std::exception& e) {
+    report_rule(sink, "internal-error", SourceLocation{file_name, 0, 0}, e.what());
+    return std::nullopt;
+  }
+}
+
+}  // namespace bodyfmt::urdf_import

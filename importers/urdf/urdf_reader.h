@@ -1,0 +1,43 @@
+#pragma once
+/// Reading a URDF into a bodyfmt Model (the urdf2body importer). What maps and what is
+/// reported lost is listed in importers/urdf/SUPPORT.md.
+///
+/// Every diagnostic points at the URDF line and column of the element or attribute
+/// responsible (columns are found in the text; see xml_positions.h). Located errors:
+/// `import-syntax` (not well-formed XML, not a <robot>), `import-structure` (a joint naming a
+/// missing link, two roots, a cycle, a link with two parent joints, duplicate names, a missing
+/// required element or attribute), `import-value` (a number or vector that does not read, an
+/// unknown joint type, a zero axis), `import-mass` (a negative mass or inertia diagonal),
+/// `import-mesh` (a mesh that cannot be found: the URI and every place searched). Constructs a
+/// .body cannot hold are reported as `export-loss` with their kind (converters/common/loss.h),
+/// so that `--strict` and `--allow-loss` treat them as the exporters' losses.
+#include <bodyfmt/diagnostic.h>
+#include <bodyfmt/model.h>
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace bodyfmt::urdf_import {
+
+struct UrdfImportOptions {
+  /// Roots for `package://NAME/...` URIs, searched before ROS_PACKAGE_PATH.
+  std::vector<std::string> package_paths;
+  bool use_ros_package_path = true;
+  /// The folder of the .body file to be written: mesh URIs are written relative to it.
+  std::filesystem::path output_folder = ".";
+  /// Look meshes up (false: keep each URI as written, unresolved).
+  bool resolve_meshes = true;
+};
+
+/// The model of the URDF `text` (`file_name` is used in locations and to resolve relative
+/// mesh paths). Links are in depth-first order from the root, children in the document order
+/// of their joints; joint ids follow the document order of the movable joints. Returns
+/// nullopt only when no tree can be built (malformed XML, no <robot>, no links, no root);
+/// otherwise the model comes back even after errors, which are reported to `sink`.
+std::optional<Model> import_urdf(std::string_view text, const std::string& file_name, const UrdfImportOptions& options,
+                                 DiagnosticSink& sink);
+
+}  // namespace bodyfmt::urdf_import
