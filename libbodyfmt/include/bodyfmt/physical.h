@@ -24,6 +24,7 @@
 
 #include <bodyfmt/derived.h>
 #include <bodyfmt/diagnostic.h>
+#include <bodyfmt/export.h>
 #include <bodyfmt/inertia.h>
 #include <bodyfmt/model.h>
 
@@ -35,7 +36,7 @@
 #include <string_view>
 #include <vector>
 
-namespace bodyfmt {
+namespace BODYFMT_API bodyfmt {
 
 /// MuJoCo's mjMINVAL (double build): the smallest mass and principal moment mjCModel accepts
 /// for a moving body, unless a body welded to it carries both.
