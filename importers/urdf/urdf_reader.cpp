@@ -35,6 +35,23 @@ struct JointInfo {
   std::string child;
 };
 
+/// The <robot>'s links and joints by name, in document order.
+struct Elements {
+  std::vector<const XMLElement*> links;
+  std::vector<JointInfo> joints;
+  std::unordered_map<std::string, std::size_t> link_index;
+  std::unordered_map<std::string, std::size_t> joint_index;
+};
+
+/// How the joints connect the links (indices into Elements).
+struct Tree {
+  std::vector<int> parent_joint;               ///< per link: its joint, or -1 for a root
+  std::vector<std::vector<int>> child_joints;  ///< per link, in document order
+  std::vector<std::size_t> roots;
+  std::size_t root = 0;  ///< the link the model starts from
+  int root_joint = -1;   ///< the joint from an empty "world" link to `root`, or -1
+};
+
 class Reader {
  public:
   Reader(std::string_view text, const std::string& file, const UrdfImportOptions& options, DiagnosticSink& sink)
@@ -50,6 +67,12 @@ class Reader {
   std::optional<Model> read();
 
  private:
+  Elements collect(const XMLElement* robot);
+  std::optional<Tree> connect(const Elements& elements);
+  void choose_root(const Elements& elements, Tree& tree);
+  std::vector<bool> build_links(const Elements& elements, const Tree& tree, Model& model);
+  void report_cycles(const Elements& elements, const Tree& tree, const std::vector<bool>& visited);
+
   void report(std::string_view rule, const SourceLocation& at, std::string message, std::string hint = {}) {
     report_rule(sink_, rule, at, std::move(message), std::move(hint));
   }
@@ -518,11 +541,22 @@ std::optional<Model> Reader::read() {
   model.format_version = 2.0;
   model.source = at_.at(robot);
 
-  // Pass 1: names, materials, what is lost.
-  std::vector<const XMLElement*> links;
-  std::vector<JointInfo> joints;
-  std::unordered_map<std::string, std::size_t> link_index;  // name -> index in links
-  std::unordered_map<std::string, std::size_t> joint_index;
+  const Elements elements = collect(robot);
+  if (elements.links.empty()) {
+    report("import-structure", at_.at(robot), "the robot has no links");
+    return std::nullopt;
+  }
+  std::optional<Tree> tree = connect(elements);
+  if (!tree) return std::nullopt;
+  choose_root(elements, *tree);
+  report_cycles(elements, *tree, build_links(elements, *tree, model));
+  return model;
+}
+
+// Names, materials, what is lost.
+Elements Reader::collect(const XMLElement* robot) {
+  Elements elements;
+  auto& [links, joints, link_index, joint_index] = elements;
   for (const XMLElement* e = robot->FirstChildElement(); e; e = e->NextSiblingElement()) {
     if (named(e, "link")) {
       const std::string name = required_name(e, "name", "<link>");
@@ -569,14 +603,18 @@ std::optional<Model> Reader::read() {
              fmt::format("<{}> in a <robot> is not URDF; it is ignored", e->Name()));
     }
   }
-  if (links.empty()) {
-    report("import-structure", at_.at(robot), "the robot has no links");
-    return std::nullopt;
-  }
+  return elements;
+}
 
-  // Pass 2: the tree. Each link has at most one parent joint.
-  std::vector<int> parent_joint(links.size(), -1);
-  std::vector<std::vector<int>> child_joints(links.size());
+// Each link has at most one parent joint; a link without one is a root.
+std::optional<Tree> Reader::connect(const Elements& elements) {
+  const auto& [links, joints, link_index, joint_index] = elements;
+  Tree tree;
+  auto& parent_joint = tree.parent_joint;
+  auto& child_joints = tree.child_joints;
+  auto& roots = tree.roots;
+  parent_joint.assign(links.size(), -1);
+  child_joints.resize(links.size());
   for (std::size_t j = 0; j < joints.size(); ++j) {
     const JointInfo& joint = joints[j];
     auto parent = link_index.find(joint.parent);
@@ -609,7 +647,6 @@ std::optional<Model> Reader::read() {
     existing = static_cast<int>(j);
     child_joints[parent->second].push_back(static_cast<int>(j));
   }
-  std::vector<std::size_t> roots;
   for (std::size_t i = 0; i < links.size(); ++i)
     if (parent_joint[i] < 0) roots.push_back(i);
   if (roots.empty()) {
@@ -625,24 +662,32 @@ std::optional<Model> Reader::read() {
                        links[roots[0]]->GetLineNum()),
            "join it to the tree with a joint");
 
-  // A root named "world" without mass or shapes, with one fixed or floating joint, is the
-  // convention for fixing (or freeing) the base in the world: the child becomes the root with
-  // that joint type and pose (the form body2urdf --floating-base writes).
-  std::size_t root = roots[0];
-  int root_joint = -1;
-  {
-    const XMLElement* r = links[root];
-    if (std::strcmp(r->Attribute("name"), "world") == 0 && !r->FirstChildElement() && child_joints[root].size() == 1) {
-      const JointInfo& j = joints[static_cast<std::size_t>(child_joints[root][0])];
-      const char* type = j.element->Attribute("type");
-      if (type && (std::strcmp(type, "fixed") == 0 || std::strcmp(type, "floating") == 0)) {
-        root_joint = child_joints[root][0];
-        root = link_index[j.child];
-      }
-    }
-  }
+  tree.root = roots[0];
+  return tree;
+}
 
-  // Joint ids: the document order of the movable joints.
+// A root named "world" without mass or shapes, with one fixed or floating joint, is the
+// convention for fixing (or freeing) the base in the world: the child becomes the root with
+// that joint type and pose (the form body2urdf --floating-base writes).
+void Reader::choose_root(const Elements& elements, Tree& tree) {
+  const XMLElement* r = elements.links[tree.root];
+  const std::vector<int>& children = tree.child_joints[tree.root];
+  if (std::strcmp(r->Attribute("name"), "world") != 0 || r->FirstChildElement() || children.size() != 1) return;
+  const JointInfo& j = elements.joints[static_cast<std::size_t>(children[0])];
+  const char* type = j.element->Attribute("type");
+  if (type && (std::strcmp(type, "fixed") == 0 || std::strcmp(type, "floating") == 0)) {
+    tree.root_joint = children[0];
+    tree.root = elements.link_index.at(j.child);
+  }
+}
+
+// Depth-first pre-order from the root, children in joint document order; joint ids in the
+// document order of the movable joints. Returns which links were reached.
+std::vector<bool> Reader::build_links(const Elements& elements, const Tree& tree, Model& model) {
+  const auto& [links, joints, link_index, joint_index] = elements;
+  const auto& parent_joint = tree.parent_joint;
+  const auto& child_joints = tree.child_joints;
+  const int root_joint = tree.root_joint;
   std::vector<int> joint_id(joints.size(), -1);
   {
     int next = 0;
@@ -654,9 +699,8 @@ std::optional<Model> Reader::read() {
     }
   }
 
-  // Pass 3: depth-first pre-order from the root, children in joint document order.
   std::vector<bool> visited(links.size(), false);
-  std::vector<std::pair<std::size_t, LinkIndex>> stack{{root, -1}};
+  std::vector<std::pair<std::size_t, LinkIndex>> stack{{tree.root, -1}};
   model.links.reserve(links.size());
   while (!stack.empty()) {
     auto [i, parent] = stack.back();
@@ -685,8 +729,17 @@ std::optional<Model> Reader::read() {
     read_link(e, model.links[static_cast<std::size_t>(index)]);
     const std::vector<int>& children = child_joints[i];
     for (auto it = children.rbegin(); it != children.rend(); ++it)
-      stack.emplace_back(link_index[joints[static_cast<std::size_t>(*it)].child], index);
+      stack.emplace_back(link_index.at(joints[static_cast<std::size_t>(*it)].child), index);
   }
+  return visited;
+}
+
+// Links a joint hangs from the tree but that the walk from the root did not reach hang from a cycle.
+void Reader::report_cycles(const Elements& elements, const Tree& tree, const std::vector<bool>& visited) {
+  const auto& [links, joints, link_index, joint_index] = elements;
+  const auto& parent_joint = tree.parent_joint;
+  const auto& roots = tree.roots;
+  const int root_joint = tree.root_joint;
   std::vector<std::string> cycle;
   for (std::size_t i = 0; i < links.size(); ++i)
     if (!visited[i] && parent_joint[i] >= 0 && !(i == roots[0] && root_joint >= 0)) {
@@ -694,19 +747,18 @@ std::optional<Model> Reader::read() {
       bool under_root = false;
       std::size_t at = i;
       for (std::size_t steps = 0; steps <= links.size() && parent_joint[at] >= 0; ++steps)
-        at = link_index[joints[static_cast<std::size_t>(parent_joint[at])].parent];
+        at = link_index.at(joints[static_cast<std::size_t>(parent_joint[at])].parent);
       under_root = parent_joint[at] < 0;
       if (!under_root) cycle.push_back(links[i]->Attribute("name"));
     }
   if (!cycle.empty()) {
     std::string names;
     for (const std::string& n : cycle) names += (names.empty() ? "'" : ", '") + n + "'";
-    const std::size_t first = link_index[cycle.front()];
+    const std::size_t first = link_index.at(cycle.front());
     const JointInfo& j = joints[static_cast<std::size_t>(parent_joint[first])];
     report("import-structure", at_.at(j.element),
            fmt::format("the joints form a cycle through the links {} (joint '{}' is on it)", names, j.name));
   }
-  return model;
 }
 
 }  // namespace
