@@ -60,8 +60,16 @@ void diff_fields(const std::vector<Field>& old_fields, const std::vector<Field>&
     out.push_back(change(kind, link, a, b));
     out.back().field = f.element;
   };
+  // A shape whose geometry type changed: the type is the change, not each size it has or had.
+  std::map<std::string_view, bool> retyped;
+  for (const Field& b : new_fields)
+    if (!b.element.empty() && b.key == b.element + " geometry")
+      if (auto it = old_by_key.find(b.key); it != old_by_key.end() && it->second->text != b.text)
+        retyped[b.element] = true;
+  auto hidden = [&](const Field& f) { return f.geometry_detail && retyped.count(f.element); };
   for (const Field& b : new_fields) {
     seen[b.key] = true;
+    if (hidden(b)) continue;
     if (whole(b, old_elements)) {
       element_change(ChangeKind::kAdded, nullptr, &b);
       continue;
@@ -75,7 +83,7 @@ void diff_fields(const std::vector<Field>& old_fields, const std::vector<Field>&
     }
   }
   for (const Field& a : old_fields) {
-    if (seen.count(a.key)) continue;
+    if (seen.count(a.key) || hidden(a)) continue;
     if (whole(a, new_elements))
       element_change(ChangeKind::kRemoved, &a, nullptr);
     else

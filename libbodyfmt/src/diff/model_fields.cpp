@@ -109,6 +109,7 @@ class MeshContents {
 
 void add_geometry_fields(std::vector<Field>& out, const std::string& key, const Shape& shape, MeshContents& meshes) {
   const SourceLocation& at = shape.source;
+  const std::size_t first = out.size();
   out.push_back(text_field(key + " geometry", std::string(geometry_type_name(shape.geometry)), at));
   std::visit(
       [&](const auto& stored) {
@@ -167,6 +168,7 @@ void add_geometry_fields(std::vector<Field>& out, const std::string& key, const 
         }
       },
       shape.geometry);
+  for (std::size_t i = first + 1; i < out.size(); ++i) out[i].geometry_detail = true;
 }
 
 // Marks the fields from `first` on as parts of `element`.

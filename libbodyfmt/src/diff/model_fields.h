@@ -31,6 +31,8 @@ struct Field {
   // The shape, device or extra joint the field belongs to ("shape 2"); empty for the link's own
   // fields. An element's first field stands for it when the element is added or removed.
   std::string element;
+  // A size or file of a shape's geometry: meaningless once the geometry type itself changed.
+  bool geometry_detail = false;
 };
 
 struct LinkFields {
