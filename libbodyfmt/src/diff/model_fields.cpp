@@ -19,9 +19,9 @@ constexpr double kDegree = 180.0 / 3.14159265358979323846;
 std::string number_text(double x, int precision) {
   if (x == kUnlimited) return "unlimited";
   if (x == -kUnlimited) return "-unlimited";
-  if (x == 0) return "0";  // and -0
+  // -0, and the rounding noise of a cancelled sum (far below any tolerance), read as 0
+  if (std::abs(x) < 1e-15) return "0";
   if (precision > 0) {
-    if (std::abs(x) < 1e-15) return "0";  // rounding noise (a cancelled sum), for a stable text
     std::string s = fmt::format("{:.{}g}", x, precision);
     return s == "-0" ? "0" : s;
   }
@@ -332,6 +332,7 @@ ModelFields collect_fields(const Model& model, bool derived) {
       f.push_back(vector_field("joint_axis", link.joint_axis, source_of(link, LinkSources::kJointAxis)));
       f.push_back(range_field("joint_range", link.joint_range_lower, link.joint_range_upper,
                               source_of(link, LinkSources::kJointRange)));
+      if (link.joint_type == JointType::kRevolute) f.back().style = FieldStyle::kAngleRange;
       f.push_back(range_field("joint_velocity_range", link.velocity_lower, link.velocity_upper,
                               source_of(link, LinkSources::kJointVelocity)));
       f.push_back(range_field("joint_effort_range", link.effort_lower, link.effort_upper, link.source));
@@ -375,6 +376,13 @@ std::string field_value(const Field& field, int precision) {
       break;
     case FieldStyle::kVector:
     case FieldStyle::kRange: numbers = list_text(n.data(), n.size(), precision); break;
+    case FieldStyle::kAngleRange: {
+      // The file writes degrees (format 2.0 and most 1.0 files): show them beside the radians.
+      const double degrees[] = {std::abs(n[0]) == kUnlimited ? n[0] : n[0] * kDegree,
+                                std::abs(n[1]) == kUnlimited ? n[1] : n[1] * kDegree};
+      numbers = list_text(n.data(), n.size(), precision) + " rad = " + list_text(degrees, 2, 12) + " deg";
+      break;
+    }
     case FieldStyle::kPose:
     case FieldStyle::kAffine: {
       Eigen::Matrix3d R;

@@ -11,13 +11,14 @@
 namespace bodyfmt::detail {
 
 enum class FieldStyle {
-  kNumber,   // one number
-  kVector,   // [x, y, z]
-  kRange,    // [lower, upper]
-  kPose,     // translation (3) then rotation matrix (9, row-major): xyz [..] rpy [..]
-  kAffine,   // translation (3) then a linear part that may scale: xyz [..] linear [..]
-  kInertia,  // 3x3, shown as [xx, xy, xz, yy, yz, zz]
-  kText,     // text only
+  kNumber,      // one number
+  kVector,      // [x, y, z]
+  kRange,       // [lower, upper]
+  kAngleRange,  // [lower, upper] in radians, also shown in degrees
+  kPose,        // translation (3) then rotation matrix (9, row-major): xyz [..] rpy [..]
+  kAffine,      // translation (3) then a linear part that may scale: xyz [..] linear [..]
+  kInertia,     // 3x3, shown as [xx, xy, xz, yy, yz, zz]
+  kText,        // text only
 };
 
 struct Field {
