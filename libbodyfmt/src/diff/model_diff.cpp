@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <unordered_map>
 
 namespace bodyfmt {
 namespace {
@@ -94,17 +95,19 @@ void diff_fields(const std::vector<Field>& old_fields, const std::vector<Field>&
 }  // namespace
 
 std::vector<ModelChange> diff_models(const Model& old_model, const Model& new_model, const ModelDiffOptions& options) {
-  const detail::ModelFields a = detail::collect_fields(old_model, options.derived);
-  const detail::ModelFields b = detail::collect_fields(new_model, options.derived);
+  detail::FieldCollector a(old_model, options.derived);
+  detail::FieldCollector b(new_model, options.derived);
   std::vector<ModelChange> out;
-  diff_fields(a.model, b.model, "", options.tolerance, out);
+  diff_fields(a.model_fields(), b.model_fields(), "", options.tolerance, out);
 
-  std::map<std::string_view, const LinkFields*> old_links;
-  for (const LinkFields& l : a.links) old_links.emplace(l.name, &l);
-  std::map<std::string_view, bool> matched;
-  for (const LinkFields& l : b.links) {
-    auto it = old_links.find(l.name);
+  std::unordered_map<std::string_view, std::size_t> old_links;
+  old_links.reserve(old_model.links.size());
+  for (std::size_t i = 0; i < old_model.links.size(); ++i) old_links.emplace(old_model.links[i].name, i);
+  std::vector<bool> matched(old_model.links.size(), false);
+  for (std::size_t i = 0; i < new_model.links.size(); ++i) {
+    auto it = old_links.find(new_model.links[i].name);
     if (it == old_links.end()) {
+      const LinkFields l = b.link(i);
       ModelChange c;
       c.kind = ChangeKind::kAdded;
       c.link = l.name;
@@ -114,11 +117,12 @@ std::vector<ModelChange> diff_models(const Model& old_model, const Model& new_mo
       out.push_back(std::move(c));
       continue;
     }
-    matched[l.name] = true;
-    diff_fields(it->second->fields, l.fields, l.name, options.tolerance, out);
+    matched[it->second] = true;
+    diff_fields(a.link(it->second).fields, b.link(i).fields, new_model.links[i].name, options.tolerance, out);
   }
-  for (const LinkFields& l : a.links) {
-    if (matched.count(l.name)) continue;
+  for (std::size_t j = 0; j < old_model.links.size(); ++j) {
+    if (matched[j]) continue;
+    const LinkFields l = a.link(j);
     ModelChange c;
     c.kind = ChangeKind::kRemoved;
     c.link = l.name;
@@ -132,22 +136,24 @@ std::vector<ModelChange> diff_models(const Model& old_model, const Model& new_mo
 
 std::string canonical_text(const Model& model) {
   constexpr int kDigits = 12;
-  const detail::ModelFields fields = detail::collect_fields(model, true);
+  detail::FieldCollector fields(model, true);
   std::string out;
-  for (const Field& f : fields.model) out += fmt::format("{}: {}\n", f.key, detail::field_value(f, kDigits));
-  std::vector<const LinkFields*> links;
-  for (const LinkFields& l : fields.links) links.push_back(&l);
-  std::stable_sort(links.begin(), links.end(),
-                   [](const LinkFields* x, const LinkFields* y) { return x->name < y->name; });
-  for (const LinkFields* l : links) {
-    out += fmt::format("\nlink '{}'\n", l->name);
+  for (const Field& f : fields.model_fields()) out += fmt::format("{}: {}\n", f.key, detail::field_value(f, kDigits));
+  std::vector<std::size_t> order(model.links.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t x, std::size_t y) { return model.links[x].name < model.links[y].name; });
+  for (std::size_t i : order) {
+    const LinkFields l = fields.link(i);
+    out += fmt::format("\nlink '{}'\n", l.name);
     std::vector<const Field*> sorted;
-    for (const Field& f : l->fields) sorted.push_back(&f);
+    for (const Field& f : l.fields) sorted.push_back(&f);
     // Devices sorted by name; the link's own fields keep their fixed order.
     std::stable_sort(sorted.begin(), sorted.end(), [](const Field* x, const Field* y) {
-      const bool dx = x->key.rfind("device ", 0) == 0, dy = y->key.rfind("device ", 0) == 0;
+      const bool dx = !x->element.empty() && x->element.rfind("device ", 0) == 0;
+      const bool dy = !y->element.empty() && y->element.rfind("device ", 0) == 0;
       if (dx != dy) return dy;
-      return dx && x->key.substr(0, x->key.find(' ', 8)) < y->key.substr(0, y->key.find(' ', 8));
+      return dx && x->element < y->element;
     });
     for (const Field* f : sorted) out += fmt::format("  {}: {}\n", f->key, detail::field_value(*f, kDigits));
   }

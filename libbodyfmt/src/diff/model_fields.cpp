@@ -88,25 +88,6 @@ Field inertia_field(std::string key, const Eigen::Matrix3d& I, const SourceLocat
   return numbers_field(std::move(key), FieldStyle::kInertia, std::move(n), at);
 }
 
-// Mesh files are compared by content: the same bytes under another name are the same mesh.
-class MeshContents {
- public:
-  std::string content_key(const std::string& path) {
-    if (path.empty()) return {};
-    auto it = cache_.find(path);
-    if (it != cache_.end()) return it->second;
-    std::string why, key;
-    if (auto bytes = read_regular_file(path, std::uintmax_t(1) << 30, why))
-      key = fmt::format("{} bytes, hash {:016x}", bytes->size(), std::hash<std::string>()(*bytes));
-    else
-      key = "unreadable: " + why;
-    return cache_.emplace(path, key).first->second;
-  }
-
- private:
-  std::map<std::string, std::string> cache_;
-};
-
 void add_geometry_fields(std::vector<Field>& out, const std::string& key, const Shape& shape, MeshContents& meshes) {
   const SourceLocation& at = shape.source;
   const std::size_t first = out.size();
@@ -272,97 +253,106 @@ void add_device_fields(std::vector<Field>& out, const Model& model, const Device
 
 }  // namespace
 
-ModelFields collect_fields(const Model& model, bool derived) {
-  ModelFields out;
-  derived = derived && !model.links.empty();  // an absent model (a file added in git) has none
-  MeshContents meshes;
-  const auto link_name = [&](LinkIndex i) { return i >= 0 ? model.links[i].name : std::string(); };
-  out.model.push_back(text_field("name", model.name, model.source));
+std::string MeshContents::content_key(const std::string& path) {
+  if (path.empty()) return {};
+  auto it = cache_.find(path);
+  if (it != cache_.end()) return it->second;
+  std::string why, key;
+  if (auto bytes = read_regular_file(path, std::uintmax_t(1) << 30, why))
+    key = fmt::format("{} bytes, hash {:016x}", bytes->size(), std::hash<std::string>()(*bytes));
+  else
+    key = "unreadable: " + why;
+  return cache_.emplace(path, key).first->second;
+}
 
-  std::vector<Eigen::Isometry3d> X_WL;
-  std::vector<MassProperties> mass(model.links.size());
-  for (std::size_t i = 0; i < model.links.size(); ++i) mass[i] = compute_mass_properties(model.links[i]);
-  if (derived) {
-    X_WL = compute_world_frames(model);
+FieldCollector::FieldCollector(const Model& model, bool derived)
+    : model_(model), derived_(derived && !model.links.empty()) {  // an absent model (git: a new file) has none
+  model_fields_.push_back(text_field("name", model.name, model.source));
+  mass_.resize(model.links.size());
+  for (std::size_t i = 0; i < model.links.size(); ++i) mass_[i] = compute_mass_properties(model.links[i]);
+  if (derived_) {
+    X_WL_ = compute_world_frames(model);
     double total = 0;
     Eigen::Vector3d moment = Eigen::Vector3d::Zero();
     for (std::size_t i = 0; i < model.links.size(); ++i) {
-      total += mass[i].mass;
-      moment += mass[i].mass * (X_WL[i] * mass[i].center_of_mass);
+      total += mass_[i].mass;
+      moment += mass_[i].mass * (X_WL_[i] * mass_[i].center_of_mass);
     }
-    out.model.push_back(number_field("total_mass", total, model.source));
-    out.model.back().derived = true;
-    out.model.push_back(
+    model_fields_.push_back(number_field("total_mass", total, model.source));
+    model_fields_.back().derived = true;
+    model_fields_.push_back(
         vector_field("center_of_mass", total != 0 ? Eigen::Vector3d(moment / total) : moment, model.source));
-    out.model.back().derived = true;
+    model_fields_.back().derived = true;
   }
   for (std::size_t i = 0; i < model.extra_joints.size(); ++i) {
     const ExtraJoint& j = model.extra_joints[i];
     const std::string key = fmt::format("extra_joint {}", i);
-    out.model.push_back(
+    model_fields_.push_back(
         text_field(key, fmt::format("{} '{}' '{}'", j.type, link_name(j.link1), link_name(j.link2)), j.source));
-    out.model.push_back(vector_field(key + " axis", j.axis, j.source));
-    out.model.push_back(transform_field(key + " link1 frame", FieldStyle::kPose, j.X_1J, j.source));
-    out.model.push_back(transform_field(key + " link2 frame", FieldStyle::kPose, j.X_2J, j.source));
-    for (std::size_t k = out.model.size() - 4; k < out.model.size(); ++k) out.model[k].element = key;
-  }
-
-  out.links.resize(model.links.size());
-  for (std::size_t i = 0; i < model.links.size(); ++i) {
-    const Link& link = model.links[i];
-    LinkFields& lf = out.links[i];
-    lf.name = link.name;
-    lf.source = source_of(link, LinkSources::kName);
-    lf.summary = link.parent >= 0
-                     ? fmt::format("{} joint under '{}'", joint_type_name(link.joint_type), link_name(link.parent))
-                     : fmt::format("root, {} joint", joint_type_name(link.joint_type));
-    auto& f = lf.fields;
-    f.push_back(text_field("parent", link_name(link.parent), source_of(link, LinkSources::kParent)));
-    if (!link.joint_name.empty()) f.push_back(text_field("joint_name", link.joint_name, link.source));
-    f.push_back(vector_field("translation", link.X_PL.translation(), source_of(link, LinkSources::kTranslation)));
-    {
-      const Eigen::Matrix3d R = link.X_PL.linear();
-      f.push_back(numbers_field("rotation", FieldStyle::kPose, {0, 0, 0}, source_of(link, LinkSources::kRotation)));
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) f.back().numbers.push_back(R(r, c));
-    }
-    f.push_back(text_field("joint_type", std::string(joint_type_name(link.joint_type)),
-                           source_of(link, LinkSources::kJointType)));
-    if (link.joint_type != JointType::kFixed && link.joint_type != JointType::kFree) {
-      f.push_back(vector_field("joint_axis", link.joint_axis, source_of(link, LinkSources::kJointAxis)));
-      f.push_back(range_field("joint_range", link.joint_range_lower, link.joint_range_upper,
-                              source_of(link, LinkSources::kJointRange)));
-      if (link.joint_type == JointType::kRevolute) f.back().style = FieldStyle::kAngleRange;
-      f.push_back(range_field("joint_velocity_range", link.velocity_lower, link.velocity_upper,
-                              source_of(link, LinkSources::kJointVelocity)));
-      f.push_back(range_field("joint_effort_range", link.effort_lower, link.effort_upper, link.source));
-      f.push_back(number_field("joint_axis_inertia", link.joint_axis_inertia, link.source));
-      f.push_back(number_field("initial_displacement", link.initial_displacement, link.source));
-    }
-    f.push_back(number_field("joint_id", link.joint_id, source_of(link, LinkSources::kJointId)));
-    if (!link.actuation_mode.empty()) f.push_back(text_field("actuation_mode", link.actuation_mode, link.source));
-    if (!link.contact_material.empty()) f.push_back(text_field("material", link.contact_material, link.source));
-    f.push_back(
-        number_field("mass", mass[i].mass, first_known({link.sources.mass(), rigid_body_source(link), link.source})));
-    f.push_back(vector_field("center_of_mass", mass[i].center_of_mass,
-                             first_known({link.sources.center_of_mass(), rigid_body_source(link), link.source})));
-    f.push_back(inertia_field("inertia", mass[i].inertia, inertia_source(link)));
-    for (std::size_t s = 0; s < link.shapes.size(); ++s)
-      add_shape_fields(f, fmt::format("shape {}", s), link.shapes[s], meshes);
-    if (derived) {
-      f.push_back(transform_field("world_frame", FieldStyle::kPose, X_WL[i], lf.source));
-      f.back().derived = true;
-    }
+    model_fields_.push_back(vector_field(key + " axis", j.axis, j.source));
+    model_fields_.push_back(transform_field(key + " link1 frame", FieldStyle::kPose, j.X_1J, j.source));
+    model_fields_.push_back(transform_field(key + " link2 frame", FieldStyle::kPose, j.X_2J, j.source));
+    for (std::size_t k = model_fields_.size() - 4; k < model_fields_.size(); ++k) model_fields_[k].element = key;
   }
   // Devices under their link, by name (or type and rank when unnamed).
+  devices_.resize(model.links.size());
   std::map<std::string, int> unnamed;
   for (const Device& d : model.devices) {
-    if (d.link < 0 || d.link >= static_cast<LinkIndex>(out.links.size())) continue;
-    const std::string key =
-        d.name.empty() ? fmt::format("device {}#{}", d.node_type, unnamed[d.node_type]++) : "device '" + d.name + "'";
-    add_device_fields(out.links[d.link].fields, model, d, key);
+    if (d.link < 0 || d.link >= static_cast<LinkIndex>(model.links.size())) continue;
+    devices_[d.link].emplace_back(&d, d.name.empty() ? fmt::format("device {}#{}", d.node_type, unnamed[d.node_type]++)
+                                                     : "device '" + d.name + "'");
   }
-  return out;
+}
+
+std::string FieldCollector::link_name(LinkIndex i) const { return i >= 0 ? model_.links[i].name : std::string(); }
+
+LinkFields FieldCollector::link(std::size_t i) {
+  const Link& link = model_.links[i];
+  LinkFields lf;
+  lf.name = link.name;
+  lf.source = source_of(link, LinkSources::kName);
+  lf.summary = link.parent >= 0
+                   ? fmt::format("{} joint under '{}'", joint_type_name(link.joint_type), link_name(link.parent))
+                   : fmt::format("root, {} joint", joint_type_name(link.joint_type));
+  auto& f = lf.fields;
+  f.push_back(text_field("parent", link_name(link.parent), source_of(link, LinkSources::kParent)));
+  if (!link.joint_name.empty()) f.push_back(text_field("joint_name", link.joint_name, link.source));
+  f.push_back(vector_field("translation", link.X_PL.translation(), source_of(link, LinkSources::kTranslation)));
+  {
+    const Eigen::Matrix3d R = link.X_PL.linear();
+    f.push_back(numbers_field("rotation", FieldStyle::kPose, {0, 0, 0}, source_of(link, LinkSources::kRotation)));
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) f.back().numbers.push_back(R(r, c));
+  }
+  f.push_back(text_field("joint_type", std::string(joint_type_name(link.joint_type)),
+                         source_of(link, LinkSources::kJointType)));
+  if (link.joint_type != JointType::kFixed && link.joint_type != JointType::kFree) {
+    f.push_back(vector_field("joint_axis", link.joint_axis, source_of(link, LinkSources::kJointAxis)));
+    f.push_back(range_field("joint_range", link.joint_range_lower, link.joint_range_upper,
+                            source_of(link, LinkSources::kJointRange)));
+    if (link.joint_type == JointType::kRevolute) f.back().style = FieldStyle::kAngleRange;
+    f.push_back(range_field("joint_velocity_range", link.velocity_lower, link.velocity_upper,
+                            source_of(link, LinkSources::kJointVelocity)));
+    f.push_back(range_field("joint_effort_range", link.effort_lower, link.effort_upper, link.source));
+    f.push_back(number_field("joint_axis_inertia", link.joint_axis_inertia, link.source));
+    f.push_back(number_field("initial_displacement", link.initial_displacement, link.source));
+  }
+  f.push_back(number_field("joint_id", link.joint_id, source_of(link, LinkSources::kJointId)));
+  if (!link.actuation_mode.empty()) f.push_back(text_field("actuation_mode", link.actuation_mode, link.source));
+  if (!link.contact_material.empty()) f.push_back(text_field("material", link.contact_material, link.source));
+  f.push_back(
+      number_field("mass", mass_[i].mass, first_known({link.sources.mass(), rigid_body_source(link), link.source})));
+  f.push_back(vector_field("center_of_mass", mass_[i].center_of_mass,
+                           first_known({link.sources.center_of_mass(), rigid_body_source(link), link.source})));
+  f.push_back(inertia_field("inertia", mass_[i].inertia, inertia_source(link)));
+  for (std::size_t s = 0; s < link.shapes.size(); ++s)
+    add_shape_fields(f, fmt::format("shape {}", s), link.shapes[s], meshes_);
+  if (derived_) {
+    f.push_back(transform_field("world_frame", FieldStyle::kPose, X_WL_[i], lf.source));
+    f.back().derived = true;
+  }
+  for (const auto& [device, key] : devices_[i]) add_device_fields(f, model_, *device, key);
+  return lf;
 }
 
 std::string field_value(const Field& field, int precision) {

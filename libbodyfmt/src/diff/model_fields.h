@@ -5,7 +5,9 @@
 #include <bodyfmt/diagnostic.h>
 #include <bodyfmt/model.h>
 
+#include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace bodyfmt::detail {
@@ -43,12 +45,36 @@ struct LinkFields {
   std::vector<Field> fields;
 };
 
-struct ModelFields {
-  std::vector<Field> model;       // name, total mass and centre of mass, extra joints
-  std::vector<LinkFields> links;  // in the model's link order
+// Mesh and texture files are compared by content: the same bytes under another name are the
+// same mesh. Each file is read once.
+class MeshContents {
+ public:
+  std::string content_key(const std::string& path);
+
+ private:
+  std::map<std::string, std::string> cache_;
 };
 
-ModelFields collect_fields(const Model& model, bool derived);
+// The fields of a model: the whole model's at once, a link's when asked for, so that comparing
+// two models of 100,000 links holds the fields of one link pair at a time.
+class FieldCollector {
+ public:
+  FieldCollector(const Model& model, bool derived);
+  const std::vector<Field>& model_fields() const { return model_fields_; }
+  std::size_t link_count() const { return model_.links.size(); }
+  LinkFields link(std::size_t i);
+
+ private:
+  std::string link_name(LinkIndex i) const;
+
+  const Model& model_;
+  bool derived_;
+  MeshContents meshes_;
+  std::vector<Field> model_fields_;
+  std::vector<MassProperties> mass_;
+  std::vector<Eigen::Isometry3d> X_WL_;
+  std::vector<std::vector<std::pair<const Device*, std::string>>> devices_;  // per link, with their keys
+};
 
 /// The value as shown: numbers shortest (`precision` 0) or rounded to `precision` digits.
 std::string field_value(const Field& field, int precision = 0);
