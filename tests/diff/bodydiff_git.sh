@@ -46,6 +46,17 @@ out=$(driver --cached) || fail "driver exit $? on an added file"
 echo "$out" | grep -q "b/arm.body:[0-9]*:[0-9]*: added: link 'WAIST'" || fail "added file: $out"
 [ "$(echo "$out" | grep -c ': added: link ')" -ge 2 ] || fail "added file, links: $out"
 
+# 4b. --git-rev: each file against a revision, for CI (exit 1: differs, 0: same, 2: no such revision).
+out=$("$bodydiff" --git-rev HEAD~1 robot.body); code=$?
+[ $code = 1 ] || fail "--git-rev HEAD~1 exit $code"
+echo "$out" | grep -qx "robot.body:$lineno:11: changed: link 'WAIST_P': mass: 6 -> 8.5" || fail "--git-rev: $out"
+echo "$out" | grep -qx "HEAD~1:robot.body:$lineno:11: note: was 6" || fail "--git-rev old side: $out"
+out=$("$bodydiff" --git-rev HEAD robot.body) || fail "--git-rev HEAD exit $? on an unchanged file"
+[ -z "$out" ] || fail "--git-rev HEAD output: $out"
+"$bodydiff" --git-rev no-such-rev robot.body 2>/dev/null; [ $? = 2 ] || fail "--git-rev of no revision: not exit 2"
+out=$("$bodydiff" --git-rev HEAD arm.body)
+echo "$out" | grep -q "arm.body:[0-9]*:[0-9]*: added: link 'WAIST'" || fail "--git-rev on a new file: $out"
+
 # 5. A model that cannot be loaded: git stops with the driver's exit 2 and its message.
 echo "links: [ {" > robot.body
 driver >/dev/null 2>err.txt && fail "driver exit 0 on a broken model"

@@ -4,6 +4,7 @@
 // diff driver (which must exit 0 when files differ, or git stops).
 
 #include "front.h"
+#include "git_show.h"
 
 #include <bodyfmt/model_diff.h>
 #include <bodyfmt/rules.h>
@@ -11,6 +12,7 @@
 
 #include <fmt/format.h>
 
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -122,12 +124,18 @@ std::optional<Model> load_quietly(tools::Front& front, const std::string& path, 
   return model;
 }
 
+// Renames `from` in the old side's locations to `to` (a work-tree path to git's a/ side, or
+// to REV:PATH).
+void name_old_side(std::vector<ModelChange>& changes, const std::string& from, const std::string& to) {
+  for (ModelChange& c : changes)
+    if (c.old_source.file == from) c.old_source.file = FileName(to);
+}
+
 // Renames the work-tree path in locations to git's a/ and b/ sides.
 void name_sides(std::vector<ModelChange>& changes, const std::string& path) {
-  for (ModelChange& c : changes) {
-    if (c.old_source.file == path) c.old_source.file = FileName("a/" + path);
+  name_old_side(changes, path, "a/" + path);
+  for (ModelChange& c : changes)
     if (c.new_source.file == path) c.new_source.file = FileName("b/" + path);
-  }
 }
 
 }  // namespace
@@ -151,6 +159,10 @@ int main(int argc, char** argv) {
   app.add_flag("--git", git,
                "act as git's external diff driver: PATH OLD-FILE OLD-HEX OLD-MODE NEW-FILE NEW-HEX NEW-MODE; "
                "exits 0 when the models differ, as git expects");
+  std::string git_rev;
+  app.add_option("--git-rev", git_rev,
+                 "compare each FILE with its version at git revision REV (a file not there is new); for CI")
+      ->type_name("REV");
   if (auto code = front.parse(argc, argv)) return *code;
   options.derived = !no_derived;
   const std::vector<std::string>& args = front.inputs();
@@ -188,6 +200,56 @@ int main(int argc, char** argv) {
     else
       write_text(std::cout, changes, "a/" + path, "b/" + new_path);
     return tools::kExitClean;
+  }
+
+  if (!git_rev.empty()) {
+    std::string why;
+    if (!tools::git_commit_exists(git_rev, why)) {
+      front.print_error("--git-rev: " + why);
+      return tools::kExitFatal;
+    }
+    if (args.empty()) {
+      front.print_error("--git-rev takes the model files to compare");
+      return tools::kExitFatal;
+    }
+    int code = tools::kExitClean;
+    std::vector<std::string> documents;
+    for (const std::string& file : args) {
+      const std::string path = std::filesystem::path(file).lexically_normal().string();
+      const std::string old_name = git_rev + ":" + path;
+      std::optional<Model> old_model = Model{};
+      std::string not_there;
+      if (auto text = tools::git_show(git_rev, path, not_there)) {
+        CollectingSink sink;
+        old_model = load_body_string(*text, path, front.load_options(), sink);
+        if (!old_model) {
+          front.print_error(fmt::format("{} cannot be loaded", old_name));
+          code = tools::kExitFatal;
+          continue;
+        }
+      }
+      std::optional<Model> new_model = std::filesystem::exists(path) ? load_quietly(front, path, "") : Model{};
+      if (!new_model) {
+        code = tools::kExitFatal;
+        continue;
+      }
+      std::vector<ModelChange> changes = diff_models(*old_model, *new_model, options);
+      name_old_side(changes, path, old_name);
+      if (format == "json") {
+        std::ostringstream doc;
+        write_json(doc, changes, old_name, path, options.tolerance);
+        documents.push_back(doc.str());
+      } else {
+        write_text(std::cout, changes, old_name, path);
+      }
+      if (!changes.empty() && code == tools::kExitClean) code = tools::kExitFindings;
+    }
+    if (format == "json") {
+      std::cout << "[\n";
+      for (std::size_t i = 0; i < documents.size(); ++i) std::cout << (i ? ",\n" : "") << documents[i];
+      std::cout << "]\n";
+    }
+    return code;
   }
 
   if (args.size() != 2) {

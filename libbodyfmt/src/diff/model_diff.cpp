@@ -98,7 +98,10 @@ std::vector<ModelChange> diff_models(const Model& old_model, const Model& new_mo
   detail::FieldCollector a(old_model, options.derived);
   detail::FieldCollector b(new_model, options.derived);
   std::vector<ModelChange> out;
-  diff_fields(a.model_fields(), b.model_fields(), "", options.tolerance, out);
+  // A model with no links is no model (git's side of an added or deleted file): its links are
+  // all added or removed, and the whole-model fields would only repeat that.
+  if (!old_model.links.empty() && !new_model.links.empty())
+    diff_fields(a.model_fields(), b.model_fields(), "", options.tolerance, out);
 
   std::unordered_map<std::string_view, std::size_t> old_links;
   old_links.reserve(old_model.links.size());
