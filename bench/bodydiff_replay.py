@@ -12,6 +12,8 @@ changes a `share/model/**/*.body` file (modified, not added or deleted), the mod
 Prints the counts, and every pair that breaks either rule. Not part of ctest: it needs the
 repository, which the project does not ship; without one it says so and exits 0 (skipped).
 """
+import collections
+import json
 import math
 import os
 import re
@@ -103,6 +105,9 @@ def main():
     counts = dict(pairs=0, unloadable=0, info_differs=0, reported=0, info_same_reported=0, both_same=0,
                   missed=0, silent_but_different=0)
     problems = []
+    # What bodydiff saw where bodyinfo (which shows no devices, materials or extra joints) did not.
+    beyond_bodyinfo = collections.Counter()
+    unloadable = []
     commits = [line.split() for line in log if line.strip()]
     if limit:
         commits = commits[:limit]
@@ -129,6 +134,7 @@ def main():
             d = subprocess.run([bodydiff, old, new], capture_output=True, text=True)
             if d.returncode == 2:
                 counts["unloadable"] += 1
+                unloadable.append(f"{commit[:10]} {path}: {(d.stderr.splitlines() or [''])[0]}")
                 continue
             a, b = bodyinfo(bodyinfo_tool, old), bodyinfo(bodyinfo_tool, new)
             info_differs = differs(a, b)
@@ -142,6 +148,9 @@ def main():
                 problems.append(f"MISSED {commit[:10]} {path}: bodyinfo differs, bodydiff silent")
             elif reported:
                 counts["info_same_reported"] += 1
+                j = subprocess.run([bodydiff, "--format", "json", old, new], capture_output=True, text=True)
+                for c in json.loads(j.stdout)["changes"]:
+                    beyond_bodyinfo[re.sub(r"\d+|'[^']*'", "#", c["field"])] += 1
             else:
                 counts["both_same"] += 1
             if not reported and (d.stdout or d.stderr):
@@ -149,6 +158,10 @@ def main():
                 problems.append(f"OUTPUT {commit[:10]} {path}: exit 0 with output")
         print(f"[{n + 1}/{len(commits)}] {commit[:10]} {counts}", file=sys.stderr, flush=True)
     print(" ".join(f"{k}={v}" for k, v in counts.items()))
+    print("fields reported where bodyinfo is the same:",
+          ", ".join(f"{k} {v}" for k, v in beyond_bodyinfo.most_common()))
+    for u in unloadable:
+        print("UNLOADABLE", u)
     for p in problems:
         print(p)
     return 1 if problems else 0

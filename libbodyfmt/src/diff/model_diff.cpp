@@ -92,6 +92,51 @@ void diff_fields(const std::vector<Field>& old_fields, const std::vector<Field>&
   }
 }
 
+// Pairs a link's shapes by content before by rank: elements reordered in the file (a Transform
+// moved above another) are no change, and an inserted shape is one shape added, not every later
+// shape changed. The new link's shapes are renamed after the old ones they pair with; a shape
+// with no pair gets a rank past the old ones (added).
+void pair_shapes(const std::vector<Field>& old_fields, std::vector<Field>& new_fields) {
+  struct ShapeText {
+    std::string element;
+    std::string text;
+  };
+  auto shapes = [](const std::vector<Field>& fields) {
+    std::vector<ShapeText> out;
+    for (const Field& f : fields) {
+      if (f.element.rfind("shape ", 0) != 0) continue;
+      if (out.empty() || out.back().element != f.element) out.push_back({f.element, {}});
+      out.back().text += f.key.substr(f.element.size()) + "=" + detail::field_value(f, 12) + ";";
+    }
+    return out;
+  };
+  const std::vector<ShapeText> before = shapes(old_fields), after = shapes(new_fields);
+  if (before.empty() || after.empty()) return;
+  std::vector<int> pair(after.size(), -1);
+  std::vector<bool> used(before.size(), false);
+  auto take = [&](std::size_t i, std::size_t j) { pair[i] = static_cast<int>(j), used[j] = true; };
+  for (std::size_t i = 0; i < after.size() && i < before.size(); ++i)
+    if (after[i].text == before[i].text) take(i, i);
+  for (std::size_t i = 0; i < after.size(); ++i)
+    for (std::size_t j = 0; j < before.size() && pair[i] < 0; ++j)
+      if (!used[j] && after[i].text == before[j].text) take(i, j);
+  for (std::size_t i = 0; i < after.size() && i < before.size(); ++i)
+    if (pair[i] < 0 && !used[i]) take(i, i);
+  std::map<std::string, std::string, std::less<>> renamed;
+  std::size_t next = before.size();
+  for (std::size_t i = 0; i < after.size(); ++i) {
+    const std::string name = pair[i] >= 0 ? before[pair[i]].element : fmt::format("shape {}", next++);
+    if (name != after[i].element) renamed.emplace(after[i].element, name);
+  }
+  if (renamed.empty()) return;
+  for (Field& f : new_fields) {
+    auto it = renamed.find(f.element);
+    if (it == renamed.end()) continue;
+    f.key = it->second + f.key.substr(f.element.size());
+    f.element = it->second;
+  }
+}
+
 }  // namespace
 
 std::vector<ModelChange> diff_models(const Model& old_model, const Model& new_model, const ModelDiffOptions& options) {
@@ -121,7 +166,10 @@ std::vector<ModelChange> diff_models(const Model& old_model, const Model& new_mo
       continue;
     }
     matched[it->second] = true;
-    diff_fields(a.link(it->second).fields, b.link(i).fields, new_model.links[i].name, options.tolerance, out);
+    const LinkFields before = a.link(it->second);
+    LinkFields after = b.link(i);
+    pair_shapes(before.fields, after.fields);
+    diff_fields(before.fields, after.fields, new_model.links[i].name, options.tolerance, out);
   }
   for (std::size_t j = 0; j < old_model.links.size(); ++j) {
     if (matched[j]) continue;

@@ -111,3 +111,22 @@ TEST_CASE("a joint range is compared in radians and shown in degrees too; the wo
     }
   CHECK(frame);
 }
+
+TEST_CASE("shapes pair by content: reordered is no change, inserted is one shape added") {
+  const std::string box = "      - { type: Shape, geometry: { type: Box, size: [ 1, 2, 3 ] } }\n";
+  const std::string ball = "      - { type: Shape, geometry: { type: Sphere, radius: 0.5 } }\n";
+  const std::string can = "      - { type: Shape, geometry: { type: Cylinder, radius: 0.1, height: 1 } }\n";
+  auto with = [&](const std::string& shapes) { return load(arm("2.0", "[ -90, 90 ]", "    elements:\n" + shapes)); };
+  CHECK(diff_models(with(box + ball), with(ball + box)).empty());
+  const auto inserted = diff_models(with(box + ball), with(can + box + ball));
+  REQUIRE(inserted.size() == 1);
+  CHECK(inserted[0].kind == ChangeKind::kAdded);
+  CHECK(inserted[0].field == "shape 2");
+  CHECK(inserted[0].new_value == "Cylinder");
+  CHECK(inserted[0].new_source.line == 16);
+  // a changed shape stays paired with the one at its rank
+  const auto resized =
+      diff_models(with(box + ball), with(box + "      - { type: Shape, geometry: { type: Sphere, radius: 0.6 } }\n"));
+  REQUIRE(resized.size() == 1);
+  CHECK(resized[0].field == "shape 1 radius");
+}
