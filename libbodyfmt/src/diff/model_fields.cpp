@@ -267,7 +267,7 @@ std::string MeshContents::content_key(const std::string& path) {
 
 FieldCollector::FieldCollector(const Model& model, bool derived)
     : model_(model), derived_(derived && !model.links.empty()) {  // an absent model (git: a new file) has none
-  if (model.links.empty()) return;  // no model at all: a file that git adds or deletes
+  if (model.links.empty()) return;                                // no model at all: a file that git adds or deletes
   model_fields_.push_back(text_field("name", model.name, model.source));
   mass_.resize(model.links.size());
   for (std::size_t i = 0; i < model.links.size(); ++i) mass_[i] = compute_mass_properties(model.links[i]);
