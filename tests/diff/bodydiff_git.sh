@@ -1,0 +1,65 @@
+#!/bin/bash
+# bodydiff in git (README "bodydiff in git"): as the external diff driver (diff.body.command)
+# and as textconv (diff.body.textconv), in a scratch repository.
+# usage: bodydiff_git.sh BODYDIFF MODEL WORK_DIR   (MODEL: a .body file without external files)
+set -u
+bodydiff=$1 model=$2 work=$3
+rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 2
+export GIT_CONFIG_NOSYSTEM=1 HOME=$work GIT_AUTHOR_NAME=t GIT_AUTHOR_EMAIL=t@example.com \
+  GIT_COMMITTER_NAME=t GIT_COMMITTER_EMAIL=t@example.com
+git init -q . && echo '*.body diff=body' > .gitattributes
+cp "$model" robot.body && git add .gitattributes robot.body && git commit -qm init || exit 2
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+driver() { git -c diff.body.command="'$bodydiff' --git" diff "$@"; }
+textconv() { git -c diff.body.textconv="'$bodydiff' --textconv" diff "$@"; }
+
+grep -q '^    mass: 6.0$' robot.body || { echo "the model has no WAIST_P mass line"; exit 2; }
+lineno=$(grep -n '^    mass: 6.0$' robot.body | head -1 | cut -d: -f1)
+
+# 1. A reformatting only (spaces, a key respelled): nothing through either.
+sed -i 's/^    mass: 6.0$/    mass:    6.00/; s/^    joint_type:/    jointType:/' robot.body
+git diff --quiet && fail "the reformatting changed no text"
+out=$(driver) || fail "driver exit $? on a reformatting"
+[ -z "$out" ] || fail "driver output on a reformatting: $out"
+out=$(textconv | grep '^[-+][^-+]') && fail "textconv lines on a reformatting: $out"
+
+# 2. A real change: the mass, at its line on both sides, and the derived total mass.
+sed -i 's/^    mass:    6.00$/    mass: 8.5/' robot.body
+out=$(driver) || fail "driver exit $? on a change (git needs 0)"
+echo "$out" | grep -qx "bodydiff a/robot.body b/robot.body" || fail "no header: $out"
+echo "$out" | grep -qx "b/robot.body:$lineno:11: changed: link 'WAIST_P': mass: 6 -> 8.5" || fail "mass change: $out"
+echo "$out" | grep -qx "a/robot.body:$lineno:11: note: was 6" || fail "old side: $out"
+echo "$out" | grep -q "total_mass (derived)" || fail "no total mass: $out"
+[ "$(echo "$out" | grep -c ': changed: ')" = 3 ] || fail "not 3 changes (mass, total mass, centre of mass): $out"
+out=$(textconv)
+echo "$out" | grep -qx -- "-  mass: 6" && echo "$out" | grep -qx -- "+  mass: 8.5" || fail "textconv: $out"
+
+# 3. The same through GIT_EXTERNAL_DIFF and in git log -p, once committed.
+git commit -qam heavier
+out=$(GIT_EXTERNAL_DIFF="$bodydiff --git" git log -p --ext-diff -1 --format=%s)
+echo "$out" | grep -q "mass: 6 -> 8.5" || fail "git log -p --ext-diff: $out"
+
+# 4. A new model: every link added (old side /dev/null).
+cp "$model" arm.body && git add arm.body
+out=$(driver --cached) || fail "driver exit $? on an added file"
+echo "$out" | grep -q "b/arm.body:[0-9]*:[0-9]*: added: link 'WAIST'" || fail "added file: $out"
+[ "$(echo "$out" | grep -c ': added: link ')" -ge 2 ] || fail "added file, links: $out"
+
+# 4b. --git-rev: each file against a revision, for CI (exit 1: differs, 0: same, 2: no such revision).
+out=$("$bodydiff" --git-rev HEAD~1 robot.body); code=$?
+[ $code = 1 ] || fail "--git-rev HEAD~1 exit $code"
+echo "$out" | grep -qx "robot.body:$lineno:11: changed: link 'WAIST_P': mass: 6 -> 8.5" || fail "--git-rev: $out"
+echo "$out" | grep -qx "HEAD~1:robot.body:$lineno:11: note: was 6" || fail "--git-rev old side: $out"
+out=$("$bodydiff" --git-rev HEAD robot.body) || fail "--git-rev HEAD exit $? on an unchanged file"
+[ -z "$out" ] || fail "--git-rev HEAD output: $out"
+"$bodydiff" --git-rev no-such-rev robot.body 2>/dev/null; [ $? = 2 ] || fail "--git-rev of no revision: not exit 2"
+out=$("$bodydiff" --git-rev HEAD arm.body)
+echo "$out" | grep -q "arm.body:[0-9]*:[0-9]*: added: link 'WAIST'" || fail "--git-rev on a new file: $out"
+
+# 5. A model that cannot be loaded: git stops with the driver's exit 2 and its message.
+echo "links: [ {" > robot.body
+driver >/dev/null 2>err.txt && fail "driver exit 0 on a broken model"
+grep -q "robot.body" err.txt || fail "no located error: $(cat err.txt)"
+echo "$failures failures"
+[ "$failures" = 0 ]
