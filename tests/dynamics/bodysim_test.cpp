@@ -163,6 +163,37 @@ TEST_CASE("bodysim: run refuses a scenario naming an unknown link, located, and 
   CHECK(!std::filesystem::exists(csv));
 }
 
+TEST_CASE("bodysim: run --csv never writes over the model, the scenario or a file linked to one (exit 2)") {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("bodysim_test_csv_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  fs::copy_file(std::string(BODYFMT_EXAMPLES_DIR) + "/scouttank.body", dir / "tank.body");
+  std::ofstream(dir / "s.yaml") << "duration: 0.02\nsample: 0.01\n";
+  fs::create_symlink("tank.body", dir / "link.csv");
+  const auto read = [](const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+  };
+  const std::string model = read(dir / "tank.body");
+  for (const auto& [csv, why] :
+       std::vector<std::pair<std::string, std::string>>{{"tank.body", "it is the model of this run ('"},
+                                                        {"link.csv", "it is the model of this run ('"},
+                                                        {"s.yaml", "it is the scenario of this run ('"}}) {
+    CAPTURE(csv);
+    const Run r = bodysim("run '" + (dir / "tank.body").string() + "' --scenario '" + (dir / "s.yaml").string() +
+                          "' --csv '" + (dir / csv).string() + "'");
+    CHECK(r.status == 2);
+    CHECK(contains(r.all, "cannot write '" + (dir / csv).string() + "': " + why));
+  }
+  CHECK(read(dir / "tank.body") == model);
+  CHECK(read(dir / "s.yaml") == "duration: 0.02\nsample: 0.01\n");
+  CHECK(fs::is_symlink(dir / "link.csv"));
+  fs::remove_all(dir);
+}
+
 #ifdef BODYFMT_HAVE_MUJOCO_CROSS_CHECK
 TEST_CASE("bodysim: --cross-check mujoco runs body2mjcf's export in MuJoCo 2.2.2 and agrees within T8") {
   const Run r = bodysim("check-tank --balance-inertia --cross-check mujoco '" + kScoutTank + "'");

@@ -7,6 +7,7 @@
 // (an unphysical inertia without --balance-inertia, not a tank for check-tank) or a fatal error.
 
 #include "front.h"
+#include "output_guard.h"
 
 #include <bodyfmt/converters/output_set.h>
 #include <bodyfmt/converters/protect_inputs.h>
@@ -156,6 +157,15 @@ int main(int argc, char** argv) {
   std::string why;
   try {
     if (command == "run") {
+      // Refused before the simulation rather than after it (OutputSet refuses it again).
+      std::vector<InputFile> inputs = input_files(*model);
+      inputs.push_back({scenario_path, "the scenario"});
+      const std::string clash = tools::input_clash(csv_path, inputs);
+      if (!clash.empty()) {
+        report_rule(sink, "export-write", SourceLocation{csv_path, 0, 0},
+                    fmt::format("cannot write '{}': {}; nothing was written", csv_path, clash));
+        return finish(true, csv_path + " was not written");
+      }
       std::optional<dynamics::ScenarioSpec> scenario = dynamics::read_scenario(scenario_path, *model, sink);
       if (!scenario) return finish(true, "the scenario cannot be read; nothing was simulated");
       std::ostringstream csv;
