@@ -252,8 +252,14 @@ std::vector<RuleInfo> make_table() {
        "bodysim was given a model with more links than --max-links (default 200): Simbody's integration time grows "
        "faster than the link count (100 links took 8 s, 300 links 35 s), so it stops before the work",
        "a checker that runs for hours on a generated model is a hang; the limit says so and can be raised", ""},
-      {"dynamics-scenario", E, "a bodysim scenario file is malformed (syntax, unknown key, bad value or link name)",
-       "nothing is simulated from a scenario that cannot be read as written", ""},
+      {"dynamics-scenario", E,
+       "a bodysim scenario file is malformed (syntax, unknown key, bad value or link name), has a negative servo "
+       "gain, or asks for more than bodysim's limits (--max-duration, --max-rows, --max-commands)",
+       "nothing is simulated from a scenario that cannot be read as written, or that would not finish", ""},
+      {"dynamics-work-budget", F,
+       "a bodysim simulation spent its work budget (--max-steps-per-second, --max-cpu) and was stopped, with the "
+       "stiffest part of the model as the likely cause",
+       "an explicit integrator on a stiff contact or servo crawls for hours; a hang must be a located error", ""},
       {"export-xml-text", F,
        "a name or text that XML cannot hold (control characters, non-characters or invalid UTF-8)",
        "no XML parser would read the output, so nothing is written", ""},
