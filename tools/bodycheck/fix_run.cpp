@@ -149,14 +149,14 @@ class ModelFixer {
             return fail(file, "the upgrade also rewrites angles in \"" + f.file.str() +
                                   "\"; name that file on the command line too, or use --fix-includes");
       }
-      Unit upgrade{{}, d.location, d.rule_id, true};
+      Unit upgrade{{}, d.location, true};
       for (const FixIt& f : d.fixes) {
         const bool wanted = f.safety == FixSafety::kSafe || (f.safety == FixSafety::kUpgrade && settings_.upgrade);
         if (!wanted || !allowed(f.file)) continue;
         if (f.safety == FixSafety::kUpgrade)
           upgrade.fixes.push_back(f);
         else
-          units.push_back(Unit{{f}, SourceLocation{f.file, f.line, f.column}, d.rule_id, false});
+          units.push_back(Unit{{f}, SourceLocation{f.file, f.line, f.column}, false});
       }
       if (!upgrade.fixes.empty()) units.push_back(std::move(upgrade));
     }
@@ -186,15 +186,14 @@ class ModelFixer {
         return fail(file, "the fixed text would load a different model (" + attempt.difference +
                               "); nothing is written (a bug in a fix-it: please report it)");
       for (const auto& [unit, difference] : left_out) {
-        Diagnostic note = make_diagnostic(
-            unit->rule, unit->where,
+        const Diagnostic note = make_diagnostic(
+            "fix-left-out", unit->where,
             fmt::format("{} left as it is: the edited text is shared with another use (an anchor, alias or merge), "
                         "which the edit would change too ({})",
                         unit->upgrade ? "the format upgrade is" : "this fix-it is", difference),
             unit->upgrade ? "give each use its own copy of the shared text, then run --fix --upgrade again"
                           : "give each use its own copy of the shared text, then run --fix again");
-        note.severity = Severity::kNote;
-        front_.print(std::vector<Diagnostic>{std::move(note)});
+        front_.print(std::vector<Diagnostic>{note});
       }
     } else if (!attempt.failure.empty()) {
       return fail(file, attempt.failure);
@@ -219,7 +218,6 @@ class ModelFixer {
   struct Unit {
     std::vector<FixIt> fixes;
     SourceLocation where;
-    std::string rule;  ///< of the finding that proposed them
     bool upgrade = false;
   };
   /// The outcome of applying some units: the files to rewrite, or why not. `failure` stops the

@@ -47,6 +47,10 @@ std::vector<RuleInfo> make_table() {
        "it loads as 127 * shininess + 1; specular_exponent is the format's own key", ""},
       {"load-legacy-key", W, "a legacy camelCase key or value",
        "it loads, but the modern snake_case spelling is the documented one", ""},
+      {"fix-left-out", N,
+       "bodycheck --fix left a fix-it (or the whole --upgrade) out: its edit is of text another use shares (an "
+       "anchor, alias or merge), which it would change too; the rest of the file is fixed",
+       "a fix-it must never change the model; the note names the difference the edit would make", ""},
       {"load-format-upgrade", N, "a format 1.0 file; `bodycheck --fix --upgrade` rewrites it as format 2.0",
        "2.0 is snake_case keys and degrees only; converting radian values by hand is error-prone (per-key rules)", ""},
       {"load-unknown-key", W, "an unknown key close to a known one (probable typo)",

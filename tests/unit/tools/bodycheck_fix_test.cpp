@@ -141,7 +141,7 @@ TEST_CASE("bodycheck --fix: an edit that would change another use of shared text
   CHECK(contains(run.output,
                  "shared_range_v1.body:6:16: note: the format upgrade is left as it is: the edited text is shared "
                  "with another use (an anchor, alias or merge), which the edit would change too (links[2] "
-                 "\"B\".joint_range_lower: -1 != -57.29577951308232) [load-format-upgrade]"));
+                 "\"B\".joint_range_lower: -1 != -57.29577951308232) [fix-left-out]"));
   CHECK(contains(run.output, "shared_range_v1.body: fixed ("));
   CHECK(!contains(run.output, "a bug in a fix-it"));
   const std::string range_after = read(dir / "shared_range_v1.body");
