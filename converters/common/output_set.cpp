@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <set>
 #include <sstream>
 #include <system_error>
@@ -99,6 +100,28 @@ std::string format_record(const Record& record) {
   return text;
 }
 
+/// Why a generated file (a mesh, a texture, a .bin, a folder's record) must not be written at
+/// `relative` below `dir`: the tool chose every name on that path, so a symbolic link there
+/// (the file, or a folder on the way) was planted, and a device or FIFO would block or swallow
+/// the file. Sets `where` to the offending path; empty when the file may be written.
+std::string generated_path_problem(const fs::path& dir, const fs::path& relative, fs::path& where) {
+  fs::path path = dir;
+  std::error_code ec;
+  for (auto part = relative.begin(); part != relative.end(); ++part) {
+    path /= *part;
+    if (*part == ".." || *part == ".") continue;  // climbing to a package root the user named
+    const fs::file_status status = fs::symlink_status(path, ec);
+    if (!fs::exists(status)) return {};  // created by this export from here on
+    where = path;
+    if (fs::is_symlink(status))
+      return "it is a symbolic link, and the tool never follows one where it chooses the names (a generated "
+             "file or its folder); remove the link";
+    if (std::next(part) == relative.end() && !fs::is_regular_file(status))
+      return "it is not a regular file (generated files are replaced whole); remove it";
+  }
+  return {};
+}
+
 /// One file to write: where the writer put it, where it really goes, and how.
 struct Destination {
   std::string relative;  ///< key in files_
@@ -131,6 +154,7 @@ bool OutputSet::commit(DiagnosticSink& sink) {
     failed_ = true;
     return false;
   };
+  if (main_path_.empty()) return refuse(main_path_, "the output path is empty");
 
   // What is at each destination decides how it is written, or whether anything is.
   std::vector<Destination> destinations;
@@ -142,7 +166,13 @@ bool OutputSet::commit(DiagnosticSink& sink) {
     Destination d;
     d.relative = relative;
     d.given = is_main ? main_path_ : dir / fs::path(relative);
-    d.target = follow_links(d.given);
+    if (!is_main) {
+      fs::path where;
+      const std::string problem = generated_path_problem(dir, fs::path(relative), where);
+      if (!problem.empty()) return refuse(where, problem);
+    }
+    // The user named the main file: a link there is written through. Generated files never are.
+    d.target = is_main ? follow_links(d.given) : d.given.lexically_normal();
     const fs::file_status status = fs::status(d.target, ec);
     if (fs::is_directory(status)) return refuse(d.given, "it is a folder");
     const bool exists = fs::exists(status);
@@ -157,7 +187,12 @@ bool OutputSet::commit(DiagnosticSink& sink) {
     if (!is_main && fs::path(relative).has_parent_path() && !d.direct) {
       const fs::path folder = d.given.parent_path();
       auto [it, fresh] = records.try_emplace(folder);
-      if (fresh && fs::is_directory(folder, ec)) it->second = read_record(folder);
+      if (fresh) {
+        fs::path where;
+        const std::string problem = generated_path_problem(dir, fs::path(relative).parent_path() / kRecordName, where);
+        if (!problem.empty()) return refuse(where, problem);
+        if (fs::is_directory(folder, ec)) it->second = read_record(folder);
+      }
       Record& record = it->second;
       const std::string name = d.given.filename().string();
       const std::string self =
@@ -181,6 +216,9 @@ bool OutputSet::commit(DiagnosticSink& sink) {
   for (const auto& [folder, record] : records) {
     Destination d;
     d.relative = (folder.lexically_relative(dir) / kRecordName).generic_string();
+    fs::path where;
+    const std::string problem = generated_path_problem(dir, fs::path(d.relative), where);
+    if (!problem.empty()) return refuse(where, problem);
     d.given = d.target = folder / kRecordName;
     files_[d.relative] = format_record(record);
     d.unchanged = fs::is_regular_file(d.target, ec) && read_all(d.target) == files_[d.relative];
@@ -243,8 +281,7 @@ bool OutputSet::commit(DiagnosticSink& sink) {
     std::error_code ignored;
     for (const fs::path& target : placed) fs::remove(target, ignored);
     for (const auto& [backup, target] : kept) fs::rename(backup, target, ignored);
-    remove_temps();
-    failed_ = true;
+    roll_back();  // the temporary files, and the folders this commit created
   };
   for (std::size_t i = 0; i < destinations.size(); ++i) {
     const Destination& d = destinations[i];

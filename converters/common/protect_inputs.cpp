@@ -1,41 +1,10 @@
 #include <bodyfmt/converters/protect_inputs.h>
-
-#include <set>
-#include <string>
-#include <variant>
+#include <bodyfmt/input_files.h>
 
 namespace bodyfmt::converters {
 
 void protect_inputs(OutputSet& output, const Model& model) {
-  // Each location's file name is interned, so the set of model files stays small however many
-  // elements a model has.
-  std::set<std::string> body_files{model.source_file};
-  std::set<std::string> meshes;
-  std::set<std::string> textures;
-  auto texture = [&](const std::optional<Texture>& t) {
-    if (t && !t->resolved_path.empty()) textures.insert(t->resolved_path);
-  };
-  body_files.insert(model.source.file.str());
-  for (const Link& link : model.links) {
-    body_files.insert(link.source.file.str());
-    for (const Shape& shape : link.shapes) {
-      body_files.insert(shape.source.file.str());
-      texture(shape.appearance.texture);
-      if (const auto* resource = geometry_if<MeshResource>(shape.geometry);
-          resource && !resource->resolved_path.empty())
-        meshes.insert(resource->resolved_path);
-    }
-  }
-  for (const Device& device : model.devices) body_files.insert(device.source.file.str());
-  for (const ExtraJoint& joint : model.extra_joints) body_files.insert(joint.source.file.str());
-  for (const MeshAsset& asset : model.meshes) {
-    meshes.insert(asset.path);
-    for (const MeshPart& part : asset.parts) texture(part.texture);
-  }
-  for (const std::string& file : body_files)
-    output.protect(file, file == model.source_file ? "the model" : "a model file it includes");
-  for (const std::string& file : meshes) output.protect(file, "a mesh of the model");
-  for (const std::string& file : textures) output.protect(file, "a texture of the model");
+  for (InputFile& file : input_files(model)) output.protect(file.path, std::move(file.what));
 }
 
 }  // namespace bodyfmt::converters

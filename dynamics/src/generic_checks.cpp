@@ -111,6 +111,8 @@ std::vector<CheckResult> run_generic_checks(const Model& model, const Derived& d
         }
         gain = std::max(gain, sim->energy() - e0);
       }
+    } catch (const WorkBudgetExceeded&) {
+      throw;  // not a check that failed: the run stops, located at the cause
     } catch (const std::exception& e) {
       finite = false;
       failure = e.what();

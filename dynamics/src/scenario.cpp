@@ -56,6 +56,7 @@ std::optional<ScenarioSpec> read_scenario(const std::string& path, const Model& 
   Reader r(model, sink);
   ScenarioSpec spec;
   const YamlNode root = document->root();
+  spec.at = root.location();
   if (!r.mapping(root, "a scenario")) return std::nullopt;
   r.keys(root, {"duration", "sample", "initial", "commands"});
   bool has_duration = false;
@@ -65,6 +66,7 @@ std::optional<ScenarioSpec> read_scenario(const std::string& path, const Model& 
       if (std::optional<double> v = r.number(value, "'" + std::string(entry.key) + "'")) {
         if (!(*v > 0)) r.error(value, "'" + std::string(entry.key) + "' must be positive");
         (entry.key == "duration" ? spec.duration : spec.sample) = *v;
+        (entry.key == "duration" ? spec.duration_at : spec.sample_at) = value.location();
         has_duration = has_duration || entry.key == "duration";
       }
     } else if (entry.key == "initial" && r.mapping(value, "'initial'")) {
@@ -102,6 +104,7 @@ std::optional<ScenarioSpec> read_scenario(const std::string& path, const Model& 
         if (!r.mapping(item, "a command")) continue;
         r.keys(item, {"time", "tracks", "joints"});
         ScenarioCommand command;
+        command.at = item.location();
         const std::optional<YamlEntry> time = item.find("time");
         if (!time) {
           r.error(item, "a command needs 'time' (s)");
@@ -127,8 +130,8 @@ std::optional<ScenarioSpec> read_scenario(const std::string& path, const Model& 
             for (const YamlEntry& field : j.value.entries()) {
               std::optional<double> v = r.number(field.value, "'" + std::string(field.key) + "'");
               if (field.key == "target") servo.target = v;
-              if (field.key == "p") servo.p = v;
-              if (field.key == "d") servo.d = v;
+              if (field.key == "p") servo.p = v, servo.p_at = field.value.location();
+              if (field.key == "d") servo.d = v, servo.d_at = field.value.location();
               if (field.key == "torque") servo.torque = v;
             }
             if (servo.p) has_gain.insert(link);
@@ -218,7 +221,8 @@ bool run_scenario(const Model& model, const Derived& derived, const ScenarioSpec
       const double t = std::min(scenario.duration, static_cast<double>(k) * scenario.sample);
       // Commands take effect at their own time, between samples too.
       while (next < scenario.commands.size() && scenario.commands[next].time <= t) {
-        sim->advance_to(scenario.commands[next].time);
+        // Commands at one time are applied together: the integrator restarts once for them.
+        if (scenario.commands[next].time > sim->time()) sim->advance_to(scenario.commands[next].time);
         apply(scenario.commands[next++]);
       }
       sim->advance_to(t);
@@ -230,6 +234,8 @@ bool run_scenario(const Model& model, const Derived& derived, const ScenarioSpec
       row();
     }
     if (stats) *stats = {sim->steps_taken(), sim->force_evaluations()};
+  } catch (const WorkBudgetExceeded&) {
+    throw;  // the caller reports it at its cause
   } catch (const std::exception& e) {
     report_rule(sink, "internal-error", model.source, std::string("Simbody failed: ") + e.what());
     return false;

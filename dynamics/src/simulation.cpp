@@ -10,7 +10,10 @@
 #include <Simbody.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <ctime>
+#include <limits>
 
 namespace bodyfmt::dynamics {
 
@@ -61,6 +64,8 @@ struct Simulation::Impl {
   double stiffness = 0;
   std::vector<ContactPoint> points;
   std::vector<Eigen::Matrix3d> inertias;
+  std::vector<double> masses;               // by link, as simulated
+  std::vector<Eigen::Vector3d> centres;     // of mass, link frame
   std::vector<Eigen::Vector3d> track_axis;  // link frame, unit; zero when not a track
   Commands commands;
 
@@ -76,7 +81,10 @@ struct Simulation::Impl {
   bool running = false;
   bool initialized = false;  // the integrator was initialized once (its statistics exist)
   long long earlier_steps = 0;
-  mutable long long evaluations = 0;  // force evaluations (calls of the servo force element)
+  mutable long long evaluations = 0;                // force evaluations (calls of the servo force element)
+  const Simulation* owner = nullptr;                // whose budget the force elements look at
+  long long earlier_attempts = 0;                   // integration steps attempted before the last restart
+  mutable std::optional<WorkBudgetExceeded> spent;  // the budget ran out (thrown through Simbody)
 
   const SimTK::MobilizedBody& body(LinkIndex link) const { return matter.getMobilizedBody(mobod[link]); }
 
@@ -175,7 +183,10 @@ class ServoForce : public SimTK::Force::Custom::Implementation {
   void calcForce(const SimTK::State& s, SimTK::Vector_<SimTK::SpatialVec>&, SimTK::Vector_<SimTK::Vec3>&,
                  SimTK::Vector& mobility_forces) const override {
     const double t = s.getTime();
-    ++impl_.evaluations;
+    // A stiff system can crawl inside one integrator step (rejected attempts): the budget is
+    // looked at from here too. Simbody takes a throw here for a failed attempt and retries with
+    // a smaller step, so once spent, every evaluation throws until the integrator gives up.
+    if (((++impl_.evaluations & 1023) == 0 || impl_.spent) && impl_.owner) impl_.owner->check_budget();
     for (std::size_t i = 0; i < impl_.commands.servo.size(); ++i) {
       const std::optional<JointServo>& servo = impl_.commands.servo[i];
       if (!servo || !impl_.has_joint[i]) continue;
@@ -212,7 +223,13 @@ std::unique_ptr<Simulation> Simulation::build(const Model& model, const Derived&
   // physical is the gate's; a link whose mass properties are not computable was reported by
   // compute_derived (derived-not-finite).
   m.inertias.resize(n);
-  for (std::size_t i = 0; i < n; ++i) m.inertias[i] = symmetrized_inertia(derived.mass[i].inertia);
+  m.masses.resize(n);
+  m.centres.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    m.inertias[i] = symmetrized_inertia(derived.mass[i].inertia);
+    m.masses[i] = derived.mass[i].mass;
+    m.centres[i] = derived.mass[i].center_of_mass;
+  }
   PhysicalOptions gate;
   gate.balance_inertia = options.balance_inertia;
   const PhysicalVerdict verdict = assess_physical(model, derived, gate);
@@ -432,6 +449,7 @@ void Simulation::restart() {
   // Statistics across restarts: the integrator's own counters restart with it.
   if (m.initialized) {
     m.earlier_steps += m.integrator->getNumStepsTaken();
+    m.earlier_attempts += m.integrator->getNumStepsAttempted();
     m.integrator->resetAllStatistics();
   }
   m.stepper->initialize(m.state);
@@ -442,9 +460,116 @@ void Simulation::restart() {
 void Simulation::advance_to(double t) {
   Impl& m = *impl_;
   if (!m.running) restart();
-  if (t > m.state.getTime()) m.stepper->stepTo(t);
+  if (t > m.state.getTime()) {
+    // In chunks of internal steps, so that the budget is looked at while the integrator crawls.
+    m.integrator->setInternalStepLimit(kBudgetChunk);
+    m.owner = this;
+    try {
+      for (;;) {
+        const SimTK::Integrator::SuccessfulStepStatus status = m.stepper->stepTo(t);
+        check_budget();
+        if (status != SimTK::Integrator::ReachedStepLimit) break;
+      }
+    } catch (const std::exception&) {
+      if (m.spent) throw WorkBudgetExceeded(*m.spent);  // Simbody may wrap what a force element threw
+      throw;
+    }
+  }
   m.state = m.integrator->getState();
   m.system.realize(m.state, SimTK::Stage::Velocity);
+}
+
+void Simulation::check_budget() const {
+  const Impl& m = *impl_;
+  if (m.spent) throw WorkBudgetExceeded(*m.spent);
+  const double simulated = m.integrator->getTime();
+  const long long steps = m.earlier_attempts + (m.initialized ? m.integrator->getNumStepsAttempted() : 0);
+  const double cpu = static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
+  const bool steps_out = m.options.max_steps_per_second > 0 &&
+                         static_cast<double>(steps) > m.options.max_steps_per_second * std::max(1.0, simulated);
+  const bool cpu_out = m.options.max_cpu_seconds > 0 && cpu > m.options.max_cpu_seconds;
+  if (!steps_out && !cpu_out) return;
+  const std::string spent =
+      steps_out
+          ? fmt::format(
+                "the integrator needed more than {:g} steps per simulated second ({} steps attempted to t = {:g} s; "
+                "--max-steps-per-second)",
+                m.options.max_steps_per_second, steps, simulated)
+          : fmt::format("the simulation used more than {:g} CPU seconds (at t = {:g} s, {} steps; --max-cpu)",
+                        m.options.max_cpu_seconds, simulated, steps);
+  SourceLocation where = m.model->source;
+  const std::string cause = stiffest_part(where);
+  m.spent.emplace(spent + ": " + cause, where);
+  throw WorkBudgetExceeded(*m.spent);
+}
+
+std::string Simulation::stiffest_part(SourceLocation& where) const {
+  // An explicit integrator's step is bounded by the fastest oscillation in the system: the
+  // estimates below are the natural frequencies of each link alone on its contact springs
+  // (vertical and rocking) and on its servo, in rad/s.
+  const Impl& m = *impl_;
+  const Model& model = *m.model;
+  double fastest = 0;
+  std::string why;
+  for (std::size_t i = 0; i < model.links.size(); ++i) {
+    const Link& link = model.links[i];
+    const double mass = m.masses[i];
+    const PrincipalInertia principal = principal_inertia(m.inertias[i]);
+    const double smallest = std::min({principal.moments[0], principal.moments[1], principal.moments[2]});
+    int count = 0;
+    double lever_squared = 0, farthest = 0;
+    for (const ContactPoint& p : m.points) {
+      if (p.link != static_cast<LinkIndex>(i)) continue;
+      ++count;
+      const double r = (p.position_in_link - m.centres[i]).norm();
+      lever_squared += r * r;
+      farthest = std::max(farthest, r);
+    }
+    if (count > 0 && mass > 0) {
+      const double vertical = std::sqrt(m.stiffness * count / mass);
+      const double rocking = smallest > 0 ? std::sqrt(m.stiffness * lever_squared / smallest) : 0;
+      const double w = std::max(vertical, rocking);
+      if (w > fastest) {
+        fastest = w;
+        where = link.shapes.empty() ? link.source : link.shapes.front().source;
+        why = fmt::format(
+            "the floor contact of link \"{}\" is the stiffest part: {} contact points up to {:.3g} m from its "
+            "centre of mass, {:.3g} N/m each, against {:.3g} kg and a smallest principal moment of {:.3g} kg·m², "
+            "oscillate at about {:.3g} rad/s; a softer contact (--contact-depth) or the inertia of the link's "
+            "shape lets it run",
+            link.name, count, farthest, m.stiffness, mass, smallest, w);
+      }
+    }
+    if (const std::optional<JointServo>& servo = m.commands.servo[i]; servo && smallest > 0) {
+      const double w = std::sqrt(std::abs(servo->p_gain) / smallest);
+      if (w > fastest) {
+        fastest = w;
+        where = source_of(link, LinkSources::kName);
+        why = fmt::format(
+            "the servo of link \"{}\" is the stiffest part: P = {:g} against a smallest principal moment of {:.3g} "
+            "kg·m² oscillates at about {:.3g} rad/s; a lower gain lets it run",
+            link.name, servo->p_gain, smallest, w);
+      }
+    }
+  }
+  if (why.empty() || fastest < 1e3) {
+    double worst_ratio = 0;
+    for (std::size_t i = 0; i < model.links.size(); ++i) {
+      const PrincipalInertia principal = principal_inertia(m.inertias[i]);
+      const double lo = std::min({principal.moments[0], principal.moments[1], principal.moments[2]});
+      const double hi = std::max({principal.moments[0], principal.moments[1], principal.moments[2]});
+      const double ratio = lo > 0 ? hi / lo : std::numeric_limits<double>::infinity();
+      if (ratio > worst_ratio) {
+        worst_ratio = ratio;
+        where = inertia_source(model.links[i]);
+        why = fmt::format(
+            "no stiff contact or servo explains it; the most ill-conditioned inertia is link \"{}\"'s, whose "
+            "principal moments differ by a factor of {:.3g}",
+            model.links[i].name, ratio);
+      }
+    }
+  }
+  return why.empty() ? std::string("no cause found in the model") : why;
 }
 
 double Simulation::time() const { return impl_->state.getTime(); }

@@ -163,6 +163,97 @@ TEST_CASE("bodysim: run refuses a scenario naming an unknown link, located, and 
   CHECK(!std::filesystem::exists(csv));
 }
 
+TEST_CASE("bodysim: run --csv never writes over the model, the scenario or a file linked to one (exit 2)") {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("bodysim_test_csv_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  fs::copy_file(std::string(BODYFMT_EXAMPLES_DIR) + "/scouttank.body", dir / "tank.body");
+  std::ofstream(dir / "s.yaml") << "duration: 0.02\nsample: 0.01\n";
+  fs::create_symlink("tank.body", dir / "link.csv");
+  const auto read = [](const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+  };
+  const std::string model = read(dir / "tank.body");
+  for (const auto& [csv, why] :
+       std::vector<std::pair<std::string, std::string>>{{"tank.body", "it is the model of this run ('"},
+                                                        {"link.csv", "it is the model of this run ('"},
+                                                        {"s.yaml", "it is the scenario of this run ('"}}) {
+    CAPTURE(csv);
+    const Run r = bodysim("run '" + (dir / "tank.body").string() + "' --scenario '" + (dir / "s.yaml").string() +
+                          "' --csv '" + (dir / csv).string() + "'");
+    CHECK(r.status == 2);
+    CHECK(contains(r.all, "cannot write '" + (dir / csv).string() + "': " + why));
+  }
+  CHECK(read(dir / "tank.body") == model);
+  CHECK(read(dir / "s.yaml") == "duration: 0.02\nsample: 0.01\n");
+  CHECK(fs::is_symlink(dir / "link.csv"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("bodysim: run refuses scenarios that would not finish, each value located, before any work") {
+  const std::filesystem::path csv = std::filesystem::temp_directory_path() / "bodysim_test_never.csv";
+  std::filesystem::remove(csv);
+  const std::string data = std::string(BODYFMT_TEST_DATA_DIR) + "/dynamics/";
+  Run r = bodysim("run '" + kScoutTank + "' --scenario '" + data + "never_finishes.scenario.yaml' --csv '" +
+                  csv.string() + "'");
+  CHECK(r.status == 2);
+  CHECK(contains(r.all,
+                 "never_finishes.scenario.yaml:2:11: error: 'duration' 1e+12 s is more than bodysim simulates "
+                 "(--max-duration 600 s) [dynamics-scenario]"));
+  CHECK(contains(r.all, "never_finishes.scenario.yaml:6:36: error: the gain 'p' -1e+06 is negative"));
+  CHECK(contains(r.all, "never_finishes.scenario.yaml:6:45: error: the gain 'd' -5 is negative"));
+  CHECK(!std::filesystem::exists(csv));
+  r = bodysim("run '" + kScoutTank + "' --scenario '" + data + "long_sample.scenario.yaml' --csv '" + csv.string() +
+              "'");
+  CHECK(r.status == 2);
+  CHECK(contains(r.all, "long_sample.scenario.yaml:2:11: error: 'duration' 10000 s is more than bodysim simulates"));
+  // The limits are options: 10000 s in one row passes --max-duration, and --max-rows 0.5 refuses it.
+  r = bodysim("run '" + kScoutTank + "' --scenario '" + data + "long_sample.scenario.yaml' --max-duration 1e4 " +
+              "--max-rows 0.5 --csv '" + csv.string() + "'");
+  CHECK(r.status == 2);
+  CHECK(contains(r.all,
+                 "long_sample.scenario.yaml:3:9: error: 'duration' / 'sample' gives 1 rows, more than "
+                 "--max-rows 0.5 [dynamics-scenario]"));
+  // Commands over --max-commands: the first one over the limit is named.
+  const std::filesystem::path many = std::filesystem::temp_directory_path() / "bodysim_test_many.scenario.yaml";
+  {
+    std::ofstream out(many);
+    out << "duration: 0.01\ncommands:\n";
+    for (int i = 0; i < 12; ++i) out << "  - {time: 0, joints: {TOWER: {target: 0.1, p: 10}}}\n";
+  }
+  r = bodysim("run '" + kScoutTank + "' --scenario '" + many.string() + "' --max-commands 10 --csv '" + csv.string() +
+              "'");
+  CHECK(r.status == 2);
+  CHECK(contains(r.all,
+                 "bodysim_test_many.scenario.yaml:13:5: error: the scenario has 12 commands, more than "
+                 "--max-commands 10; this is the first over the limit [dynamics-scenario]"));
+  r = bodysim("run '" + kScoutTank + "' --scenario '" + many.string() + "' --csv '" + csv.string() + "'");
+  CHECK(r.status == 0);
+  std::filesystem::remove(many);
+  std::filesystem::remove(csv);
+}
+
+TEST_CASE("bodysim: a simulation that crawls stops at its step budget, located at the stiff contact (exit 2)") {
+  const std::string model = std::string(BODYFMT_TEST_DATA_DIR) + "/hostile/cylinder_radius_30.body";
+  const Run r = bodysim("check '" + model + "'");
+  CHECK(r.status == 2);
+  CHECK(contains(r.all,
+                 "cylinder_radius_30.body:15:9: fatal error: the integrator needed more than 50000 steps per "
+                 "simulated second"));
+  CHECK(contains(r.all,
+                 "the floor contact of link \"BODY\" is the stiffest part: 42 contact points up to 30 m from "
+                 "its centre of mass"));
+  CHECK(contains(r.all, "[dynamics-work-budget]"));
+  // The budget is an option; a small one stops the tank suite's first simulation too.
+  const Run tank = bodysim("check --max-steps-per-second 10 '" + kScoutTank + "'");
+  CHECK(tank.status == 2);
+  CHECK(contains(tank.all, "the integrator needed more than 10 steps per simulated second"));
+}
+
 #ifdef BODYFMT_HAVE_MUJOCO_CROSS_CHECK
 TEST_CASE("bodysim: --cross-check mujoco runs body2mjcf's export in MuJoCo 2.2.2 and agrees within T8") {
   const Run r = bodysim("check-tank --balance-inertia --cross-check mujoco '" + kScoutTank + "'");

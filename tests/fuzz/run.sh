@@ -32,11 +32,16 @@ while IFS= read -r -d '' f; do
   case "$f" in *.body) cp "$f" "$seeds/load/$n" ;; esac
 done < <(find examples tests/data ../shared/corpus/choreonoid \( -name '*.body' -o -name '*.yaml' \) -size -64k -print0 | sort -z)
 cp tests/fuzz/seeds/* "$seeds/load/"
-for target in yaml load urdf mjcf gltf; do
+# bodysim scenarios: the examples' and the tests'.
+mkdir -p "$seeds/scenario"
+for f in examples/*.scenario.yaml tests/data/dynamics/*.scenario.yaml; do cp "$f" "$seeds/scenario/"; done
+for target in yaml load urdf mjcf gltf text_outputs fix scenario; do
+  [ -x "$build/tests/fuzz/fuzz_$target" ] || continue  # fuzz_scenario needs Simbody
   corpus=$build/fuzz-corpus/$target
   mkdir -p "$corpus"
   seed_dir=$seeds/load
   [ "$target" = yaml ] && seed_dir=$seeds/yaml
+  [ "$target" = scenario ] && seed_dir=$seeds/scenario
   echo "fuzz_$target: ${seconds} s"
   "$build/tests/fuzz/fuzz_$target" -max_total_time="$seconds" -rss_limit_mb=4096 -timeout=20 -max_len=65536 \
     -dict=tests/fuzz/body.dict -print_final_stats=1 "$corpus" "$seed_dir" 2>&1 | tail -n 12

@@ -3,11 +3,14 @@
 
 - chain_100k.body, star_100k.body: 100,000 links, each the child of the one before / of the root;
 - multi_megabyte_scalar.body: a 4 MB link name;
-- list_1M_single_line.body: a 1,000,000-element flow list on one line.
+- list_1M_single_line.body: a 1,000,000-element flow list on one line;
+- stl_over_triangle_limit.body (and big.stl): a binary STL of 1,000,001 triangles (50 MB), one over
+  --max-mesh-triangles, which every tool refuses at its uri before importing it.
 
     generate.py OUT_DIR
 """
 import os
+import struct
 import sys
 
 HEADER = "format: ChoreonoidBody\nformat_version: 2.0\nname: {name}\nlinks:\n"
@@ -45,6 +48,22 @@ def main():
         f.write("  - {name: A, joint_type: free, mass: 1, inertia: [1, 0, 0, 0, 1, 0, 0, 0, 1], data: [")
         f.write(", ".join(["0"] * 1_000_000))
         f.write("]}\n")
+    binary_stl_over_limit(out)
+
+
+def binary_stl_over_limit(folder):
+    os.makedirs(folder, exist_ok=True)
+    n = 1_000_001
+    triangle = struct.pack("<12fH", 0, 0, 1, 0, 0, 0, 0.001, 0, 0, 0, 0.001, 0, 0)
+    with open(os.path.join(folder, "big.stl"), "wb") as f:
+        f.write(b"\0" * 80 + struct.pack("<I", n))
+        f.write(triangle * n)
+    with open(os.path.join(folder, "stl_over_triangle_limit.body"), "w") as f:
+        f.write("# A binary STL one triangle over --max-mesh-triangles: refused at its uri, not imported.\n"
+                "# expect: bodycheck exit=1 rule=mesh-too-large\n# expect: bodyinfo exit=1 rule=mesh-too-large\n")
+        f.write(HEADER.format(name="BigMesh"))
+        f.write("  - {name: B, joint_type: free, mass: 1, inertia: [0.1, 0, 0, 0, 0.1, 0, 0, 0, 0.1],\n"
+                "     elements: [{type: Shape, geometry: {type: Resource, uri: big.stl}}]}\n")
 
 
 if __name__ == "__main__":

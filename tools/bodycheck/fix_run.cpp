@@ -3,6 +3,7 @@
 #include <bodyfmt/diagnostic_policy.h>
 #include <bodyfmt/fix.h>
 #include <bodyfmt/load.h>
+#include <bodyfmt/rules.h>
 
 #include <fmt/format.h>
 
@@ -129,6 +130,7 @@ class ModelFixer {
     CollectingSink collected;
     DiagnosticPolicy filter(collected, policy->options);
     const std::optional<Model> original = load_body(file, options, filter);
+    original_ = original ? &*original : nullptr;
     bool fatal = !original;
     for (const Diagnostic& d : collected.diagnostics()) fatal = fatal || d.severity == Severity::kFatal;
     if (fatal) {
@@ -136,8 +138,9 @@ class ModelFixer {
       return fail(file, "the file does not load (see the errors above); nothing is written");
     }
 
-    std::map<std::string, std::vector<FixIt>> by_file;  // canonical path -> edits
-    std::map<std::string, std::string> shown;           // canonical path -> name to show
+    // Units of edits that stand or fall together: each safe fix-it alone, the upgrade whole
+    // (its angles only mean the same model with its new header).
+    std::vector<Unit> units;
     for (const Diagnostic& d : collected.diagnostics()) {
       if (d.rule_id == "load-format-upgrade" && settings_.upgrade && allowed(d.location.file)) {
         if (d.fixes.empty()) return fail(file, "cannot upgrade: " + d.message);
@@ -146,69 +149,144 @@ class ModelFixer {
             return fail(file, "the upgrade also rewrites angles in \"" + f.file.str() +
                                   "\"; name that file on the command line too, or use --fix-includes");
       }
+      Unit upgrade{{}, d.location, true};
       for (const FixIt& f : d.fixes) {
         const bool wanted = f.safety == FixSafety::kSafe || (f.safety == FixSafety::kUpgrade && settings_.upgrade);
         if (!wanted || !allowed(f.file)) continue;
+        if (f.safety == FixSafety::kUpgrade)
+          upgrade.fixes.push_back(f);
+        else
+          units.push_back(Unit{{f}, SourceLocation{f.file, f.line, f.column}, false});
+      }
+      if (!upgrade.fixes.empty()) units.push_back(std::move(upgrade));
+    }
+    if (units.empty()) return;
+
+    Attempt attempt = try_units(file, units);
+    if (attempt.failure.empty() && !attempt.difference.empty()) {
+      // An edit of text that another use shares (an anchor merged into two joints, a value
+      // aliased elsewhere) changes that use too. Each unit alone finds which: those that change
+      // the model by themselves are left out, with a note, and the rest is fixed.
+      if (units.size() > kMostUnitsTried)
+        return fail(file, "the fixed text would load a different model (" + attempt.difference +
+                              "); nothing is written (a bug in a fix-it: please report it)");
+      std::vector<Unit> kept;
+      std::vector<std::pair<const Unit*, std::string>> left_out;
+      for (const Unit& unit : units) {
+        const Attempt alone = try_units(file, {unit});
+        if (!alone.failure.empty()) return fail(file, alone.failure);
+        if (alone.difference.empty())
+          kept.push_back(unit);
+        else
+          left_out.emplace_back(&unit, alone.difference);
+      }
+      attempt = kept.empty() ? Attempt{} : try_units(file, kept);
+      if (!attempt.failure.empty()) return fail(file, attempt.failure);
+      if (!attempt.difference.empty())
+        return fail(file, "the fixed text would load a different model (" + attempt.difference +
+                              "); nothing is written (a bug in a fix-it: please report it)");
+      for (const auto& [unit, difference] : left_out) {
+        const Diagnostic note = make_diagnostic(
+            "fix-left-out", unit->where,
+            fmt::format("{} left as it is: the edited text is shared with another use (an anchor, alias or merge), "
+                        "which the edit would change too ({})",
+                        unit->upgrade ? "the format upgrade is" : "this fix-it is", difference),
+            unit->upgrade ? "give each use its own copy of the shared text, then run --fix --upgrade again"
+                          : "give each use its own copy of the shared text, then run --fix again");
+        front_.print(std::vector<Diagnostic>{note});
+      }
+    } else if (!attempt.failure.empty()) {
+      return fail(file, attempt.failure);
+    }
+    if (attempt.rewrites.empty()) return;
+
+    if (settings_.dry_run) {
+      for (const Rewrite& r : attempt.rewrites) summary_.diff += unified_diff(r.before, r.after, r.shown);
+    } else {
+      std::string why;
+      if (!write_all(attempt.rewrites, why)) return fail(file, why + "; nothing is written");
+      for (const Rewrite& r : attempt.rewrites)
+        std::cerr << fmt::format("{}: fixed ({} edit{})\n", r.shown, edits_in(attempt.by_file[r.path]),
+                                 edits_in(attempt.by_file[r.path]) == 1 ? "" : "s");
+    }
+    summary_.files_changed += static_cast<int>(attempt.rewrites.size());
+    summary_.edits += attempt.edits;
+  }
+
+ private:
+  /// Edits that stand or fall together, and where to point when they are left out.
+  struct Unit {
+    std::vector<FixIt> fixes;
+    SourceLocation where;
+    bool upgrade = false;
+  };
+  /// The outcome of applying some units: the files to rewrite, or why not. `failure` stops the
+  /// fix of this model; `difference` says how the fixed text loads another model.
+  struct Attempt {
+    std::vector<Rewrite> rewrites;
+    std::map<std::string, std::vector<FixIt>> by_file;  // canonical path -> edits
+    int edits = 0;
+    std::string failure;
+    std::string difference;
+  };
+  /// Beyond this many units, a model that changes is reported whole rather than searched.
+  static constexpr std::size_t kMostUnitsTried = 256;
+
+  Attempt try_units(const std::string& file, const std::vector<Unit>& units) {
+    Attempt a;
+    std::map<std::string, std::string> shown;  // canonical path -> name to show
+    for (const Unit& unit : units)
+      for (const FixIt& f : unit.fixes) {
         const std::string key = canonical(f.file);
-        by_file[key].push_back(f);
+        a.by_file[key].push_back(f);
         shown.emplace(key, f.file.str());
       }
-    }
-    if (by_file.empty()) return;
-
-    std::vector<Rewrite> rewrites;
-    LoadOptions reload_options = options;
+    LoadOptions reload_options = front_.load_options();
+    reload_options.load_meshes = false;
     const std::string main_key = canonical(file);
     std::string main_text;
-    int edits = 0;
-    for (auto& [key, fixes] : by_file) {
+    for (auto& [key, fixes] : a.by_file) {
       std::string why;
       const std::optional<std::string> before = read_text(key, why);
-      if (!before) return fail(shown[key], "cannot read it: " + why);
+      if (!before) {
+        a.failure = shown[key] + ": cannot read it: " + why;
+        return a;
+      }
       std::optional<std::string> after = apply_fixes(*before, fixes, why);
-      if (!after) return fail(file, why);
-      edits += count_edits(fixes);
+      if (!after) {
+        a.failure = why;
+        return a;
+      }
+      a.edits += count_edits(fixes);
       if (key == main_key)
         main_text = *after;
       else
         reload_options.file_texts[key] = *after;
-      if (*after != *before) rewrites.push_back(Rewrite{key, shown[key], *before, std::move(*after)});
+      if (*after != *before) a.rewrites.push_back(Rewrite{key, shown[key], *before, std::move(*after)});
     }
-    if (rewrites.empty()) return;
-    if (!by_file.count(main_key)) {
+    if (a.rewrites.empty()) return a;
+    if (!a.by_file.count(main_key)) {
       std::string why;
       auto text = read_text(file, why);
-      if (!text) return fail(file, "cannot read it: " + why);
+      if (!text) {
+        a.failure = "cannot read it: " + why;
+        return a;
+      }
       main_text = std::move(*text);
     }
-
     // The proof: the fixed text loads to the same model.
     CollectingSink reload_sink;
     const std::optional<Model> fixed = load_body_string(main_text, file, reload_options, reload_sink);
     bool reload_fatal = !fixed;
     for (const Diagnostic& d : reload_sink.diagnostics()) reload_fatal = reload_fatal || d.severity == Severity::kFatal;
     if (reload_fatal) {
-      front_.print(reload_sink.diagnostics());
-      return fail(file, "the fixed text does not load (a bug in a fix-it: please report it); nothing is written");
+      a.difference = "the fixed text does not load";
+      return a;
     }
-    if (auto difference = model_difference(*original, *fixed))
-      return fail(file, "the fixed text would load a different model (" + *difference +
-                            "); nothing is written (a bug in a fix-it: please report it)");
-
-    if (settings_.dry_run) {
-      for (const Rewrite& r : rewrites) summary_.diff += unified_diff(r.before, r.after, r.shown);
-    } else {
-      std::string why;
-      if (!write_all(rewrites, why)) return fail(file, why + "; nothing is written");
-      for (const Rewrite& r : rewrites)
-        std::cerr << fmt::format("{}: fixed ({} edit{})\n", r.shown, edits_in(by_file[r.path]),
-                                 edits_in(by_file[r.path]) == 1 ? "" : "s");
-    }
-    summary_.files_changed += static_cast<int>(rewrites.size());
-    summary_.edits += edits;
+    if (auto difference = model_difference(*original_, *fixed)) a.difference = *difference;
+    return a;
   }
 
- private:
   bool allowed(const std::string& path) const { return settings_.includes || named_.count(canonical(path)) != 0; }
 
   static int count_edits(std::vector<FixIt> fixes) {
@@ -225,6 +303,7 @@ class ModelFixer {
   }
 
   Front& front_;
+  const Model* original_ = nullptr;  ///< the model being fixed, as loaded
   const std::set<std::string>& named_;
   const FixSettings& settings_;
   FixSummary& summary_;

@@ -5,6 +5,7 @@
 #include "compact_findings.h"
 #include "fix_run.h"
 #include "front.h"
+#include "output_guard.h"
 
 #include <bodyfmt/derived.h>
 #include <bodyfmt/rules.h>
@@ -44,6 +45,7 @@ struct Job {
 
 struct JobResult {
   std::vector<Diagnostic> diagnostics;
+  std::vector<InputFile> inputs;  ///< the files the model was read from, when the report goes to a file
   bool loaded = false;
   int suppressed = 0;
   int disabled = 0;
@@ -80,7 +82,7 @@ bool git_models(std::vector<std::string>& files) {
   return true;
 }
 
-JobResult check_file(tools::Front& front, const Job& job) {
+JobResult check_file(tools::Front& front, const Job& job, bool to_file) {
   JobResult result;
   // Compact while the model is alive: a generated model can have a finding per link.
   tools::CompactFindings collected;
@@ -88,6 +90,10 @@ JobResult check_file(tools::Front& front, const Job& job) {
   try {
     auto model = front.load(job.input, policy);
     result.loaded = model.has_value();
+    if (model && to_file) {
+      std::vector<InputFile> files = input_files(*model);
+      result.inputs.insert(result.inputs.end(), files.begin(), files.end());
+    }
     if (model) {
       Derived derived = compute_derived(*model, policy);
       validate::check_model(*model, derived, {}, policy);
@@ -181,14 +187,15 @@ std::vector<Job> make_jobs(tools::Front& front, const std::vector<std::string>& 
 }
 
 /// Checks the jobs on a few threads; each file's diagnostics are kept apart, in job order.
-std::vector<JobResult> run_jobs(tools::Front& front, const std::vector<Job>& jobs, int requested_threads) {
+std::vector<JobResult> run_jobs(tools::Front& front, const std::vector<Job>& jobs, int requested_threads,
+                                bool to_file) {
   std::vector<JobResult> results(jobs.size());
   unsigned threads = requested_threads > 0 ? static_cast<unsigned>(requested_threads)
                                            : std::clamp(std::thread::hardware_concurrency(), 2u, 4u);
   threads = std::min<unsigned>(threads, static_cast<unsigned>(std::max<std::size_t>(jobs.size(), 1)));
   std::atomic<std::size_t> next{0};
   auto worker = [&] {
-    for (std::size_t i; (i = next.fetch_add(1)) < jobs.size();) results[i] = check_file(front, jobs[i]);
+    for (std::size_t i; (i = next.fetch_add(1)) < jobs.size();) results[i] = check_file(front, jobs[i], to_file);
   };
   if (threads <= 1) {
     worker();
@@ -271,7 +278,14 @@ Report make_report(const std::vector<Job>& jobs, std::vector<JobResult>& results
 
 /// Writes the report to stdout or to --output; the text format a block at a time (a report of
 /// a million findings is never held as one string).
-bool write_report(tools::Front& front, const Report& report, const Settings& settings) {
+bool write_report(tools::Front& front, const Report& report, const Settings& settings,
+                  const std::vector<InputFile>& inputs) {
+  // Checked before the file is opened, which would empty it.
+  const std::string clash = tools::input_clash(settings.output, inputs);
+  if (!clash.empty()) {
+    front.print_error(settings.output + ": cannot write the report: " + clash + "; nothing was written");
+    return false;
+  }
   ToolInfo tool;
   tool.version = BODYFMT_VERSION;
   tool.information_uri = BODYCHECK_INFORMATION_URI;
@@ -382,9 +396,14 @@ int main(int argc, char** argv) {
     }
   }
   const std::vector<Job> jobs = make_jobs(front, files, fatal);
-  std::vector<JobResult> results = run_jobs(front, jobs, settings.jobs);
+  const bool to_file = !settings.output.empty();
+  std::vector<JobResult> results = run_jobs(front, jobs, settings.jobs, to_file);
+  std::vector<InputFile> inputs;
+  if (to_file)
+    for (const std::string& file : files) inputs.push_back({file, "the model"});
+  for (JobResult& r : results) std::move(r.inputs.begin(), r.inputs.end(), std::back_inserter(inputs));
   const Report report = make_report(jobs, results, front.quiet(), fatal, findings);
-  if (!write_report(front, report, settings)) return tools::kExitFatal;
+  if (!write_report(front, report, settings, inputs)) return tools::kExitFatal;
   if (fatal) return tools::kExitFatal;
   return findings ? tools::kExitFindings : tools::kExitClean;
 }

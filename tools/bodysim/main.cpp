@@ -7,6 +7,7 @@
 // (an unphysical inertia without --balance-inertia, not a tank for check-tank) or a fatal error.
 
 #include "front.h"
+#include "output_guard.h"
 
 #include <bodyfmt/converters/output_set.h>
 #include <bodyfmt/converters/protect_inputs.h>
@@ -92,6 +93,12 @@ int main(int argc, char** argv) {
   app.add_option("--transition-velocity", sim.contact_params.transition_velocity,
                  "slip speed at which friction reaches μ (m/s, default 0.05)")
       ->check(CLI::Range(1e-5, 1.0));
+  app.add_option("--max-steps-per-second", sim.max_steps_per_second,
+                 "stop a simulation whose integrator takes more steps per simulated second (default 50000; 0: no "
+                 "limit)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--max-cpu", sim.max_cpu_seconds, "stop after this many CPU seconds (default 300; 0: no limit)")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--max-links", max_links,
                  "refuse models with more links (default 200; integration time grows faster than the link count)")
       ->check(CLI::PositiveNumber);
@@ -103,9 +110,16 @@ int main(int argc, char** argv) {
     app.add_option("--d-gain", suite.d_gain, "turret servo D gain, N·m·s/rad (default 50)")
         ->check(CLI::NonNegativeNumber);
   }
+  dynamics::ScenarioLimits limits;
   if (command == "run") {
     app.add_option("--scenario", scenario_path, "the scenario file (YAML; see dynamics/README.md)")->required();
     app.add_option("--csv", csv_path, "the CSV file to write")->required();
+    app.add_option("--max-duration", limits.max_duration, "refuse scenarios that simulate longer (s, default 600)")
+        ->check(CLI::PositiveNumber);
+    app.add_option("--max-rows", limits.max_rows, "refuse scenarios with more CSV rows (default 1000000)")
+        ->check(CLI::PositiveNumber);
+    app.add_option("--max-commands", limits.max_commands, "refuse scenarios with more commands (default 100000)")
+        ->check(CLI::PositiveNumber);
   }
   std::vector<char*> args(argv + 1, argv + argc);
   std::string name = "bodysim " + command;
@@ -156,8 +170,19 @@ int main(int argc, char** argv) {
   std::string why;
   try {
     if (command == "run") {
+      // Refused before the simulation rather than after it (OutputSet refuses it again).
+      std::vector<InputFile> inputs = input_files(*model);
+      inputs.push_back({scenario_path, "the scenario"});
+      const std::string clash = tools::input_clash(csv_path, inputs);
+      if (!clash.empty()) {
+        report_rule(sink, "export-write", SourceLocation{csv_path, 0, 0},
+                    fmt::format("cannot write '{}': {}; nothing was written", csv_path, clash));
+        return finish(true, csv_path + " was not written");
+      }
       std::optional<dynamics::ScenarioSpec> scenario = dynamics::read_scenario(scenario_path, *model, sink);
       if (!scenario) return finish(true, "the scenario cannot be read; nothing was simulated");
+      if (!dynamics::check_scenario(*scenario, limits, sink))
+        return finish(true, "the scenario is refused; nothing was simulated");
       std::ostringstream csv;
       dynamics::RunStats stats;
       if (!dynamics::run_scenario(*model, derived, *scenario, sim, csv, sink, &stats))
@@ -218,6 +243,10 @@ int main(int argc, char** argv) {
     for (const auto& r : results) failed = failed || !r.passed;
     const int code = finish(false, "");
     return code == tools::kExitFatal ? code : (failed ? tools::kExitFindings : code);
+  } catch (const dynamics::WorkBudgetExceeded& e) {
+    report_rule(sink, "dynamics-work-budget", e.where, e.what());
+    return finish(
+        true, "the simulation was stopped" + std::string(command == "run" ? "; " + csv_path + " was not written" : ""));
   } catch (const std::exception& e) {
     return finish(true, std::string("the simulation failed: ") + e.what());
   }

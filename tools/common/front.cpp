@@ -116,6 +116,10 @@ Front::Front(std::string tool_name, std::string description, Features features)
                   "largest file read, in bytes (the model, SubBody and YAML resources, meshes; default 256 MiB)")
       ->check(positive)
       ->group(loading);
+  app_.add_option("--max-mesh-triangles", load_options_.max_mesh_triangles,
+                  "most triangles of a binary STL mesh imported (default 1000000)")
+      ->check(positive)
+      ->group(loading);
 
   const std::string policy = "Diagnostics";
   app_.add_option("--enable", enable_,

@@ -23,6 +23,9 @@ struct LoadOptions {
   /// Largest file the loader reads (the body file, SubBody and YAML resources, mesh files).
   /// Only regular files are read: never a device, a FIFO or a directory.
   std::uintmax_t max_file_bytes = 256u << 20;
+  /// Most triangles of a binary STL mesh: its import takes about 1.5 KB per triangle (assimp's
+  /// scene and ours), so a 250 MiB file would need 7 GB.
+  std::uint32_t max_mesh_triangles = 1'000'000;
   /// Import external mesh files (Resource nodes) into Model::meshes.
   bool load_meshes = true;
   /// Extra roots for `package://NAME/...` URIs, searched before ROS_PACKAGE_PATH.

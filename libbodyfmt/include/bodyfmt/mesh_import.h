@@ -36,6 +36,9 @@ struct MeshImportOptions {
   std::vector<std::string> detached_nodes;
   /// Largest mesh file read (LoadOptions::max_file_bytes); only regular files are read.
   std::uintmax_t max_file_bytes = 256u << 20;
+  /// Most triangles of a binary STL file (LoadOptions::max_mesh_triangles), found from its
+  /// header before it is imported.
+  std::uint32_t max_triangles = 1'000'000;
 };
 
 /// Reads a mesh file into parts in the resource frame (metres, Z-up after metadata).

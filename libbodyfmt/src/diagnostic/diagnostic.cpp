@@ -1,5 +1,7 @@
 #include <bodyfmt/diagnostic.h>
 
+#include "text/text_util.h"
+
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -121,10 +123,14 @@ static std::string format_location(const SourceLocation& location) {
 }
 
 std::string format_diagnostic(const Diagnostic& d) {
-  std::string text = format_location(d.location) + ": " + std::string(severity_name(d.severity)) + ": " + d.message;
+  std::string text = format_location(d.location) + ": " + std::string(severity_name(d.severity)) + ": ";
+  text::append_one_line(text, d.message);  // a name's line break would split the diagnostic
   if (!d.rule_id.empty()) text += " [" + d.rule_id + "]";
   if (d.via) text += "\n" + format_location(*d.via) + ": note: reached through this alias";
-  if (!d.fix_hint.empty()) text += "\n" + format_location(d.location) + ": note: " + d.fix_hint;
+  if (!d.fix_hint.empty()) {
+    text += "\n" + format_location(d.location) + ": note: ";
+    text::append_one_line(text, d.fix_hint);
+  }
   return text;
 }
 

@@ -226,7 +226,7 @@ void append_text_diagnostic(std::string& out, const Diagnostic& d, SourceLines& 
   out += ':';
   paint.end();
   out += ' ';
-  out += d.message;
+  text::append_one_line(out, d.message);  // a name's line break would split the diagnostic
   if (!d.rule_id.empty()) {
     out += " [";
     out += d.rule_id;
@@ -256,7 +256,7 @@ void append_text_diagnostic(std::string& out, const Diagnostic& d, SourceLines& 
   if (!d.fix_hint.empty()) {
     paint.location(d.location);
     paint.note();
-    out += d.fix_hint;
+    text::append_one_line(out, d.fix_hint);
     out += '\n';
   }
   // Fix-its: the first few as edits, the rest counted (an upgrade can carry hundreds).
@@ -268,9 +268,9 @@ void append_text_diagnostic(std::string& out, const Diagnostic& d, SourceLines& 
     out += "fix-it (";
     out += fix_safety_name(f.safety);
     out += "): replace \"";
-    out += f.original;
+    text::append_one_line(out, f.original);
     out += "\" with \"";
-    out += f.replacement;
+    text::append_one_line(out, f.replacement);
     out += "\"\n";
   }
   if (d.fixes.size() > kShownFixes) {

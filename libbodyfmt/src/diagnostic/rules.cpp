@@ -47,6 +47,10 @@ std::vector<RuleInfo> make_table() {
        "it loads as 127 * shininess + 1; specular_exponent is the format's own key", ""},
       {"load-legacy-key", W, "a legacy camelCase key or value",
        "it loads, but the modern snake_case spelling is the documented one", ""},
+      {"fix-left-out", N,
+       "bodycheck --fix left a fix-it (or the whole --upgrade) out: its edit is of text another use shares (an "
+       "anchor, alias or merge), which it would change too; the rest of the file is fixed",
+       "a fix-it must never change the model; the note names the difference the edit would make", ""},
       {"load-format-upgrade", N, "a format 1.0 file; `bodycheck --fix --upgrade` rewrites it as format 2.0",
        "2.0 is snake_case keys and degrees only; converting radian values by hand is error-prone (per-key rules)", ""},
       {"load-unknown-key", W, "an unknown key close to a known one (probable typo)",
@@ -129,6 +133,9 @@ std::vector<RuleInfo> make_table() {
       {"subbody-recursion", E, "SubBody includes form a cycle", "loading would never end", ""},
       {"mesh-file-missing", E, "a mesh file does not exist", "its geometry is missing", ""},
       {"mesh-file-unreadable", E, "a mesh file cannot be read", "its geometry is missing", ""},
+      {"mesh-too-large", E,
+       "a binary STL mesh holds more triangles than --max-mesh-triangles (default 1,000,000), so it is not imported",
+       "an import takes about 1.5 KB per triangle: a 250 MiB file would take gigabytes before anything is checked", ""},
       {"mesh-format-unsupported", E, "a mesh file extension no reader supports", "its geometry is missing", ""},
       {"mesh-importer-unavailable", E, "the assimp import module (libbodyfmt_assimp.so) cannot be loaded",
        "STL, OBJ, COLLADA and glTF meshes are left out",
@@ -271,8 +278,14 @@ std::vector<RuleInfo> make_table() {
        "bodysim was given a model with more links than --max-links (default 200): Simbody's integration time grows "
        "faster than the link count (100 links took 8 s, 300 links 35 s), so it stops before the work",
        "a checker that runs for hours on a generated model is a hang; the limit says so and can be raised", ""},
-      {"dynamics-scenario", E, "a bodysim scenario file is malformed (syntax, unknown key, bad value or link name)",
-       "nothing is simulated from a scenario that cannot be read as written", ""},
+      {"dynamics-scenario", E,
+       "a bodysim scenario file is malformed (syntax, unknown key, bad value or link name), has a negative servo "
+       "gain, or asks for more than bodysim's limits (--max-duration, --max-rows, --max-commands)",
+       "nothing is simulated from a scenario that cannot be read as written, or that would not finish", ""},
+      {"dynamics-work-budget", F,
+       "a bodysim simulation spent its work budget (--max-steps-per-second, --max-cpu) and was stopped, with the "
+       "stiffest part of the model as the likely cause",
+       "an explicit integrator on a stiff contact or servo crawls for hours; a hang must be a located error", ""},
       {"export-xml-text", F,
        "a name or text that XML cannot hold (control characters, non-characters or invalid UTF-8)",
        "no XML parser would read the output, so nothing is written", ""},

@@ -278,6 +278,7 @@ void BodyReader::import_meshes(Model& model) {
       import_options.length_scale = mesh->length_scale;
       import_options.y_up = mesh->y_up;
       import_options.max_file_bytes = options_.max_file_bytes;
+      import_options.max_triangles = options_.max_mesh_triangles;
       if (auto it = selected_nodes.find(mesh->resolved_path); it != selected_nodes.end())
         import_options.detached_nodes = it->second;
       // Problems with the file point at the `uri:` value that names it.

@@ -34,6 +34,23 @@ void report(DiagnosticSink& sink, const char* rule, const SourceLocation& where,
   report_rule(sink, rule, where, std::move(message), std::move(hint));
 }
 
+/// The triangle count a binary STL file declares when its size matches it (84 header bytes,
+/// then 50 per triangle); 0 for anything else (ASCII STL, other formats, short files).
+std::uint32_t binary_stl_triangles(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".stl") return 0;
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  std::ifstream in(path, std::ios::binary);
+  unsigned char header[84];
+  if (ec || !in.read(reinterpret_cast<char*>(header), sizeof header)) return 0;
+  const std::uint32_t count = static_cast<std::uint32_t>(header[80]) | static_cast<std::uint32_t>(header[81]) << 8 |
+                              static_cast<std::uint32_t>(header[82]) << 16 |
+                              static_cast<std::uint32_t>(header[83]) << 24;
+  return size == 84 + 50 * static_cast<std::uintmax_t>(count) ? count : 0;
+}
+
 }  // namespace
 
 struct MeshCache::Impl {
@@ -48,6 +65,7 @@ struct MeshCache::Impl {
   std::vector<std::string> inline_stack;  // VRML files being parsed, for Inline cycles
   int parsed = 0;
   std::uintmax_t max_file_bytes = MeshImportOptions{}.max_file_bytes;  // of the import being read
+  std::uint32_t max_triangles = MeshImportOptions{}.max_triangles;
 
   /// Parses `path` once; later calls return the cached tree (or nullptr after a failure).
   mesh::SceneTree load_file(const std::string& path, DiagnosticSink& sink, const SourceLocation& where) {
@@ -79,7 +97,16 @@ struct MeshCache::Impl {
       return nullptr;
     }
     ++parsed;
-    if (format == Format::kAssimp) return mesh::import_with_assimp(path, sink, where);
+    if (format == Format::kAssimp) {
+      if (const std::uint32_t triangles = binary_stl_triangles(path); triangles > max_triangles) {
+        report(sink, "mesh-too-large", where,
+               "mesh file \"" + path + "\" holds " + std::to_string(triangles) + " triangles, more than the limit of " +
+                   std::to_string(max_triangles) + " (--max-mesh-triangles); it is not imported",
+               "simplify the mesh, or raise --max-mesh-triangles (an import takes about 1.5 KB per triangle)");
+        return nullptr;
+      }
+      return mesh::import_with_assimp(path, sink, where);
+    }
 
     const std::optional<std::string> text = detail::read_regular_file(path, max_file_bytes, why);
     if (!text) {
@@ -113,6 +140,7 @@ std::shared_ptr<const MeshAsset> MeshCache::get(const std::string& path, const M
 
   const bool known_file = impl_->files.count(normal) != 0;
   impl_->max_file_bytes = options.max_file_bytes;
+  impl_->max_triangles = options.max_triangles;
   mesh::SceneTree tree = impl_->load_file(normal, sink, where);
   if (!tree) {
     impl_->failed_assets.insert(key);

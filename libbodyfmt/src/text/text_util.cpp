@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdio>
 
 namespace bodyfmt::text {
 
@@ -78,6 +79,39 @@ std::vector<std::string_view> line_views(std::string_view text) {
 std::vector<std::string> split_lines(std::string_view text) {
   const std::vector<std::string_view> views = line_views(text);
   return std::vector<std::string>(views.begin(), views.end());
+}
+
+void append_one_line(std::string& out, std::string_view text) {
+  static const char kHex[] = "0123456789abcdef";
+  std::size_t plain = 0;  // text[plain, i) is copied as it is
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    std::size_t length = 1;
+    const char* escape = nullptr;
+    char hex[7] = "\\x";
+    if (c == '\n') {
+      escape = "\\n";
+    } else if (c == '\r') {
+      escape = "\\r";
+    } else if ((c < 0x20 && c != '\t') || c == 0x7F) {
+      hex[2] = kHex[c >> 4], hex[3] = kHex[c & 0xF], hex[4] = 0;
+      escape = hex;
+    } else if (c == 0xC2 && i + 1 < text.size() && static_cast<unsigned char>(text[i + 1]) >= 0x80 &&
+               static_cast<unsigned char>(text[i + 1]) <= 0x9F) {  // U+0080..U+009F
+      const auto code = static_cast<unsigned char>(text[i + 1]);
+      std::snprintf(hex, sizeof hex, "\\u%04x", code);
+      escape = hex, length = 2;
+    } else if (c == 0xE2 && i + 2 < text.size() && static_cast<unsigned char>(text[i + 1]) == 0x80 &&
+               (text[i + 2] == '\xA8' || text[i + 2] == '\xA9')) {  // U+2028, U+2029
+      escape = text[i + 2] == '\xA8' ? "\\u2028" : "\\u2029", length = 3;
+    }
+    if (!escape) continue;
+    out.append(text.substr(plain, i - plain));
+    out += escape;
+    i += length - 1;
+    plain = i + 1;
+  }
+  out.append(text.substr(plain));
 }
 
 }  // namespace bodyfmt::text

@@ -28,4 +28,9 @@ std::vector<std::string> split_lines(std::string_view text);
 /// The same lines as views into `text`, without copying them.
 std::vector<std::string_view> line_views(std::string_view text);
 
+/// Appends `text` so that it stays on one line and moves no terminal: line breaks (LF, CR,
+/// NEL, U+2028, U+2029) and the other C0 and C1 controls and DEL are written as escapes
+/// (`\n`, `\r`, `\x1b`, `\u0085`); tabs and everything else are kept as they are.
+void append_one_line(std::string& out, std::string_view text);
+
 }  // namespace bodyfmt::text

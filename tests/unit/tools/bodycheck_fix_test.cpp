@@ -129,3 +129,61 @@ TEST_CASE("bodycheck --format json carries the fix-its with byte offsets and the
                  "\"safety\": \"safe\"}]"));
   CHECK(contains(run.output, "\"original\": \"1.0\", \"replacement\": \"2.0\", \"safety\": \"upgrade\""));
 }
+
+TEST_CASE("bodycheck --fix: an edit that would change another use of shared text is left out with a note") {
+  const fs::path dir = copy_data("shared");
+  // The upgrade would write the revolute's range in degrees into the anchor the prismatic joint
+  // merges too: the file stays format 1.0 in radians, its legacy keys are renamed.
+  const std::string range_before = read(dir / "shared_range_v1.body");
+  Run run = bodycheck_in(dir, "--fix --upgrade shared_range_v1.body");
+  INFO(run.output);
+  CHECK(run.status == 0);  // what is left are notes: the upgrade not made, the info key
+  CHECK(contains(run.output,
+                 "shared_range_v1.body:6:16: note: the format upgrade is left as it is: the edited text is shared "
+                 "with another use (an anchor, alias or merge), which the edit would change too (links[2] "
+                 "\"B\".joint_range_lower: -1 != -57.29577951308232) [fix-left-out]"));
+  CHECK(contains(run.output, "shared_range_v1.body: fixed ("));
+  CHECK(!contains(run.output, "a bug in a fix-it"));
+  const std::string range_after = read(dir / "shared_range_v1.body");
+  CHECK(contains(range_after, "format_version: 1.0\nangle_unit: radian\n"));
+  CHECK(contains(range_after, "RANGE: &R { joint_range: [ -1, 1 ], joint_axis: Z }\n"));
+  CHECK(!contains(range_after, "jointType"));
+  std::string expected = range_before;
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"formatVersion", "format_version"},
+                                 {"angleUnit", "angle_unit"},
+                                 {"centerOfMass", "center_of_mass"},
+                                 {"jointType", "joint_type"},
+                                 {"jointAxis", "joint_axis"},
+                                 {"jointRange", "joint_range"},
+                                 {"jointId", "joint_id"}})
+    for (std::size_t at; (at = expected.find(from, 300)) != std::string::npos;) expected.replace(at, from.size(), to);
+  CHECK(range_after == expected);
+  // A second run finds only the upgrade it cannot make, and changes nothing.
+  Run again = bodycheck_in(dir, "--fix --upgrade shared_range_v1.body");
+  CHECK(!contains(again.output, "fixed ("));
+  CHECK(read(dir / "shared_range_v1.body") == range_after);
+
+  // A legacy joint type whose text is also another link's parent: that value stays.
+  const std::string type_before = read(dir / "aliased_joint_type.body");
+  run = bodycheck_in(dir, "--fix aliased_joint_type.body");
+  INFO(run.output);
+  CHECK(contains(run.output,
+                 "aliased_joint_type.body:17:19: note: this fix-it is left as it is: the edited text is shared with "
+                 "another use (an anchor, alias or merge), which the edit would change too"));
+  CHECK(contains(run.output, "aliased_joint_type.body: fixed ("));
+  const std::string type_after = read(dir / "aliased_joint_type.body");
+  CHECK(contains(type_after, "    joint_type: &t slide\n"));
+  CHECK(contains(type_after, "    parent: *t\n"));
+  expected = type_before;
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"formatVersion", "format_version"},
+                                 {"angleUnit", "angle_unit"},
+                                 {"centerOfMass", "center_of_mass"},
+                                 {"jointType", "joint_type"},
+                                 {"jointAxis", "joint_axis"},
+                                 {"jointId", "joint_id"}})
+    for (std::size_t at; (at = expected.find(from, 250)) != std::string::npos;) expected.replace(at, from.size(), to);
+  CHECK(type_after == expected);
+  again = bodycheck_in(dir, "--fix aliased_joint_type.body");
+  CHECK(!contains(again.output, "fixed ("));
+  CHECK(read(dir / "aliased_joint_type.body") == type_after);
+}

@@ -207,3 +207,144 @@ TEST_CASE("outputs: a file another export wrote, or the user's own, is never rep
   }
   fs::remove_all(dir);
 }
+
+TEST_CASE("outputs: bodycheck -o never writes its report over a model it checks, a file it includes or a link") {
+  const fs::path dir = fresh_dir("report");
+  const std::string sub = cone_model("Sub", "0.1", "", "TIP");
+  write(dir / "sub.body", sub);
+  const std::string model = cone_model(
+      "Main", "0.2", "  - { name: TOOL, type: SubBody, uri: sub.body, parent: ARM, translation: [0, 0, 0.3] }\n");
+  write(dir / "main.body", model);
+  fs::create_symlink("main.body", dir / "link.txt");
+  fs::create_hard_link(dir / "sub.body", dir / "hard.txt");
+  const std::string exe = "'" + std::string(BODYFMT_BODYCHECK) + "' ";
+  for (const auto& [target, why] :
+       std::vector<std::pair<std::string, std::string>>{{"main.body", "it is the model of this run ('main.body')"},
+                                                        {"link.txt", "it is the model of this run ('main.body')"},
+                                                        {"sub.body", "it is a model file it includes of this run ('"},
+                                                        {"hard.txt", "it is a model file it includes of this run ('"},
+                                                        {".", "it is a folder"}}) {
+    CAPTURE(target);
+    for (const char* format : {"text", "json", "sarif"}) {
+      const auto r = run_command(exe + "main.body --format " + format + " -o " + target, dir.string());
+      CHECK(r.status == 2);
+      CHECK(contains(r.output, target + ": cannot write the report: " + why));
+    }
+  }
+  // Named twice, through a folder: still the model.
+  const auto folder = run_command(exe + ". -o main.body", dir.string());
+  CHECK(folder.status == 2);
+  CHECK(contains(folder.output, "main.body: cannot write the report: it is the model of this run"));
+  CHECK(read(dir / "main.body") == model);
+  CHECK(read(dir / "sub.body") == sub);
+  CHECK(fs::is_symlink(dir / "link.txt"));
+  // Any other file, and a link to one, is written (through the link).
+  write(dir / "elsewhere" / "old.txt", "old");
+  fs::create_symlink("elsewhere/old.txt", dir / "report.txt");
+  CHECK(run_command(exe + "-q main.body --format json -o report.txt", dir.string()).status == 0);
+  CHECK(contains(read(dir / "elsewhere" / "old.txt"), "\"diagnostics\""));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("outputs: a symbolic link planted where an exporter chooses the names is refused, never followed") {
+  const fs::path dir = fresh_dir("planted");
+  write(dir / "m.body", cone_model("M", "0.2"));
+  write(dir / "victim.txt", "precious");
+  fs::create_directories(dir / "elsewhere");
+  for (const Exporter& tool : exporters()) {
+    if (tool.mesh_base.empty()) continue;
+    CAPTURE(tool.name);
+    const std::string exe = "'" + tool.binary + "' -q m.body -o out/g" + tool.extension;
+    // The export's own mesh folder, a link to another folder.
+    fs::remove_all(dir / "out");
+    fs::create_directories(dir / "out" / tool.mesh_base);
+    fs::create_symlink(fs::absolute(dir / "elsewhere"), dir / "out" / tool.mesh_base / "g");
+    auto r = run_command(exe, dir.string());
+    CHECK(r.status == 2);
+    CHECK(contains(r.output, "cannot write 'out/" + tool.mesh_base + "/g': it is a symbolic link"));
+    CHECK(fs::is_empty(dir / "elsewhere"));
+    CHECK(!fs::exists(dir / "out" / ("g" + tool.extension)));
+    // The base folder a link: the same.
+    fs::remove_all(dir / "out");
+    fs::create_directories(dir / "out");
+    fs::create_symlink(fs::absolute(dir / "elsewhere"), dir / "out" / tool.mesh_base);
+    r = run_command(exe, dir.string());
+    CHECK(r.status == 2);
+    CHECK(contains(r.output, "cannot write 'out/" + tool.mesh_base + "': it is a symbolic link"));
+    CHECK(fs::is_empty(dir / "elsewhere"));
+    // A mesh the export wrote, replaced by a link to any file; then its record.
+    fs::remove_all(dir / "out");
+    REQUIRE(run_command(exe, dir.string()).status == 0);
+    const fs::path mesh = dir / "out" / tool.mesh_base / "g" / "ARM_shape0.stl";
+    REQUIRE(fs::is_regular_file(mesh));
+    write(dir / "m.body", cone_model("M", "0.3"));  // new bytes for the mesh
+    fs::remove(mesh);
+    fs::create_symlink(fs::absolute(dir / "victim.txt"), mesh);
+    r = run_command(exe, dir.string());
+    CHECK(r.status == 2);
+    CHECK(contains(r.output, "cannot write 'out/" + tool.mesh_base + "/g/ARM_shape0.stl': it is a symbolic link"));
+    CHECK(read(dir / "victim.txt") == "precious");
+    fs::remove(mesh);
+    const fs::path record = dir / "out" / tool.mesh_base / "g" / ".bodyfmt-export";
+    fs::remove(record);
+    fs::create_symlink(fs::absolute(dir / "victim.txt"), record);
+    r = run_command(exe, dir.string());
+    CHECK(r.status == 2);
+    CHECK(contains(r.output, "/g/.bodyfmt-export': it is a symbolic link"));
+    CHECK(read(dir / "victim.txt") == "precious");
+    // A FIFO where a mesh goes would block: refused too.
+    fs::remove(record);
+    REQUIRE(::mkfifo(mesh.c_str(), 0600) == 0);
+    r = run_command("timeout 20 " + exe, dir.string());
+    CHECK(r.status == 2);
+    CHECK(contains(r.output, "/g/ARM_shape0.stl': it is not a regular file"));
+    write(dir / "m.body", cone_model("M", "0.2"));
+  }
+  // glTF: the .bin beside a .gltf and the textures folder.
+  const fs::path data = fs::path(BODYFMT_TEST_DATA_DIR) / "gltf";
+  for (const char* file : {"textured.body", "quad.obj", "checker.png"}) fs::copy_file(data / file, dir / file);
+  const std::string gltf = "'" + std::string(BODYFMT_BODY2GLTF) + "' -q textured.body -o out/t.gltf";
+  fs::remove_all(dir / "out");
+  REQUIRE(run_command(gltf, dir.string()).status == 0);
+  REQUIRE(fs::is_regular_file(dir / "out" / "t.bin"));
+  std::vector<fs::path> generated;
+  for (const auto& entry : fs::recursive_directory_iterator(dir / "out" / "textures"))
+    if (entry.is_regular_file() && entry.path().extension() == ".png") generated.push_back(entry.path());
+  REQUIRE(!generated.empty());
+  generated.push_back(dir / "out" / "t.bin");
+  for (const fs::path& file : generated) {
+    CAPTURE(file);
+    fs::remove(file);
+    fs::create_symlink(fs::absolute(dir / "victim.txt"), file);
+    const auto r = run_command(gltf, dir.string());
+    CHECK(r.status == 2);
+    CHECK(contains(r.output, "': it is a symbolic link"));
+    CHECK(read(dir / "victim.txt") == "precious");
+    fs::remove(file);
+  }
+  fs::remove_all(dir / "out");
+  fs::create_directories(dir / "out" / "textures");
+  fs::create_symlink(fs::absolute(dir / "elsewhere"), dir / "out" / "textures" / "t");
+  const auto folder = run_command(gltf, dir.string());
+  CHECK(folder.status == 2);
+  CHECK(contains(folder.output, "cannot write 'out/textures/t': it is a symbolic link"));
+  CHECK(fs::is_empty(dir / "elsewhere"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("outputs: a refused export creates nothing, not even an empty mesh folder") {
+  const fs::path dir = fresh_dir("refused");
+  write(dir / "m.body", cone_model("M", "0.2"));
+  for (const Exporter& tool : exporters()) {
+    CAPTURE(tool.name);
+    const auto r = run_command("'" + tool.binary + "' -q m.body -o ''", dir.string());
+    CHECK(r.status == 2);
+    // body2gltf refuses it earlier, by its extension.
+    CHECK(
+        contains(r.output, tool.mesh_base.empty() ? "-o must name a .glb or .gltf file" : "the output path is empty"));
+    std::vector<std::string> left;
+    for (const auto& entry : fs::directory_iterator(dir)) left.push_back(entry.path().filename().string());
+    CHECK(left == std::vector<std::string>{"m.body"});
+  }
+  fs::remove_all(dir);
+}

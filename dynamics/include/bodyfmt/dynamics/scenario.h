@@ -30,17 +30,20 @@ namespace bodyfmt::dynamics {
 
 struct ScenarioServo {
   std::optional<double> target, p, d, torque;
+  SourceLocation p_at, d_at;  ///< where the gains are written
 };
 
 struct ScenarioCommand {
   double time = 0;
   std::map<LinkIndex, double> tracks;
   std::map<LinkIndex, ScenarioServo> joints;
+  SourceLocation at;
 };
 
 struct ScenarioSpec {
   double duration = 1;
   double sample = 0.01;
+  SourceLocation at, duration_at, sample_at;  ///< the scenario, its duration and sample values
   bool on_floor = false;
   std::optional<Eigen::Vector3d> position;
   std::optional<double> yaw;
@@ -51,6 +54,18 @@ struct ScenarioSpec {
 /// Reads a scenario for `model`; reports `dynamics-scenario` (or yaml-*/io-read) located in
 /// the scenario file and returns nullopt when it is malformed.
 std::optional<ScenarioSpec> read_scenario(const std::string& path, const Model& model, DiagnosticSink& sink);
+
+/// What bodysim simulates at most (bodysim run's --max-* options; README "Limits").
+struct ScenarioLimits {
+  double max_duration = 600;  ///< simulated seconds
+  double max_rows = 1e6;      ///< CSV rows (duration / sample)
+  double max_commands = 1e5;  ///< commands in the list
+};
+
+/// The values read_scenario() reads but does not judge: the limits above, and gains that no
+/// servo has (a negative P or D pushes away from the target and never settles). Reports each
+/// as `dynamics-scenario` at its value; false when any is refused.
+bool check_scenario(const ScenarioSpec& scenario, const ScenarioLimits& limits, DiagnosticSink& sink);
 
 /// Runs the scenario and writes the CSV (header, then one row per sample from t = 0): time,
 /// root pose (position, quaternion w x y z) and twist (ω, v; world axes), each joint's

@@ -15,6 +15,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,18 @@ struct SimOptions {
   bool balance_inertia = false;  ///< use bodyfmt::balance_inertia for invalid tensors
   bool lock_joints = false;      ///< weld every joint at its initial position (a rigid body)
   ContactParams contact_params;
+  /// The work budget of every simulation (0: unbounded): integrator steps per simulated second
+  /// (a stiff contact or servo makes the explicit integrator crawl), and the process's CPU seconds.
+  double max_steps_per_second = 5e4;
+  double max_cpu_seconds = 300;
+};
+
+/// Thrown by Simulation::advance_to() when the work budget is spent: the message says which
+/// limit and the likely cause; `where` is the link (or shape) responsible, or the model.
+class WorkBudgetExceeded : public std::runtime_error {
+ public:
+  WorkBudgetExceeded(const std::string& message, SourceLocation at) : std::runtime_error(message), where(at) {}
+  SourceLocation where;
 };
 
 /// A joint servo: τ = P·(q_ref(t) − q) + D·(q̇_ref(t) − q̇) + feed-forward torque.
@@ -111,6 +124,9 @@ class Simulation {
 
   /// Starts or restarts integration from the current state (after commands changed).
   void restart();
+  /// Throws WorkBudgetExceeded when the budget of SimOptions is spent (advance_to() and the
+  /// force elements call it).
+  void check_budget() const;
   /// Integrates to time t (restart() first when commands changed since the last step).
   void advance_to(double t);
 
@@ -153,6 +169,10 @@ class Simulation {
 
  private:
   Simulation();
+  /// The likely cause of slow integration, in words; `where` is set to its source.
+  std::string stiffest_part(SourceLocation& where) const;
+  /// Internal integrator steps between looks at the budget.
+  static constexpr int kBudgetChunk = 500;
   std::unique_ptr<Impl> impl_;
 };
 
