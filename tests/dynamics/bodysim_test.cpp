@@ -178,10 +178,12 @@ TEST_CASE("bodysim: run --csv never writes over the model, the scenario or a fil
     return text.str();
   };
   const std::string model = read(dir / "tank.body");
-  for (const auto& [csv, why] :
+  for (const auto& entry :
        std::vector<std::pair<std::string, std::string>>{{"tank.body", "it is the model of this run ('"},
                                                         {"link.csv", "it is the model of this run ('"},
                                                         {"s.yaml", "it is the scenario of this run ('"}}) {
+    const std::string& csv = entry.first;  // not a structured binding: CAPTURE's lambda takes it
+    const std::string& why = entry.second;
     CAPTURE(csv);
     const Run r = bodysim("run '" + (dir / "tank.body").string() + "' --scenario '" + (dir / "s.yaml").string() +
                           "' --csv '" + (dir / csv).string() + "'");

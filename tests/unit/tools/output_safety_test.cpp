@@ -218,12 +218,14 @@ TEST_CASE("outputs: bodycheck -o never writes its report over a model it checks,
   fs::create_symlink("main.body", dir / "link.txt");
   fs::create_hard_link(dir / "sub.body", dir / "hard.txt");
   const std::string exe = "'" + std::string(BODYFMT_BODYCHECK) + "' ";
-  for (const auto& [target, why] :
+  for (const auto& entry :
        std::vector<std::pair<std::string, std::string>>{{"main.body", "it is the model of this run ('main.body')"},
                                                         {"link.txt", "it is the model of this run ('main.body')"},
                                                         {"sub.body", "it is a model file it includes of this run ('"},
                                                         {"hard.txt", "it is a model file it includes of this run ('"},
                                                         {".", "it is a folder"}}) {
+    const std::string& target = entry.first;  // not a structured binding: CAPTURE's lambda takes it
+    const std::string& why = entry.second;
     CAPTURE(target);
     for (const char* format : {"text", "json", "sarif"}) {
       const auto r = run_command(exe + "main.body --format " + format + " -o " + target, dir.string());

@@ -267,7 +267,11 @@ TEST_CASE("urdf2body: the round-trip comparison catches each defect (mutants)") 
       {"<collision><origin", "<origin xyz=\"", "<origin xyz=\"1"},          // a collision origin (a cylinder)
       {"<sphere radius=\"", "<sphere radius=\"", "<sphere radius=\"3"},     // a sphere
   };
-  for (const auto& [where, from, to] : mutants) {
+  for (const auto& mutant : mutants) {
+    // Named copies: clang 14 cannot capture structured bindings in CAPTURE's lambda.
+    const std::string& where = std::get<0>(mutant);
+    const std::string& from = std::get<1>(mutant);
+    const std::string& to = std::get<2>(mutant);
     CAPTURE(where);
     CAPTURE(from);
     std::string text = base;
