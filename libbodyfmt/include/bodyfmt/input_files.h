@@ -1,11 +1,12 @@
 #pragma once
 /// The files a loaded model was read from: what every output of a run must never write over.
+#include <bodyfmt/export.h>
 #include <bodyfmt/model.h>
 
 #include <string>
 #include <vector>
 
-namespace bodyfmt {
+namespace BODYFMT_API bodyfmt {
 
 struct InputFile {
   std::string path;
