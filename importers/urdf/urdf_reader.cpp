@@ -315,20 +315,20 @@ std::optional<Geometry> Reader::read_geometry(const XMLElement* g, Eigen::Isomet
     if (!r) return std::nullopt;
     return Geometry(Sphere{*r});
   }
-  if (named(shape, "cylinder")) {
+  // URDF's cylinder and capsule run along Z, Choreonoid's along Y: Rx(+90°) maps +Y onto +Z
+  // (written with exact zeros and ones, so that nothing but the origin's rounding enters).
+  auto along_z = [&](auto round_shape) -> std::optional<Geometry> {
     auto r = require("radius");
     auto h = require("length");
     if (!r || !h) return std::nullopt;
-    // URDF's cylinder runs along Z, Choreonoid's along Y: Rx(+90°) maps +Y onto +Z (written
-    // with exact zeros and ones, so that nothing but the origin's rounding enters).
     Eigen::Matrix3d Rx90;
     Rx90 << 1, 0, 0, 0, 0, -1, 0, 1, 0;
     X_LS.linear() = X_LS.linear() * Rx90;
-    Cylinder c;
-    c.radius = *r;
-    c.height = *h;
-    return Geometry(c);
-  }
+    round_shape.radius = *r;
+    round_shape.height = *h;
+    return Geometry(round_shape);
+  };
+  if (named(shape, "cylinder")) return along_z(Cylinder{});
   if (named(shape, "mesh")) {
     const char* filename = shape->Attribute("filename");
     if (!filename || !*filename) {
@@ -342,20 +342,9 @@ std::optional<Geometry> Reader::read_geometry(const XMLElement* g, Eigen::Isomet
     mesh.uri_source = at_.at(shape, "filename");
     return Geometry(HeapValue<MeshResource>(std::move(mesh)));
   }
-  if (named(shape, "capsule")) {
-    // Not URDF 1.0, but urdfdom-based tools (Drake, Gazebo's parser) read it: a Z-axis capsule
-    // whose length is the cylindrical part.
-    auto r = require("radius");
-    auto h = require("length");
-    if (!r || !h) return std::nullopt;
-    Eigen::Matrix3d Rx90;
-    Rx90 << 1, 0, 0, 0, 0, -1, 0, 1, 0;
-    X_LS.linear() = X_LS.linear() * Rx90;
-    Capsule c;
-    c.radius = *r;
-    c.height = *h;
-    return Geometry(c);
-  }
+  // Not URDF 1.0, but urdfdom-based tools (Drake, Gazebo's parser) read it: a Z-axis capsule
+  // whose length is the cylindrical part.
+  if (named(shape, "capsule")) return along_z(Capsule{});
   report("import-value", at_.at(shape), fmt::format("<{}> is not a URDF geometry", shape->Name()));
   return std::nullopt;
 }
