@@ -234,8 +234,10 @@ bool run_scenario(const Model& model, const Derived& derived, const ScenarioSpec
       row();
     }
     if (stats) *stats = {sim->steps_taken(), sim->force_evaluations()};
-  } catch (const WorkBudgetExceeded&) {
-    throw;  // the caller reports it at its cause
+  } catch (const WorkBudgetExceeded& e) {
+    // The caller reports it at its cause; when that is the commands, at the last one applied.
+    if (e.by_commands && next > 0) throw WorkBudgetExceeded(e.what(), scenario.commands[next - 1].at, true);
+    throw;
   } catch (const std::exception& e) {
     report_rule(sink, "internal-error", model.source, std::string("Simbody failed: ") + e.what());
     return false;

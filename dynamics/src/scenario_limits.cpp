@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 namespace bodyfmt::dynamics {
 
 bool check_scenario(const ScenarioSpec& scenario, const ScenarioLimits& limits, DiagnosticSink& sink) {
@@ -29,6 +31,23 @@ bool check_scenario(const ScenarioSpec& scenario, const ScenarioLimits& limits, 
            fmt::format("the scenario has {} commands, more than --max-commands {:g}; this is the first over the limit",
                        scenario.commands.size(), limits.max_commands),
            "raise --max-commands to run it anyway");
+  if (limits.max_steps_per_second > 0) {
+    // The budget is looked at against max(1 s, t) (Simulation::check_budget); only a
+    // scenario that cannot stay within it is refused here.
+    long long restarts = 0;
+    double last = 0;
+    for (const ScenarioCommand& command : scenario.commands) {
+      if (command.time <= last || command.time > scenario.duration) continue;
+      last = command.time;
+      if (static_cast<double>(++restarts) <= limits.max_steps_per_second * std::max(1.0, command.time)) continue;
+      refuse(command.at,
+             fmt::format("the commands change the inputs at {} distinct times by t = {:g} s, and each restarts the "
+                         "integrator: more steps than --max-steps-per-second {:g} allows by then",
+                         restarts, command.time, limits.max_steps_per_second),
+             "give commands that belong together one time, or raise --max-steps-per-second");
+      break;
+    }
+  }
   for (const ScenarioCommand& command : scenario.commands)
     for (const auto& [link, servo] : command.joints) {
       if (servo.p && *servo.p < 0)

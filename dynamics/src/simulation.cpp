@@ -84,6 +84,7 @@ struct Simulation::Impl {
   mutable long long evaluations = 0;                // force evaluations (calls of the servo force element)
   const Simulation* owner = nullptr;                // whose budget the force elements look at
   long long earlier_attempts = 0;                   // integration steps attempted before the last restart
+  long long restarts = 0;                           // after the first initialization: a command changed
   mutable std::optional<WorkBudgetExceeded> spent;  // the budget ran out (thrown through Simbody)
 
   const SimTK::MobilizedBody& body(LinkIndex link) const { return matter.getMobilizedBody(mobod[link]); }
@@ -451,6 +452,7 @@ void Simulation::restart() {
     m.earlier_steps += m.integrator->getNumStepsTaken();
     m.earlier_attempts += m.integrator->getNumStepsAttempted();
     m.integrator->resetAllStatistics();
+    ++m.restarts;
   }
   m.stepper->initialize(m.state);
   m.initialized = true;
@@ -498,8 +500,15 @@ void Simulation::check_budget() const {
           : fmt::format("the simulation used more than {:g} CPU seconds (at t = {:g} s, {} steps; --max-cpu)",
                         m.options.max_cpu_seconds, simulated, steps);
   SourceLocation where = m.model->source;
-  const std::string cause = stiffest_part(where);
-  m.spent.emplace(spent + ": " + cause, where);
+  const bool by_commands = steps_out && 2 * m.restarts > steps;
+  // Every change of a track speed or servo restarts the integrator: when the restarts are most
+  // of the steps, the commands are the cause, not a stiff part.
+  const std::string cause =
+      by_commands ? fmt::format("{} of them were restarts for changed commands (each change of a track speed or a "
+                        "servo restarts the integrator): the commands are denser in time than the budget",
+                        m.restarts)
+          : stiffest_part(where);
+  m.spent.emplace(spent + ": " + cause, where, by_commands);
   throw WorkBudgetExceeded(*m.spent);
 }
 

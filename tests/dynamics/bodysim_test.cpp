@@ -239,6 +239,38 @@ TEST_CASE("bodysim: run refuses scenarios that would not finish, each value loca
   std::filesystem::remove(csv);
 }
 
+TEST_CASE("bodysim: commands denser in time than the step budget are refused, or stopped, at a command") {
+  // Each distinct command time restarts the integrator. 1,000 of them in 0.1 s: over a budget of
+  // 900 steps per second they are refused before any work, at the first command over it; under
+  // 1,200 they run, and the budget stops the run at the commands, not at a stiff contact.
+  const std::filesystem::path csv = std::filesystem::temp_directory_path() / "bodysim_test_dense.csv";
+  const std::filesystem::path dense = std::filesystem::temp_directory_path() / "bodysim_test_dense.scenario.yaml";
+  std::filesystem::remove(csv);
+  {
+    std::ofstream out(dense);
+    out << "duration: 0.5\ncommands:\n";
+    for (int i = 1; i <= 1000; ++i) out << "  - {time: " << i * 1e-4 << ", joints: {TOWER: {target: 0.1, p: 10}}}\n";
+  }
+  const std::string run = "run '" + kScoutTank + "' --scenario '" + dense.string() + "' --csv '" + csv.string() + "'";
+  Run r = bodysim(run + " --max-steps-per-second 900");
+  CHECK(r.status == 2);
+  CHECK(contains(r.all,
+                 "bodysim_test_dense.scenario.yaml:903:5: error: the commands change the inputs at 901 distinct "
+                 "times by t = 0.0901 s, and each restarts the integrator: more steps than --max-steps-per-second "
+                 "900 allows by then [dynamics-scenario]"));
+  r = bodysim(run + " --max-steps-per-second 1200");
+  CHECK(r.status == 2);
+  CHECK(contains(r.all, "bodysim_test_dense.scenario.yaml:1002:5: fatal error: the integrator needed more than 1200"));
+  CHECK(contains(r.all, "1000 of them were restarts for changed commands"));
+  CHECK(!contains(r.all, "stiffest part"));
+  CHECK(!std::filesystem::exists(csv));
+  r = bodysim(run);  // the default budget, 50,000 steps per second, runs them
+  CHECK(r.status == 0);
+  CHECK(contains(r.all, "0.5 s of ScoutTank simulated"));
+  std::filesystem::remove(dense);
+  std::filesystem::remove(csv);
+}
+
 TEST_CASE("bodysim: a simulation that crawls stops at its step budget, located at the stiff contact (exit 2)") {
   const std::string model = std::string(BODYFMT_TEST_DATA_DIR) + "/hostile/cylinder_radius_30.body";
   const Run r = bodysim("check '" + model + "'");

@@ -181,6 +181,7 @@ int main(int argc, char** argv) {
       }
       std::optional<dynamics::ScenarioSpec> scenario = dynamics::read_scenario(scenario_path, *model, sink);
       if (!scenario) return finish(true, "the scenario cannot be read; nothing was simulated");
+      limits.max_steps_per_second = sim.max_steps_per_second;
       if (!dynamics::check_scenario(*scenario, limits, sink))
         return finish(true, "the scenario is refused; nothing was simulated");
       std::ostringstream csv;

@@ -60,10 +60,14 @@ struct ScenarioLimits {
   double max_duration = 600;  ///< simulated seconds
   double max_rows = 1e6;      ///< CSV rows (duration / sample)
   double max_commands = 1e5;  ///< commands in the list
+  /// The simulation's step budget (SimOptions::max_steps_per_second; 0: none). Each distinct
+  /// command time restarts the integrator, which costs a step at least.
+  double max_steps_per_second = 0;
 };
 
-/// The values read_scenario() reads but does not judge: the limits above, and gains that no
-/// servo has (a negative P or D pushes away from the target and never settles). Reports each
+/// The values read_scenario() reads but does not judge: the limits above, commands so dense in
+/// time that their restarts alone exceed the step budget, and gains that no servo has (a
+/// negative P or D pushes away from the target and never settles). Reports each
 /// as `dynamics-scenario` at its value; false when any is refused.
 bool check_scenario(const ScenarioSpec& scenario, const ScenarioLimits& limits, DiagnosticSink& sink);
 

@@ -59,8 +59,10 @@ struct SimOptions {
 /// limit and the likely cause; `where` is the link (or shape) responsible, or the model.
 class WorkBudgetExceeded : public std::runtime_error {
  public:
-  WorkBudgetExceeded(const std::string& message, SourceLocation at) : std::runtime_error(message), where(at) {}
+  WorkBudgetExceeded(const std::string& message, SourceLocation at, bool commands = false)
+      : std::runtime_error(message), where(at), by_commands(commands) {}
   SourceLocation where;
+  bool by_commands;  ///< restarts for new commands were most of the steps: the caller knows where they are
 };
 
 /// A joint servo: τ = P·(q_ref(t) − q) + D·(q̇_ref(t) − q̇) + feed-forward torque.
