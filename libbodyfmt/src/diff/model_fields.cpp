@@ -284,6 +284,11 @@ FieldCollector::FieldCollector(const Model& model, bool derived)
     model_fields_.push_back(
         vector_field("center_of_mass", total != 0 ? Eigen::Vector3d(moment / total) : moment, model.source));
     model_fields_.back().derived = true;
+    // Geometry problems are bodycheck's to report; a shape that cannot be tessellated adds nothing.
+    struct Ignored : DiagnosticSink {
+      void report(Diagnostic) override {}
+    } ignored;
+    bounds_ = compute_link_bounds(model, ignored);
   }
   for (std::size_t i = 0; i < model.extra_joints.size(); ++i) {
     const ExtraJoint& j = model.extra_joints[i];
@@ -351,6 +356,14 @@ LinkFields FieldCollector::link(std::size_t i) {
   if (derived_) {
     f.push_back(transform_field("world_frame", FieldStyle::kPose, X_WL_[i], lf.source));
     f.back().derived = true;
+    auto box = [&](const char* key, const BoundingBox& b) {
+      if (b.empty()) return;
+      f.push_back(numbers_field(key, FieldStyle::kBox,
+                                {b.min.x(), b.min.y(), b.min.z(), b.max.x(), b.max.y(), b.max.z()}, lf.source));
+      f.back().derived = true;
+    };
+    box("visual_bounding_box", bounds_[i].visual);
+    box("collision_bounding_box", bounds_[i].collision);
   }
   for (const auto& [device, key] : devices_[i]) add_device_fields(f, model_, *device, key);
   return lf;
@@ -391,6 +404,9 @@ std::string field_value(const Field& field, int precision) {
       }
       break;
     }
+    case FieldStyle::kBox:
+      numbers = "min " + list_text(n.data(), 3, precision) + " max " + list_text(n.data() + 3, 3, precision);
+      break;
     case FieldStyle::kInertia: {
       const double six[] = {n[0], n[3], n[6], n[4], n[7], n[8]};
       numbers = list_text(six, 6, precision);
