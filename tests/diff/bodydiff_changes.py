@@ -89,6 +89,13 @@ ROWS = [
      # BASE's shape 0 is its Collision box; the Visual resource is shape 1
      # (0, 0, 0.5) in the file, turned 90 deg about x by the file's Transform: y = -0.5
      ("changed", "BASE", "shape 1 mesh", 17, 17), [("visual_bounding_box", None, "-0.5, ", 8)]),
+    # Tracks: a pseudo continuous track's drive axis; a plugin track device's parameter (AGX),
+    # and the same parameter respelled (camelCase or snake_case) and rewritten (1e-2 for 0.01).
+    ("Tank/Tank.body", "TRACK_L", "    jointAxis: Y", "    jointAxis: Z",
+     ("changed", "TRACK_L", "joint_axis", 18, 18), []),
+    ("Tank/AgxTank.body", "TRACK_L", "        numberOfNodes: 42", "        numberOfNodes: 44",
+     ("changed", "TRACK_L", "device 'TRACK_L' number_of_nodes", 32, 32), []),
+    ("Tank/AgxTank.body", "TRACK_L", "        nodeThickness: 0.01", "        node_thickness: 1.0e-2", "same", []),
     # Textures by content, like meshes.
     ("house/cassette.body", None, '            url: "textures/tape1.front.png"',
      '            url: "textures/TATAMI.png"', ("changed", "WAIST", "shape 0 texture", 19, 19), []),
