@@ -37,6 +37,8 @@ ROWS = [
      ("changed", "WAIST_P", "inertia", 55, 55), []),
     ("SR1/SR1.body", "WAIST_P", "    translation : [ 0, 0, 0.176 ]", "    translation : [ 0, 0, 0.2 ]",
      ("changed", "WAIST_P", "translation", 48, 48), ["world_frame"]),
+    ("PA10/PA10.body", "J1", "    rotation: [ 0, 0, 1, 0 ]", "    rotation: [ 0, 0, 1, 30 ]",
+     ("changed", "J1", "rotation", 33, 33), ["world_frame"]),
     ("SR1/SR1.body", "LARM_SHOULDER_P", "    parent: CHEST", "    parent: WAIST_R",
      ("changed", "LARM_SHOULDER_P", "parent", 168, 168), ["world_frame"]),
     ("SR1/SR1.body", "LARM_WRIST_R", "    joint_id:  25", "    joint_id:  25\n    max_joint_velocity: 2",
