@@ -165,7 +165,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"text", "json"}));
   app.add_option("--tolerance", options.tolerance, "numbers equal when |a - b| <= T * max(1, |a|, |b|) (default 1e-9)")
       ->check(CLI::NonNegativeNumber);
-  app.add_flag("--no-derived", no_derived, "do not report derived effects (total mass, centre of mass, world frames)");
+  app.add_flag("--no-derived", no_derived,
+               "do not report derived effects (total mass, centre of mass, world frames, bounding boxes)");
   app.add_flag("--textconv", textconv, "print the canonical text form of one model (git's diff.<driver>.textconv)");
   app.add_flag("--git", git,
                "act as git's external diff driver: PATH OLD-FILE OLD-HEX OLD-MODE NEW-FILE NEW-HEX NEW-MODE; "
