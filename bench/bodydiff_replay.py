@@ -44,6 +44,8 @@ def differs(a, b, tol=1e-9):
         a, b = float(a), float(b)
         if a == b or (math.isnan(a) and math.isnan(b)):
             return False
+        if not math.isfinite(a) or not math.isfinite(b):  # inf against a number: the bound is inf too
+            return True
         return not abs(a - b) <= tol * max(1.0, abs(a), abs(b))
     return a != b
 

@@ -17,7 +17,8 @@ Every tool named in the file must exit with that code within the time limit, wit
 signal, and print each listed rule id in a located diagnostic (`file:line:col: ... [rule]`).
 Tools the file does not name must still not crash or hang (exit 0, 1 or 2). `# limit: cpu=N`
 raises the CPU seconds each tool may take (the 100,000-link models, whose export builds a
-scene of 400,000 nodes).
+scene of 400,000 nodes). bodydiff runs too, its expectations derived from bodycheck's
+(bodydiff_runs).
 """
 import os
 import re
@@ -33,6 +34,59 @@ TOOLS = ["bodyinfo", "bodycheck", "body2urdf", "body2mjcf", "body2gltf", "bodysi
 SCALE = float(os.environ.get("BODYFMT_TIME_SCALE", "1"))
 CPU_LIMIT = 10 * SCALE
 WALL_LIMIT = 120 * SCALE
+
+
+# At a line and column, or at the file for what has none (a binary file, an empty one).
+LOCATED_ERROR = re.compile(r"^\S+?(:\d+:\d+)?: (error|fatal error): .*\[[a-z0-9-]+\]$", re.M)
+
+
+def bodydiff_runs(bin_dir, model, expectations, cpu_limit):
+    """bodydiff (issue 28) on the same cases: the model against itself (text and JSON), and
+    --textconv. A model bodycheck cannot load (its exit 2) stops bodydiff
+    with exit 2 and a located error, naming every rule the case expects of bodycheck; any other
+    model is the same as itself: exit 0, nothing printed. --textconv prints the model or stops
+    the same way. A `# expect: bodydiff ...` line in the case overrides the first rule."""
+    failures = []
+    check = expectations.get("bodycheck")
+    expect = expectations.get("bodydiff")
+    if expect is None and check is not None:
+        expect = {"exit": "2", "rules": check["rules"]} if check.get("exit") == "2" else {"exit": "0", "rules": []}
+    for args in ([model, model], ["--textconv", model], ["--format", "json", model, model]):
+        what = "bodydiff " + " ".join(a if a != model else "MODEL" for a in args)
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
+        try:
+            run = subprocess.run([os.path.join(bin_dir, "bodydiff"), *args], capture_output=True, timeout=WALL_LIMIT)
+        except subprocess.TimeoutExpired:
+            failures.append(f"{what}: no answer within {WALL_LIMIT:g} s")
+            continue
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+        if cpu > cpu_limit:
+            failures.append(f"{what}: {cpu:.1f} CPU seconds, over the limit of {cpu_limit:g}")
+        text = (run.stdout + run.stderr).decode("utf-8", "replace")
+        if run.returncode < 0 or run.returncode not in (0, 1, 2):
+            failures.append(f"{what}: exit {run.returncode} (a crash)\n{text[-2000:]}")
+            continue
+        if expect is None:
+            continue
+        if run.returncode != 2 and run.returncode != int(expect["exit"]) and args[0] != "--textconv":
+            failures.append(f"{what}: exit {run.returncode}, expected {expect['exit']}\n{text[-2000:]}")
+            continue
+        if expect["exit"] == "2":
+            if run.returncode != 2:
+                failures.append(f"{what}: exit {run.returncode}, expected 2\n{text[-2000:]}")
+            elif not LOCATED_ERROR.search(text):
+                failures.append(f"{what}: no located error\n{text[-2000:]}")
+            for rule in expect["rules"]:
+                if not re.search(r"^\S+:\d+:\d+: [a-z ]+: .*\[" + re.escape(rule) + r"\]$", text, re.M):
+                    failures.append(f"{what}: no located [{rule}] diagnostic\n{text[-2000:]}")
+        elif run.returncode != 0:
+            failures.append(f"{what}: exit {run.returncode}, expected 0\n{text[-2000:]}")
+        elif args[0] != "--textconv" and args[0] != "--format" and text:
+            failures.append(f"{what}: a model differs from itself\n{text[-2000:]}")
+        elif args[0] == "--format" and '"changes": []' not in text:
+            failures.append(f"{what}: a model differs from itself\n{text[-2000:]}")
+    return failures
 
 
 def main():
@@ -79,9 +133,10 @@ def main():
             for rule in expect["rules"]:
                 if not re.search(r"^\S+:\d+:\d+: [a-z ]+: .*\[" + re.escape(rule) + r"\]$", text, re.M):
                     failures.append(f"{tool}: no located [{rule}] diagnostic\n{text[-2000:]}")
+        failures += bodydiff_runs(bin_dir, model, expectations, cpu_limit)
     for f in failures:
         print(f)
-    print(f"{os.path.basename(case)}: {len(TOOLS)} tools, {len(failures)} failures")
+    print(f"{os.path.basename(case)}: {len(TOOLS) + 1} tools, {len(failures)} failures")
     return 1 if failures else 0
 
 

@@ -97,6 +97,14 @@ void write_json(std::ostream& out, const std::vector<ModelChange>& changes, cons
                      changes.size(), counts[0], counts[1], counts[2]);
 }
 
+// Prints the errors that kept a model from loading.
+void print_fatal(tools::Front& front, CollectingSink& sink) {
+  std::vector<Diagnostic> fatal;
+  for (Diagnostic& d : sink.diagnostics())
+    if (d.severity >= Severity::kError) fatal.push_back(std::move(d));
+  front.print(std::move(fatal));
+}
+
 // Loads quietly: a model's own findings are bodycheck's business; only a model that cannot be
 // loaded at all stops bodydiff, with its diagnostics.
 std::optional<Model> load_quietly(tools::Front& front, const std::string& path, const std::string& name) {
@@ -115,12 +123,15 @@ std::optional<Model> load_quietly(tools::Front& front, const std::string& path, 
     else
       model = load_body_string(text.str(), name, front.load_options(), sink);
   }
-  if (!model) {
-    std::vector<Diagnostic> fatal;
-    for (Diagnostic& d : sink.diagnostics())
-      if (d.severity >= Severity::kError) fatal.push_back(std::move(d));
-    front.print(std::move(fatal));
-  }
+  if (!model) print_fatal(front, sink);
+  return model;
+}
+
+// The same for a text read from git, loaded under the work-tree path `name`.
+std::optional<Model> load_text_quietly(tools::Front& front, const std::string& text, const std::string& name) {
+  CollectingSink sink;
+  std::optional<Model> model = load_body_string(text, name, front.load_options(), sink);
+  if (!model) print_fatal(front, sink);
   return model;
 }
 
@@ -154,15 +165,22 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"text", "json"}));
   app.add_option("--tolerance", options.tolerance, "numbers equal when |a - b| <= T * max(1, |a|, |b|) (default 1e-9)")
       ->check(CLI::NonNegativeNumber);
-  app.add_flag("--no-derived", no_derived, "do not report derived effects (total mass, centre of mass, world frames)");
+  app.add_flag("--no-derived", no_derived,
+               "do not report derived effects (total mass, centre of mass, world frames, bounding boxes)");
   app.add_flag("--textconv", textconv, "print the canonical text form of one model (git's diff.<driver>.textconv)");
   app.add_flag("--git", git,
                "act as git's external diff driver: PATH OLD-FILE OLD-HEX OLD-MODE NEW-FILE NEW-HEX NEW-MODE; "
                "exits 0 when the models differ, as git expects");
   std::string git_rev;
-  app.add_option("--git-rev", git_rev,
-                 "compare each FILE with its version at git revision REV (a file not there is new); for CI")
-      ->type_name("REV");
+  auto* git_rev_option =
+      app.add_option("--git-rev", git_rev,
+                     "compare each FILE with its version at git revision REV (a file not there is new); for CI")
+          ->type_name("REV");
+  bool staged = false;
+  app.add_flag("--staged", staged,
+               "compare each FILE as staged in git's index with its version at HEAD (a file new to HEAD, or any "
+               "before the first commit, is new); exits 0 when they differ: a report, for the pre-commit stage")
+      ->excludes(git_rev_option);
   if (auto code = front.parse(argc, argv)) return *code;
   options.derived = !no_derived;
   const std::vector<std::string>& args = front.inputs();
@@ -202,24 +220,28 @@ int main(int argc, char** argv) {
     return tools::kExitClean;
   }
 
-  if (!git_rev.empty()) {
+  if (!git_rev.empty() || staged) {
+    const std::string option = staged ? "--staged" : "--git-rev";
     std::string why;
-    if (!tools::git_commit_exists(git_rev, why)) {
+    if (staged) {
+      // Before the first commit there is no HEAD: every staged model is new.
+      if (tools::git_commit_exists("HEAD", why)) git_rev = "HEAD";
+    } else if (!tools::git_commit_exists(git_rev, why)) {
       front.print_error("--git-rev: " + why);
       return tools::kExitFatal;
     }
     if (args.empty()) {
-      front.print_error("--git-rev takes the model files to compare");
+      front.print_error(option + " takes the model files to compare");
       return tools::kExitFatal;
     }
     int code = tools::kExitClean;
     std::vector<std::string> documents;
     for (const std::string& file : args) {
       const std::string path = std::filesystem::path(file).lexically_normal().string();
-      const std::string old_name = git_rev + ":" + path;
+      const std::string old_name = (git_rev.empty() ? std::string("HEAD") : git_rev) + ":" + path;
       std::optional<Model> old_model = Model{};
       std::string not_there;
-      if (auto text = tools::git_show(git_rev, path, not_there)) {
+      if (auto text = git_rev.empty() ? std::nullopt : tools::git_show(git_rev, path, not_there)) {
         CollectingSink sink;
         old_model = load_body_string(*text, path, front.load_options(), sink);
         if (!old_model) {
@@ -228,7 +250,14 @@ int main(int argc, char** argv) {
           continue;
         }
       }
-      std::optional<Model> new_model = std::filesystem::exists(path) ? load_quietly(front, path, "") : Model{};
+      std::optional<Model> new_model = Model{};
+      if (staged) {
+        // The index's text (git show :./PATH), loaded under the work-tree path so that its
+        // meshes and included files resolve there; a file not in the index is deleted.
+        if (auto text = tools::git_show("", path, not_there)) new_model = load_text_quietly(front, *text, path);
+      } else if (std::filesystem::exists(path)) {
+        new_model = load_quietly(front, path, "");
+      }
       if (!new_model) {
         code = tools::kExitFatal;
         continue;
@@ -242,7 +271,7 @@ int main(int argc, char** argv) {
       } else {
         write_text(std::cout, changes, old_name, path);
       }
-      if (!changes.empty() && code == tools::kExitClean) code = tools::kExitFindings;
+      if (!changes.empty() && code == tools::kExitClean && !staged) code = tools::kExitFindings;
     }
     if (format == "json") {
       std::cout << "[\n";

@@ -6,7 +6,9 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <functional>
 #include <map>
 #include <type_traits>
@@ -185,6 +187,42 @@ void add_shape_fields(std::vector<Field>& out, const std::string& key, const Sha
   tag(out, first, key);
 }
 
+// `nodeThickness` and `node_thickness` alike: the field's name must not change with a spelling.
+std::string snake_case(std::string_view key) {
+  std::string out;
+  for (char c : key) {
+    if (std::isupper(static_cast<unsigned char>(c))) {
+      if (!out.empty() && out.back() != '_') out += '_';
+      out += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+// A device no stage interprets (Holder, Conveyor, the plugin track devices of AGX and PhysX,
+// ...) is compared by its scalar keys as written: numbers as numbers, so that `2.0e-4` and
+// `0.0002` are the same. Lists (a track's sprocketNames) are not kept by the loader.
+void add_opaque_keys(std::vector<Field>& out, const Device& d, const std::string& key) {
+  std::map<std::string, std::pair<std::string, SourceLocation>> keys;
+  for (const auto& [name, value] : d.keys) {
+    const std::string plain = snake_case(name);
+    // Read already (type, name, id, on), or an angle that --upgrade rewrites in other units.
+    if (plain == "type" || plain == "name" || plain == "id" || plain == "on" || plain == "emission_range") continue;
+    keys[plain] = {value, d.key_source({name})};
+  }
+  for (const auto& [plain, value_at] : keys) {
+    const auto& [value, at] = value_at;
+    char* end = nullptr;
+    const double x = value.empty() ? 0 : std::strtod(value.c_str(), &end);
+    if (!value.empty() && end && *end == '\0' && std::isfinite(x))
+      out.push_back(number_field(key + " " + plain, x, at));
+    else
+      out.push_back(text_field(key + " " + plain, value, at));
+  }
+}
+
 void add_device_fields(std::vector<Field>& out, const Model& model, const Device& d, const std::string& key) {
   const SourceLocation& at = d.source;
   const std::size_t first = out.size();
@@ -244,6 +282,8 @@ void add_device_fields(std::vector<Field>& out, const Model& model, const Device
         } else if constexpr (std::is_same_v<T, InertialSensorParams>) {
           vec("max_angular_velocity", p.max_angular_velocity);
           vec("max_acceleration", p.max_acceleration);
+        } else if constexpr (std::is_same_v<T, OpaqueParams>) {
+          add_opaque_keys(out, d, key);
         }
       },
       d.params);
@@ -284,6 +324,11 @@ FieldCollector::FieldCollector(const Model& model, bool derived)
     model_fields_.push_back(
         vector_field("center_of_mass", total != 0 ? Eigen::Vector3d(moment / total) : moment, model.source));
     model_fields_.back().derived = true;
+    // Geometry problems are bodycheck's to report; a shape that cannot be tessellated adds nothing.
+    struct Ignored : DiagnosticSink {
+      void report(Diagnostic) override {}
+    } ignored;
+    bounds_ = compute_link_bounds(model, ignored);
   }
   for (std::size_t i = 0; i < model.extra_joints.size(); ++i) {
     const ExtraJoint& j = model.extra_joints[i];
@@ -351,6 +396,14 @@ LinkFields FieldCollector::link(std::size_t i) {
   if (derived_) {
     f.push_back(transform_field("world_frame", FieldStyle::kPose, X_WL_[i], lf.source));
     f.back().derived = true;
+    auto box = [&](const char* key, const BoundingBox& b) {
+      if (b.empty()) return;
+      f.push_back(numbers_field(key, FieldStyle::kBox,
+                                {b.min.x(), b.min.y(), b.min.z(), b.max.x(), b.max.y(), b.max.z()}, lf.source));
+      f.back().derived = true;
+    };
+    box("visual_bounding_box", bounds_[i].visual);
+    box("collision_bounding_box", bounds_[i].collision);
   }
   for (const auto& [device, key] : devices_[i]) add_device_fields(f, model_, *device, key);
   return lf;
@@ -391,6 +444,9 @@ std::string field_value(const Field& field, int precision) {
       }
       break;
     }
+    case FieldStyle::kBox:
+      numbers = "min " + list_text(n.data(), 3, precision) + " max " + list_text(n.data() + 3, 3, precision);
+      break;
     case FieldStyle::kInertia: {
       const double six[] = {n[0], n[3], n[6], n[4], n[7], n[8]};
       numbers = list_text(six, 6, precision);

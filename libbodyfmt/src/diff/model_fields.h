@@ -2,6 +2,7 @@
 // A model as lists of named fields (the whole model, then one list per link): what bodydiff
 // compares and what its canonical text prints, so that the two cannot drift apart.
 
+#include <bodyfmt/derived.h>
 #include <bodyfmt/diagnostic.h>
 #include <bodyfmt/model.h>
 
@@ -20,6 +21,7 @@ enum class FieldStyle {
   kPose,        // translation (3) then rotation matrix (9, row-major): xyz [..] rpy [..]
   kAffine,      // translation (3) then a linear part that may scale: xyz [..] linear [..]
   kInertia,     // 3x3, shown as [xx, xy, xz, yy, yz, zz]
+  kBox,         // min (3) then max (3): min [..] max [..]
   kText,        // text only
 };
 
@@ -73,6 +75,7 @@ class FieldCollector {
   std::vector<Field> model_fields_;
   std::vector<MassProperties> mass_;
   std::vector<Eigen::Isometry3d> X_WL_;
+  std::vector<LinkBounds> bounds_;  // libbodyfmt's tight boxes, from the same tessellation as every tool's
   std::vector<std::vector<std::pair<const Device*, std::string>>> devices_;  // per link, with their keys
 };
 

@@ -125,8 +125,18 @@ TEST_CASE("shapes pair by content: reordered is no change, inserted is one shape
   CHECK(inserted[0].new_value == "Cylinder");
   CHECK(inserted[0].new_source.line == 16);
   // a changed shape stays paired with the one at its rank
-  const auto resized =
+  const auto all =
       diff_models(with(box + ball), with(box + "      - { type: Shape, geometry: { type: Sphere, radius: 0.6 } }\n"));
+  const auto resized = own(all);
   REQUIRE(resized.size() == 1);
   CHECK(resized[0].field == "shape 1 radius");
+  // and the link's boxes (visual and collision alike) widen in x only: the 1 x 2 x 3 box's
+  // half-sizes against the sphere's radius, 0.5 then 0.6
+  REQUIRE(all.size() == 3);
+  for (const ModelChange& c : all) {
+    if (!c.derived) continue;
+    CHECK((c.field == "visual_bounding_box" || c.field == "collision_bounding_box"));
+    CHECK(c.old_value == "min [-0.5, -1, -1.5] max [0.5, 1, 1.5]");
+    CHECK(c.new_value == "min [-0.6, -1, -1.5] max [0.6, 1, 1.5]");
+  }
 }
