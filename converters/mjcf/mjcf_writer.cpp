@@ -132,6 +132,7 @@ class Writer : converters::XmlWriter {
   std::string site(XMLElement* body, const Device& device, std::size_t device_index);
   void sensor(const Device& device, const char* kind, const std::string& name, const std::string& site_name,
               const Eigen::Vector3d& max, XMLElement* body);
+  void write_self_collision_filter();
   void write_equalities();
   void write_actuators();
   void write_keyframe();
@@ -161,6 +162,8 @@ class Writer : converters::XmlWriter {
   std::vector<std::pair<std::string, std::string>> track_axes_;  // numeric name, data
   std::map<const XMLElement*, std::size_t> link_of_;             // body element -> link
   XMLElement* world_ = nullptr;
+  std::vector<XMLElement*> collision_geoms_;
+  std::vector<std::size_t> colliding_links_;  // links with a collision geom, in link order
 };
 
 bool Writer::prepare_inertials() {
@@ -432,6 +435,8 @@ void Writer::write_shapes(XMLElement* body, std::size_t index) {
           if (piece.material) g->SetAttribute("material", material_name(*piece.material).c_str());
         } else {
           g->SetAttribute("group", 3);
+          collision_geoms_.push_back(g);
+          if (colliding_links_.empty() || colliding_links_.back() != index) colliding_links_.push_back(index);
         }
       }
     }
@@ -542,6 +547,40 @@ void Writer::write_devices(XMLElement* body, std::size_t index) {
     } else {
       loss(converters::LossKind::kDevices, body, device.source, fmt::format("device '{}' ({})", label, device.type));
     }
+  }
+}
+
+void Writer::write_self_collision_filter() {
+  if (options_.self_collision || colliding_links_.size() < 2) return;
+  if (options_.collision_group == 0 && colliding_links_.size() <= kMaxExcludeBodies) {
+    // Every pair, parent and child included: MuJoCo's own parent filter skips a parent welded
+    // to the world (a fixed root and its first links would touch).
+    XMLElement* contact = element(mujoco_, "contact");
+    comment(contact,
+            "self-collision off, as Choreonoid simulates a body by default: every pair of this model's bodies "
+            "is excluded (--self-collision keeps MuJoCo's rule)");
+    for (std::size_t a = 0; a < colliding_links_.size(); ++a) {
+      for (std::size_t b = a + 1; b < colliding_links_.size(); ++b) {
+        XMLElement* e = element(contact, "exclude");
+        e->SetAttribute("body1", model_.links[colliding_links_[a]].name.c_str());
+        e->SetAttribute("body2", model_.links[colliding_links_[b]].name.c_str());
+      }
+    }
+    return;
+  }
+  // Pairwise excludes grow with the square of the bodies (5e9 for a 100,000-link star): the
+  // contact bits of one group keep the model's geoms apart instead.
+  const int group = options_.collision_group > 0 ? options_.collision_group : collision_group_of(model_.name);
+  const unsigned bit = 1u << group;
+  const std::string contype = std::to_string(bit);
+  const std::string conaffinity = std::to_string(0x7fffffffu & ~bit);
+  comment(world_, fmt::format("self-collision off, as Choreonoid simulates a body by default: collision geoms are in "
+                              "contact group {} (contype {}, conaffinity {}); they touch default geoms and other "
+                              "groups, not each other (--collision-group, --self-collision)",
+                              group, contype, conaffinity));
+  for (XMLElement* g : collision_geoms_) {
+    g->SetAttribute("contype", contype.c_str());
+    g->SetAttribute("conaffinity", conaffinity.c_str());
   }
 }
 
@@ -742,6 +781,7 @@ bool Writer::run() {
            "--actuators adds position or velocity actuators");
     write_devices(body, i);
   }
+  write_self_collision_filter();
   write_equalities();
   write_actuators();
   if (!sensors_.empty()) {
@@ -787,6 +827,12 @@ bool Writer::run() {
 }
 
 }  // namespace
+
+int collision_group_of(const std::string& model_name) {
+  std::uint32_t h = 2166136261u;
+  for (unsigned char c : model_name) h = (h ^ c) * 16777619u;
+  return 1 + static_cast<int>(h % kMaxCollisionGroup);
+}
 
 bool write_mjcf(const Model& model, const Derived& derived, const MjcfOptions& options, converters::OutputSet& output,
                 DiagnosticSink& sink) {
