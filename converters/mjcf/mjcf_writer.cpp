@@ -47,6 +47,18 @@ constexpr int kMaxBodyDepth = 96;
 constexpr double kFlatBoxHalfThickness = 1e-6;
 // Distance between the two connect points that make a hinge extra joint.
 constexpr double kHingePointSpacing = 0.1;
+// MuJoCo 2.2.2's fixed buffers (<size>): its defaults, the most contacts a collision geom makes
+// with a plane (box, cylinder and convex mesh: 4), the rows of a contact in the default
+// pyramidal cone with condim 3 (2 (condim - 1)), and the caps. njmax costs memory as njmax²
+// (the default nstack, 5 njmax² numbers, and efc_AR) and njmax·nv (efc_J): 4,000 rows are
+// about 190 MB resident, and beyond MuJoCo's default the rows are held to 2e6 / nv.
+constexpr int kDefaultNconmax = 100;
+constexpr int kDefaultNjmax = 500;
+constexpr long kPlaneContactsPerGeom = 4;
+constexpr long kRowsPerContact = 4;
+constexpr long kMaxNconmax = 10000;
+constexpr long kMaxNjmax = 4000;
+constexpr long kJacobianBudget = 2000000;
 
 std::string quat_text(const Eigen::Matrix3d& R) {
   Eigen::Quaterniond q(R);
@@ -133,6 +145,7 @@ class Writer : converters::XmlWriter {
   void sensor(const Device& device, const char* kind, const std::string& name, const std::string& site_name,
               const Eigen::Vector3d& max, XMLElement* body);
   void write_self_collision_filter();
+  void write_size(XMLElement* after);
   void write_equalities();
   void write_actuators();
   void write_keyframe();
@@ -164,6 +177,8 @@ class Writer : converters::XmlWriter {
   XMLElement* world_ = nullptr;
   std::vector<XMLElement*> collision_geoms_;
   std::vector<std::size_t> colliding_links_;  // links with a collision geom, in link order
+  long equality_rows_ = 0;                     // constraint rows of the <equality> elements
+  long limited_joints_ = 0;
 };
 
 bool Writer::prepare_inertials() {
@@ -311,6 +326,7 @@ void Writer::write_joint(XMLElement* body, std::size_t index) {
   const bool lo_finite = lo > -kUnlimited, hi_finite = hi < kUnlimited;
   if (lo_finite && hi_finite) {
     j->SetAttribute("limited", "true");
+    ++limited_joints_;
     // MuJoCo wants lower < upper; a joint that cannot move keeps its degree of freedom (joint
     // ids and qpos stay as in the model) in the narrowest range MuJoCo accepts.
     const double upper = lo < hi ? hi : std::nextafter(lo, kUnlimited);
@@ -584,6 +600,32 @@ void Writer::write_self_collision_filter() {
   }
 }
 
+void Writer::write_size(XMLElement* after) {
+  // Room for every collision geom on a floor at once (a fixed root at the origin of a floor
+  // plane, as Robotiq's 2F-85 has, makes 288 contacts from 87 boxes), each contact's rows, a
+  // row per joint limit and the equality rows.
+  long nv = 0;
+  for (const Link& link : model_.links) {
+    if (link.joint_type == JointType::kFree) nv += 6;
+    if (link.joint_type == JointType::kRevolute || link.joint_type == JointType::kPrismatic) nv += 1;
+  }
+  const long contacts = kPlaneContactsPerGeom * static_cast<long>(collision_geoms_.size());
+  const long rows = kRowsPerContact * contacts + limited_joints_ + equality_rows_;
+  const long row_cap = std::max<long>(kDefaultNjmax, std::min(kMaxNjmax, kJacobianBudget / std::max(nv, 1L)));
+  const long nconmax = std::clamp<long>(contacts, kDefaultNconmax, kMaxNconmax);
+  const long njmax = std::clamp<long>(rows, kDefaultNjmax, row_cap);
+  XMLElement* size = doc_.NewElement("size");
+  mujoco_->InsertAfterChild(after, size);
+  size->SetAttribute("nconmax", static_cast<int64_t>(nconmax));
+  size->SetAttribute("njmax", static_cast<int64_t>(njmax));
+  if (nconmax < contacts || njmax < rows)
+    mujoco_->InsertAfterChild(
+        after, doc_.NewComment(fmt::format(" buffers capped: {} contacts and {} constraint rows would hold every "
+                                           "collision geom on a floor ",
+                                           contacts, rows)
+                                   .c_str()));
+}
+
 void Writer::write_equalities() {
   XMLElement* equality = nullptr;
   auto eq = [&](const char* kind) {
@@ -607,6 +649,7 @@ void Writer::write_equalities() {
     const double gap = (W1.translation() - W2.translation()).norm();
     if (ej.type == "fixed") {
       XMLElement* w = eq("weld");
+      equality_rows_ += 6;
       w->SetAttribute("body1", l1.c_str());
       w->SetAttribute("body2", l2.c_str());
       const Eigen::Isometry3d X_12 = ej.X_1J * ej.X_2J.inverse();  // body2 in body1
@@ -624,6 +667,7 @@ void Writer::write_equalities() {
     }
     for (const Eigen::Vector3d& a : anchors) {
       XMLElement* c = eq("connect");
+      equality_rows_ += 3;
       c->SetAttribute("body1", l1.c_str());
       c->SetAttribute("body2", l2.c_str());
       c->SetAttribute("anchor", vec3(a).c_str());
@@ -783,6 +827,7 @@ bool Writer::run() {
   }
   write_self_collision_filter();
   write_equalities();
+  write_size(option);
   write_actuators();
   if (!sensors_.empty()) {
     std::stable_sort(sensors_.begin(), sensors_.end(), [](const auto& a, const auto& b) { return a.first < b.first; });

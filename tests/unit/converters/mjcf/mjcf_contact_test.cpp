@@ -216,6 +216,14 @@ TEST_CASE("mjcf contact: the exclude scheme for small models, contact bits beyon
   REQUIRE(group <= mjcf::kMaxCollisionGroup);
   CHECK(count(large, "<exclude ") == 0);
   CHECK(count(large, fmt::format("contype=\"{}\"", 1u << group)) == 65);
+  // Buffers for every collision geom on a floor: 4 contacts each, 4 rows per contact and a row
+  // per joint limit, never below MuJoCo's defaults; rows held to 2e6 / nv.
+  CHECK(count(small, "<size nconmax=\"100\" njmax=\"500\"/>") == 1);
+  CHECK(count(large, "<size nconmax=\"260\" njmax=\"1104\"/>") == 1);
+  REQUIRE(write(boxes("Huge", "H", 1100, true, 0, 1), true, dir / "huge.xml", options));
+  const std::string huge = read(dir / "huge.xml");
+  CHECK(count(huge, "<size nconmax=\"4404\" njmax=\"1808\"/>") == 1);  // nv = 1106
+  CHECK(count(huge, "buffers capped: 4404 contacts and 18716 constraint rows") == 1);
   // An explicit group is used even for a small model.
   options.collision_group = 4;
   REQUIRE(write(boxes("Small", "S", 5, true, 0, 1), true, dir / "small4.xml", options));
@@ -315,5 +323,42 @@ TEST_CASE("mjcf contact: two exports in one scene touch each other but not thems
     CHECK(within == 0);
     CHECK((between > 0) == c.touch);
   }
+  fs::remove_all(dir);
+}
+
+TEST_CASE("mjcf contact: every corpus model lands on a floor without filling MuJoCo's buffers (<size>)") {
+  REQUIRE(fs::exists(kCorpus));
+  std::vector<fs::path> bodies;
+  for (const auto& e : fs::recursive_directory_iterator(kCorpus))
+    if (e.path().extension() == ".body") bodies.push_back(e.path());
+  std::sort(bodies.begin(), bodies.end());
+  const fs::path dir = fresh_dir("mjcf_contact_buffers");
+  int landed = 0, peak_contacts = 0, peak_rows = 0;
+  for (const fs::path& body : bodies) {
+    const std::string name = fs::relative(body, kCorpus).string();
+    CAPTURE(name);
+    MjcfOptions options;
+    options.balance_inertia = true;
+    if (!write(body.string(), false, dir / "model.xml", options)) continue;  // models Choreonoid refuses
+    Scene s(scene(dir, {"model.xml"}, true));
+    INFO(s.error);
+    REQUIRE(s.m != nullptr);
+    for (int step = 0; step < 1500; ++step) {  // 1.5 s: every free model is down by then
+      mj_step(s.m, s.d);
+      peak_contacts = std::max(peak_contacts, s.d->ncon);
+      peak_rows = std::max(peak_rows, s.d->nefc);
+    }
+    for (int w = 0; w < mjNWARNING; ++w) {
+      CAPTURE(w);
+      CHECK(s.d->warning[w].number == 0);
+    }
+    ++landed;
+  }
+  MESSAGE("landed " << landed << " models; at most " << peak_contacts << " contacts and " << peak_rows
+                    << " constraint rows at once");
+  CHECK(landed >= 48);
+  // MuJoCo's defaults (100 contacts, 500 rows) would not hold them: 2F-85 makes 288 and 1,170.
+  CHECK(peak_contacts > 100);
+  CHECK(peak_rows > 500);
   fs::remove_all(dir);
 }
