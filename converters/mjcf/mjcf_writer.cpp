@@ -171,7 +171,7 @@ class Writer : converters::XmlWriter {
   XMLElement* world_ = nullptr;
   std::vector<XMLElement*> collision_geoms_;
   std::vector<std::size_t> colliding_links_;  // links with a collision geom, in link order
-  long equality_rows_ = 0;                     // constraint rows of the <equality> elements
+  long equality_rows_ = 0;                    // constraint rows of the <equality> elements
   long limited_joints_ = 0;
 };
 

@@ -179,12 +179,22 @@ void Writer::assess_inertias() {
     const std::size_t i = static_cast<std::size_t>(f.link);
     const Link& link = model_.links[i];
     if (!f.balanced_by_policy) {
+      // A loss of the dynamics kind, so that --allow-loss dynamics accepts it like the others.
+      struct DynamicsLoss : DiagnosticSink {
+        DiagnosticSink& inner;
+        explicit DynamicsLoss(DiagnosticSink& s) : inner(s) {}
+        void report(Diagnostic d) override {
+          d.category = std::string(converters::loss_kind_name(converters::LossKind::kDynamics));
+          inner.report(std::move(d));
+        }
+      } dynamics_loss(sink_);
       const std::string hint = converters::nearest_inertia_hint(f);
-      report_physical_as(sink_, "export-loss", f,
+      report_physical_as(dynamics_loss, "export-loss", f,
                          fmt::format("principal moments {} of link \"{}\" ({}{}) are written as given, but Drake, "
-                                     "gz-math and MuJoCo refuse to load this URDF",
+                                     "gz-math and MuJoCo refuse to load this URDF (loss kind: {})",
                                      converters::moments_text(f.principal.moments), link.name,
-                                     converters::inertia_defect_text(f), f.validity.negative_moment ? "" : " < 0"),
+                                     converters::inertia_defect_text(f), f.validity.negative_moment ? "" : " < 0",
+                                     converters::loss_kind_name(converters::LossKind::kDynamics)),
                          hint + (hint.empty() ? "" : "; ") + "--balance-inertia writes it");
       continue;
     }

@@ -46,8 +46,8 @@ struct UrdfOptions {
 };
 
 /// Builds the URDF document and its mesh files and stages them in `output`. Losses go to
-/// `sink` as `export-loss` (an inertia URDF consumers refuse among them); a problem that makes the output unusable (a name XML cannot hold,
-/// a mesh that cannot be encoded, a `world` link clash) is reported as fatal and calls
+/// `sink` as `export-loss` (an inertia URDF consumers refuse among them); a problem that makes the output unusable (a
+/// name XML cannot hold, a mesh that cannot be encoded, a `world` link clash) is reported as fatal and calls
 /// output.fail(). Returns false in that case.
 bool write_urdf(const Model& model, const Derived& derived, const UrdfOptions& options, converters::OutputSet& output,
                 DiagnosticSink& sink);

@@ -159,9 +159,10 @@ TEST_CASE("urdf inertia: reported exactly where MuJoCo refuses the URDF; --balan
     mjcf_options.balance_inertia = true;
     const fs::path xml = dir / "mjcf" / "model.xml";
     fs::create_directories(xml.parent_path());
-    const Written mjcf_written =
-        export_with(*model, derived, xml, [&](const Model& m, const Derived& d, converters::OutputSet& out,
-                                              DiagnosticSink& sink) { return mjcf::write_mjcf(m, d, mjcf_options, out, sink); });
+    const Written mjcf_written = export_with(
+        *model, derived, xml, [&](const Model& m, const Derived& d, converters::OutputSet& out, DiagnosticSink& sink) {
+          return mjcf::write_mjcf(m, d, mjcf_options, out, sink);
+        });
     REQUIRE(mjcf_written.ok);
     // The same report as body2mjcf's, at the same places.
     CHECK(urdf_reports == balancing_reports(mjcf_written.diagnostics, "MuJoCo "));
