@@ -6,8 +6,10 @@
 
 #include <stdlib.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 namespace bodyfmt::dynamics {
 namespace {
@@ -20,6 +22,9 @@ SimbodyEngine::SimbodyEngine(std::unique_ptr<Simulation> sim, double z) : sim_(s
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
   X.translation().z() = z;
   sim_->set_root_pose(X);
+}
+SimbodyEngine::SimbodyEngine(std::unique_ptr<Simulation> sim, const Eigen::Isometry3d& root) : sim_(std::move(sim)) {
+  sim_->set_root_pose(root);
 }
 void SimbodyEngine::drive(LinkIndex track, double dq) { sim_->set_track_speed(track, dq); }
 void SimbodyEngine::servo(LinkIndex joint, double p, double d, double q_ref) {
@@ -35,22 +40,47 @@ Eigen::Vector3d SimbodyEngine::heading_velocity() const {
 double SimbodyEngine::joint_position(LinkIndex joint) const { return sim_->joint_position(joint); }
 double SimbodyEngine::root_height() const { return sim_->link_pose(0).translation().z(); }
 double SimbodyEngine::floor_force() const { return sim_->total_contact_force().z(); }
+Eigen::Isometry3d SimbodyEngine::root_pose() const { return sim_->link_pose(0); }
+double SimbodyEngine::kinetic_energy() const { return sim_->kinetic_energy(); }
+double SimbodyEngine::penetration() const { return sim_->max_penetration(); }
+int SimbodyEngine::contacts() const {
+  int n = 0;
+  for (const ContactPoint& p : sim_->contact_points()) {
+    const Eigen::Vector3d x = sim_->link_pose(p.link) * p.position_in_link;
+    n += x.z() - p.radius < 0 ? 1 : 0;
+  }
+  return n;
+}
 
 MujocoEngine::MujocoEngine(const Model& model, mjModel* m, double z) : model_(model), m_(m), d_(mj_makeData(m)) {
-  track_speed_.assign(model.links.size(), 0.0);
-  servo_.assign(model.links.size(), {0, 0, 0, false});
-  body_.assign(model.links.size(), -1);
-  joint_.assign(model.links.size(), -1);
-  for (std::size_t i = 0; i < model.links.size(); ++i) {
-    body_[i] = mj_name2id(m_, mjOBJ_BODY, model.links[i].name.c_str());
-    joint_[i] = mj_name2id(m_, mjOBJ_JOINT, model.links[i].name.c_str());
-  }
-  const int root = joint_[0];
-  const int a = m_->jnt_qposadr[root];
+  bind();
+  const int a = m_->jnt_qposadr[joint_[0]];
   d_->qpos[a + 2] = z;
   mj_forward(m_, d_);
   g_active = this;
   mjcb_control = &MujocoEngine::control;
+}
+MujocoEngine::MujocoEngine(const Model& model, mjModel* m, const Eigen::Isometry3d& root)
+    : model_(model), m_(m), d_(mj_makeData(m)) {
+  bind();
+  const int a = m_->jnt_qposadr[joint_[0]];
+  const Eigen::Quaterniond q(root.linear());
+  const double qpos[7] = {root.translation().x(), root.translation().y(), root.translation().z(), q.w(), q.x(), q.y(),
+                          q.z()};
+  for (int k = 0; k < 7; ++k) d_->qpos[a + k] = qpos[k];
+  mj_forward(m_, d_);
+  g_active = this;
+  mjcb_control = &MujocoEngine::control;
+}
+void MujocoEngine::bind() {
+  track_speed_.assign(model_.links.size(), 0.0);
+  servo_.assign(model_.links.size(), {0, 0, 0, false});
+  body_.assign(model_.links.size(), -1);
+  joint_.assign(model_.links.size(), -1);
+  for (std::size_t i = 0; i < model_.links.size(); ++i) {
+    body_[i] = mj_name2id(m_, mjOBJ_BODY, model_.links[i].name.c_str());
+    joint_[i] = mj_name2id(m_, mjOBJ_JOINT, model_.links[i].name.c_str());
+  }
 }
 MujocoEngine::~MujocoEngine() {
   mjcb_control = nullptr;
@@ -77,13 +107,45 @@ Eigen::Vector3d MujocoEngine::heading_velocity() const {
 double MujocoEngine::joint_position(LinkIndex joint) const { return d_->qpos[m_->jnt_qposadr[joint_[joint]]]; }
 double MujocoEngine::root_height() const { return d_->qpos[m_->jnt_qposadr[joint_[0]] + 2]; }
 double MujocoEngine::floor_force() const {
+  const int floor = mj_name2id(m_, mjOBJ_GEOM, "bodysim_floor");
   double sum = 0;
   for (int i = 0; i < d_->ncon; ++i) {
+    if (d_->contact[i].geom1 != floor && d_->contact[i].geom2 != floor) continue;  // not the floor's
     mjtNum f[6];
     mj_contactForce(m_, d_, i, f);
-    sum += f[0] * d_->contact[i].frame[2];  // the normal's world z (floor contacts: 1)
+    // The normal points from geom1 to geom2; MuJoCo puts the plane first.
+    sum += f[0] * d_->contact[i].frame[2] * (d_->contact[i].geom1 == floor ? 1 : -1);
   }
   return sum;
+}
+
+Eigen::Isometry3d MujocoEngine::root_pose() const {
+  const int a = m_->jnt_qposadr[joint_[0]];
+  const mjtNum* q = d_->qpos + a;
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.linear() = Eigen::Quaterniond(q[3], q[4], q[5], q[6]).normalized().toRotationMatrix();
+  X.translation() = Eigen::Vector3d(q[0], q[1], q[2]);
+  return X;
+}
+double MujocoEngine::kinetic_energy() const {
+  // ½ q̇ᵀ M q̇ with the mass matrix of the last forward pass (the step's start).
+  std::vector<mjtNum> Mv(m_->nv);
+  mj_mulM(m_, d_, Mv.data(), d_->qvel);
+  return 0.5 * mju_dot(d_->qvel, Mv.data(), m_->nv);
+}
+double MujocoEngine::penetration() const {
+  const int floor = mj_name2id(m_, mjOBJ_GEOM, "bodysim_floor");
+  double deepest = -std::numeric_limits<double>::infinity();
+  for (int i = 0; i < d_->ncon; ++i)
+    if (d_->contact[i].geom1 == floor || d_->contact[i].geom2 == floor)
+      deepest = std::max(deepest, -d_->contact[i].dist);
+  return deepest;
+}
+int MujocoEngine::contacts() const {
+  const int floor = mj_name2id(m_, mjOBJ_GEOM, "bodysim_floor");
+  int n = 0;
+  for (int i = 0; i < d_->ncon; ++i) n += d_->contact[i].geom1 == floor || d_->contact[i].geom2 == floor ? 1 : 0;
+  return n;
 }
 
 void MujocoEngine::control(const mjModel* m, mjData* d) {
@@ -128,7 +190,7 @@ void MujocoEngine::control(const mjModel* m, mjData* d) {
 }
 
 mjModel* load_mujoco_export(const Model& model, const Derived& derived, const SimOptions& options,
-                            DiagnosticSink& sink, std::string& why) {
+                            DiagnosticSink& sink, std::string& why, const ExportEdit& edit) {
   // body2mjcf's export, plus a floor, in a scratch folder.
   char pattern[] = "/tmp/bodysim-mujoco-XXXXXX";
   if (!mkdtemp(pattern)) {
@@ -145,6 +207,10 @@ mjModel* load_mujoco_export(const Model& model, const Derived& derived, const Si
     if (d.severity >= Severity::kError) sink.report(d);
   if (!written) {
     why = "body2mjcf could not export the model";
+    std::filesystem::remove_all(dir);
+    return nullptr;
+  }
+  if (edit && !edit(dir / "model.xml", why)) {
     std::filesystem::remove_all(dir);
     return nullptr;
   }
