@@ -173,9 +173,16 @@ DropMeasures drop(Make make, const Eigen::Isometry3d& start) {
   r.floor_force /= std::max(counted, 1);
   // Settled: the pose stays within the T8 bands of where it comes to rest.
   r.settle_time = 0;
+  for (const Sample& s : samples) {
+    const bool turning = angle_of(s.R * end.R.transpose()) > kOrientationTolerance;
+    if (std::abs(s.z - end.z) > kHeightTolerance || turning) r.settle_time = s.t;
+    if (turning) r.orientation_settle = s.t;
+  }
   for (const Sample& s : samples)
-    if (std::abs(s.z - end.z) > kHeightTolerance || angle_of(s.R * end.R.transpose()) > kOrientationTolerance)
-      r.settle_time = s.t;
+    if (s.force > 0) {
+      r.first_contact = s.t;
+      break;
+    }
   bool touched = false;
   for (const Sample& s : samples) {
     r.impact_sink = std::max(r.impact_sink, end.z - s.z);
@@ -186,6 +193,24 @@ DropMeasures drop(Make make, const Eigen::Isometry3d& start) {
   r.penetration = engine->penetration();
   r.contacts = engine->contacts();
   return r;
+}
+
+/// MuJoCo's contact as the linear system it is once the penetration exceeds solimp's width
+/// (impedance d = dmax): r̈ = d·(−b·ṙ − k·r), k = 1/(dmax²·τ²·ζ²), b = 2/(dmax·τ) (MuJoCo's
+/// Computation chapter, "soft constraints"). From an impact at speed v, the time until the
+/// penetration stays within `band` of rest.
+double mujoco_relaxation(double time_constant, double damping_ratio, double dmax, double speed, double band) {
+  const double k = 1 / (dmax * dmax * time_constant * time_constant * damping_ratio * damping_ratio);
+  const double b = 2 / (dmax * time_constant);
+  double x = 0, v = speed, last = 0;
+  const double dt = 1e-5;
+  for (double t = dt; t < 2.0; t += dt) {
+    const double a = dmax * (-b * v - k * x);
+    v += a * dt;
+    x += v * dt;
+    if (std::abs(x) > band) last = t;
+  }
+  return last;
 }
 
 CheckResult compare(std::string name, double mujoco, double simbody, double allowed, std::string unit,
@@ -242,6 +267,9 @@ std::vector<CheckResult> run_drop_cross_check(const Model& model, const Derived&
     m->geom_friction[3 * g] = options.sim.contact_params.friction;
     m->geom_condim[g] = 3;
   }
+  const int floor = mj_name2id(m, mjOBJ_GEOM, "bodysim_floor");
+  const double time_constant = m->geom_solref[2 * floor], damping_ratio = m->geom_solref[2 * floor + 1];
+  const double dmax = m->geom_solimp[5 * floor + 1];
   DropCrossCheckReport measured;
   measured.drop_height = kDrop;
   try {
@@ -254,9 +282,17 @@ std::vector<CheckResult> run_drop_cross_check(const Model& model, const Derived&
     throw;
   }
   mj_deleteModel(m);
-  if (report) *report = measured;
   const DropMeasures& sb = measured.simbody;
   const DropMeasures& mj = measured.mujoco;
+  // The settle time is set by the impact, and the two contacts differ there by design: the
+  // checker's stiff Hunt–Crossley points bounce, MuJoCo's soft constraint sinks and creeps
+  // back (spec §6.5, §6.9). MuJoCo's creep follows from its solref alone, so MuJoCo is held to
+  // Simbody's motion with MuJoCo's own contact relaxation after Simbody's first contact.
+  measured.mujoco_time_constant = time_constant;
+  measured.mujoco_relaxation =
+      mujoco_relaxation(time_constant, damping_ratio, dmax, std::sqrt(2 * options.sim.gravity * kDrop), kHeightTolerance);
+  measured.expected_settle = std::max(sb.first_contact + measured.mujoco_relaxation, sb.orientation_settle);
+  if (report) *report = measured;
 
   results.push_back(compare("rest height of the root", mj.height, sb.height, kHeightTolerance, "m",
                             fmt::format("±{:g} m", kHeightTolerance)));
@@ -269,17 +305,22 @@ std::vector<CheckResult> run_drop_cross_check(const Model& model, const Derived&
   }
   results.push_back(compare("floor force ΣN at rest", mj.floor_force, sb.floor_force,
                             kForceTolerance * std::abs(sb.floor_force), "N", fmt::format("±{:g} %", kForceTolerance * 100)));
-  results.push_back(compare(fmt::format("settle time (within {:g} mm and {:g} rad of rest)", kHeightTolerance * 1e3,
-                                        kOrientationTolerance),
-                            mj.settle_time, sb.settle_time, kSettleTolerance * sb.settle_time, "s",
+  const double expected = measured.expected_settle;
+  results.push_back(compare(fmt::format("settle time within {:g} mm and {:g} rad of rest (Simbody: first contact "
+                                        "{:.3f} s + MuJoCo's contact relaxation {:.3f} s, or turned until {:.3f} s)",
+                                        kHeightTolerance * 1e3, kOrientationTolerance, sb.first_contact,
+                                        measured.mujoco_relaxation, sb.orientation_settle),
+                            mj.settle_time, expected, kSettleTolerance * expected, "s",
                             fmt::format("±{:g} %", kSettleTolerance * 100)));
   return results;
 }
 
 std::string describe(const DropCrossCheckReport& report) {
-  std::string out =
+  std::string out = fmt::format(
       "  cross-check: MuJoCo 2.2.2 on body2mjcf's export with every joint welded (elliptic cones, Euler 1 ms, "
-      "default solref and solimp); its lines: measured = MuJoCo, expected = Simbody\n";
+      "default solref and solimp: contact time constant {:g} s); its lines: measured = MuJoCo, expected = "
+      "Simbody\n",
+      report.mujoco_time_constant);
   for (const auto& [name, d] : {std::pair<const char*, const DropMeasures&>{"Simbody", report.simbody},
                                 std::pair<const char*, const DropMeasures&>{"MuJoCo", report.mujoco}})
     out += fmt::format(

@@ -22,6 +22,8 @@ struct DropMeasures {
   double turned = 0;       ///< angle of the root's rotation since release (rad)
   double floor_force = 0;  ///< ΣN, mean over the last 0.5 s (N)
   double settle_time = 0;  ///< from release to the last sample outside the rest band (s)
+  double first_contact = 0;       ///< from release to the first floor force (s)
+  double orientation_settle = 0;  ///< from release to the last sample outside the orientation band (s)
   double kinetic_energy = 0;  ///< at the end (J)
   double penetration = 0;  ///< deepest point below the floor at the end (m)
   int contacts = 0;        ///< points (Simbody) or contacts (MuJoCo) under the floor at the end
@@ -42,6 +44,14 @@ struct DropCrossCheckOptions {
 struct DropCrossCheckReport {
   DropMeasures simbody, mujoco;
   double drop_height = 0;  ///< release height of the lowest contact point (m)
+  /// MuJoCo's soft contact alone: the time its linear spring-damper (solref, solimp) needs to
+  /// bring an impact at the free-fall speed back within the height band (s), and its time
+  /// constant (solref[0], s).
+  double mujoco_relaxation = 0;
+  double mujoco_time_constant = 0;
+  /// What MuJoCo's settle time is compared with: Simbody's first contact plus MuJoCo's
+  /// relaxation, or Simbody's orientation settle when that is later (s).
+  double expected_settle = 0;
 };
 
 /// Runs the drop in both engines and compares them (measured = MuJoCo, expected = Simbody).
