@@ -47,6 +47,18 @@ constexpr int kMaxBodyDepth = 96;
 constexpr double kFlatBoxHalfThickness = 1e-6;
 // Distance between the two connect points that make a hinge extra joint.
 constexpr double kHingePointSpacing = 0.1;
+// MuJoCo 2.2.2's fixed buffers (<size>): its defaults, the most contacts a collision geom makes
+// with a plane (box, cylinder and convex mesh: 4), the rows of a contact in the default
+// pyramidal cone with condim 3 (2 (condim - 1)), and the caps. njmax costs memory as njmax²
+// (the default nstack, 5 njmax² numbers, and efc_AR) and njmax·nv (efc_J): 4,000 rows are
+// about 190 MB resident, and beyond MuJoCo's default the rows are held to 2e6 / nv.
+constexpr int kDefaultNconmax = 100;
+constexpr int kDefaultNjmax = 500;
+constexpr long kPlaneContactsPerGeom = 4;
+constexpr long kRowsPerContact = 4;
+constexpr long kMaxNconmax = 10000;
+constexpr long kMaxNjmax = 4000;
+constexpr long kJacobianBudget = 2000000;
 
 std::string quat_text(const Eigen::Matrix3d& R) {
   Eigen::Quaterniond q(R);
@@ -132,6 +144,8 @@ class Writer : converters::XmlWriter {
   std::string site(XMLElement* body, const Device& device, std::size_t device_index);
   void sensor(const Device& device, const char* kind, const std::string& name, const std::string& site_name,
               const Eigen::Vector3d& max, XMLElement* body);
+  void write_self_collision_filter();
+  void write_size(XMLElement* after);
   void write_equalities();
   void write_actuators();
   void write_keyframe();
@@ -161,6 +175,10 @@ class Writer : converters::XmlWriter {
   std::vector<std::pair<std::string, std::string>> track_axes_;  // numeric name, data
   std::map<const XMLElement*, std::size_t> link_of_;             // body element -> link
   XMLElement* world_ = nullptr;
+  std::vector<XMLElement*> collision_geoms_;
+  std::vector<std::size_t> colliding_links_;  // links with a collision geom, in link order
+  long equality_rows_ = 0;                     // constraint rows of the <equality> elements
+  long limited_joints_ = 0;
 };
 
 bool Writer::prepare_inertials() {
@@ -308,6 +326,7 @@ void Writer::write_joint(XMLElement* body, std::size_t index) {
   const bool lo_finite = lo > -kUnlimited, hi_finite = hi < kUnlimited;
   if (lo_finite && hi_finite) {
     j->SetAttribute("limited", "true");
+    ++limited_joints_;
     // MuJoCo wants lower < upper; a joint that cannot move keeps its degree of freedom (joint
     // ids and qpos stay as in the model) in the narrowest range MuJoCo accepts.
     const double upper = lo < hi ? hi : std::nextafter(lo, kUnlimited);
@@ -432,6 +451,8 @@ void Writer::write_shapes(XMLElement* body, std::size_t index) {
           if (piece.material) g->SetAttribute("material", material_name(*piece.material).c_str());
         } else {
           g->SetAttribute("group", 3);
+          collision_geoms_.push_back(g);
+          if (colliding_links_.empty() || colliding_links_.back() != index) colliding_links_.push_back(index);
         }
       }
     }
@@ -545,6 +566,66 @@ void Writer::write_devices(XMLElement* body, std::size_t index) {
   }
 }
 
+void Writer::write_self_collision_filter() {
+  if (options_.self_collision || colliding_links_.size() < 2) return;
+  if (options_.collision_group == 0 && colliding_links_.size() <= kMaxExcludeBodies) {
+    // Every pair, parent and child included: MuJoCo's own parent filter skips a parent welded
+    // to the world (a fixed root and its first links would touch).
+    XMLElement* contact = element(mujoco_, "contact");
+    comment(contact,
+            "self-collision off, as Choreonoid simulates a body by default: every pair of this model's bodies "
+            "is excluded (--self-collision keeps MuJoCo's rule)");
+    for (std::size_t a = 0; a < colliding_links_.size(); ++a) {
+      for (std::size_t b = a + 1; b < colliding_links_.size(); ++b) {
+        XMLElement* e = element(contact, "exclude");
+        e->SetAttribute("body1", model_.links[colliding_links_[a]].name.c_str());
+        e->SetAttribute("body2", model_.links[colliding_links_[b]].name.c_str());
+      }
+    }
+    return;
+  }
+  // Pairwise excludes grow with the square of the bodies (5e9 for a 100,000-link star): the
+  // contact bits of one group keep the model's geoms apart instead.
+  const int group = options_.collision_group > 0 ? options_.collision_group : collision_group_of(model_.name);
+  const unsigned bit = 1u << group;
+  const std::string contype = std::to_string(bit);
+  const std::string conaffinity = std::to_string(0x7fffffffu & ~bit);
+  comment(world_, fmt::format("self-collision off, as Choreonoid simulates a body by default: collision geoms are in "
+                              "contact group {} (contype {}, conaffinity {}); they touch default geoms and other "
+                              "groups, not each other (--collision-group, --self-collision)",
+                              group, contype, conaffinity));
+  for (XMLElement* g : collision_geoms_) {
+    g->SetAttribute("contype", contype.c_str());
+    g->SetAttribute("conaffinity", conaffinity.c_str());
+  }
+}
+
+void Writer::write_size(XMLElement* after) {
+  // Room for every collision geom on a floor at once (a fixed root at the origin of a floor
+  // plane, as Robotiq's 2F-85 has, makes 288 contacts from 87 boxes), each contact's rows, a
+  // row per joint limit and the equality rows.
+  long nv = 0;
+  for (const Link& link : model_.links) {
+    if (link.joint_type == JointType::kFree) nv += 6;
+    if (link.joint_type == JointType::kRevolute || link.joint_type == JointType::kPrismatic) nv += 1;
+  }
+  const long contacts = kPlaneContactsPerGeom * static_cast<long>(collision_geoms_.size());
+  const long rows = kRowsPerContact * contacts + limited_joints_ + equality_rows_;
+  const long row_cap = std::max<long>(kDefaultNjmax, std::min(kMaxNjmax, kJacobianBudget / std::max(nv, 1L)));
+  const long nconmax = std::clamp<long>(contacts, kDefaultNconmax, kMaxNconmax);
+  const long njmax = std::clamp<long>(rows, kDefaultNjmax, row_cap);
+  XMLElement* size = doc_.NewElement("size");
+  mujoco_->InsertAfterChild(after, size);
+  size->SetAttribute("nconmax", static_cast<int64_t>(nconmax));
+  size->SetAttribute("njmax", static_cast<int64_t>(njmax));
+  if (nconmax < contacts || njmax < rows)
+    mujoco_->InsertAfterChild(
+        after, doc_.NewComment(fmt::format(" buffers capped: {} contacts and {} constraint rows would hold every "
+                                           "collision geom on a floor ",
+                                           contacts, rows)
+                                   .c_str()));
+}
+
 void Writer::write_equalities() {
   XMLElement* equality = nullptr;
   auto eq = [&](const char* kind) {
@@ -568,6 +649,7 @@ void Writer::write_equalities() {
     const double gap = (W1.translation() - W2.translation()).norm();
     if (ej.type == "fixed") {
       XMLElement* w = eq("weld");
+      equality_rows_ += 6;
       w->SetAttribute("body1", l1.c_str());
       w->SetAttribute("body2", l2.c_str());
       const Eigen::Isometry3d X_12 = ej.X_1J * ej.X_2J.inverse();  // body2 in body1
@@ -585,6 +667,7 @@ void Writer::write_equalities() {
     }
     for (const Eigen::Vector3d& a : anchors) {
       XMLElement* c = eq("connect");
+      equality_rows_ += 3;
       c->SetAttribute("body1", l1.c_str());
       c->SetAttribute("body2", l2.c_str());
       c->SetAttribute("anchor", vec3(a).c_str());
@@ -742,7 +825,9 @@ bool Writer::run() {
            "--actuators adds position or velocity actuators");
     write_devices(body, i);
   }
+  write_self_collision_filter();
   write_equalities();
+  write_size(option);
   write_actuators();
   if (!sensors_.empty()) {
     std::stable_sort(sensors_.begin(), sensors_.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -787,6 +872,12 @@ bool Writer::run() {
 }
 
 }  // namespace
+
+int collision_group_of(const std::string& model_name) {
+  std::uint32_t h = 2166136261u;
+  for (unsigned char c : model_name) h = (h ^ c) * 16777619u;
+  return 1 + static_cast<int>(h % kMaxCollisionGroup);
+}
 
 bool write_mjcf(const Model& model, const Derived& derived, const MjcfOptions& options, converters::OutputSet& output,
                 DiagnosticSink& sink) {

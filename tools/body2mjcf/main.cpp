@@ -10,6 +10,8 @@
 #include <bodyfmt/converters/output_set.h>
 #include <bodyfmt/derived.h>
 
+#include <fmt/format.h>
+
 #include <algorithm>
 
 int main(int argc, char** argv) {
@@ -27,6 +29,18 @@ int main(int argc, char** argv) {
   app.add_option("--mesh-folder", options.mesh_folder,
                  "folder for meshes, relative to the MJCF file (inside its folder; the compiler's meshdir)")
       ->check(tools::check_inside_output_folder, "FOLDER");
+  CLI::Option* self_collision =
+      app.add_flag("--self-collision", options.self_collision,
+                   "let the model's bodies touch each other (MuJoCo's rule: a body and its parent never do); by "
+                   "default none do, as in Choreonoid");
+  app.add_option("--collision-group", options.collision_group,
+                 fmt::format("keep the model's bodies apart with contact bit N (contype 2^N, conaffinity the other "
+                             "bits) instead of <exclude> pairs: the export touches default geoms and exports of "
+                             "other groups, not one of the same group (default: excludes up to {} colliding "
+                             "bodies, else a group derived from the model name)",
+                             mjcf::kMaxExcludeBodies))
+      ->check(CLI::Range(1, mjcf::kMaxCollisionGroup))
+      ->excludes(self_collision);
   if (auto code = front.parse(argc, argv)) return *code;
   options.actuators = actuators == "position"   ? mjcf::Actuators::kPosition
                       : actuators == "velocity" ? mjcf::Actuators::kVelocity
