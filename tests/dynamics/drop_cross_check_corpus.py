@@ -66,13 +66,15 @@ def main():
         r = subprocess.run([bodysim, "check", "--balance-inertia", "--cross-check", "mujoco", "--no-config", "-q",
                             str(path)], capture_output=True, text=True, timeout=600)
         engines = {m.group(1): m.groups()[1:] for m in map(ENGINE.search, r.stdout.splitlines()) if m}
-        outcome = {}
+        outcome, value = {}, {}
         for key, text in LINES.items():
             found = [l for l in r.stdout.splitlines() if "MuJoCo vs Simbody" in l and text in l]
             if len(found) != 1:
                 problems.append(f"{name}: {len(found)} lines for '{text}' (exit {r.returncode}): {r.stderr[-300:]}")
                 continue
             outcome[key] = found[0].startswith("PASS")
+            numbers = re.search(r"measured\s+(\S+).*expected\s+(\S+)", found[0])
+            value[key] = numbers.groups() if numbers else ("?", "?")
         known = KNOWN.get(name, {})
         for key, passed in outcome.items():
             if not passed and key not in known:
@@ -92,11 +94,12 @@ def main():
         verdict = "pass" if all(outcome.values()) else "FAIL: " + ", ".join(
             f"{k} ({known.get(k, 'unexplained')})" for k, v in outcome.items() if not v)
         rows.append(f"| {name} | {float(sb[0]):.6f} / {float(mj[0]):.6f} | {float(sb[1]):.2g} / {float(mj[1]):.2g} | "
-                    f"{sb[2]} / {mj[2]} | {sb[3]} / {mj[3]} | {sb[4]} / {mj[4]} | {sb[5]} / {mj[5]} | "
-                    f"{sb[6]} / {mj[6]} | {verdict} | {cpu(start):.1f} |")
-    print("| model | rest height m (Simbody / MuJoCo) | turned rad | ΣN N | settle s | impact sink mm | rebound mm |"
-          " contacts | cross-check | CPU s |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
+                    f"{float(value['orientation'][0]):.2g} | {sb[2]} / {mj[2]} | {sb[3]} / {mj[3]} | "
+                    f"{float(value['settle'][1]):.3f} | {sb[4]} / {mj[4]} | {sb[5]} / {mj[5]} | {sb[6]} / {mj[6]} | "
+                    f"{verdict} | {cpu(start):.1f} |")
+    print("| model | rest height m (Simbody / MuJoCo) | turned since release, rad | orientations apart, rad | ΣN N |"
+          " settle s | MuJoCo settle expected s | impact sink mm | rebound mm | contacts | cross-check | CPU s |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for row in rows:
         print(row)
     for p in problems:
