@@ -65,8 +65,8 @@ MujocoEngine::MujocoEngine(const Model& model, mjModel* m, const Eigen::Isometry
   bind();
   const int a = m_->jnt_qposadr[joint_[0]];
   const Eigen::Quaterniond q(root.linear());
-  const double qpos[7] = {root.translation().x(), root.translation().y(), root.translation().z(), q.w(), q.x(), q.y(),
-                          q.z()};
+  const double qpos[7] = {
+      root.translation().x(), root.translation().y(), root.translation().z(), q.w(), q.x(), q.y(), q.z()};
   for (int k = 0; k < 7; ++k) d_->qpos[a + k] = qpos[k];
   mj_forward(m_, d_);
   g_active = this;
@@ -189,8 +189,8 @@ void MujocoEngine::control(const mjModel* m, mjData* d) {
   }
 }
 
-mjModel* load_mujoco_export(const Model& model, const Derived& derived, const SimOptions& options,
-                            DiagnosticSink& sink, std::string& why, const ExportEdit& edit) {
+mjModel* load_mujoco_export(const Model& model, const Derived& derived, const SimOptions& options, DiagnosticSink& sink,
+                            std::string& why, const ExportEdit& edit) {
   // body2mjcf's export, plus a floor, in a scratch folder.
   char pattern[] = "/tmp/bodysim-mujoco-XXXXXX";
   if (!mkdtemp(pattern)) {

@@ -103,7 +103,7 @@ using ExportEdit = std::function<bool(const std::filesystem::path& mjcf, std::st
 /// Exports `model` with body2mjcf's writer (the `balance_inertia` policy of `options`) into a
 /// scratch folder, adds the floor plane "bodysim_floor" through an <include> scene, and compiles
 /// it. Errors of the export are reported to `sink`; on failure returns null and says why.
-mjModel* load_mujoco_export(const Model& model, const Derived& derived, const SimOptions& options,
-                            DiagnosticSink& sink, std::string& why, const ExportEdit& edit = {});
+mjModel* load_mujoco_export(const Model& model, const Derived& derived, const SimOptions& options, DiagnosticSink& sink,
+                            std::string& why, const ExportEdit& edit = {});
 
 }  // namespace bodyfmt::dynamics

@@ -107,8 +107,7 @@ TEST_CASE("drop cross-check: each defective export fails the line that must catc
        },
        all_pass},
       {"a mass 0.5 % heavier (inside T8's 1 %)",
-       [](tinyxml2::XMLElement* b) { b->FirstChildElement("inertial")->SetAttribute("mass", 12.8 * 1.005); },
-       all_pass},
+       [](tinyxml2::XMLElement* b) { b->FirstChildElement("inertial")->SetAttribute("mass", 12.8 * 1.005); }, all_pass},
       // Mutants: one defect each.
       {"a mass 2 % heavier",
        [](tinyxml2::XMLElement* b) { b->FirstChildElement("inertial")->SetAttribute("mass", 12.8 * 1.02); },
@@ -121,7 +120,9 @@ TEST_CASE("drop cross-check: each defective export fails the line that must catc
        },
        except({"rest height"})},
       {"the collision box turned 90 degrees (standing on its end)",
-       [](tinyxml2::XMLElement* b) { collision_geom(b)->SetAttribute("quat", "0.70710678118654757 0.70710678118654757 0 0"); },
+       [](tinyxml2::XMLElement* b) {
+         collision_geom(b)->SetAttribute("quat", "0.70710678118654757 0.70710678118654757 0 0");
+       },
        except({"rest height", "settle time"})},
       // It rolls onto its side, as tall as its bottom (0.2 m): only the pose and the time show it.
       {"the centre of mass outside the box's footprint",

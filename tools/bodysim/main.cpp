@@ -228,8 +228,8 @@ int main(int argc, char** argv) {
 #ifdef BODYFMT_HAVE_MUJOCO_CROSS_CHECK
         dynamics::DropCrossCheckOptions drop;
         drop.sim = sim;
-        std::vector<dynamics::CheckResult> cross = dynamics::run_drop_cross_check(*model, derived, drop, sink, why,
-                                                                                &drop_report);
+        std::vector<dynamics::CheckResult> cross =
+            dynamics::run_drop_cross_check(*model, derived, drop, sink, why, &drop_report);
         if (cross.empty()) return finish(true, why.empty() ? "the MuJoCo cross-check failed" : why);
         results.insert(results.end(), cross.begin(), cross.end());
 #else

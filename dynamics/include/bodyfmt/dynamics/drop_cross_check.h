@@ -17,16 +17,17 @@ namespace bodyfmt::dynamics {
 
 /// One engine's drop, measured the same way in both.
 struct DropMeasures {
-  double height = 0;       ///< root origin z at the end (m)
-  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  ///< root orientation at the end
-  double turned = 0;       ///< angle of the root's rotation since release (rad)
-  double floor_force = 0;  ///< ΣN, mean over the last 0.5 s (N)
-  double settle_time = 0;  ///< from release to the last sample outside the rest band (s)
+  double height = 0;  ///< root origin z at the end (m)
+  /// Root orientation at the end.
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  double turned = 0;              ///< angle of the root's rotation since release (rad)
+  double floor_force = 0;         ///< ΣN, mean over the last 0.5 s (N)
+  double settle_time = 0;         ///< from release to the last sample outside the rest band (s)
   double first_contact = 0;       ///< from release to the first floor force (s)
   double orientation_settle = 0;  ///< from release to the last sample outside the orientation band (s)
-  double kinetic_energy = 0;  ///< at the end (J)
-  double penetration = 0;  ///< deepest point below the floor at the end (m)
-  int contacts = 0;        ///< points (Simbody) or contacts (MuJoCo) under the floor at the end
+  double kinetic_energy = 0;      ///< at the end (J)
+  double penetration = 0;         ///< deepest point below the floor at the end (m)
+  int contacts = 0;               ///< points (Simbody) or contacts (MuJoCo) under the floor at the end
   /// The impact, which sets the settle time: how far the root sank below its rest height, and
   /// how far it rose above it afterwards (a bounce), in m.
   double impact_sink = 0;
