@@ -1,5 +1,6 @@
 #include "mjcf_writer.h"
 
+#include <bodyfmt/converters/inertia_report.h>
 #include <bodyfmt/converters/loss.h>
 #include <bodyfmt/converters/names.h>
 #include <bodyfmt/converters/numbers.h>
@@ -68,14 +69,7 @@ std::string quat_text(const Eigen::Matrix3d& R) {
                      format_number(q.z()));
 }
 
-std::string moments_text(const Eigen::Vector3d& m) {
-  return fmt::format("({}, {}, {})", format_number(m[0]), format_number(m[1]), format_number(m[2]));
-}
-
-std::string tensor_text(const Eigen::Matrix3d& I) {
-  return fmt::format("[{}, {}, {}, {}, {}, {}]", format_number(I(0, 0)), format_number(I(0, 1)), format_number(I(0, 2)),
-                     format_number(I(1, 1)), format_number(I(1, 2)), format_number(I(2, 2)));
-}
+using converters::moments_text;
 
 double radians_to_degrees(double a) { return a * 180.0 / M_PI; }
 
@@ -177,7 +171,7 @@ class Writer : converters::XmlWriter {
   XMLElement* world_ = nullptr;
   std::vector<XMLElement*> collision_geoms_;
   std::vector<std::size_t> colliding_links_;  // links with a collision geom, in link order
-  long equality_rows_ = 0;                     // constraint rows of the <equality> elements
+  long equality_rows_ = 0;                    // constraint rows of the <equality> elements
   long limited_joints_ = 0;
 };
 
@@ -208,31 +202,20 @@ bool Writer::prepare_inertials() {
     }
     if (f.defect != PhysicalDefect::kNotPositiveDefinite && f.defect != PhysicalDefect::kTriangle) continue;
     if (verdict.links[i].negative_mass) continue;  // refused for its mass
-    const PrincipalInertia& p = f.principal;
-    const std::string hint =
-        f.balanced ? "nearest valid inertia (link axes, about the centre of mass): " + tensor_text(*f.balanced) : "";
+    const std::string hint = converters::nearest_inertia_hint(f);
     if (!f.balanced_by_policy) {
       report_physical(sink_, f,
-                      fmt::format("principal moments {} of link \"{}\" are refused by MuJoCo ({}); the model is not "
+                      fmt::format("principal moments {} of link \"{}\" are refused by MuJoCo ({}{}); the model is not "
                                   "written",
-                                  moments_text(p.moments), link.name,
-                                  f.validity.negative_moment
-                                      ? "a negative moment"
-                                      : fmt::format("A + B - C = {} < 0", format_number(f.validity.triangle_margin))),
+                                  moments_text(f.principal.moments), link.name, converters::inertia_defect_text(f),
+                                  f.validity.negative_moment ? "" : " < 0"),
                       hint + (hint.empty() ? "" : "; ") + "--balance-inertia writes it");
       continue;
     }
     Inertial& out = inertials_[i];
     const Eigen::Matrix3d before = out.inertia;
     out.inertia = f.balanced_inertia();
-    changed(i, f.at,
-            fmt::format("the inertia {} of link \"{}\" (principal moments {}, {}); written balanced "
-                        "(--balance-inertia, bodyfmt::balance_inertia) as {} (principal moments {})",
-                        tensor_text(before), link.name, moments_text(p.moments),
-                        f.validity.negative_moment
-                            ? "a negative moment"
-                            : fmt::format("A + B - C = {}", format_number(f.validity.triangle_margin)),
-                        tensor_text(out.inertia), moments_text(principal_inertia(out.inertia).moments)));
+    changed(i, f.at, converters::balanced_inertia_text(link, f, before, out.inertia));
   }
   if (!verdict.masses_usable) return false;
 

@@ -3,6 +3,7 @@
 #include "ros_package.h"
 #include "xml_string_printer.h"
 
+#include <bodyfmt/converters/inertia_report.h>
 #include <bodyfmt/converters/loss.h>
 #include <bodyfmt/converters/names.h>
 #include <bodyfmt/converters/numbers.h>
@@ -12,6 +13,7 @@
 #include <bodyfmt/converters/transforms.h>
 #include <bodyfmt/converters/xml_writer.h>
 #include <bodyfmt/inertia.h>
+#include <bodyfmt/physical.h>
 #include <bodyfmt/rules.h>
 
 #include <fmt/format.h>
@@ -78,6 +80,9 @@ class Writer : converters::XmlWriter {
   /// Reports names URDF tools cannot use; fails on names XML cannot hold.
   void check_name(const std::string& name, const char* what, const SourceLocation& at);
   void origin(XMLElement* parent, const Eigen::Affine3d& X, bool always = false);
+  /// Reports the inertias URDF consumers refuse, and with --balance-inertia chooses the
+  /// balanced tensors written instead.
+  void assess_inertias();
   void write_inertial(XMLElement* link_el, std::size_t index);
   void write_shapes(XMLElement* link_el, std::size_t link_index);
   std::vector<Piece> pieces(XMLElement* link_el, std::size_t link_index, std::size_t shape_index);
@@ -126,6 +131,7 @@ class Writer : converters::XmlWriter {
   converters::StagedFiles staged_{output_, mesh_folder_};
   std::set<std::string> link_names_;
   std::vector<XMLElement*> pending_joints_;
+  std::map<std::size_t, std::pair<Eigen::Matrix3d, std::string>> balanced_;  // link -> tensor, what changed
 };
 
 }  // namespace
@@ -160,14 +166,56 @@ void Writer::origin(XMLElement* parent, const Eigen::Affine3d& X, bool always) {
   o->SetAttribute("rpy", format_vector(rotated ? rpy_of(X.linear()) : Eigen::Vector3d::Zero()).c_str());
 }
 
+void Writer::assess_inertias() {
+  // The consumers that load a URDF for dynamics refuse these tensors: Drake
+  // (RotationalInertia::CouldBePhysicallyValid), gz-math (MassMatrix3::IsValid) and MuJoCo's
+  // compiler. URDF itself holds any six numbers, so the tensor is written as given unless the
+  // user asks for the balanced one.
+  PhysicalOptions gate;
+  gate.balance_inertia = options_.balance_inertia;
+  const PhysicalVerdict verdict = assess_physical(model_, derived_, gate);
+  for (const PhysicalFinding& f : verdict.findings) {
+    if (f.defect != PhysicalDefect::kNotPositiveDefinite && f.defect != PhysicalDefect::kTriangle) continue;
+    const std::size_t i = static_cast<std::size_t>(f.link);
+    const Link& link = model_.links[i];
+    if (!f.balanced_by_policy) {
+      // A loss of the dynamics kind, so that --allow-loss dynamics accepts it like the others.
+      struct DynamicsLoss : DiagnosticSink {
+        DiagnosticSink& inner;
+        explicit DynamicsLoss(DiagnosticSink& s) : inner(s) {}
+        void report(Diagnostic d) override {
+          d.category = std::string(converters::loss_kind_name(converters::LossKind::kDynamics));
+          inner.report(std::move(d));
+        }
+      } dynamics_loss(sink_);
+      const std::string hint = converters::nearest_inertia_hint(f);
+      report_physical_as(dynamics_loss, "export-loss", f,
+                         fmt::format("principal moments {} of link \"{}\" ({}{}) are written as given, but Drake, "
+                                     "gz-math and MuJoCo refuse to load this URDF (loss kind: {})",
+                                     converters::moments_text(f.principal.moments), link.name,
+                                     converters::inertia_defect_text(f), f.validity.negative_moment ? "" : " < 0",
+                                     converters::loss_kind_name(converters::LossKind::kDynamics)),
+                         hint + (hint.empty() ? "" : "; ") + "--balance-inertia writes it");
+      continue;
+    }
+    const Eigen::Matrix3d after = f.balanced_inertia();
+    const std::string what =
+        converters::balanced_inertia_text(link, f, symmetrized_inertia(derived_.mass[i].inertia), after);
+    report_physical_as(sink_, "export-value-changed", f, "Drake, gz-math and MuJoCo cannot accept " + what);
+    balanced_.emplace(i, std::make_pair(after, what));
+  }
+}
+
 void Writer::write_inertial(XMLElement* link_el, std::size_t index) {
   const MassProperties& mp = derived_.mass[index];
+  const auto balanced = balanced_.find(index);
+  if (balanced != balanced_.end()) comment(link_el, "export-value-changed: " + balanced->second.second);
   XMLElement* inertial = element(link_el, "inertial");
   // body-format-spec §6.4/§19: the CoM frame has the link's axes, so rpy stays 0 and the
   // tensor is written as it is (symmetrised); defaults (1 kg, identity) are written too.
   origin(inertial, Eigen::Isometry3d(Eigen::Translation3d(mp.center_of_mass)), true);
   element(inertial, "mass")->SetAttribute("value", format_number(mp.mass).c_str());
-  const Eigen::Matrix3d I = symmetrized_inertia(mp.inertia);
+  const Eigen::Matrix3d I = balanced != balanced_.end() ? balanced->second.first : symmetrized_inertia(mp.inertia);
   XMLElement* in = element(inertial, "inertia");
   in->SetAttribute("ixx", format_number(I(0, 0)).c_str());
   in->SetAttribute("ixy", format_number(I(0, 1)).c_str());
@@ -400,6 +448,7 @@ bool Writer::run() {
   }
   flush();
   materials_at_ = text_.size();
+  assess_inertias();
 
   for (const Link& link : model_.links) link_names_.insert(link.name);
   const Link& root = model_.root();

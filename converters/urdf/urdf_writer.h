@@ -38,11 +38,16 @@ struct UrdfOptions {
   bool floating_base = false;
   /// Writes each device as a child link on a fixed joint instead of reporting it.
   bool devices_as_frames = false;
+  /// Writes the nearest valid tensor (bodyfmt::balance_inertia, the tensor body2mjcf writes)
+  /// for links whose inertia Drake, gz-math and MuJoCo refuse, reported as
+  /// export-value-changed; without it such a tensor is written as given and reported as
+  /// export-loss.
+  bool balance_inertia = false;
 };
 
 /// Builds the URDF document and its mesh files and stages them in `output`. Losses go to
-/// `sink` as `export-loss`; a problem that makes the output unusable (a name XML cannot hold,
-/// a mesh that cannot be encoded, a `world` link clash) is reported as fatal and calls
+/// `sink` as `export-loss` (an inertia URDF consumers refuse among them); a problem that makes the output unusable (a
+/// name XML cannot hold, a mesh that cannot be encoded, a `world` link clash) is reported as fatal and calls
 /// output.fail(). Returns false in that case.
 bool write_urdf(const Model& model, const Derived& derived, const UrdfOptions& options, converters::OutputSet& output,
                 DiagnosticSink& sink);

@@ -58,6 +58,9 @@ int main(int argc, char** argv) {
   app.add_flag("--floating-base", options.floating_base,
                "add a 'world' link and a floating joint at the root's initial pose");
   app.add_flag("--devices-as-frames", options.devices_as_frames, "write devices as fixed child links");
+  app.add_flag("--balance-inertia", options.balance_inertia,
+               "write the nearest valid inertia for links whose inertia Drake, gz-math and MuJoCo refuse (a warning "
+               "per link; the tensor body2mjcf writes)");
   if (auto code = front.parse(argc, argv)) return *code;
   options.mesh_format = mesh_format == "dae" ? converters::MeshFormat::kDae : converters::MeshFormat::kStl;
 

@@ -206,7 +206,7 @@ TEST_CASE("mjcf contact: the exclude scheme for small models, contact bits beyon
   // Small: one <exclude> per pair of colliding bodies, MuJoCo's default contact bits.
   REQUIRE(write(boxes("Small", "S", 5, true, 0, 1), true, dir / "small.xml", options));
   const std::string small = read(dir / "small.xml");
-  CHECK(count(small, "<exclude ") == 15);  // 6 bodies
+  CHECK(count(small, "<exclude ") == 15);                              // 6 bodies
   CHECK(count(small, "contype=\"") == count(small, "contype=\"0\""));  // visual geoms only
   // Large: no excludes; every collision geom in the group derived from the model name.
   REQUIRE(write(boxes("Large", "L", 64, true, 0, 1), true, dir / "large.xml", options));

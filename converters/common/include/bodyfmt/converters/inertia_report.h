@@ -1,0 +1,31 @@
+#pragma once
+/// How the exporters word an inertia the physical-validity gate (bodyfmt/physical.h) finds not
+/// physical (kNotPositiveDefinite, kTriangle), so that body2mjcf and body2urdf give the same
+/// numbers in the same words: the tensor as written, its principal moments and defect, the
+/// nearest valid tensor (balance_inertia, the gate's `balanced`), and what --balance-inertia
+/// wrote instead.
+#include <bodyfmt/model.h>
+#include <bodyfmt/physical.h>
+
+#include <Eigen/Core>
+
+#include <string>
+
+namespace bodyfmt::converters {
+
+/// "[Ixx, Ixy, Ixz, Iyy, Iyz, Izz]" (the upper triangle, shortest round-trip numbers).
+std::string tensor_text(const Eigen::Matrix3d& inertia);
+/// "(A, B, C)".
+std::string moments_text(const Eigen::Vector3d& moments);
+/// Why the tensor of `finding` is refused: "a negative moment" or "A + B - C = x".
+std::string inertia_defect_text(const PhysicalFinding& finding);
+/// The fix hint: "nearest valid inertia (link axes, about the centre of mass): [...]", or empty
+/// when balancing leaves nothing.
+std::string nearest_inertia_hint(const PhysicalFinding& finding);
+/// What an export changed under --balance-inertia, for its export-value-changed report:
+/// "the inertia [...] of link "NAME" (principal moments (...), DEFECT); written balanced
+/// (--balance-inertia, bodyfmt::balance_inertia) as [...] (principal moments (...))".
+std::string balanced_inertia_text(const Link& link, const PhysicalFinding& finding, const Eigen::Matrix3d& before,
+                                  const Eigen::Matrix3d& after);
+
+}  // namespace bodyfmt::converters
