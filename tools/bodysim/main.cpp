@@ -13,6 +13,9 @@
 #include <bodyfmt/converters/protect_inputs.h>
 #include <bodyfmt/derived.h>
 #include <bodyfmt/dynamics/checks.h>
+#ifdef BODYFMT_HAVE_MUJOCO_CROSS_CHECK
+#include <bodyfmt/dynamics/drop_cross_check.h>
+#endif
 #include <bodyfmt/dynamics/scenario.h>
 #include <bodyfmt/rules.h>
 
@@ -110,6 +113,10 @@ int main(int argc, char** argv) {
     app.add_option("--d-gain", suite.d_gain, "turret servo D gain, N·m·s/rad (default 50)")
         ->check(CLI::NonNegativeNumber);
   }
+  if (command == "check")
+    app.add_option("--cross-check", cross_check,
+                   "also run the locked-joint drop in MuJoCo 2.2.2 on body2mjcf's export (a free root only)")
+        ->check(CLI::IsMember({"mujoco"}));
   dynamics::ScenarioLimits limits;
   if (command == "run") {
     app.add_option("--scenario", scenario_path, "the scenario file (YAML; see dynamics/README.md)")->required();
@@ -202,6 +209,9 @@ int main(int argc, char** argv) {
     }
     std::vector<dynamics::CheckResult> results;
     dynamics::TankLayout tank;
+#ifdef BODYFMT_HAVE_MUJOCO_CROSS_CHECK
+    dynamics::DropCrossCheckReport drop_report;
+#endif
     if (command == "check-tank") {
       results = dynamics::run_tank_suite(*model, derived, suite, sink, why, &tank);
       if (!results.empty() && !cross_check.empty()) {
@@ -213,8 +223,21 @@ int main(int argc, char** argv) {
         return finish(true, "this bodysim was built without MuJoCo: --cross-check mujoco is unavailable");
 #endif
       }
-    } else
+    } else {
       results = dynamics::run_generic_checks(*model, derived, sim, sink, why);
+      if (!results.empty() && !cross_check.empty()) {
+#ifdef BODYFMT_HAVE_MUJOCO_CROSS_CHECK
+        dynamics::DropCrossCheckOptions drop;
+        drop.sim = sim;
+        std::vector<dynamics::CheckResult> cross =
+            dynamics::run_drop_cross_check(*model, derived, drop, sink, why, &drop_report);
+        if (cross.empty()) return finish(true, why.empty() ? "the MuJoCo cross-check failed" : why);
+        results.insert(results.end(), cross.begin(), cross.end());
+#else
+        return finish(true, "this bodysim was built without MuJoCo: --cross-check mujoco is unavailable");
+#endif
+      }
+    }
     if (results.empty()) return finish(true, why.empty() ? "nothing was simulated" : why + "; nothing was simulated");
     std::cout << fmt::format("bodysim {}: {} ({}), total mass {} kg\n", command, model->name, path,
                              number(derived.total_mass));
@@ -239,6 +262,9 @@ int main(int argc, char** argv) {
         std::cout << "  cross-check: MuJoCo 2.2.2 on body2mjcf's export (elliptic cones, Euler 1 ms, belt velocity "
                      "through mjcb_control); its lines: measured = MuJoCo, expected = Simbody\n";
     }
+#ifdef BODYFMT_HAVE_MUJOCO_CROSS_CHECK
+    if (command == "check" && !cross_check.empty()) std::cout << dynamics::describe(drop_report);
+#endif
     print_results(results);
     bool failed = false;
     for (const auto& r : results) failed = failed || !r.passed;

@@ -1,0 +1,68 @@
+#pragma once
+/// `bodysim check --cross-check mujoco`: the locked-joint drop of the generic checks (a model
+/// with a free root, every joint welded at its initial position, released 2 cm above the floor)
+/// runs in Simbody and in MuJoCo 2.2.2 on body2mjcf's export of the same model, and the two
+/// engines' rest height, rest orientation, floor force ΣN and settle time are compared within
+/// the tolerances of dynamics-checker.md §4 T8 (dynamics/README.md, "Drop cross-check").
+/// Built only with MuJoCo (BODYFMT_HAVE_MUJOCO_CROSS_CHECK). Not thread-safe.
+
+#include <bodyfmt/dynamics/checks.h>
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace bodyfmt::dynamics {
+
+/// One engine's drop, measured the same way in both.
+struct DropMeasures {
+  double height = 0;  ///< root origin z at the end (m)
+  /// Root orientation at the end.
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  double turned = 0;              ///< angle of the root's rotation since release (rad)
+  double floor_force = 0;         ///< ΣN, mean over the last 0.5 s (N)
+  double settle_time = 0;         ///< from release to the last sample outside the rest band (s)
+  double first_contact = 0;       ///< from release to the first floor force (s)
+  double orientation_settle = 0;  ///< from release to the last sample outside the orientation band (s)
+  double kinetic_energy = 0;      ///< at the end (J)
+  double penetration = 0;         ///< deepest point below the floor at the end (m)
+  int contacts = 0;               ///< points (Simbody) or contacts (MuJoCo) under the floor at the end
+  /// The impact, which sets the settle time: how far the root sank below its rest height, and
+  /// how far it rose above it afterwards (a bounce), in m.
+  double impact_sink = 0;
+  double rebound = 0;
+};
+
+struct DropCrossCheckOptions {
+  SimOptions sim;  ///< Simbody's options; μ also goes on every MuJoCo geom
+  /// Applied to the (already welded) export before MuJoCo compiles it; for tests that show the
+  /// cross-check catches a defective export. Empty: the export as written.
+  std::function<bool(const std::filesystem::path& mjcf, std::string& why)> mutate_export;
+};
+
+/// What the cross-check measured, for reports.
+struct DropCrossCheckReport {
+  DropMeasures simbody, mujoco;
+  double drop_height = 0;  ///< release height of the lowest contact point (m)
+  /// MuJoCo's soft contact alone: the time its linear spring-damper (solref, solimp) needs to
+  /// bring an impact at the free-fall speed back within the height band (s), and its time
+  /// constant (solref[0], s).
+  double mujoco_relaxation = 0;
+  double mujoco_time_constant = 0;
+  /// What MuJoCo's settle time is compared with: Simbody's first contact plus MuJoCo's
+  /// relaxation, or Simbody's orientation settle when that is later (s).
+  double expected_settle = 0;
+};
+
+/// Runs the drop in both engines and compares them (measured = MuJoCo, expected = Simbody).
+/// Returns no results and says why when the model has no free root, nothing to drop, or an
+/// engine cannot load it.
+std::vector<CheckResult> run_drop_cross_check(const Model& model, const Derived& derived,
+                                              const DropCrossCheckOptions& options, DiagnosticSink& sink,
+                                              std::string& why, DropCrossCheckReport* report = nullptr);
+
+/// The measurements of both engines, two indented lines for bodysim's header.
+std::string describe(const DropCrossCheckReport& report);
+
+}  // namespace bodyfmt::dynamics

@@ -1,0 +1,342 @@
+// `bodysim check --cross-check mujoco` (dynamics-checker.md §4 G5 and T8): the locked-joint drop
+// and settle in Simbody and in MuJoCo 2.2.2 on body2mjcf's export of the same model.
+
+#include <bodyfmt/dynamics/drop_cross_check.h>
+
+#include "mujoco_engine.h"
+
+#include <fmt/format.h>
+#include <tinyxml2.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <map>
+
+namespace bodyfmt::dynamics {
+namespace {
+
+constexpr double kDrop = 0.02;        // m, as the generic locked drop
+constexpr double kDuration = 3.0;     // s, as the generic locked drop
+constexpr double kSample = 0.001;     // s: MuJoCo's step
+constexpr double kForceWindow = 0.5;  // s: ΣN is averaged over the end of the run
+// T8 tolerances (spec §4): settled height 0.5 mm, ΣN 1 %; the settle time is a time to a
+// threshold, like T5's t90 (5 %). T8 has no line for orientation: the settle's own bound on
+// turning (T3: |Δyaw| < 1e-3 rad) is used for the whole rotation.
+constexpr double kHeightTolerance = 0.5e-3;
+constexpr double kForceTolerance = 0.01;
+constexpr double kSettleTolerance = 0.05;
+constexpr double kOrientationTolerance = 1e-3;
+
+double angle_of(const Eigen::Matrix3d& R) { return Eigen::AngleAxisd(R).angle(); }
+
+std::string numbers(const Eigen::Vector3d& v) { return fmt::format("{:.17g} {:.17g} {:.17g}", v.x(), v.y(), v.z()); }
+
+bool read_vector(const tinyxml2::XMLElement* e, const char* name, double* out, int n) {
+  const char* text = e->Attribute(name);
+  if (!text) return false;
+  char* end = nullptr;
+  for (int k = 0; k < n; ++k) {
+    out[k] = std::strtod(text, &end);
+    if (end == text) return false;
+    text = end;
+  }
+  return true;
+}
+
+/// Welds every joint of the export at its initial position, as Simulation does with
+/// lock_joints: each hinge or slide of a body is removed (MuJoCo welds a body without joints to
+/// its parent) and the body's pose takes the joint's initial displacement. The keyframe,
+/// actuators and equality constraints referred to the joints, or to bodies now welded into one
+/// rigid body; they go too. A rigid body does not collide with itself (MuJoCo skips pairs within
+/// a weld group), so the model's self-collision setting does not matter here. A free joint
+/// below the root is locked too (see below).
+bool weld_joints(const Model& model, const std::filesystem::path& file, std::string& why) {
+  tinyxml2::XMLDocument doc;
+  if (doc.LoadFile(file.c_str()) != tinyxml2::XML_SUCCESS) {
+    why = std::string("cannot read the MJCF export: ") + doc.ErrorStr();
+    return false;
+  }
+  tinyxml2::XMLElement* root = doc.RootElement();
+  for (const char* section : {"keyframe", "actuator", "equality"})
+    while (tinyxml2::XMLElement* e = root->FirstChildElement(section)) root->DeleteChild(e);
+  std::map<std::string, const Link*> links;
+  for (const Link& link : model.links) links[link.name] = &link;
+  std::vector<tinyxml2::XMLElement*> stack;
+  if (tinyxml2::XMLElement* world = root->FirstChildElement("worldbody")) stack.push_back(world);
+  while (!stack.empty()) {
+    tinyxml2::XMLElement* body = stack.back();
+    stack.pop_back();
+    for (tinyxml2::XMLElement* c = body->FirstChildElement("body"); c; c = c->NextSiblingElement("body"))
+      stack.push_back(c);
+    while (tinyxml2::XMLElement* joint = body->FirstChildElement("joint")) {
+      const char* name = body->Attribute("name");
+      const auto link = links.find(name ? name : "");
+      if (link == links.end()) {
+        why = fmt::format("the MJCF body \"{}\" is no link of the model", name ? name : "");
+        return false;
+      }
+      const double q0 = link->second->initial_displacement;
+      if (q0 != 0) {
+        double p[3] = {0, 0, 0}, a[3] = {0, 0, 1}, x[3] = {0, 0, 0}, q[4] = {1, 0, 0, 0};
+        read_vector(joint, "pos", p, 3);
+        read_vector(joint, "axis", a, 3);
+        read_vector(body, "pos", x, 3);
+        read_vector(body, "quat", q, 4);
+        const Eigen::Vector3d pj(p[0], p[1], p[2]), axis = Eigen::Vector3d(a[0], a[1], a[2]).normalized();
+        Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+        X.linear() = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
+        X.translation() = Eigen::Vector3d(x[0], x[1], x[2]);
+        Eigen::Isometry3d J = Eigen::Isometry3d::Identity();
+        const char* type = joint->Attribute("type");
+        if (type && std::string(type) == "slide") {
+          J.translation() = q0 * axis;
+        } else {
+          J.linear() = Eigen::AngleAxisd(q0, axis).toRotationMatrix();
+          J.translation() = pj - J.linear() * pj;  // about the joint's position
+        }
+        X = X * J;
+        const Eigen::Quaterniond r(X.linear());
+        body->SetAttribute("pos", numbers(X.translation()).c_str());
+        body->SetAttribute("quat", fmt::format("{:.17g} {:.17g} {:.17g} {:.17g}", r.w(), r.x(), r.y(), r.z()).c_str());
+      }
+      body->DeleteChild(joint);
+    }
+  }
+  // A link with a free joint below the root is a top-level body of the export (MuJoCo has no
+  // free joint inside a tree); Simulation welds it to its parent, and so does this.
+  std::map<std::string, tinyxml2::XMLElement*> bodies;
+  std::vector<tinyxml2::XMLElement*> all;
+  if (tinyxml2::XMLElement* world = root->FirstChildElement("worldbody")) all.push_back(world);
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    for (tinyxml2::XMLElement* c = all[k]->FirstChildElement("body"); c; c = c->NextSiblingElement("body")) {
+      all.push_back(c);
+      if (const char* name = c->Attribute("name")) bodies[name] = c;
+    }
+  }
+  for (std::size_t i = 1; i < model.links.size(); ++i) {
+    const Link& link = model.links[i];
+    if (link.joint_type != JointType::kFree || link.parent < 0) continue;
+    const auto body = bodies.find(link.name), parent = bodies.find(model.links[link.parent].name);
+    if (body == bodies.end() || parent == bodies.end()) {
+      why = fmt::format("the MJCF export has no body for link \"{}\" or its parent", link.name);
+      return false;
+    }
+    tinyxml2::XMLElement* b = body->second;
+    while (tinyxml2::XMLElement* free = b->FirstChildElement("freejoint")) b->DeleteChild(free);
+    for (tinyxml2::XMLElement* j = b->FirstChildElement("joint"); j;) {
+      tinyxml2::XMLElement* next = j->NextSiblingElement("joint");
+      if (const char* type = j->Attribute("type"); type && std::string(type) == "free") b->DeleteChild(j);
+      j = next;
+    }
+    const Eigen::Isometry3d X = as_isometry(link.X_PL);
+    const Eigen::Quaterniond r(X.linear());
+    b->SetAttribute("pos", numbers(X.translation()).c_str());
+    b->SetAttribute("quat", fmt::format("{:.17g} {:.17g} {:.17g} {:.17g}", r.w(), r.x(), r.y(), r.z()).c_str());
+    parent->second->InsertEndChild(b);
+  }
+  if (doc.SaveFile(file.c_str()) != tinyxml2::XML_SUCCESS) {
+    why = std::string("cannot write the welded MJCF export: ") + doc.ErrorStr();
+    return false;
+  }
+  return true;
+}
+
+struct Sample {
+  double t, z;
+  Eigen::Matrix3d R;
+  double force;
+};
+
+template <class Make>
+DropMeasures drop(Make make, const Eigen::Isometry3d& start) {
+  auto engine = make();
+  std::vector<Sample> samples;
+  const int n = static_cast<int>(std::lround(kDuration / kSample));
+  samples.reserve(n);
+  for (int i = 1; i <= n; ++i) {
+    engine->advance_to(i * kSample);
+    const Eigen::Isometry3d X = engine->root_pose();
+    samples.push_back({i * kSample, X.translation().z(), X.linear(), engine->floor_force()});
+  }
+  DropMeasures r;
+  const Sample& end = samples.back();
+  r.height = end.z;
+  r.rotation = end.R;
+  r.turned = angle_of(end.R * start.linear().transpose());
+  int counted = 0;
+  for (const Sample& s : samples)
+    if (s.t > kDuration - kForceWindow + 1e-9) {
+      r.floor_force += s.force;
+      ++counted;
+    }
+  r.floor_force /= std::max(counted, 1);
+  // Settled: the pose stays within the T8 bands of where it comes to rest.
+  r.settle_time = 0;
+  for (const Sample& s : samples) {
+    const bool turning = angle_of(s.R * end.R.transpose()) > kOrientationTolerance;
+    if (std::abs(s.z - end.z) > kHeightTolerance || turning) r.settle_time = s.t;
+    if (turning) r.orientation_settle = s.t;
+  }
+  for (const Sample& s : samples)
+    if (s.force > 0) {
+      r.first_contact = s.t;
+      break;
+    }
+  bool touched = false;
+  for (const Sample& s : samples) {
+    r.impact_sink = std::max(r.impact_sink, end.z - s.z);
+    touched = touched || s.force > 0;
+    if (touched) r.rebound = std::max(r.rebound, s.z - end.z);
+  }
+  r.kinetic_energy = engine->kinetic_energy();
+  r.penetration = engine->penetration();
+  r.contacts = engine->contacts();
+  return r;
+}
+
+/// MuJoCo's contact as the linear system it is once the penetration exceeds solimp's width
+/// (impedance d = dmax): r̈ = d·(−b·ṙ − k·r), k = 1/(dmax²·τ²·ζ²), b = 2/(dmax·τ) (MuJoCo's
+/// Computation chapter, "soft constraints"). From an impact at speed v, the time until the
+/// penetration stays within `band` of rest.
+double mujoco_relaxation(double time_constant, double damping_ratio, double dmax, double speed, double band) {
+  const double k = 1 / (dmax * dmax * time_constant * time_constant * damping_ratio * damping_ratio);
+  const double b = 2 / (dmax * time_constant);
+  double x = 0, v = speed, last = 0;
+  const double dt = 1e-5;
+  for (double t = dt; t < 2.0; t += dt) {
+    const double a = dmax * (-b * v - k * x);
+    v += a * dt;
+    x += v * dt;
+    if (std::abs(x) > band) last = t;
+  }
+  return last;
+}
+
+CheckResult compare(std::string name, double mujoco, double simbody, double allowed, std::string unit,
+                    std::string tolerance) {
+  CheckResult c{"MuJoCo vs Simbody, drop 2 cm, joints locked: " + std::move(name),
+                mujoco,
+                simbody,
+                std::move(unit),
+                std::move(tolerance),
+                false};
+  c.passed = std::isfinite(mujoco) && std::abs(mujoco - simbody) <= allowed;
+  return c;
+}
+
+}  // namespace
+
+std::vector<CheckResult> run_drop_cross_check(const Model& model, const Derived& derived,
+                                              const DropCrossCheckOptions& options, DiagnosticSink& sink,
+                                              std::string& why, DropCrossCheckReport* report) {
+  std::vector<CheckResult> results;
+  if (model.root().joint_type != JointType::kFree) {
+    why = "the MuJoCo cross-check drops a model with a free root; the root of this one is fixed";
+    return results;
+  }
+  SimOptions locked = options.sim;
+  locked.lock_joints = true;
+  // What building the system reports (a balanced inertia) the generic checks have said
+  // already; it is passed on only when the system cannot be built.
+  CollectingSink quiet;
+  std::unique_ptr<Simulation> probe = Simulation::build(model, derived, locked, quiet);
+  if (!probe) {
+    for (const Diagnostic& d : quiet.diagnostics()) sink.report(d);
+    why = "the model cannot be simulated as written (see above)";
+    return results;
+  }
+  if (probe->contact_points().empty()) {
+    why = "the model has no collision geometry to drop";
+    return results;
+  }
+  // The generic checks' start: the file pose, the lowest contact point 2 cm above the floor,
+  // with the joints at their initial positions (derived.X_WL has them at zero).
+  double lowest = std::numeric_limits<double>::infinity();
+  for (const ContactPoint& p : probe->contact_points())
+    lowest = std::min(lowest, (probe->link_pose(p.link) * p.position_in_link).z() - p.radius);
+  Eigen::Isometry3d start = as_isometry(model.root().X_PL);
+  start.translation().z() += kDrop - lowest;
+
+  mjModel* m = load_mujoco_export(
+      model, derived, options.sim, sink, why, [&](const std::filesystem::path& file, std::string& reason) {
+        return weld_joints(model, file, reason) && (!options.mutate_export || options.mutate_export(file, reason));
+      });
+  if (!m) return results;
+  // As the tank cross-check and Choreonoid's MuJoCo plugin: elliptic cones, Euler at 1 ms, μ on
+  // every geom (MuJoCo takes the larger of a pair). The contact bits stay as exported: the
+  // floor is a default geom, which every exported collision geom must touch.
+  m->opt.cone = mjCONE_ELLIPTIC;
+  m->opt.integrator = mjINT_EULER;
+  m->opt.timestep = kSample;
+  for (int g = 0; g < m->ngeom; ++g) {
+    m->geom_friction[3 * g] = options.sim.contact_params.friction;
+    m->geom_condim[g] = 3;
+  }
+  const int floor = mj_name2id(m, mjOBJ_GEOM, "bodysim_floor");
+  const double time_constant = m->geom_solref[2 * floor], damping_ratio = m->geom_solref[2 * floor + 1];
+  const double dmax = m->geom_solimp[5 * floor + 1];
+  DropCrossCheckReport measured;
+  measured.drop_height = kDrop;
+  try {
+    measured.simbody =
+        drop([&] { return std::make_unique<SimbodyEngine>(Simulation::build(model, derived, locked, quiet), start); },
+             start);
+    measured.mujoco = drop([&] { return std::make_unique<MujocoEngine>(model, m, start); }, start);
+  } catch (...) {
+    mj_deleteModel(m);
+    throw;
+  }
+  mj_deleteModel(m);
+  const DropMeasures& sb = measured.simbody;
+  const DropMeasures& mj = measured.mujoco;
+  // The settle time is set by the impact, and the two contacts differ there by design: the
+  // checker's stiff Hunt–Crossley points bounce, MuJoCo's soft constraint sinks and creeps
+  // back (spec §6.5, §6.9). MuJoCo's creep follows from its solref alone, so MuJoCo is held to
+  // Simbody's motion with MuJoCo's own contact relaxation after Simbody's first contact.
+  measured.mujoco_time_constant = time_constant;
+  measured.mujoco_relaxation = mujoco_relaxation(time_constant, damping_ratio, dmax,
+                                                 std::sqrt(2 * options.sim.gravity * kDrop), kHeightTolerance);
+  measured.expected_settle = std::max(sb.first_contact + measured.mujoco_relaxation, sb.orientation_settle);
+  if (report) *report = measured;
+
+  results.push_back(compare("rest height of the root", mj.height, sb.height, kHeightTolerance, "m",
+                            fmt::format("±{:g} m", kHeightTolerance)));
+  {
+    const double apart = angle_of(mj.rotation * sb.rotation.transpose());
+    CheckResult c = compare(
+        fmt::format("rest orientation, angle between the engines (turned {:.3g} and {:.3g} rad)", mj.turned, sb.turned),
+        apart, 0, kOrientationTolerance, "rad", fmt::format("≤ {:g} rad", kOrientationTolerance));
+    results.push_back(c);
+  }
+  results.push_back(compare("floor force ΣN at rest", mj.floor_force, sb.floor_force,
+                            kForceTolerance * std::abs(sb.floor_force), "N",
+                            fmt::format("±{:g} %", kForceTolerance * 100)));
+  const double expected = measured.expected_settle;
+  results.push_back(compare(fmt::format("settle time within {:g} mm and {:g} rad of rest (Simbody: first contact "
+                                        "{:.3f} s + MuJoCo's contact relaxation {:.3f} s, or turned until {:.3f} s)",
+                                        kHeightTolerance * 1e3, kOrientationTolerance, sb.first_contact,
+                                        measured.mujoco_relaxation, sb.orientation_settle),
+                            mj.settle_time, expected, kSettleTolerance * expected, "s",
+                            fmt::format("±{:g} %", kSettleTolerance * 100)));
+  return results;
+}
+
+std::string describe(const DropCrossCheckReport& report) {
+  std::string out = fmt::format(
+      "  cross-check: MuJoCo 2.2.2 on body2mjcf's export with every joint welded (elliptic cones, Euler 1 ms, "
+      "default solref and solimp: contact time constant {:g} s); its lines: measured = MuJoCo, expected = "
+      "Simbody\n",
+      report.mujoco_time_constant);
+  for (const auto& [name, d] : {std::pair<const char*, const DropMeasures&>{"Simbody", report.simbody},
+                                std::pair<const char*, const DropMeasures&>{"MuJoCo", report.mujoco}})
+    out += fmt::format(
+        "  drop {:g} cm, joints locked, {:<7}: rests at z = {:.6f} m, turned {:.4g} rad, ΣN = {:.6g} N, settled "
+        "at {:.3f} s (impact: {:.2f} mm below rest, then {:.2f} mm above), kinetic energy {:.3g} J; {} contacts, "
+        "deepest {:.4f} mm\n",
+        report.drop_height * 100, name, d.height, d.turned, d.floor_force, d.settle_time, d.impact_sink * 1e3,
+        d.rebound * 1e3, d.kinetic_energy, d.contacts, d.penetration * 1e3);
+  return out;
+}
+
+}  // namespace bodyfmt::dynamics

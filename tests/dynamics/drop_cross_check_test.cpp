@@ -1,0 +1,175 @@
+// The drop cross-check (`bodysim check --cross-check mujoco`) against defective exports: each
+// mutant edits body2mjcf's export of a corpus box (12.8 kg, 0.2 × 0.8 × 0.2 m) in one way before
+// MuJoCo loads it, and the line that must catch it fails; exports written differently with the
+// same physics pass every line. The model with a joint displaced at the start checks that both
+// engines weld it there.
+#include <doctest/doctest.h>
+
+#include <bodyfmt/dynamics/drop_cross_check.h>
+#include <bodyfmt/load.h>
+
+#include <tinyxml2.h>
+
+#include <functional>
+#include <map>
+#include <string>
+
+using namespace bodyfmt;
+using namespace bodyfmt::dynamics;
+
+namespace {
+
+const std::string kBox = std::string(BODYFMT_SHARED_DIR) + "/corpus/choreonoid/misc/box1.body";
+
+struct Loaded {
+  Model model;
+  Derived derived;
+};
+
+Loaded load(const std::string& path) {
+  CollectingSink sink;
+  std::optional<Model> model = load_body(path, LoadOptions{}, sink);
+  REQUIRE(model);
+  Loaded l{std::move(*model), {}};
+  l.derived = compute_derived(l.model, sink);
+  return l;
+}
+
+/// Edits the root <body> of the export.
+using Edit = std::function<void(tinyxml2::XMLElement* root_body)>;
+
+std::map<std::string, bool> run(const Loaded& l, const Edit& edit) {
+  DropCrossCheckOptions options;
+  if (edit)
+    options.mutate_export = [edit](const std::filesystem::path& file, std::string& why) {
+      tinyxml2::XMLDocument doc;
+      if (doc.LoadFile(file.c_str()) != tinyxml2::XML_SUCCESS) {
+        why = "unreadable";
+        return false;
+      }
+      edit(doc.RootElement()->FirstChildElement("worldbody")->FirstChildElement("body"));
+      return doc.SaveFile(file.c_str()) == tinyxml2::XML_SUCCESS;
+    };
+  CollectingSink sink;
+  std::string why;
+  const std::vector<CheckResult> results = run_drop_cross_check(l.model, l.derived, options, sink, why);
+  INFO(why);
+  REQUIRE(results.size() == 4);
+  std::map<std::string, bool> passed;
+  for (const char* key : {"rest height", "rest orientation", "floor force", "settle time"})
+    for (const CheckResult& r : results)
+      if (r.name.find(key) != std::string::npos) passed[key] = r.passed;
+  REQUIRE(passed.size() == 4);
+  return passed;
+}
+
+tinyxml2::XMLElement* collision_geom(tinyxml2::XMLElement* body) {
+  for (tinyxml2::XMLElement* g = body->FirstChildElement("geom"); g; g = g->NextSiblingElement("geom"))
+    if (g->IntAttribute("group") == 3) return g;
+  FAIL("no collision geom");
+  return nullptr;
+}
+
+struct Case {
+  std::string name;
+  Edit edit;
+  std::map<std::string, bool> expected;
+};
+
+}  // namespace
+
+TEST_CASE("drop cross-check: each defective export fails the line that must catch it and equivalent exports pass") {
+  const Loaded box = load(kBox);
+  const std::map<std::string, bool> all_pass = {
+      {"rest height", true}, {"rest orientation", true}, {"floor force", true}, {"settle time", true}};
+  auto except = [&](std::initializer_list<const char*> failing) {
+    std::map<std::string, bool> m = all_pass;
+    for (const char* f : failing) m[f] = false;
+    return m;
+  };
+  const std::vector<Case> cases = {
+      // Valid variants: the same physics, written differently.
+      {"the export as written", nullptr, all_pass},
+      {"the inertia as diaginertia instead of fullinertia",
+       [](tinyxml2::XMLElement* b) {
+         tinyxml2::XMLElement* in = b->FirstChildElement("inertial");
+         in->DeleteAttribute("fullinertia");
+         in->SetAttribute("diaginertia", "0.72533 0.08533 0.72533");
+       },
+       all_pass},
+      {"the visual geom removed",
+       [](tinyxml2::XMLElement* b) {
+         for (tinyxml2::XMLElement* g = b->FirstChildElement("geom"); g; g = g->NextSiblingElement("geom"))
+           if (g->IntAttribute("group") == 2) {
+             b->DeleteChild(g);
+             break;
+           }
+       },
+       all_pass},
+      {"a mass 0.5 % heavier (inside T8's 1 %)",
+       [](tinyxml2::XMLElement* b) { b->FirstChildElement("inertial")->SetAttribute("mass", 12.8 * 1.005); }, all_pass},
+      // Mutants: one defect each.
+      {"a mass 2 % heavier",
+       [](tinyxml2::XMLElement* b) { b->FirstChildElement("inertial")->SetAttribute("mass", 12.8 * 1.02); },
+       except({"floor force"})},
+      {"the collision box 1 mm taller at the bottom",
+       [](tinyxml2::XMLElement* b) {
+         tinyxml2::XMLElement* g = collision_geom(b);
+         g->SetAttribute("size", "0.1 0.4 0.1005");
+         g->SetAttribute("pos", "0 0 -0.0005");
+       },
+       except({"rest height"})},
+      {"the collision box turned 90 degrees (standing on its end)",
+       [](tinyxml2::XMLElement* b) {
+         collision_geom(b)->SetAttribute("quat", "0.70710678118654757 0.70710678118654757 0 0");
+       },
+       except({"rest height", "settle time"})},
+      // It rolls onto its side, as tall as its bottom (0.2 m): only the pose and the time show it.
+      {"the centre of mass outside the box's footprint",
+       [](tinyxml2::XMLElement* b) { b->FirstChildElement("inertial")->SetAttribute("pos", "0.15 0 0"); },
+       except({"rest orientation", "settle time"})},
+      {"the collision geom touching nothing (contype = conaffinity = 0)",
+       [](tinyxml2::XMLElement* b) {
+         tinyxml2::XMLElement* g = collision_geom(b);
+         g->SetAttribute("contype", 0);
+         g->SetAttribute("conaffinity", 0);
+       },
+       except({"rest height", "floor force", "settle time"})},
+  };
+  for (const Case& c : cases) {
+    CAPTURE(c.name);
+    const std::map<std::string, bool> passed = run(box, c.edit);
+    for (const auto& [line, expected] : c.expected) {
+      CAPTURE(line);
+      const bool got = passed.at(line);
+      CHECK(got == expected);
+    }
+  }
+}
+
+TEST_CASE("drop cross-check: a joint displaced at the start is welded there in both engines") {
+  // Welded at q = 0 in MuJoCo, the leg would point down and carry the model 0.3 m higher.
+  const Loaded l = load(std::string(BODYFMT_TEST_DATA_DIR) + "/dynamics/locked_displaced.body");
+  DropCrossCheckOptions options;
+  CollectingSink sink;
+  std::string why;
+  DropCrossCheckReport report;
+  const std::vector<CheckResult> results = run_drop_cross_check(l.model, l.derived, options, sink, why, &report);
+  INFO(why);
+  REQUIRE(results.size() == 4);
+  for (const CheckResult& r : results) {
+    CAPTURE(r.name);
+    CHECK(r.passed);
+  }
+  // The body rests on its own 0.1 m box: its centre 0.05 m up, less the contact's sink.
+  CHECK(report.simbody.height == doctest::Approx(0.05).epsilon(0.01));
+  CHECK(report.mujoco.height == doctest::Approx(0.05).epsilon(0.01));
+}
+
+TEST_CASE("drop cross-check: a fixed root is refused with a reason and nothing is simulated") {
+  const Loaded arm = load(std::string(BODYFMT_EXAMPLES_DIR) + "/arm.body");
+  CollectingSink sink;
+  std::string why;
+  CHECK(run_drop_cross_check(arm.model, arm.derived, {}, sink, why).empty());
+  CHECK(why.find("free root") != std::string::npos);
+}
