@@ -27,7 +27,7 @@ POSES = 5
 
 PIXELS = """(async () => {
   const bv = window.bodyview, set = %s;
-  for (const [k, v] of Object.entries(bv.toggles())) bv.setToggle(k, k in set ? set[k] : (k === 'visual' || k === 'tracks'));
+  for (const [k, v] of Object.entries(bv.toggles())) await bv.setToggle(k, k in set ? set[k] : (k === 'visual' || k === 'tracks'));
   const url = bv.render();
   const img = new Image(); img.src = url; await img.decode();
   const c = document.createElement('canvas'); c.width = img.width; c.height = img.height;

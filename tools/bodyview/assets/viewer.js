@@ -51,18 +51,41 @@
   const vec = (v) => '[' + v.map((x) => fmt(x)).join(', ') + ']';
 
   async function main() {
+    const timings = (api.timings = { start: performance.now() });
     const data = JSON.parse(document.getElementById('bv-data').textContent);
     const glb = bytes(document.getElementById('bv-glb').textContent);
     const { THREE, GLTFLoader, OrbitControls } = await importThree();
+    timings.imported = performance.now();
     document.title = data.model + ' — bodyview';
     document.getElementById('title').textContent = data.model + ' (' + data.links.length + ' links, ' + fmt(data.total_mass) + ' kg)';
 
-    // glTF node names as written (three.js renames nodes it loads).
+    // glTF node names as written (three.js renames nodes it loads). The first parse leaves the
+    // collision nodes out (three.js then builds none of their meshes: half the work on a large
+    // model); the whole GLB is parsed again when collision geometry is first switched on.
     const jsonLength = new DataView(glb.buffer, glb.byteOffset).getUint32(12, true);
     const gltfJson = JSON.parse(new TextDecoder().decode(glb.subarray(20, 20 + jsonLength)));
-    const gltf = await new Promise((resolve, reject) =>
-      new GLTFLoader().parse(glb.buffer.slice(glb.byteOffset, glb.byteOffset + glb.byteLength), '', resolve, reject));
+    const isCollision = (k) => /\/collision$/.test(gltfJson.nodes[k].name || '');
+    const visualJson = { ...gltfJson, nodes: gltfJson.nodes.map((n) => (n.children ? { ...n, children: n.children.filter((k) => !isCollision(k)) } : n)) };
+    const parse = (json) => new Promise((resolve, reject) => new GLTFLoader().parse(withJson(json), '', resolve, reject));
+    function withJson(json) {
+      const text = new TextEncoder().encode(JSON.stringify(json));
+      const padded = (text.length + 3) & ~3;
+      const bin = glb.subarray(20 + jsonLength);  // the BIN chunk with its header
+      const out = new Uint8Array(20 + padded + bin.length);
+      const view = new DataView(out.buffer);
+      view.setUint32(0, 0x46546c67, true);  // glTF
+      view.setUint32(4, 2, true);
+      view.setUint32(8, out.length, true);
+      view.setUint32(12, padded, true);
+      view.setUint32(16, 0x4e4f534a, true);  // JSON
+      out.set(text, 20);
+      out.fill(0x20, 20 + text.length, 20 + padded);
+      out.set(bin, 20 + padded);
+      return out.buffer;
+    }
+    const gltf = await parse(visualJson);
 
+    timings.parsed = performance.now();
     const links = data.links;
     const linkIndex = new Map(), jointIndex = new Map();
     links.forEach((l, i) => { if (!linkIndex.has(l.name)) linkIndex.set(l.name, i); });
@@ -112,9 +135,22 @@
     // Collision geometry is drawn translucent cyan over the visual model.
     const collisionMaterial = new THREE.MeshLambertMaterial({ color: 0x00c8ff, transparent: true, opacity: 0.55, depthWrite: false,
       polygonOffset: true, polygonOffsetFactor: -1, polygonOffsetUnits: -4 });  // over coincident visual faces
-    for (const g of collisionGroups) {
-      g.visible = false;
-      g.traverse((o) => { if (o.isMesh) o.material = collisionMaterial; });
+    let collisionLoad = null;
+    function loadCollision() {
+      collisionLoad ||= parse(gltfJson).then((whole) => {
+        const found = [];
+        whole.scene.traverse((o) => {
+          const a = whole.parser.associations.get(o);
+          if (a && a.nodes !== undefined && isCollision(a.nodes)) found.push([o, gltfJson.nodes[a.nodes].name.replace(/\/collision$/, '')]);
+        });
+        for (const [g, link] of found) {
+          if (!linkIndex.has(link)) continue;
+          g.traverse((o) => { if (o.isMesh) o.material = collisionMaterial; });
+          linkObject[linkIndex.get(link)].add(g);  // its transform was relative to this link's node
+          collisionGroups.push(g);
+        }
+      });
+      return collisionLoad;
     }
 
     const scene = new THREE.Scene();
@@ -263,12 +299,17 @@
     const toggles = { visual: true, collision: false, frames: false, axes: false, com: false, inertia: false, devices: false, tracks: true };
     const labels = { visual: 'visual', collision: 'collision', frames: 'link frames', axes: 'joint axes', com: 'centres of mass', inertia: 'inertia boxes', devices: 'devices', tracks: 'track belts' };
     const made = {};
-    function setToggle(name, on) {
+    async function setToggle(name, on) {
       if (!(name in toggles)) throw new Error('no toggle ' + name + ' (' + Object.keys(toggles).join(', ') + ')');
       toggles[name] = !!on;
-      if (name === 'visual') for (const g of visualGroups) g.visible = toggles.visual;
-      else if (name === 'collision') for (const g of collisionGroups) g.visible = toggles.collision;
-      else {
+      if (name === 'visual') {
+        for (const g of visualGroups) g.visible = toggles.visual;
+        for (const b of batches) b.batch.visible = toggles.visual;
+      }
+      else if (name === 'collision') {
+        if (on) await loadCollision();
+        for (const g of collisionGroups) g.visible = toggles.collision;
+      } else {
         if (on && !made[name]) made[name] = makers[name]();
         for (const o of made[name] || []) o.visible = toggles[name];
       }
@@ -292,11 +333,51 @@
       while (a && !objectLink.has(a)) a = a.parent;
       if (a) ownMeshes[objectLink.get(a)].push(o);
     });
+    // A large model's visual meshes are drawn as one BatchedMesh per material (one draw call
+    // instead of thousands); the meshes stay in the scene, hidden, and give the batch their
+    // world matrices each frame, and picking, boxes and selection still use them.
+    const BATCH_FROM = 1500;
+    const batches = [];
+    const visualMeshes = [];
+    for (const g of visualGroups) g.traverse((o) => { if (o.isMesh) visualMeshes.push(o); });
+    if (visualMeshes.length >= BATCH_FROM && THREE.BatchedMesh) {
+      const groups = new Map();
+      for (const m of visualMeshes) {
+        if (Array.isArray(m.material) || m.material.map || !m.geometry.index) continue;
+        const key = m.material.uuid + '|' + Object.keys(m.geometry.attributes).sort().join(',');
+        if (!groups.has(key)) groups.set(key, []);
+        groups.get(key).push(m);
+      }
+      for (const meshes of groups.values()) {
+        if (meshes.length < 16) continue;
+        let vertices = 0, indices = 0;
+        for (const m of meshes) { vertices += m.geometry.attributes.position.count; indices += m.geometry.index.count; }
+        const batch = new THREE.BatchedMesh(meshes.length, vertices, indices, meshes[0].material);
+        batch.perObjectFrustumCulled = false;
+        batch.sortObjects = false;
+        const ids = meshes.map((m) => {
+          const id = batch.addInstance(batch.addGeometry(m.geometry));
+          m.visible = false;
+          m.userData.batched = { batch, id };
+          return id;
+        });
+        scene.add(batch);
+        batches.push({ batch, meshes, ids });
+      }
+      frameUpdaters.push(() => {
+        scene.updateMatrixWorld();
+        for (const b of batches) for (let k = 0; k < b.ids.length; ++k) b.batch.setMatrixAt(b.ids[k], b.meshes[k].matrixWorld);
+      });
+    }
+
     let selected = -1;
     const saved = new Map();
     const treeItems = [];
     function select(i) {
-      for (const [m, material] of saved) m.material = material;
+      for (const [m, material] of saved) {
+        m.material = material;
+        if (m.userData.batched) { m.visible = false; m.userData.batched.batch.setVisibleAt(m.userData.batched.id, true); }
+      }
       saved.clear();
       if (treeItems[selected]) treeItems[selected].classList.remove('selected');
       selected = i;
@@ -308,6 +389,7 @@
         m.material = m.material.clone();
         m.material.emissive = new THREE.Color(0x2244ff);
         m.material.emissiveIntensity = 0.7;
+        if (m.userData.batched) { m.visible = true; m.userData.batched.batch.setVisibleAt(m.userData.batched.id, false); }
       }
       if (treeItems[i]) { treeItems[i].classList.add('selected'); treeItems[i].scrollIntoView({ block: 'nearest' }); }
       const l = links[i];
@@ -326,17 +408,6 @@
       requestRender();
     }
 
-    // The link tree.
-    const childLists = links.map(() => null);
-    const tree = document.getElementById('tree');
-    links.forEach((l, i) => {
-      const label = el('span', { onclick: () => select(i) }, l.name + ' ', el('span', { class: 'jt' }, l.type));
-      treeItems[i] = label;
-      const li = el('li', {}, label);
-      const parentList = l.parent >= 0 ? (childLists[l.parent] ||= treeItems[l.parent].parentElement.appendChild(el('ul'))) : tree;
-      parentList.append(li);
-    });
-
     // Picking: a click (not a drag) on a mesh selects its link.
     const raycaster = new THREE.Raycaster();
     let down = null;
@@ -345,7 +416,7 @@
       if (!down || Math.hypot(e.clientX - down[0], e.clientY - down[1]) > 4) return;
       const r = canvas.getBoundingClientRect();
       raycaster.setFromCamera(new THREE.Vector2(((e.clientX - r.left) / r.width) * 2 - 1, -((e.clientY - r.top) / r.height) * 2 + 1), camera);
-      const hit = raycaster.intersectObject(gltf.scene, true).find((h) => h.object.isMesh && h.object.visible && isShown(h.object));
+      const hit = raycaster.intersectObject(gltf.scene, true).find((h) => h.object.isMesh && isShown(h.object.userData.batched ? h.object.parent : h.object));
       let a = hit ? hit.object : null;
       while (a && !objectLink.has(a)) a = a.parent;
       select(a ? objectLink.get(a) : -1);
@@ -363,16 +434,22 @@
       if (l.type !== 'revolute' && l.type !== 'prismatic') return;
       const span = l.type === 'revolute' ? Math.PI : size;
       const min = l.lower === null ? -span : l.lower, max = l.upper === null ? span : l.upper;
-      joints.push({ name: l.joint, link: l.name, type: l.type, lower: l.lower, upper: l.upper, min, max });
-      const out = el('output');
-      const show = () => { out.textContent = l.type === 'revolute' ? (q[i] * 180 / Math.PI).toFixed(1) + '°' : (q[i] * 1000).toFixed(1) + ' mm'; };
-      const slider = el('input', { type: 'range', min: String(min), max: String(max), step: String((max - min) / 1000 || 1e-6), value: '0', 'data-joint': l.joint,
-        oninput: (e) => { setPosition(i, Number(e.target.value)); } });
-      slider.value = '0';
-      sliders.set(i, { slider, show });
-      show();
-      document.getElementById('joints').append(el('div', { class: 'joint', title: l.joint + ' on ' + l.name }, el('span', {}, l.joint), slider, out));
+      joints.push({ name: l.joint, link: l.name, type: l.type, lower: l.lower, upper: l.upper, min, max, index: i });
     });
+    function buildSliders() {
+      const box = document.getElementById('joints');
+      for (const { min, max, index: i } of joints) {
+        const l = links[i];
+        const out = el('output');
+        const show = () => { out.textContent = l.type === 'revolute' ? (q[i] * 180 / Math.PI).toFixed(1) + '°' : (q[i] * 1000).toFixed(1) + ' mm'; };
+        const slider = el('input', { type: 'range', min: String(min), max: String(max), step: String((max - min) / 1000 || 1e-6), value: '0', 'data-joint': l.joint,
+          oninput: (e) => { setPosition(i, Number(e.target.value)); } });
+        slider.value = String(q[i]);
+        sliders.set(i, { slider, show });
+        show();
+        box.append(el('div', { class: 'joint', title: l.joint + ' on ' + l.name }, el('span', {}, l.joint), slider, out));
+      }
+    }
     function setPosition(i, value) {
       q[i] = value;
       place(i);
@@ -382,12 +459,26 @@
       requestRender();
     }
     document.getElementById('reset').addEventListener('click', () => {
-      for (const i of sliders.keys()) setPosition(i, 0);
+      for (const j of joints) setPosition(j.index, 0);
       home();
       requestRender();
     });
 
+    // The link tree.
+    function buildTree() {
+      const childLists = links.map(() => null);
+      const tree = document.getElementById('tree');
+      links.forEach((l, i) => {
+      const label = el('span', { onclick: () => select(i) }, l.name + ' ', el('span', { class: 'jt' }, l.type));
+      treeItems[i] = label;
+      const li = el('li', {}, label);
+      const parentList = l.parent >= 0 ? (childLists[l.parent] ||= treeItems[l.parent].parentElement.appendChild(el('ul'))) : tree;
+      parentList.append(li);
+    });
+    }
+
     // Findings: clicking one selects its link and shows the diagnostic with its caret.
+    function buildFindings() {
     const findingList = document.getElementById('findings');
     document.getElementById('finding-count').textContent = '(' + data.findings.length + ')';
     data.findings.forEach((f) => {
@@ -402,6 +493,7 @@
       });
       findingList.append(li);
     });
+    }
 
     function find(name) {
       const i = linkIndex.has(name) ? linkIndex.get(name) : jointIndex.has(name) ? jointIndex.get(name) : -1;
@@ -409,7 +501,7 @@
       return i;
     }
     Object.assign(api, {
-      joints: () => joints.map((j) => ({ ...j, value: q[find(j.link)] })),
+      joints: () => joints.map(({ index, ...j }) => ({ ...j, value: q[index] })),
       links: () => links.map((l) => l.name),
       link: (name) => ({ ...links[find(name)] }),
       drawnBox(name) {
@@ -444,6 +536,7 @@
       select: (name) => select(name === null ? -1 : find(name)),
       reset: () => document.getElementById('reset').click(),
       render() { render(); return canvas.toDataURL('image/png'); },
+      batched: () => batches.reduce((n, b) => n + b.ids.length, 0),
       camera: () => ({ position: camera.position.toArray(), target: controls.target.toArray() }),
     });
 
@@ -468,8 +561,16 @@
       poll();
     }
 
+    timings.setup = performance.now();
     render();
+    timings.rendered = performance.now();
     api.firstFrameMs = performance.now();  // since the navigation started
+    // The side panel after the first frame: on a large model its layout costs more than the frame.
+    await new Promise((resolve) => setTimeout(resolve, 0));
+    buildTree();
+    buildSliders();
+    buildFindings();
+    timings.panels = performance.now();
     resolveReady({ links: links.length, joints: joints.length, firstFrameMs: api.firstFrameMs });
   }
 
