@@ -353,6 +353,7 @@
         let vertices = 0, indices = 0;
         for (const m of meshes) { vertices += m.geometry.attributes.position.count; indices += m.geometry.index.count; }
         const batch = new THREE.BatchedMesh(meshes.length, vertices, indices, meshes[0].material);
+        batch.frustumCulled = false;  // its bounding sphere would be that of the first pose
         batch.perObjectFrustumCulled = false;
         batch.sortObjects = false;
         const ids = meshes.map((m) => {
