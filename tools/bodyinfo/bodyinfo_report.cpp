@@ -269,3 +269,21 @@ std::string format_reference_yaml(const Model& model, const Derived& derived, co
 }
 
 }  // namespace bodyfmt::tools
+
+namespace bodyfmt::tools {
+
+std::string format_pose_yaml(const Model& model, const std::vector<Eigen::Isometry3d>& X_WL) {
+  std::string out = "model_name: " + quoted(model.name) + "\nlink_frames:\n";
+  for (std::size_t i = 0; i < model.links.size() && i < X_WL.size(); ++i) {
+    const Eigen::Vector3d p = X_WL[i].translation();
+    const Eigen::Matrix3d R = X_WL[i].linear();
+    out += "- name: " + quoted(model.links[i].name) + "\n";
+    out += fmt::format("  translation: [{:.17g}, {:.17g}, {:.17g}]\n", p.x(), p.y(), p.z());
+    out +=
+        fmt::format("  rotation: [{:.17g}, {:.17g}, {:.17g}, {:.17g}, {:.17g}, {:.17g}, {:.17g}, {:.17g}, {:.17g}]\n",
+                    R(0, 0), R(0, 1), R(0, 2), R(1, 0), R(1, 1), R(1, 2), R(2, 0), R(2, 1), R(2, 2));
+  }
+  return out;
+}
+
+}  // namespace bodyfmt::tools

@@ -19,4 +19,8 @@ void write_summary(std::ostream& out, const Model& model, const Derived& derived
 std::string format_reference_yaml(const Model& model, const Derived& derived, const std::vector<LinkBounds>& boxes,
                                   const std::vector<Diagnostic>& diagnostics);
 
+/// `bodyinfo --pose`: every link's world frame (X_WL), translation and row-major rotation in
+/// the reference layout, printed to round-trip (17 significant digits).
+std::string format_pose_yaml(const Model& model, const std::vector<Eigen::Isometry3d>& X_WL);
+
 }  // namespace bodyfmt::tools

@@ -6,6 +6,9 @@
 #include "front.h"
 
 #include <bodyfmt/derived.h>
+#include <bodyfmt/pose.h>
+
+#include <fmt/format.h>
 
 #include <iostream>
 
@@ -16,7 +19,15 @@ int main(int argc, char** argv) {
   front.app()
       .add_option("--format", format, "output format: text, or yaml in the layout of Choreonoid's reference values")
       ->check(CLI::IsMember({"text", "yaml"}));
+  std::string pose_text;
+  CLI::Option* pose_option =
+      front.app().add_option("--pose", pose_text,
+                             "print every link's world frame at the joint positions NAME=VALUE,... (radians or "
+                             "metres; '' is the zero pose) instead of the summary");
   if (auto code = front.parse(argc, argv)) return *code;
+  const auto [positions, pose_problems] = parse_joint_positions(pose_text);
+  for (const std::string& problem : pose_problems) front.print_error("--pose: " + problem);
+  if (!pose_problems.empty()) return tools::kExitFatal;
 
   CollectingSink collected;
   const std::string& path = front.inputs().front();
@@ -43,7 +54,12 @@ int main(int argc, char** argv) {
     if (format == "yaml") std::cout << "loaded: false\n";
     return tools::kExitFatal;
   }
-  if (format == "yaml") {
+  if (pose_option->count() > 0) {
+    const JointVector q = joint_vector(*model, positions);
+    for (const std::string& problem : q.problems) front.print_error("--pose: " + problem);
+    if (!q.problems.empty()) return tools::kExitFatal;
+    std::cout << tools::format_pose_yaml(*model, compute_world_frames(*model, q.q));
+  } else if (format == "yaml") {
     std::cout << tools::format_reference_yaml(*model, derived, choreonoid_boxes, diagnostics);
   } else {
     tools::write_summary(std::cout, *model, derived);

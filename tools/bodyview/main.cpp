@@ -1,0 +1,56 @@
+// bodyview: writes one self-contained HTML page that shows a Choreonoid .body model in a
+// browser (three.js, inline), with joint sliders, collision and mass display and bodycheck's
+// findings; --serve serves it on a loopback port and rebuilds it when the model changes.
+// Exit codes (tools/common/front.h): 0 written, nothing at or above the fail level; 1 written,
+// with findings; 2 not written (bad usage, the model cannot be loaded, an unwritable output).
+
+#include "front.h"
+#include "page.h"
+#include "render.h"
+#include "serve.h"
+
+#include <bodyfmt/converters/output_set.h>
+#include <bodyfmt/converters/protect_inputs.h>
+
+int main(int argc, char** argv) {
+  using namespace bodyfmt;
+  tools::Front front("bodyview", "Show a Choreonoid .body model in a browser: one self-contained HTML file", {});
+  std::string output;
+  bool serve = false;
+  int port = 0;
+  CLI::App& app = front.app();
+  auto* o = app.add_option("-o,--output", output, "the .html file to write ('-': standard output)");
+  auto* s = app.add_flag("--serve", serve,
+                         "serve the page on 127.0.0.1 and rebuild it when the model, a file it includes or a mesh "
+                         "changes (until interrupted)");
+  app.add_option("--port", port, "the port for --serve (default: any free one)")->check(CLI::Range(0, 65535))->needs(s);
+  s->excludes(o);
+  if (auto code = front.parse(argc, argv)) return *code;
+  if (!serve && output.empty()) {
+    front.print_error("name the page with -o FILE.html, or use --serve");
+    return tools::kExitFatal;
+  }
+  const std::filesystem::path assets = bodyview::find_assets(argc > 0 ? argv[0] : nullptr);
+  if (assets.empty()) {
+    front.print_error("the viewer files (viewer.js, three.js) are not installed beside bodyview");
+    return tools::kExitFatal;
+  }
+  const std::string& path = front.inputs().front();
+  auto policy = front.policy_for(path);
+  if (!policy) return tools::kExitFatal;
+  if (serve) return bodyview::serve(front, *policy, path, assets, port);
+
+  bodyview::Rendered r = bodyview::render(front, *policy, path, assets, "");
+  bool written = false;
+  if (r.page && r.model) {
+    converters::OutputSet out(output);
+    converters::protect_inputs(out, *r.model);
+    out.set_main(std::move(*r.page));
+    CollectingSink commit;
+    written = out.commit(commit);
+    for (const Diagnostic& d : commit.diagnostics()) r.diagnostics.push_back(d);
+  }
+  front.print(r.diagnostics);
+  if (!written) front.print_error(output + " was not written");
+  return tools::exit_code(r.diagnostics, policy->exit, !written);
+}

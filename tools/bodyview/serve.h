@@ -1,0 +1,18 @@
+#pragma once
+// bodyview --serve: the page on a loopback port, rebuilt when the model, a file it includes or
+// a mesh changes; a load that fails keeps the last good page and shows its diagnostics.
+
+#include "front.h"
+
+#include <filesystem>
+#include <string>
+
+namespace bodyfmt::bodyview {
+
+/// Serves until interrupted (SIGINT/SIGTERM: exit 0). `port` 0 picks a free one; the URL is
+/// printed to standard output. Returns 2 when the socket cannot be opened or the first load is
+/// fatal.
+int serve(tools::Front& front, const tools::Front::FilePolicy& policy, const std::string& path,
+          const std::filesystem::path& assets, int port);
+
+}  // namespace bodyfmt::bodyview
