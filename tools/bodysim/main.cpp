@@ -37,18 +37,40 @@ constexpr const char* kUsage =
 
 std::string number(double v) { return fmt::format("{:.6g}", v); }
 
+void print_line(const dynamics::CheckResult& r, std::size_t width) {
+  if (r.skipped) {
+    std::cout << fmt::format("SKIP  {}: {}\n", r.name, r.note);
+    return;
+  }
+  if (!r.note.empty() && r.tolerance.empty()) {
+    std::cout << fmt::format("{}  {}: {}\n", r.passed ? "PASS" : "FAIL", r.name, r.note);
+    return;
+  }
+  const std::string unit = r.unit.empty() ? "" : " " + r.unit;
+  std::cout << fmt::format("{}  {:<{}}  measured {:>12}{:<6}  expected {:>12}  tolerance {}\n",
+                           r.passed ? "PASS" : "FAIL", r.name, width, number(r.measured), unit, number(r.expected),
+                           r.tolerance);
+  if (!r.note.empty()) std::cout << "      " << r.note << "\n";
+}
+
+/// The model's checks, then the build's self-test apart, then the counts.
 void print_results(const std::vector<dynamics::CheckResult>& results) {
   std::size_t width = 0;
   for (const auto& r : results) width = std::max(width, r.name.size());
-  for (const auto& r : results) {
-    const std::string unit = r.unit.empty() ? "" : " " + r.unit;
-    std::cout << fmt::format("{}  {:<{}}  measured {:>12}{:<6}  expected {:>12}  tolerance {}\n",
-                             r.passed ? "PASS" : "FAIL", r.name, width, number(r.measured), unit, number(r.expected),
-                             r.tolerance);
+  int self_tests = 0;
+  for (const auto& r : results) self_tests += r.self_test ? 1 : 0;
+  if (self_tests > 0) {
+    std::cout << "self-test of the Simbody build (its system against the derived data it was built from):\n";
+    for (const auto& r : results)
+      if (r.self_test) print_line(r, width);
+    std::cout << "checks of the model:\n";
   }
-  int failed = 0;
-  for (const auto& r : results) failed += r.passed ? 0 : 1;
-  std::cout << fmt::format("{} of {} checks passed\n", results.size() - failed, results.size());
+  int passed = 0, failed = 0, skipped = 0;
+  for (const auto& r : results) {
+    if (!r.self_test) print_line(r, width);
+    (r.skipped ? skipped : r.passed ? passed : failed) += 1;
+  }
+  std::cout << fmt::format("{} of {} checks passed, {} failed, {} skipped\n", passed, passed + failed, failed, skipped);
 }
 
 }  // namespace
@@ -240,7 +262,7 @@ int main(int argc, char** argv) {
     }
     print_results(results);
     bool failed = false;
-    for (const auto& r : results) failed = failed || !r.passed;
+    for (const auto& r : results) failed = failed || (!r.passed && !r.skipped);
     const int code = finish(false, "");
     return code == tools::kExitFatal ? code : (failed ? tools::kExitFindings : code);
   } catch (const dynamics::WorkBudgetExceeded& e) {
