@@ -11,6 +11,7 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace bodyfmt::dynamics {
@@ -70,7 +71,7 @@ double min_jerk_rate(double t, double distance, double duration) {
   return distance / duration * (30 * s * s - 60 * s * s * s + 30 * s * s * s * s);
 }
 
-/// Shared by every scenario: a fresh system standing on the floor, turret servos holding 0.
+/// Shared by every scenario: a fresh system standing on the floor, joint servos holding 0.
 class Scenario {
  public:
   Scenario(const Model& model, const Derived& derived, const TankLayout& tank, const TankSuiteOptions& options,
@@ -81,8 +82,9 @@ class Scenario {
     Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
     X.translation() = Eigen::Vector3d(0, 0, -tank.lowest_z);
     sim_->set_root_pose(X);
-    for (LinkIndex joint : {tank.yaw, tank.pitch})
-      if (joint >= 0) hold(joint, 0.0);
+    // As a controller holds them: every joint, not only the turret's (a joint left free swings).
+    for (std::size_t i = 0; i < model.links.size(); ++i)
+      if (sim_->has_joint(static_cast<LinkIndex>(i))) hold(static_cast<LinkIndex>(i), 0.0);
   }
   explicit operator bool() const { return sim_ != nullptr; }
   Simulation& sim() { return *sim_; }
@@ -145,6 +147,7 @@ struct Suite {
   std::vector<CheckResult>& results;
   double g, mu, mass, weight, B;
   Eigen::Vector3d com_root;  // centre of mass in the root frame at the file pose
+  std::vector<ContactPoint> contacts;
 
   Scenario scenario() { return Scenario(model, derived, tank, options, options.sim, quiet); }
   void add(CheckResult r) { results.push_back(std::move(r)); }
@@ -358,6 +361,25 @@ void spin(Suite& s, const std::vector<double>& loads, const std::string& loads_w
   }
 }
 
+/// Whether turning `joint` to q (the others at 0, the vehicle as it stands) brings a contact
+/// point of its subtree to within 1 cm of the floor: the link that would hit it, or empty.
+std::string floor_contact_at(const Suite& s, LinkIndex joint, double q) {
+  std::vector<double> at(s.model.links.size(), 0.0);
+  at[joint] = q;
+  const std::vector<Eigen::Isometry3d> X = compute_world_frames(s.model, at);
+  const Eigen::Isometry3d X_root = X[0];
+  for (const ContactPoint& p : s.contacts) {
+    bool below = false;
+    for (LinkIndex k = p.link; k >= 0; k = s.model.links[k].parent) below = below || k == joint;
+    if (!below) continue;
+    const double z = (X_root.inverse() * X[p.link] * p.position_in_link).z() - p.radius;
+    if (z < s.tank.lowest_z + 0.01)
+      return fmt::format("(link \"{}\" would reach {:.3g} m above the floor)", s.model.links[p.link].name,
+                         z - s.tank.lowest_z);
+  }
+  return {};
+}
+
 /// Pitch servo: sag under gravity and a step, against the rigid 1-DOF reference.
 void pitch_servo(Suite& s) {
   const TankLayout& t = s.tank;
@@ -391,13 +413,25 @@ void pitch_servo(Suite& s) {
   sc.run(2.0);
   s.add(relative("turret: pitch sag under gravity (τ_g/P)", sc.sim().joint_position(t.pitch), sag, 0.03, "rad"));
   if (t.yaw >= 0) s.add(absolute("turret: yaw holds 0", sc.sim().joint_position(t.yaw), 0, 1e-5, "rad"));
-  // Step to two thirds of the wider side of the range (at most 30°): the rigid 1-DOF
-  // response I·q̈ = P·(q_s − q) − D·q̇ + τ_g(q), integrated with RK4 from the sag.
+  // Step to two thirds of the wider side of the range (at most 30°), or of the other side when
+  // that would put the turret into the floor: the rigid 1-DOF response
+  // I·q̈ = P·(q_s − q) − D·q̇ + τ_g(q), integrated with RK4 from the sag.
   const double upper = std::min(pitch.joint_range_upper, kPi), lower = std::max(pitch.joint_range_lower, -kPi);
-  const double side = upper >= -lower ? upper : lower;
-  const double q_step = std::clamp(2.0 / 3 * side, -30 * kDeg, 30 * kDeg);
+  double q_step = 0;
+  std::string blocked;
+  for (const double side :
+       upper >= -lower ? std::array<double, 2>{upper, lower} : std::array<double, 2>{lower, upper}) {
+    const double q = std::clamp(2.0 / 3 * side, -30 * kDeg, 30 * kDeg);
+    const std::string hit = floor_contact_at(s, t.pitch, q);
+    if (q != 0 && hit.empty()) {
+      q_step = q;
+      break;
+    }
+    if (!hit.empty()) blocked += fmt::format("{}at {:.4g} rad {}", blocked.empty() ? "" : "; ", q, hit);
+  }
   if (q_step == 0) {
-    s.skip("turret: pitch step response", "the pitch range leaves no room for a step from 0");
+    s.skip("turret: pitch step response", blocked.empty() ? "the pitch range leaves no room for a step from 0"
+                                                          : "a step would hit the floor: " + blocked);
     return;
   }
   auto rhs = [&](const Eigen::Vector2d& x) {
@@ -673,6 +707,7 @@ std::vector<CheckResult> run_tank_suite(const Model& model, const Derived& deriv
           tank.spacing,
           center_of_mass_in_root(model, derived)};
   build_self_test(s, *probe);
+  s.contacts = probe->contact_points();
   probe.reset();
   if (!tank.standing_problem.empty()) {
     s.add(verdict_check("the vehicle stands on its two tracks", false, tank.standing_problem));

@@ -15,6 +15,7 @@
 #include <bodyfmt/dynamics/checks.h>
 #include <bodyfmt/dynamics/scenario.h>
 #include <bodyfmt/rules.h>
+#include <bodyfmt/validate.h>
 
 #include <fmt/format.h>
 
@@ -34,6 +35,20 @@ constexpr const char* kUsage =
     "  bodysim check MODEL [--balance-inertia]        generic checks: mass matrix, drop and settle\n"
     "  bodysim run MODEL --scenario S.yaml --csv OUT  run a scenario, write trajectories as CSV\n"
     "  bodysim SUBCOMMAND --help                      options of a subcommand\n";
+
+/// bodycheck's rules under bodysim's policy, except the inertia findings that Simulation::build
+/// reports itself with what it does about them (refused, or balanced with --balance-inertia).
+class ValidatorFirst : public DiagnosticSink {
+ public:
+  explicit ValidatorFirst(DiagnosticSink& inner) : inner_(inner) {}
+  void report(Diagnostic d) override {
+    if (d.rule_id == "inertia-triangle" || d.rule_id == "inertia-not-positive-definite") return;
+    inner_.report(std::move(d));
+  }
+
+ private:
+  DiagnosticSink& inner_;
+};
 
 std::string number(double v) { return fmt::format("{:.6g}", v); }
 
@@ -172,6 +187,14 @@ int main(int argc, char** argv) {
     return finish(true, "the model is too large to simulate; nothing was simulated");
   }
   const Derived derived = compute_derived(*model, sink);
+  // The validator first: what bodycheck calls an error (a reversed range, a moving massless
+  // link, ...) is refused at its line before any engine sees it.
+  {
+    ValidatorFirst validator(sink);
+    validate::check_model(*model, derived, {}, validator);
+  }
+  if (collected.error_count() > 0)
+    return finish(true, "the model has errors (bodycheck's rules); nothing was simulated");
   if (sim.contact_model == dynamics::ContactModel::kSimbody) {
     // Simbody's elastic-foundation meshes did not finish 1 simulated second of SimpleTank (its
     // Extrusion tracks) in 10 CPU minutes: until that is understood, --contact simbody takes
@@ -265,6 +288,10 @@ int main(int argc, char** argv) {
     for (const auto& r : results) failed = failed || (!r.passed && !r.skipped);
     const int code = finish(false, "");
     return code == tools::kExitFatal ? code : (failed ? tools::kExitFindings : code);
+  } catch (const dynamics::EngineFailure& e) {
+    report_rule(sink, "dynamics-engine-failure", e.where, e.what());
+    return finish(true,
+                  "the simulation failed" + std::string(command == "run" ? "; " + csv_path + " was not written" : ""));
   } catch (const dynamics::WorkBudgetExceeded& e) {
     report_rule(sink, "dynamics-work-budget", e.where, e.what());
     return finish(

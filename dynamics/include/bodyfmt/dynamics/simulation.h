@@ -63,6 +63,14 @@ class WorkBudgetExceeded : public std::runtime_error {
   SourceLocation where;
 };
 
+/// Thrown by Simulation::advance_to() when Simbody itself throws: the engine's message with the
+/// likely cause in the model, and `where` at it.
+class EngineFailure : public std::runtime_error {
+ public:
+  EngineFailure(const std::string& message, SourceLocation at) : std::runtime_error(message), where(at) {}
+  SourceLocation where;
+};
+
 /// A joint servo: τ = P·(q_ref(t) − q) + D·(q̇_ref(t) − q̇) + feed-forward torque.
 struct JointServo {
   double p_gain = 0;
