@@ -482,7 +482,7 @@ void pitch_limits(Suite& s) {
     const double command = side == 0 ? limit + 15 * kDeg : limit - 20 * kDeg;
     l.hold(t.pitch, command);
     double extreme = side == 0 ? -1e9 : 1e9;
-    l.run(1.5, [&](double) {
+    l.run(1.0, [&](double) {
       const double q = l.sim().joint_position(t.pitch);
       extreme = side == 0 ? std::max(extreme, q) : std::min(extreme, q);
     });
@@ -516,7 +516,7 @@ void yaw_tracking(Suite& s) {
       [&](double time) {
         worst = std::max(worst, std::abs(sc.sim().joint_position(t.yaw) - min_jerk(time, theta, T)));
       },
-      0.002);
+      0.005);
   const double M_yy =
       subtree_axis_inertia(s.model, s.derived, t.yaw, {}, model_inertias(s.model, s.derived, s.options.sim));
   const double predicted = M_yy * (10 * std::sqrt(3.0) / 3 * theta / (T * T)) / s.options.p_gain;
