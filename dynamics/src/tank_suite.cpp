@@ -203,6 +203,29 @@ void build_self_test(Suite& s, Simulation& probe) {
   }
 }
 
+/// The floor slopes at which the vehicle would tip over an edge of its support polygon, sideways
+/// and fore-aft: atan(distance of the COM projection from the edge / COM height). Static only: a
+/// vehicle on μ = 0.5 slides (at atan μ = 26.6°) before it tips on most slopes.
+std::string tip_slopes(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& com, double height) {
+  double side = std::numeric_limits<double>::infinity(), fore = side;
+  std::string side_to, fore_to;
+  for (std::size_t i = 0; i < polygon.size(); ++i) {
+    const Eigen::Vector2d a = polygon[i], e = polygon[(i + 1) % polygon.size()] - a;
+    const Eigen::Vector2d outward = Eigen::Vector2d(e.y(), -e.x()).normalized();  // counter-clockwise hull
+    const double distance = (a - com).dot(outward);
+    const double slope = std::atan2(distance, height) / kDeg;
+    if (std::abs(outward.y()) >= std::abs(outward.x())) {
+      if (slope < side) side = slope, side_to = outward.y() > 0 ? "left" : "right";
+    } else if (slope < fore) {
+      fore = slope, fore_to = outward.x() > 0 ? "forward" : "backward";
+    }
+  }
+  return fmt::format(
+      "static tip slopes (COM {:.4g} m above the floor): sideways {:.3g}° (to the {}), fore-aft {:.3g}° "
+      "({}); not verified in simulation",
+      height, side, side_to, fore, fore_to);
+}
+
 struct Stance {
   bool tracks_agree = false;
   bool com_inside = false;
@@ -243,9 +266,10 @@ Stance stance(Suite& s) {
         "the centre of mass projects to ({:.4g}, {:.4g}) m, outside the support polygon [{}] "
         "(root frame); the vehicle tips over",
         s.com_root.x(), s.com_root.y(), polygon_text(polygon));
+  else
+    inside.note = tip_slopes(polygon, s.com_root.head<2>(), height);
   s.add(inside);
   (void)model;
-  (void)height;
   return {same, inside.passed};
 }
 
