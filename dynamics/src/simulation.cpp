@@ -348,7 +348,8 @@ std::unique_ptr<Simulation> Simulation::build(const Model& model, const Derived&
     return nullptr;
   }
 
-  if (options.gravity != 0) SimTK::Force::Gravity(m.forces, m.matter, SimTK::UnitVec3(-SimTK::ZAxis), options.gravity);
+  if (options.gravity != 0)
+    SimTK::Force::Gravity(m.forces, m.matter, SimTK::UnitVec3(vec3(options.gravity_direction)), options.gravity);
   for (const Stop& stop : stops)
     SimTK::Force::MobilityLinearStop(m.forces, m.matter.updMobilizedBody(stop.body), SimTK::MobilizerQIndex(0),
                                      options.stop_stiffness, options.stop_dissipation, stop.lower, stop.upper);

@@ -206,7 +206,8 @@ void build_self_test(Suite& s, Simulation& probe) {
 /// The floor slopes at which the vehicle would tip over an edge of its support polygon, sideways
 /// and fore-aft: atan(distance of the COM projection from the edge / COM height). Static only: a
 /// vehicle on μ = 0.5 slides (at atan μ = 26.6°) before it tips on most slopes.
-std::string tip_slopes(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& com, double height) {
+std::string tip_slopes(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& com, double height,
+                       double& sideways, bool& to_left) {
   double side = std::numeric_limits<double>::infinity(), fore = side;
   std::string side_to, fore_to;
   for (std::size_t i = 0; i < polygon.size(); ++i) {
@@ -220,9 +221,11 @@ std::string tip_slopes(const std::vector<Eigen::Vector2d>& polygon, const Eigen:
       fore = slope, fore_to = outward.x() > 0 ? "forward" : "backward";
     }
   }
+  sideways = side;
+  to_left = side_to == "left";
   return fmt::format(
       "static tip slopes (COM {:.4g} m above the floor): sideways {:.3g}° (to the {}), fore-aft {:.3g}° "
-      "({}); not verified in simulation",
+      "({}); the sideways one is checked in simulation below",
       height, side, side_to, fore, fore_to);
 }
 
@@ -230,6 +233,35 @@ struct Stance {
   bool tracks_agree = false;
   bool com_inside = false;
 };
+
+/// The sideways tip slope checked in simulation: gravity tilted toward the nearest side edge at
+/// 0.9 and 1.1 times the slope, with friction high enough that the vehicle cannot slide first.
+void verify_sideways_tip(Suite& s, double slope_deg, bool to_left) {
+  const std::string name = fmt::format("static stability: sideways tip slope {:.3g}° in simulation", slope_deg);
+  if (!(slope_deg > 0 && slope_deg < 80)) {
+    s.skip(name, "no sideways tip slope below 80°");
+    return;
+  }
+  for (const double factor : {0.9, 1.1}) {
+    const double theta = factor * slope_deg * kDeg;
+    SimOptions o = s.options.sim;
+    o.contact_params.friction = std::max(o.contact_params.friction, 1.2 * std::tan(theta));
+    o.gravity_direction = Eigen::Vector3d(0, (to_left ? 1 : -1) * std::sin(theta), -std::cos(theta));
+    Scenario sc(s.model, s.derived, s.tank, s.options, o, s.quiet);
+    if (!sc) return;
+    // Below the slope 0.5 s; above it until it has tipped (20°; tumbling on is stiff and
+    // costly), at most 1 s.
+    double roll = 0;
+    const double start = sc.sim().time();
+    for (int k = 1; k <= (factor < 1 ? 10 : 20) && roll < 20; ++k) {
+      sc.sim().advance_to(start + 0.05 * k);
+      roll = std::acos(std::clamp(sc.sim().link_pose(0).linear()(2, 2), -1.0, 1.0)) / kDeg;
+    }
+    const std::string label = fmt::format("{}: tilted {:.3g}° ({} the slope), roll within {} s", name,
+                                          factor * slope_deg, factor < 1 ? "0.9 ×" : "1.1 ×", factor < 1 ? 0.5 : 1.0);
+    s.add(factor < 1 ? at_most(label + " (stays)", roll, 5, "°") : at_least(label + " (tips)", roll, 15, "°"));
+  }
+}
 
 /// Whether the tracks drive the same way, and where the centre of mass stands in the support
 /// polygon.
@@ -257,6 +289,8 @@ Stance stance(Suite& s) {
   const std::vector<Eigen::Vector2d> polygon = support_polygon(pts);
   const double margin = polygon_margin(polygon, s.com_root.head<2>());
   const double height = s.com_root.z() - t.lowest_z;
+  double sideways = 0;
+  bool to_left = false;
   CheckResult inside = at_least("static stability: centre of mass inside the support polygon (margin)",
                                 std::isfinite(margin) ? margin : -1.0, 0, "m");
   inside.passed = margin > 0;
@@ -267,8 +301,9 @@ Stance stance(Suite& s) {
         "(root frame); the vehicle tips over",
         s.com_root.x(), s.com_root.y(), polygon_text(polygon));
   else
-    inside.note = tip_slopes(polygon, s.com_root.head<2>(), height);
+    inside.note = tip_slopes(polygon, s.com_root.head<2>(), height, sideways, to_left);
   s.add(inside);
+  if (inside.passed && same) verify_sideways_tip(s, sideways, to_left);
   (void)model;
   return {same, inside.passed};
 }
@@ -304,7 +339,7 @@ void drive(Suite& s, double v) {
   const double expected = direction * v;
   Scenario sc = s.scenario();
   if (!sc) return;
-  sc.run(0.5);
+  sc.run(0.3);
   const double yaw0 = yaw_of(sc.sim().link_pose(0));
   const Eigen::Vector3d start = sc.sim().link_pose(0).translation();
   sc.drive(v, v);
@@ -315,11 +350,11 @@ void drive(Suite& s, double v) {
     sc.sim().advance_to(t0 + 0.001 * i);
     if (sc.com_forward_speed() * direction >= 0.9 * v) t90 = 0.001 * i;
   }
-  sc.run(2.0 - (sc.sim().time() - t0));
+  sc.run(1.5 - (sc.sim().time() - t0));
   double speed = 0, lateral = 0;
   int samples = 0;
   sc.run(
-      1.0,
+      0.8,
       [&](double) {
         const Eigen::Vector3d hv = sc.heading_velocity();
         speed += hv.x();
@@ -367,7 +402,7 @@ void spin(Suite& s, const std::vector<double>& loads, const std::string& loads_w
     }
     Scenario sc = s.scenario();
     if (!sc) return;
-    sc.run(0.5);
+    sc.run(0.3);
     sc.drive(left, right);
     double omega = 0;
     int samples = 0;
@@ -434,7 +469,7 @@ void pitch_servo(Suite& s) {
   const double I = subtree_axis_inertia(model, s.derived, t.pitch, {}, model_inertias(model, s.derived, s.options.sim));
   Scenario sc = s.scenario();
   if (!sc) return;
-  sc.run(2.0);
+  sc.run(1.5);
   s.add(relative("turret: pitch sag under gravity (τ_g/P)", sc.sim().joint_position(t.pitch), sag, 0.03, "rad"));
   if (t.yaw >= 0) s.add(absolute("turret: yaw holds 0", sc.sim().joint_position(t.yaw), 0, 1e-5, "rad"));
   // Step to two thirds of the wider side of the range (at most 30°), or of the other side when
@@ -502,7 +537,7 @@ void pitch_limits(Suite& s) {
     }
     Scenario l = s.scenario();
     if (!l) return;
-    l.run(0.5);
+    l.run(0.3);
     const double command = side == 0 ? limit + 15 * kDeg : limit - 20 * kDeg;
     l.hold(t.pitch, command);
     double extreme = side == 0 ? -1e9 : 1e9;
@@ -528,7 +563,7 @@ void yaw_tracking(Suite& s) {
   const double theta = 1, T = 2;
   Scenario sc = s.scenario();
   if (!sc) return;
-  sc.run(0.5);
+  sc.run(0.3);
   const double t0 = sc.sim().time();
   const double chassis_yaw0 = yaw_of(sc.sim().link_pose(0));
   sc.servo(
@@ -729,7 +764,8 @@ std::vector<CheckResult> run_tank_suite(const Model& model, const Derived& deriv
           derived.total_mass,
           derived.total_mass * options.sim.gravity,
           tank.spacing,
-          center_of_mass_in_root(model, derived)};
+          center_of_mass_in_root(model, derived),
+          {}};
   build_self_test(s, *probe);
   s.contacts = probe->contact_points();
   probe.reset();

@@ -39,7 +39,9 @@ enum class ContactModel {
 };
 
 struct SimOptions {
-  double gravity = 9.80665;  ///< along −Z of the world
+  double gravity = 9.80665;  ///< along −Z of the world, or along gravity_direction
+  /// The direction of gravity in the world (a tilted floor, for the tip-slope check).
+  Eigen::Vector3d gravity_direction = -Eigen::Vector3d::UnitZ();
   bool contact = true;
   ContactModel contact_model = ContactModel::kPoints;
   bool joint_stops = true;       ///< enforce joint_range (our choice; AIST does not, spec §0.7)
