@@ -546,7 +546,7 @@ void pitch_limits(Suite& s) {
     const double command = side == 0 ? limit + 15 * kDeg : limit - 20 * kDeg;
     l.hold(t.pitch, command);
     double extreme = side == 0 ? -1e9 : 1e9;
-    l.run(1.0, [&](double) {
+    l.run(0.6, [&](double) {
       const double q = l.sim().joint_position(t.pitch);
       extreme = side == 0 ? std::max(extreme, q) : std::min(extreme, q);
     });
