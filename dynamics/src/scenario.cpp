@@ -47,13 +47,32 @@ class Reader : public YamlReader {
   const Model& model_;
 };
 
+/// Passes every finding on and keeps where the YAML reader found a key repeated: in a scenario
+/// that is an error, not a warning where the last value silently wins.
+class DuplicateKeys : public DiagnosticSink {
+ public:
+  explicit DuplicateKeys(DiagnosticSink& inner) : inner_(inner) {}
+  void report(Diagnostic d) override {
+    if (d.rule_id == "yaml-duplicate-key") at.push_back(d.location);
+    inner_.report(std::move(d));
+  }
+  std::vector<SourceLocation> at;
+
+ private:
+  DiagnosticSink& inner_;
+};
+
 }  // namespace
 
 std::optional<ScenarioSpec> read_scenario(const std::string& path, const Model& model, DiagnosticSink& sink) {
+  DuplicateKeys duplicates(sink);
   const std::optional<YamlDocument> document =
-      read_yaml_file(path, sink, YamlLimits{}, "the scenario \"" + path + "\"");
+      read_yaml_file(path, duplicates, YamlLimits{}, "the scenario \"" + path + "\"");
   if (!document) return std::nullopt;
   Reader r(model, sink);
+  for (const SourceLocation& at : duplicates.at)
+    r.error(at, "a key repeated in a scenario is refused (which value was meant?)");
+  std::vector<std::pair<double, SourceLocation>> times;
   ScenarioSpec spec;
   const YamlNode root = document->root();
   spec.at = root.location();
@@ -109,8 +128,12 @@ std::optional<ScenarioSpec> read_scenario(const std::string& path, const Model& 
         if (!time) {
           r.error(item, "a command needs 'time' (s)");
         } else if (std::optional<double> t = r.number(time->value, "'time'")) {
-          if (*t < last) r.error(time->value, "commands must be in time order");
-          command.time = last = *t;
+          if (*t < 0)
+            r.error(time->value, fmt::format("'time' {:g} s is negative: a scenario starts at 0 s", *t));
+          else if (*t < last)
+            r.error(time->value, "commands must be in time order");
+          command.time = last = std::max(*t, last);
+          times.emplace_back(*t, time->value.location());
         }
         if (const std::optional<YamlEntry> tracks = item.find("tracks");
             tracks && r.mapping(tracks->value, "'tracks'")) {
@@ -145,6 +168,10 @@ std::optional<ScenarioSpec> read_scenario(const std::string& path, const Model& 
     }
   }
   if (!has_duration) r.error(root, "a scenario needs 'duration' (s)");
+  for (const auto& [t, at] : times)
+    if (has_duration && t > spec.duration)
+      r.error(at, fmt::format("a command at {:g} s comes after 'duration' ({:g} s) and would never take effect", t,
+                              spec.duration));
   if (r.ok() && spec.duration / spec.sample > 1e7) r.error(root, "'duration' / 'sample' gives more than 1e7 rows");
   if (!r.ok()) return std::nullopt;
   return spec;

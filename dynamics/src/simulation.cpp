@@ -349,7 +349,8 @@ std::unique_ptr<Simulation> Simulation::build(const Model& model, const Derived&
     return nullptr;
   }
 
-  if (options.gravity != 0) SimTK::Force::Gravity(m.forces, m.matter, SimTK::UnitVec3(-SimTK::ZAxis), options.gravity);
+  if (options.gravity != 0)
+    SimTK::Force::Gravity(m.forces, m.matter, SimTK::UnitVec3(vec3(options.gravity_direction)), options.gravity);
   for (const Stop& stop : stops)
     SimTK::Force::MobilityLinearStop(m.forces, m.matter.updMobilizedBody(stop.body), SimTK::MobilizerQIndex(0),
                                      options.stop_stiffness, options.stop_dissipation, stop.lower, stop.upper);
@@ -472,9 +473,17 @@ void Simulation::advance_to(double t) {
         check_budget();
         if (status != SimTK::Integrator::ReachedStepLimit) break;
       }
-    } catch (const std::exception&) {
+    } catch (const std::exception& e) {
       if (m.spent) throw WorkBudgetExceeded(*m.spent);  // Simbody may wrap what a force element threw
-      throw;
+      // Simbody's message names no link: add the likely cause and locate it there.
+      std::string message = e.what();
+      const std::size_t cut = message.find_first_of("\r\n", message.find_first_not_of("\r\n "));
+      message = message.substr(0, cut == std::string::npos ? 200 : std::min<std::size_t>(cut, 200));
+      SourceLocation where;
+      const std::string cause = stiffest_part(where);
+      throw EngineFailure(fmt::format("Simbody stopped at t = {:.6g} s ({}); the likely cause: {}",
+                                      m.integrator->getTime(), message, cause),
+                          where);
     }
   }
   m.state = m.integrator->getState();

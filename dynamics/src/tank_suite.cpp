@@ -1,13 +1,17 @@
-// The tank suite (dynamics-checker.md §4, issue 12): settling, straight drive, spin in place,
-// turret servos and joint stops, and conservation, on any model with two pseudo tracks.
+// The tank suite (dynamics-checker.md §4, issues 12 and 24): how the vehicle stands, settling,
+// straight drive, spin in place, turret servos and joint stops, and conservation, on any model
+// with two pseudo tracks. Each phase is a function that appends its lines; a check that cannot
+// apply is a SKIP line with its reason.
 
 #include <bodyfmt/dynamics/checks.h>
+#include <bodyfmt/inertia.h>
 
 #include <fmt/format.h>
 
 #include <Eigen/Dense>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace bodyfmt::dynamics {
@@ -67,7 +71,7 @@ double min_jerk_rate(double t, double distance, double duration) {
   return distance / duration * (30 * s * s - 60 * s * s * s + 30 * s * s * s * s);
 }
 
-/// Shared by every scenario: a fresh system standing on the floor, turret servos holding 0.
+/// Shared by every scenario: a fresh system standing on the floor, joint servos holding 0.
 class Scenario {
  public:
   Scenario(const Model& model, const Derived& derived, const TankLayout& tank, const TankSuiteOptions& options,
@@ -78,8 +82,9 @@ class Scenario {
     Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
     X.translation() = Eigen::Vector3d(0, 0, -tank.lowest_z);
     sim_->set_root_pose(X);
-    for (LinkIndex joint : {tank.yaw, tank.pitch})
-      if (joint >= 0) hold(joint, 0.0);
+    // As a controller holds them: every joint, not only the turret's (a joint left free swings).
+    for (std::size_t i = 0; i < model.links.size(); ++i)
+      if (sim_->has_joint(static_cast<LinkIndex>(i))) hold(static_cast<LinkIndex>(i), 0.0);
   }
   explicit operator bool() const { return sim_ != nullptr; }
   Simulation& sim() { return *sim_; }
@@ -90,10 +95,11 @@ class Scenario {
   void servo(LinkIndex joint, std::function<double(double)> q_ref, std::function<double(double)> qd_ref) {
     sim_->set_servo(joint, {options_.p_gain, options_.d_gain, std::move(q_ref), std::move(qd_ref), 0});
   }
-  /// Track commands as forward belt speeds of the left and right track.
+  /// Track commands as a controller sends them: dq of the left and right track, whatever
+  /// their axes (Choreonoid's tank controllers send the same dq to both to go straight).
   void drive(double left, double right) {
-    sim_->set_track_speed(tank_.left, tank_.left_sign * left);
-    sim_->set_track_speed(tank_.right, tank_.right_sign * right);
+    sim_->set_track_speed(tank_.left, left);
+    sim_->set_track_speed(tank_.right, right);
   }
   /// Advances by `duration` in samples of `dt`, calling `sample` after each.
   template <class F>
@@ -117,13 +123,519 @@ class Scenario {
     return {v.dot(f), v.dot(l), omega.z()};
   }
 
+  /// Forward speed of the centre of mass along the vehicle's current heading.
+  double com_forward_speed() const { return sim_->center_of_mass_velocity().dot(sim_->link_pose(0).linear().col(0)); }
+
  private:
   const TankLayout& tank_;
   const TankSuiteOptions& options_;
   std::unique_ptr<Simulation> sim_;
 };
 
+std::string vector_text(const Eigen::Vector3d& v) {
+  auto clean = [](double x) { return std::abs(x) < 5e-10 ? 0.0 : x; };
+  return fmt::format("({:.4g}, {:.4g}, {:.4g})", clean(v.x()), clean(v.y()), clean(v.z()));
+}
+
+/// What every phase shares.
+struct Suite {
+  const Model& model;
+  const Derived& derived;
+  const TankSuiteOptions& options;
+  const TankLayout& tank;
+  CollectingSink quiet;  // scenario builds repeat nothing the first build reported
+  std::vector<CheckResult>& results;
+  double g, mu, mass, weight, B;
+  Eigen::Vector3d com_root;  // centre of mass in the root frame at the file pose
+  std::vector<ContactPoint> contacts;
+
+  Scenario scenario() { return Scenario(model, derived, tank, options, options.sim, quiet); }
+  void add(CheckResult r) { results.push_back(std::move(r)); }
+  void skip(std::string name, std::string reason) {
+    results.push_back(skipped_check(std::move(name), std::move(reason)));
+  }
+  std::string name(LinkIndex i) const { return i >= 0 ? model.links[i].name : std::string("none"); }
+};
+
+Eigen::Vector3d center_of_mass_in_root(const Model& model, const Derived& derived) {
+  const std::vector<Eigen::Isometry3d> X_RL = compute_root_relative_frames(model);
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  double mass = 0;
+  for (std::size_t k = 0; k < model.links.size(); ++k) {
+    sum += derived.mass[k].mass * (X_RL[k] * derived.mass[k].center_of_mass);
+    mass += derived.mass[k].mass;
+  }
+  return sum / mass;
+}
+
+/// The inertias a simulation uses, decided from the model alone: the derived tensor, or its
+/// balanced replacement where the options balance an unphysical one.
+std::vector<Eigen::Matrix3d> model_inertias(const Model& model, const Derived& derived, const SimOptions& options) {
+  std::vector<Eigen::Matrix3d> out;
+  for (std::size_t k = 0; k < model.links.size(); ++k) {
+    const Eigen::Matrix3d I = derived.mass[k].inertia;
+    std::optional<Eigen::Matrix3d> balanced = options.balance_inertia ? balance_inertia(I) : std::nullopt;
+    out.push_back(balanced ? *balanced : I);
+  }
+  return out;
+}
+
+/// The Simbody system against the derived data it was built from: a self-test of the build.
+void build_self_test(Suite& s, Simulation& probe) {
+  auto self = [&](CheckResult r) {
+    r.self_test = true;
+    s.add(std::move(r));
+  };
+  self(relative("system mass", probe.total_mass(), s.mass, 1e-9, "kg"));
+  Eigen::Vector3d com_model = Eigen::Vector3d::Zero();
+  for (std::size_t k = 0; k < s.model.links.size(); ++k)
+    com_model += s.derived.mass[k].mass * (as_isometry(s.derived.X_WL[k]) * s.derived.mass[k].center_of_mass);
+  com_model /= s.mass;
+  self(absolute("centre of mass at the file pose (distance)", (probe.center_of_mass() - com_model).norm(), 0, 1e-9,
+                "m"));
+  const std::vector<Eigen::Matrix3d> inertias = model_inertias(s.model, s.derived, s.options.sim);
+  const Eigen::MatrixXd M = probe.mass_matrix();
+  for (LinkIndex joint : {s.tank.yaw, s.tank.pitch}) {
+    if (joint < 0) continue;
+    const int u = probe.mobility_index(joint);
+    self(relative(fmt::format("mass matrix M[{0},{0}] at q = 0", s.model.links[joint].name), M(u, u),
+                  subtree_axis_inertia(s.model, s.derived, joint, {}, inertias), 1e-9, "kg·m²"));
+  }
+}
+
+/// The floor slopes at which the vehicle would tip over an edge of its support polygon, sideways
+/// and fore-aft: atan(distance of the COM projection from the edge / COM height). Static only: a
+/// vehicle on μ = 0.5 slides (at atan μ = 26.6°) before it tips on most slopes.
+std::string tip_slopes(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& com, double height,
+                       double& sideways, bool& to_left) {
+  double side = std::numeric_limits<double>::infinity(), fore = side;
+  std::string side_to, fore_to;
+  for (std::size_t i = 0; i < polygon.size(); ++i) {
+    const Eigen::Vector2d a = polygon[i], e = polygon[(i + 1) % polygon.size()] - a;
+    const Eigen::Vector2d outward = Eigen::Vector2d(e.y(), -e.x()).normalized();  // counter-clockwise hull
+    const double distance = (a - com).dot(outward);
+    const double slope = std::atan2(distance, height) / kDeg;
+    if (std::abs(outward.y()) >= std::abs(outward.x())) {
+      if (slope < side) side = slope, side_to = outward.y() > 0 ? "left" : "right";
+    } else if (slope < fore) {
+      fore = slope, fore_to = outward.x() > 0 ? "forward" : "backward";
+    }
+  }
+  sideways = side;
+  to_left = side_to == "left";
+  return fmt::format(
+      "static tip slopes (COM {:.4g} m above the floor): sideways {:.3g}° (to the {}), fore-aft {:.3g}° "
+      "({}); the sideways one is checked in simulation below",
+      height, side, side_to, fore, fore_to);
+}
+
+struct Stance {
+  bool tracks_agree = false;
+  bool com_inside = false;
+};
+
+/// The sideways tip slope checked in simulation: gravity tilted toward the nearest side edge at
+/// 0.9 and 1.1 times the slope, with friction high enough that the vehicle cannot slide first.
+void verify_sideways_tip(Suite& s, double slope_deg, bool to_left) {
+  const std::string name = fmt::format("static stability: sideways tip slope {:.3g}° in simulation", slope_deg);
+  if (!(slope_deg > 0 && slope_deg < 80)) {
+    s.skip(name, "no sideways tip slope below 80°");
+    return;
+  }
+  for (const double factor : {0.9, 1.1}) {
+    const double theta = factor * slope_deg * kDeg;
+    SimOptions o = s.options.sim;
+    o.contact_params.friction = std::max(o.contact_params.friction, 1.2 * std::tan(theta));
+    o.gravity_direction = Eigen::Vector3d(0, (to_left ? 1 : -1) * std::sin(theta), -std::cos(theta));
+    Scenario sc(s.model, s.derived, s.tank, s.options, o, s.quiet);
+    if (!sc) return;
+    // Below the slope 0.5 s; above it until it has tipped (20°; tumbling on is stiff and
+    // costly), at most 1 s.
+    double roll = 0;
+    const double start = sc.sim().time();
+    for (int k = 1; k <= (factor < 1 ? 10 : 20) && roll < 20; ++k) {
+      sc.sim().advance_to(start + 0.05 * k);
+      roll = std::acos(std::clamp(sc.sim().link_pose(0).linear()(2, 2), -1.0, 1.0)) / kDeg;
+    }
+    const std::string label = fmt::format("{}: tilted {:.3g}° ({} the slope), roll within {} s", name,
+                                          factor * slope_deg, factor < 1 ? "0.9 ×" : "1.1 ×", factor < 1 ? 0.5 : 1.0);
+    s.add(factor < 1 ? at_most(label + " (stays)", roll, 5, "°") : at_least(label + " (tips)", roll, 15, "°"));
+  }
+}
+
+/// Whether the tracks drive the same way, and where the centre of mass stands in the support
+/// polygon.
+Stance stance(Suite& s) {
+  const TankLayout& t = s.tank;
+  const Model& model = s.model;
+  const bool same = t.left_sign == t.right_sign;
+  if (same)
+    s.add(verdict_check(
+        "tracks drive the same way for the same dq", true,
+        t.left_sign > 0
+            ? "both drive toward +X of the root for +dq"
+            : fmt::format("both drive toward -X of the root for +dq (\"{}\" axis {}, \"{}\" axis {}): a "
+                          "consistent vehicle that drives backward for +dq",
+                          s.name(t.left), vector_text(t.left_axis), s.name(t.right), vector_text(t.right_axis))));
+  else
+    s.add(verdict_check("tracks drive the same way for the same dq", false,
+                        fmt::format("tracks drive against each other: \"{}\" (axis {} in the root frame) drives toward "
+                                    "{}X and \"{}\" (axis {}) toward {}X for +dq, so a controller's straight-drive "
+                                    "command turns the vehicle",
+                                    s.name(t.left), vector_text(t.left_axis), t.left_sign > 0 ? "+" : "-",
+                                    s.name(t.right), vector_text(t.right_axis), t.right_sign > 0 ? "+" : "-")));
+  std::vector<Eigen::Vector3d> pts = t.left_points;
+  pts.insert(pts.end(), t.right_points.begin(), t.right_points.end());
+  const std::vector<Eigen::Vector2d> polygon = support_polygon(pts);
+  const double margin = polygon_margin(polygon, s.com_root.head<2>());
+  const double height = s.com_root.z() - t.lowest_z;
+  double sideways = 0;
+  bool to_left = false;
+  CheckResult inside = at_least("static stability: centre of mass inside the support polygon (margin)",
+                                std::isfinite(margin) ? margin : -1.0, 0, "m");
+  inside.passed = margin > 0;
+  inside.tolerance = "> 0";
+  if (!inside.passed)
+    inside.note = fmt::format(
+        "the centre of mass projects to ({:.4g}, {:.4g}) m, outside the support polygon [{}] "
+        "(root frame); the vehicle tips over",
+        s.com_root.x(), s.com_root.y(), polygon_text(polygon));
+  else
+    inside.note = tip_slopes(polygon, s.com_root.head<2>(), height, sideways, to_left);
+  s.add(inside);
+  if (inside.passed && same)
+    verify_sideways_tip(s, sideways, to_left);
+  else
+    s.skip("static stability: sideways tip slope in simulation",
+           inside.passed ? "the tracks drive against each other (see above)"
+                         : "the centre of mass is outside the support polygon");
+  (void)model;
+  return {same, inside.passed};
+}
+
+void settle(Suite& s) {
+  Scenario sc = s.scenario();
+  if (!sc) return;
+  sc.run(1.0);
+  // Averages of contact forces mean something only at rest.
+  const double height = std::max(s.com_root.z() - s.tank.lowest_z, 1e-3);
+  const double bound = 1e-4 * s.weight * height;
+  const double ke = sc.sim().kinetic_energy();
+  s.add(at_most("settle: kinetic energy after 1 s (≤ 1e-4·m·g·h_com)", ke, bound, "J"));
+  double fz = 0, worst_ke = ke;
+  int samples = 0;
+  sc.run(0.5, [&](double) {
+    fz += sc.sim().total_contact_force().z();
+    worst_ke = std::max(worst_ke, sc.sim().kinetic_energy());
+    ++samples;
+  });
+  if (worst_ke > bound)
+    s.skip("settle: floor contact force = m·g",
+           fmt::format("the vehicle has not settled (kinetic energy up to {:.3g} J > {:.3g} J)", worst_ke, bound));
+  else
+    s.add(relative("settle: floor contact force = m·g", fz / samples, s.weight, 0.01, "N"));
+  const double depth = std::max(sc.sim().max_penetration(s.tank.left), sc.sim().max_penetration(s.tank.right));
+  s.add(within("settle: track bottoms below the floor", depth * 1e3, 0, 0, 2, "mm"));
+}
+
+/// Straight drive with the same dq on both tracks, as a controller commands it.
+void drive(Suite& s, double v) {
+  const int direction = s.tank.left_sign;  // where +dq takes a consistent vehicle
+  const double expected = direction * v;
+  Scenario sc = s.scenario();
+  if (!sc) return;
+  sc.run(0.3);
+  const double yaw0 = yaw_of(sc.sim().link_pose(0));
+  const Eigen::Vector3d start = sc.sim().link_pose(0).translation();
+  sc.drive(v, v);
+  double t90 = std::numeric_limits<double>::quiet_NaN();
+  // Fine samples while the speed builds up (t90 to 1 ms), coarse ones after.
+  const double t0 = sc.sim().time();
+  for (int i = 1; i <= 1000 && std::isnan(t90); ++i) {
+    sc.sim().advance_to(t0 + 0.001 * i);
+    if (sc.com_forward_speed() * direction >= 0.9 * v) t90 = 0.001 * i;
+  }
+  sc.run(1.5 - (sc.sim().time() - t0));
+  double speed = 0, lateral = 0;
+  int samples = 0;
+  sc.run(
+      0.8,
+      [&](double) {
+        const Eigen::Vector3d hv = sc.heading_velocity();
+        speed += hv.x();
+        lateral += std::abs(hv.y());
+        ++samples;
+      },
+      0.01);
+  speed /= samples;
+  const double distance = (sc.sim().link_pose(0).translation() - start).norm();
+  const double drift = std::abs(wrap(yaw_of(sc.sim().link_pose(0)) - yaw0)) / kDeg / std::max(distance, 1e-9);
+  const std::string label = fmt::format("drive dq = {:+g} on both tracks", v);
+  s.add(relative(label + ": forward speed", speed, expected, 0.02, "m/s"));
+  s.add(at_most(label + ": heading drift", drift, 1.0, "°/m"));
+  const double t90_bound = 0.9 * v / (s.mu * s.g);  // Coulomb: acceleration ≤ μ·g
+  s.add(within(label + ": centre of mass time to 90 % (≥ 0.9·v/(μ·g))", t90, t90_bound, 0.99 * t90_bound,
+               1.3 * t90_bound, "s"));
+}
+
+/// Spin in place, each direction against its own quasi-static reference.
+void spin(Suite& s, const std::vector<double>& loads, const std::string& loads_why) {
+  const double u = 0.5;
+  const TankLayout& t = s.tank;
+  std::vector<Eigen::Vector3d> pts = t.left_points;
+  pts.insert(pts.end(), t.right_points.begin(), t.right_points.end());
+  const std::string layout =
+      fmt::format("{}+{} contact points, B = {:.4g} m", t.left_points.size(), t.right_points.size(), s.B);
+  for (int direction = 0; direction < 2; ++direction) {
+    const double left = direction == 0 ? u : -u, right = -left;
+    const std::string label = fmt::format("spin dq_L = {:+g}, dq_R = {:+g}: ω / (2u/B) ({})", left, right, layout);
+    if (!loads_why.empty()) {
+      s.skip(label, "no quasi-static reference: " + loads_why);
+      continue;
+    }
+    // The belt surface moves along dq·(a_w × n_out), n_out = −Z (spec §1.4).
+    std::vector<Eigen::Vector3d> belt;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      const bool on_left = i < t.left_points.size();
+      const Eigen::Vector3d a = on_left ? t.left_axis : t.right_axis;
+      belt.push_back((on_left ? left : right) * a.cross(-Eigen::Vector3d::UnitZ()).normalized());
+    }
+    const SpinSolution reference = coulomb_motion(pts, loads, belt);
+    if (!reference.converged) {
+      s.skip(label, "the quasi-static Coulomb reference has no answer: " + reference.why);
+      continue;
+    }
+    Scenario sc = s.scenario();
+    if (!sc) return;
+    sc.run(0.3);
+    sc.drive(left, right);
+    double omega = 0;
+    int samples = 0;
+    sc.run(1.0);
+    sc.run(
+        1.0,
+        [&](double) {
+          omega += sc.heading_velocity().z();
+          ++samples;
+        },
+        0.01);
+    omega /= samples;
+    const double ideal = 2 * u / s.B;
+    s.add(absolute(label, omega / ideal, reference.velocity.z() / ideal, 0.03, ""));
+  }
+}
+
+/// Whether turning `joint` to q (the others at 0, the vehicle as it stands) brings a contact
+/// point of its subtree to within 1 cm of the floor: the link that would hit it, or empty.
+std::string floor_contact_at(const Suite& s, LinkIndex joint, double q) {
+  std::vector<double> at(s.model.links.size(), 0.0);
+  at[joint] = q;
+  const std::vector<Eigen::Isometry3d> X = compute_world_frames(s.model, at);
+  const Eigen::Isometry3d X_root = X[0];
+  for (const ContactPoint& p : s.contacts) {
+    bool below = false;
+    for (LinkIndex k = p.link; k >= 0; k = s.model.links[k].parent) below = below || k == joint;
+    if (!below) continue;
+    const double z = (X_root.inverse() * X[p.link] * p.position_in_link).z() - p.radius;
+    if (z < s.tank.lowest_z + 0.01)
+      return fmt::format("(link \"{}\" would reach {:.3g} m above the floor)", s.model.links[p.link].name,
+                         z - s.tank.lowest_z);
+  }
+  return {};
+}
+
+/// Pitch servo: sag under gravity and a step, against the rigid 1-DOF reference.
+void pitch_servo(Suite& s) {
+  const TankLayout& t = s.tank;
+  const Model& model = s.model;
+  if (t.pitch < 0) {
+    s.skip("turret: pitch sag and step response",
+           t.yaw < 0 ? "no turret yaw joint, hence no pitch joint below it"
+                     : fmt::format("no revolute joint about a horizontal axis below \"{}\"", s.name(t.yaw)));
+    return;
+  }
+  const Link& pitch = model.links[t.pitch];
+  const double P = s.options.p_gain, D = s.options.d_gain;
+  auto q_at = [&](double q) {
+    std::vector<double> v(model.links.size(), 0.0);
+    v[t.pitch] = q;
+    return v;
+  };
+  auto tau_g = [&](double q) { return subtree_gravity_torque(model, s.derived, t.pitch, q_at(q), s.g); };
+  // Sag under the servo: f(q) = τ_g(q) − P·q = 0, by Newton's method from q = 0 with steps
+  // of at most 0.1 rad (the nearest root).
+  double sag = 0;
+  for (int i = 0; i < 200; ++i) {
+    const double h = 1e-7, f = tau_g(sag) - P * sag;
+    const double df = (tau_g(sag + h) - tau_g(sag - h)) / (2 * h) - P;
+    if (df == 0) break;
+    sag -= std::clamp(f / df, -0.1, 0.1);
+  }
+  const double I = subtree_axis_inertia(model, s.derived, t.pitch, {}, model_inertias(model, s.derived, s.options.sim));
+  Scenario sc = s.scenario();
+  if (!sc) return;
+  sc.run(1.5);
+  s.add(relative("turret: pitch sag under gravity (τ_g/P)", sc.sim().joint_position(t.pitch), sag, 0.03, "rad"));
+  if (t.yaw >= 0) s.add(absolute("turret: yaw holds 0", sc.sim().joint_position(t.yaw), 0, 1e-5, "rad"));
+  // Step to two thirds of the wider side of the range (at most 30°), or of the other side when
+  // that would put the turret into the floor: the rigid 1-DOF response
+  // I·q̈ = P·(q_s − q) − D·q̇ + τ_g(q), integrated with RK4 from the sag.
+  const double upper = std::min(pitch.joint_range_upper, kPi), lower = std::max(pitch.joint_range_lower, -kPi);
+  double q_step = 0;
+  std::string blocked;
+  for (const double side :
+       upper >= -lower ? std::array<double, 2>{upper, lower} : std::array<double, 2>{lower, upper}) {
+    const double q = std::clamp(2.0 / 3 * side, -30 * kDeg, 30 * kDeg);
+    const std::string hit = floor_contact_at(s, t.pitch, q);
+    if (q != 0 && hit.empty()) {
+      q_step = q;
+      break;
+    }
+    if (!hit.empty()) blocked += fmt::format("{}at {:.4g} rad {}", blocked.empty() ? "" : "; ", q, hit);
+  }
+  if (q_step == 0) {
+    s.skip("turret: pitch step response", blocked.empty() ? "the pitch range leaves no room for a step from 0"
+                                                          : "a step would hit the floor: " + blocked);
+    return;
+  }
+  auto rhs = [&](const Eigen::Vector2d& x) {
+    return Eigen::Vector2d(x[1], (P * (q_step - x[0]) - D * x[1] + tau_g(x[0])) / I);
+  };
+  Eigen::Vector2d x(sc.sim().joint_position(t.pitch), sc.sim().joint_velocity(t.pitch));
+  const double h = 1e-4;
+  std::vector<std::pair<double, double>> expected;
+  for (int i = 1; i <= 20000; ++i) {
+    const Eigen::Vector2d k1 = rhs(x), k2 = rhs(x + h / 2 * k1), k3 = rhs(x + h / 2 * k2), k4 = rhs(x + h * k3);
+    x += h / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
+    if (i == 2500 || i == 5000 || i == 10000 || i == 20000) expected.emplace_back(i * h, x[0]);
+  }
+  sc.hold(t.pitch, q_step);
+  double elapsed = 0;
+  const double tolerance[] = {0.03, 0.02, 0.01, 0.005};
+  for (std::size_t k = 0; k < expected.size(); ++k) {
+    sc.run(expected[k].first - elapsed);
+    elapsed = expected[k].first;
+    s.add(relative(fmt::format("turret: pitch step to {:.4g} rad, q at {:g} s", q_step, expected[k].first),
+                   sc.sim().joint_position(t.pitch), expected[k].second, tolerance[k], "rad"));
+  }
+}
+
+/// Joint range enforced by stops (our choice; Choreonoid's AIST simulator does not).
+void pitch_limits(Suite& s) {
+  const TankLayout& t = s.tank;
+  for (int side = 0; side < 2; ++side) {
+    const std::string name =
+        side == 0 ? "turret: pitch stays below its upper limit + 1°" : "turret: pitch stays above its lower limit − 1°";
+    if (t.pitch < 0) {
+      s.skip(name, "no turret pitch joint");
+      continue;
+    }
+    const Link& pitch = s.model.links[t.pitch];
+    const double limit = side == 0 ? pitch.joint_range_upper : pitch.joint_range_lower;
+    if (!s.options.sim.joint_stops) {
+      s.skip(name, "joint stops are off");
+      continue;
+    }
+    if (!(std::abs(limit) < kUnlimited)) {
+      s.skip(name, fmt::format("the range of \"{}\" is unlimited on this side", pitch.name));
+      continue;
+    }
+    Scenario l = s.scenario();
+    if (!l) return;
+    l.run(0.3);
+    const double command = side == 0 ? limit + 15 * kDeg : limit - 20 * kDeg;
+    l.hold(t.pitch, command);
+    double extreme = side == 0 ? -1e9 : 1e9;
+    l.run(0.6, [&](double) {
+      const double q = l.sim().joint_position(t.pitch);
+      extreme = side == 0 ? std::max(extreme, q) : std::min(extreme, q);
+    });
+    const std::string label = fmt::format("{} (commanded {:.4g}°)", name, command / kDeg);
+    s.add(side == 0 ? at_most(label, extreme / kDeg, limit / kDeg + 1, "°")
+                    : at_least(label, extreme / kDeg, limit / kDeg - 1, "°"));
+  }
+}
+
+void yaw_tracking(Suite& s) {
+  const TankLayout& t = s.tank;
+  if (t.yaw < 0) {
+    s.skip("turret: yaw tracking, final error and chassis reaction",
+           "no revolute joint about the vertical (a turret yaw axis within 2.6° of the root's z)");
+    return;
+  }
+  // Minimum-jerk yaw 0 → 1 rad in 2 s with velocity feed-forward: the tracking error is about
+  // M_yy·α_max/P (α_max = 10√3/3 · θ/T²); allow twice that.
+  const double theta = 1, T = 2;
+  Scenario sc = s.scenario();
+  if (!sc) return;
+  sc.run(0.3);
+  const double t0 = sc.sim().time();
+  const double chassis_yaw0 = yaw_of(sc.sim().link_pose(0));
+  sc.servo(
+      t.yaw, [=](double time) { return min_jerk(time - t0, theta, T); },
+      [=](double time) { return min_jerk_rate(time - t0, theta, T); });
+  double worst = 0;
+  sc.run(
+      T + 1.0,
+      [&](double time) {
+        worst = std::max(worst, std::abs(sc.sim().joint_position(t.yaw) - min_jerk(time, theta, T)));
+      },
+      0.005);
+  const double M_yy =
+      subtree_axis_inertia(s.model, s.derived, t.yaw, {}, model_inertias(s.model, s.derived, s.options.sim));
+  const double predicted = M_yy * (10 * std::sqrt(3.0) / 3 * theta / (T * T)) / s.options.p_gain;
+  s.add(at_most("turret: yaw min-jerk 1 rad / 2 s, max tracking error (2·M·α/P)", worst, 2 * predicted, "rad"));
+  s.add(absolute("turret: yaw final error", sc.sim().joint_position(t.yaw), theta, 1e-4, "rad"));
+  s.add(absolute("turret: chassis yaw reaction", wrap(yaw_of(sc.sim().link_pose(0)) - chassis_yaw0), 0, 1e-3, "rad"));
+}
+
+/// No gravity, no contact, no stops, no servos: energy and momentum are conserved.
+void conservation(Suite& s) {
+  SimOptions free = s.options.sim;
+  free.gravity = 0;
+  free.contact = false;
+  free.joint_stops = false;
+  free.accuracy = 1e-8;
+  std::unique_ptr<Simulation> sim = Simulation::build(s.model, s.derived, free, s.quiet);
+  if (!sim) return;
+  sim->set_root_velocity(Eigen::Vector3d(0.3, -0.2, 0.5), Eigen::Vector3d(0.1, 0.2, 0.3));
+  double rate = 2;
+  for (std::size_t i = 0; i < s.model.links.size(); ++i)
+    if (sim->has_joint(static_cast<LinkIndex>(i))) {
+      sim->set_joint_velocity(static_cast<LinkIndex>(i), rate);
+      rate = rate > 0 ? -1 : 2;
+    }
+  const double e0 = sim->energy();
+  const auto [h0, p0] = sim->central_momentum();
+  double worst_e = 0, worst_h = 0, worst_p = 0;
+  const double duration = 3.0;
+  for (int i = 1; i <= 30; ++i) {
+    sim->advance_to(duration / 30 * i);
+    worst_e = std::max(worst_e, std::abs(sim->energy() - e0) / e0);
+    const auto [h, p] = sim->central_momentum();
+    worst_h = std::max(worst_h, (h - h0).norm() / std::max(h0.norm(), 1e-12));
+    worst_p = std::max(worst_p, (p - p0).norm() / std::max(p0.norm(), 1e-12));
+  }
+  s.add(at_most("conservation 3 s: energy drift |ΔE|/E0", worst_e, 1e-6, ""));
+  // Momentum to the same relative standard as energy: at accuracy 1e-8 both drift ~1e-8.
+  s.add(at_most("conservation 3 s: angular momentum |ΔH|/|H0| (about the COM)", worst_h, 1e-6, ""));
+  s.add(at_most("conservation 3 s: linear momentum |Δp|/|p0|", worst_p, 1e-6, ""));
+}
+
 }  // namespace
+
+CheckResult skipped_check(std::string name, std::string reason) {
+  CheckResult r{std::move(name), 0, 0, "", "", false};
+  r.skipped = true;
+  r.note = std::move(reason);
+  return r;
+}
+
+CheckResult verdict_check(std::string name, bool passed, std::string note) {
+  CheckResult r{std::move(name), 0, 0, "", "", passed};
+  r.note = std::move(note);
+  return r;
+}
 
 std::optional<TankLayout> find_tank(const Model& model, const Derived& /*derived*/,
                                     const std::vector<ContactPoint>& points, std::string& why) {
@@ -136,19 +648,35 @@ std::optional<TankLayout> find_tank(const Model& model, const Derived& /*derived
     why = "the tank suite needs a free root link";
     return std::nullopt;
   }
-  if (tracks.size() != 2) {
-    why =
-        fmt::format("the tank suite needs exactly two pseudo_continuous_track links; the model has {}", tracks.size());
-    return std::nullopt;
-  }
   // Contact points in the root frame.
   std::vector<std::vector<Eigen::Vector3d>> by_link(model.links.size());
   double lowest = std::numeric_limits<double>::infinity();
+  LinkIndex lowest_link = -1;
   for (const ContactPoint& p : points) {
     // The lowest point of a sphere contact at the file pose (root frame z is up).
     const Eigen::Vector3d x = X_RL[p.link] * p.position_in_link - Eigen::Vector3d(0, 0, p.radius);
     by_link[p.link].push_back(x);
-    lowest = std::min(lowest, x.z());
+    if (x.z() < lowest) {
+      lowest = x.z();
+      lowest_link = p.link;
+    }
+  }
+  if (tracks.size() != 2) {
+    // Name what stands on the floor beside the tracks: the link that should be one.
+    std::string named, floor;
+    for (LinkIndex k : tracks) named += (named.empty() ? "" : ", ") + ("\"" + model.links[k].name + "\"");
+    for (std::size_t i = 0; i < model.links.size(); ++i) {
+      if (is_track(model.links[i]) || by_link[i].empty()) continue;
+      double low = std::numeric_limits<double>::infinity();
+      for (const auto& p : by_link[i]) low = std::min(low, p.z());
+      if (low <= lowest + 1e-3)
+        floor += fmt::format("{}\"{}\" ({} joint)", floor.empty() ? "" : ", ", model.links[i].name,
+                             joint_type_name(model.links[i].joint_type));
+    }
+    why = fmt::format("the tank suite needs exactly two pseudo_continuous_track links; the model has {}{}{}",
+                      tracks.size(), named.empty() ? "" : " (" + named + ")",
+                      floor.empty() ? "" : "; touching the floor but not a track: " + floor);
+    return std::nullopt;
   }
   if (!std::isfinite(lowest)) {
     why = "the model has no collision geometry";
@@ -158,14 +686,16 @@ std::optional<TankLayout> find_tank(const Model& model, const Derived& /*derived
   // Forward is where +dq drives a track: a_w × Z (the belt moves along a_w × n_out, n_out = −Z).
   double lateral[2];
   int sign[2];
+  Eigen::Vector3d axis[2];
   std::vector<Eigen::Vector3d> bottoms[2];
   for (int k = 0; k < 2; ++k) {
     const Link& link = model.links[tracks[k]];
     const Eigen::Vector3d a = X_RL[tracks[k]].linear() * link.joint_axis.normalized();
+    axis[k] = a;
     const Eigen::Vector3d forward = a.cross(Eigen::Vector3d::UnitZ());
     if (std::abs(forward.x()) < 0.99 * forward.norm() || forward.norm() < 1e-9) {
-      why = fmt::format("the axis of track \"{}\" does not drive along the root's x axis (a × z = ({:g}, {:g}, {:g}))",
-                        link.name, forward.x(), forward.y(), forward.z());
+      why = fmt::format("the axis {} of track \"{}\" (root frame) does not drive along the root's x axis (a × z = {})",
+                        vector_text(a), link.name, vector_text(forward));
       return std::nullopt;
     }
     sign[k] = forward.x() > 0 ? 1 : -1;
@@ -178,10 +708,11 @@ std::optional<TankLayout> find_tank(const Model& model, const Derived& /*derived
     for (const auto& p : all) low = std::min(low, p.z());
     for (const auto& p : all)
       if (p.z() <= low + 1e-6) bottoms[k].push_back(p);
-    if (low > lowest + 1e-3) {
-      why = fmt::format("track \"{}\" is not the lowest part of the model ({:g} m above it)", link.name, low - lowest);
-      return std::nullopt;
-    }
+    if (low > lowest + 1e-3 && tank.standing_problem.empty())
+      tank.standing_problem = fmt::format(
+          "track \"{}\" does not reach the floor: its lowest point is {:.4g} m above that of link \"{}\", "
+          "which the vehicle stands on instead",
+          link.name, low - lowest, model.links[lowest_link].name);
     lateral[k] = mean(bottoms[k]).y();
   }
   const int left = lateral[0] > lateral[1] ? 0 : 1;
@@ -190,6 +721,8 @@ std::optional<TankLayout> find_tank(const Model& model, const Derived& /*derived
   tank.right = tracks[right];
   tank.left_sign = sign[left];
   tank.right_sign = sign[right];
+  tank.left_axis = axis[left];
+  tank.right_axis = axis[right];
   tank.left_points = bottoms[left];
   tank.right_points = bottoms[right];
   tank.spacing = lateral[left] - lateral[right];
@@ -212,65 +745,6 @@ std::optional<TankLayout> find_tank(const Model& model, const Derived& /*derived
   return tank;
 }
 
-std::vector<double> static_loads(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& com,
-                                 double weight) {
-  // Loads N_i = c0 + c1·x_i + c2·y_i (a rigid plate on equal springs) with ΣN = W,
-  // ΣN·x = W·x_c, ΣN·y = W·y_c.
-  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
-  Eigen::Vector3d b(weight, weight * com.x(), weight * com.y());
-  for (const auto& p : points) {
-    const Eigen::Vector3d phi(1, p.x(), p.y());
-    A += phi * phi.transpose();
-  }
-  const Eigen::Vector3d c = A.completeOrthogonalDecomposition().solve(b);
-  std::vector<double> loads;
-  for (const auto& p : points) loads.push_back(c.dot(Eigen::Vector3d(1, p.x(), p.y())));
-  return loads;
-}
-
-double coulomb_yaw_rate(const std::vector<Eigen::Vector3d>& points, const std::vector<double>& loads,
-                        const std::vector<Eigen::Vector3d>& belt) {
-  // Unknowns (vx, vy, ω) of the rigid vehicle; residual: net friction force and moment.
-  auto residual = [&](const Eigen::Vector3d& x) {
-    Eigen::Vector3d r = Eigen::Vector3d::Zero();
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      const Eigen::Vector2d p(points[i].x(), points[i].y());
-      const Eigen::Vector2d slip(x[0] - x[2] * p.y() + belt[i].x(), x[1] + x[2] * p.x() + belt[i].y());
-      const Eigen::Vector2d f = -loads[i] * slip / std::max(slip.norm(), 1e-12);
-      r += Eigen::Vector3d(f.x(), f.y(), p.x() * f.y() - p.y() * f.x());
-    }
-    return r;
-  };
-  // Start from the no-slip estimate of the yaw rate, halved.
-  double scale = 0;
-  for (const auto& p : points) scale = std::max(scale, Eigen::Vector2d(p.x(), p.y()).norm());
-  double omega0 = 0;
-  for (std::size_t i = 0; i < points.size(); ++i) omega0 += (points[i].x() * belt[i].y() - points[i].y() * belt[i].x());
-  omega0 /= std::max(1e-12, [&] {
-    double s = 0;
-    for (const auto& p : points) s += p.x() * p.x() + p.y() * p.y();
-    return s;
-  }());
-  Eigen::Vector3d x(0, 0, 0.5 * omega0);
-  for (int iteration = 0; iteration < 100; ++iteration) {
-    const Eigen::Vector3d r = residual(x);
-    Eigen::Matrix3d J;
-    for (int k = 0; k < 3; ++k) {
-      Eigen::Vector3d dx = Eigen::Vector3d::Zero();
-      dx[k] = 1e-7 * std::max(1.0, std::abs(x[k]));
-      J.col(k) = (residual(x + dx) - r) / dx[k];
-    }
-    Eigen::Vector3d step = J.colPivHouseholderQr().solve(-r);
-    // Damped: never let the yaw rate change sign or jump by more than half.
-    double damping = 1;
-    while (damping > 1e-4 && residual(x + damping * step).norm() >= r.norm()) damping /= 2;
-    x += damping * step;
-    if (step.norm() * damping < 1e-12 * (1 + x.norm())) break;
-  }
-  (void)scale;
-  return x[2];
-}
-
 std::vector<CheckResult> run_tank_suite(const Model& model, const Derived& derived, const TankSuiteOptions& options,
                                         DiagnosticSink& sink, std::string& why, TankLayout* layout) {
   std::vector<CheckResult> results;
@@ -284,261 +758,47 @@ std::vector<CheckResult> run_tank_suite(const Model& model, const Derived& deriv
   if (!found) return results;
   const TankLayout& tank = *found;
   if (layout) *layout = tank;
-  CollectingSink quiet;
-  const SimOptions& base = options.sim;
-  const double g = base.gravity;
-  const double mu = base.contact_params.friction;
-  const double mass = derived.total_mass;
-  const double weight = mass * g;
-  const double B = tank.spacing;
-
-  // --- Model facts: Simbody's system against the model's derived data -------------------
-  results.push_back(relative("system mass", probe->total_mass(), mass, 1e-9, "kg"));
-  Eigen::Vector3d com_model = Eigen::Vector3d::Zero();
-  for (std::size_t k = 0; k < model.links.size(); ++k)
-    com_model += derived.mass[k].mass * (as_isometry(derived.X_WL[k]) * derived.mass[k].center_of_mass);
-  com_model /= mass;
-  results.push_back(absolute("centre of mass at the file pose (distance)", (probe->center_of_mass() - com_model).norm(),
-                             0, 1e-9, "m"));
-  for (LinkIndex joint : {tank.yaw, tank.pitch}) {
-    if (joint < 0) continue;
-    const int u = probe->mobility_index(joint);
-    const Eigen::MatrixXd M = probe->mass_matrix();
-    results.push_back(relative(fmt::format("mass matrix M[{0},{0}] at q = 0", model.links[joint].name), M(u, u),
-                               subtree_axis_inertia(model, derived, joint, {}, probe->link_inertias()), 1e-9, "kg·m²"));
+  Suite s{model,
+          derived,
+          options,
+          tank,
+          {},
+          results,
+          options.sim.gravity,
+          options.sim.contact_params.friction,
+          derived.total_mass,
+          derived.total_mass * options.sim.gravity,
+          tank.spacing,
+          center_of_mass_in_root(model, derived),
+          {}};
+  build_self_test(s, *probe);
+  s.contacts = probe->contact_points();
+  probe.reset();
+  if (!tank.standing_problem.empty()) {
+    s.add(verdict_check("the vehicle stands on its two tracks", false, tank.standing_problem));
+    s.skip("settle, drive, spin, turret and conservation checks", "the vehicle does not stand on its tracks");
+    return results;
   }
-
-  // --- Static settling --------------------------------------------------------------------
-  {
-    Scenario s(model, derived, tank, options, base, quiet);
-    if (!s) return results;
-    double fz = 0;
-    int samples = 0;
-    s.run(1.5, [&](double t) {
-      if (t > 1.0) {
-        fz += s.sim().total_contact_force().z();
-        ++samples;
-      }
-    });
-    results.push_back(relative("settle: floor contact force = m·g", fz / samples, weight, 0.01, "N"));
-    const double depth = std::max(s.sim().max_penetration(tank.left), s.sim().max_penetration(tank.right));
-    results.push_back(within("settle: track bottoms below the floor", depth * 1e3, 0, 0, 2, "mm"));
+  const Stance stands = stance(s);
+  std::vector<Eigen::Vector3d> pts = tank.left_points;
+  pts.insert(pts.end(), tank.right_points.begin(), tank.right_points.end());
+  const StaticLoads static_loads = static_loads_on_springs(pts, s.com_root, s.weight);
+  if (!stands.com_inside) {
+    s.skip("settle, drive, spin and turret checks", "the centre of mass is outside the support polygon");
+    conservation(s);
+    return results;
   }
-
-  // --- Straight drive -----------------------------------------------------------------------
-  for (double v : {0.5, 1.0}) {
-    Scenario s(model, derived, tank, options, base, quiet);
-    s.run(0.5);
-    const double yaw0 = yaw_of(s.sim().link_pose(0));
-    const Eigen::Vector3d start = s.sim().link_pose(0).translation();
-    s.drive(v, v);
-    double t90 = std::numeric_limits<double>::quiet_NaN();
-    double speed = 0, lateral = 0;
-    int samples = 0;
-    s.run(
-        4.0,
-        [&](double t) {
-          const Eigen::Vector3d hv = s.heading_velocity();
-          if (std::isnan(t90) && hv.x() >= 0.9 * v) t90 = t;
-          if (t > 2.0) {
-            speed += hv.x();
-            lateral += std::abs(hv.y());
-            ++samples;
-          }
-        },
-        0.001);
-    speed /= samples;
-    const double distance = (s.sim().link_pose(0).translation() - start).norm();
-    const double drift = std::abs(wrap(yaw_of(s.sim().link_pose(0)) - yaw0)) / kDeg / std::max(distance, 1e-9);
-    const std::string label = fmt::format("drive {:g} m/s", v);
-    results.push_back(relative(label + ": forward speed", speed, v, 0.02, "m/s"));
-    results.push_back(at_most(label + ": heading drift", drift, 1.0, "°/m"));
-    const double t90_bound = 0.9 * v / (mu * g);  // Coulomb: acceleration ≤ μ·g
-    results.push_back(
-        within(label + ": time to 90 % (≥ 0.9·v/(μ·g))", t90, t90_bound, 0.99 * t90_bound, 1.3 * t90_bound, "s"));
+  settle(s);
+  if (stands.tracks_agree) {
+    for (double v : {0.5, 1.0}) drive(s, v);
+    spin(s, static_loads.loads, static_loads.why);
+  } else {
+    s.skip("straight drive and spin in place", "the tracks drive against each other (see above)");
   }
-
-  // --- Spin in place --------------------------------------------------------------------
-  {
-    const double u = 0.5;
-    // The oracle: four-corner (or whatever the collision geometry gives) Coulomb contact.
-    std::vector<Eigen::Vector3d> pts = tank.left_points;
-    pts.insert(pts.end(), tank.right_points.begin(), tank.right_points.end());
-    Eigen::Vector3d com_root = Eigen::Vector3d::Zero();
-    const std::vector<Eigen::Isometry3d> X_RL = compute_root_relative_frames(model);
-    for (std::size_t k = 0; k < model.links.size(); ++k)
-      com_root += derived.mass[k].mass * (X_RL[k] * derived.mass[k].center_of_mass);
-    com_root /= mass;
-    const std::vector<double> loads = static_loads(pts, com_root, weight);
-    std::vector<Eigen::Vector3d> belt;
-    // Left +u, right −u: the belt surface moves against the commanded forward speed.
-    for (std::size_t i = 0; i < pts.size(); ++i)
-      belt.push_back(Eigen::Vector3d(i < tank.left_points.size() ? -u : u, 0, 0));
-    const double omega_ideal = -2 * u / B;
-    const double ratio_oracle = coulomb_yaw_rate(pts, loads, belt) / omega_ideal;
-    double omega[2] = {0, 0};
-    for (int direction = 0; direction < 2; ++direction) {
-      Scenario s(model, derived, tank, options, base, quiet);
-      s.run(0.5);
-      const double sign = direction == 0 ? 1 : -1;
-      s.drive(sign * u, -sign * u);
-      int samples = 0;
-      s.run(3.0, [&](double t) {
-        if (t > 1.5) {
-          omega[direction] += s.heading_velocity().z();
-          ++samples;
-        }
-      });
-      omega[direction] /= samples;
-    }
-    const std::string layout = fmt::format("{}+{} contact points", tank.left_points.size(), tank.right_points.size());
-    results.push_back(
-        at_most(fmt::format("spin L+{0:g} R-{0:g}: yaw rate sign (right turn, < 0)", u), omega[0], 0, "rad/s"));
-    results.push_back(absolute(fmt::format("spin L+{0:g} R-{0:g}: ω / (2u/B) ({1}, B = {2:.4g} m)", u, layout, B),
-                               omega[0] / omega_ideal, ratio_oracle, 0.03, ""));
-    results.push_back(
-        absolute(fmt::format("spin L-{0:g} R+{0:g}: ω / (2u/B)", u), omega[1] / -omega_ideal, ratio_oracle, 0.03, ""));
-    results.push_back(at_most("spin: mirror asymmetry |ω+ + ω-| / |ω+|",
-                              std::abs(omega[0] + omega[1]) / std::abs(omega[0]) * 100, 2, "%"));
-  }
-
-  // --- Turret -----------------------------------------------------------------------------
-  if (tank.pitch >= 0) {
-    const Link& pitch = model.links[tank.pitch];
-    const double P = options.p_gain, D = options.d_gain;
-    auto q_at = [&](double q) {
-      std::vector<double> v(model.links.size(), 0.0);
-      v[tank.pitch] = q;
-      return v;
-    };
-    auto tau_g = [&](double q) { return subtree_gravity_torque(model, derived, tank.pitch, q_at(q), g); };
-    // Sag under the servo: f(q) = τ_g(q) − P·q = 0, by Newton's method from q = 0 with steps
-    // of at most 0.1 rad (the nearest root).
-    double sag = 0;
-    for (int i = 0; i < 200; ++i) {
-      const double h = 1e-7, f = tau_g(sag) - P * sag;
-      const double df = (tau_g(sag + h) - tau_g(sag - h)) / (2 * h) - P;
-      if (df == 0) break;
-      sag -= std::clamp(f / df, -0.1, 0.1);
-    }
-    const double I = subtree_axis_inertia(model, derived, tank.pitch, {}, probe->link_inertias());
-
-    Scenario s(model, derived, tank, options, base, quiet);
-    s.run(2.0);
-    results.push_back(
-        relative("turret: pitch sag under gravity (τ_g/P)", s.sim().joint_position(tank.pitch), sag, 0.03, "rad"));
-    if (tank.yaw >= 0)
-      results.push_back(absolute("turret: yaw holds 0", s.sim().joint_position(tank.yaw), 0, 1e-5, "rad"));
-
-    // Step to two thirds of the wider side of the range (at most 30°): the rigid 1-DOF
-    // response I·q̈ = P·(q_s − q) − D·q̇ + τ_g(q), integrated with RK4 from the sag.
-    const double upper = std::min(pitch.joint_range_upper, kPi), lower = std::max(pitch.joint_range_lower, -kPi);
-    const double side = upper >= -lower ? upper : lower;
-    const double q_step = std::clamp(2.0 / 3 * side, -30 * kDeg, 30 * kDeg);
-    if (q_step != 0) {
-      auto rhs = [&](const Eigen::Vector2d& x) {
-        return Eigen::Vector2d(x[1], (P * (q_step - x[0]) - D * x[1] + tau_g(x[0])) / I);
-      };
-      Eigen::Vector2d x(s.sim().joint_position(tank.pitch), s.sim().joint_velocity(tank.pitch));
-      const double h = 1e-4;
-      std::vector<std::pair<double, double>> expected;
-      for (int i = 1; i <= 20000; ++i) {
-        const Eigen::Vector2d k1 = rhs(x), k2 = rhs(x + h / 2 * k1), k3 = rhs(x + h / 2 * k2), k4 = rhs(x + h * k3);
-        x += h / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
-        if (i == 2500 || i == 5000 || i == 10000 || i == 20000) expected.emplace_back(i * h, x[0]);
-      }
-      s.hold(tank.pitch, q_step);
-      double elapsed = 0;
-      const double tolerance[] = {0.03, 0.02, 0.01, 0.005};
-      for (std::size_t k = 0; k < expected.size(); ++k) {
-        s.run(expected[k].first - elapsed);
-        elapsed = expected[k].first;
-        results.push_back(
-            relative(fmt::format("turret: pitch step to {:.4g} rad, q at {:g} s", q_step, expected[k].first),
-                     s.sim().joint_position(tank.pitch), expected[k].second, tolerance[k], "rad"));
-      }
-    }
-    // Joint range enforced by stops (our choice; Choreonoid's AIST simulator does not).
-    if (base.joint_stops) {
-      for (int side = 0; side < 2; ++side) {
-        const double limit = side == 0 ? pitch.joint_range_upper : pitch.joint_range_lower;
-        if (!(std::abs(limit) < kUnlimited)) continue;
-        Scenario l(model, derived, tank, options, base, quiet);
-        l.run(0.5);
-        const double command = side == 0 ? limit + 15 * kDeg : limit - 20 * kDeg;
-        l.hold(tank.pitch, command);
-        double extreme = side == 0 ? -1e9 : 1e9;
-        l.run(1.5, [&](double) {
-          const double q = l.sim().joint_position(tank.pitch);
-          extreme = side == 0 ? std::max(extreme, q) : std::min(extreme, q);
-        });
-        if (side == 0)
-          results.push_back(
-              at_most(fmt::format("turret: pitch commanded {:.4g}° stays below the limit + 1°", command / kDeg),
-                      extreme / kDeg, limit / kDeg + 1, "°"));
-        else
-          results.push_back(
-              at_least(fmt::format("turret: pitch commanded {:.4g}° stays above the limit − 1°", command / kDeg),
-                       extreme / kDeg, limit / kDeg - 1, "°"));
-      }
-    }
-  }
-  if (tank.yaw >= 0) {
-    // Minimum-jerk yaw 0 → 1 rad in 2 s with velocity feed-forward: the tracking error is about
-    // M_yy·α_max/P (α_max = 10√3/3 · θ/T²); allow twice that.
-    const double theta = 1, T = 2;
-    Scenario s(model, derived, tank, options, base, quiet);
-    s.run(0.5);
-    const double t0 = s.sim().time();
-    const double chassis_yaw0 = yaw_of(s.sim().link_pose(0));
-    s.servo(
-        tank.yaw, [=](double t) { return min_jerk(t - t0, theta, T); },
-        [=](double t) { return min_jerk_rate(t - t0, theta, T); });
-    double worst = 0;
-    s.run(
-        T + 1.0,
-        [&](double t) { worst = std::max(worst, std::abs(s.sim().joint_position(tank.yaw) - min_jerk(t, theta, T))); },
-        0.002);
-    const double M_yy = subtree_axis_inertia(model, derived, tank.yaw, {}, probe->link_inertias());
-    const double predicted = M_yy * (10 * std::sqrt(3.0) / 3 * theta / (T * T)) / options.p_gain;
-    results.push_back(
-        at_most("turret: yaw min-jerk 1 rad / 2 s, max tracking error (2·M·α/P)", worst, 2 * predicted, "rad"));
-    results.push_back(absolute("turret: yaw final error", s.sim().joint_position(tank.yaw), theta, 1e-4, "rad"));
-    results.push_back(
-        absolute("turret: chassis yaw reaction", wrap(yaw_of(s.sim().link_pose(0)) - chassis_yaw0), 0, 1e-3, "rad"));
-  }
-
-  // --- Conservation: no gravity, no contact, no stops, no servos -----------------------------
-  {
-    SimOptions free = base;
-    free.gravity = 0;
-    free.contact = false;
-    free.joint_stops = false;
-    free.accuracy = 1e-8;
-    std::unique_ptr<Simulation> sim = Simulation::build(model, derived, free, quiet);
-    if (!sim) return results;
-    sim->set_root_velocity(Eigen::Vector3d(0.3, -0.2, 0.5), Eigen::Vector3d(0.1, 0.2, 0.3));
-    double rate = 2;
-    for (std::size_t i = 0; i < model.links.size(); ++i)
-      if (sim->has_joint(static_cast<LinkIndex>(i))) {
-        sim->set_joint_velocity(static_cast<LinkIndex>(i), rate);
-        rate = rate > 0 ? -1 : 2;
-      }
-    const double e0 = sim->energy();
-    const auto [h0, p0] = sim->central_momentum();
-    double worst_e = 0, worst_h = 0, worst_p = 0;
-    for (int i = 1; i <= 100; ++i) {
-      sim->advance_to(0.05 * i);
-      worst_e = std::max(worst_e, std::abs(sim->energy() - e0) / e0);
-      const auto [h, p] = sim->central_momentum();
-      worst_h = std::max(worst_h, (h - h0).norm() / std::max(h0.norm(), 1e-12));
-      worst_p = std::max(worst_p, (p - p0).norm() / std::max(p0.norm(), 1e-12));
-    }
-    results.push_back(at_most("conservation 5 s: energy drift |ΔE|/E0", worst_e, 1e-6, ""));
-    // Momentum to the same relative standard as energy: at accuracy 1e-8 both drift ~1e-8.
-    results.push_back(at_most("conservation 5 s: angular momentum |ΔH|/|H0| (about the COM)", worst_h, 1e-6, ""));
-    results.push_back(at_most("conservation 5 s: linear momentum |Δp|/|p0|", worst_p, 1e-6, ""));
-  }
+  pitch_servo(s);
+  pitch_limits(s);
+  yaw_tracking(s);
+  conservation(s);
   return results;
 }
 

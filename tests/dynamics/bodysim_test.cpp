@@ -68,7 +68,7 @@ TEST_CASE("bodysim: check-tank passes every check on SimpleTank with --balance-i
   CHECK(contains(r.all, "[dynamics-inertia-balanced]"));
   CHECK(contains(r.out, "tracks: left \"TRACK_L\", right \"TRACK_R\" (found by position), spacing B = 0.4 m"));
   CHECK(!contains(r.out, "FAIL"));
-  CHECK(contains(r.out, "30 of 30 checks passed"));
+  CHECK(contains(r.out, "33 of 33 checks passed, 0 failed, 0 skipped"));
 }
 
 TEST_CASE("bodysim: check-tank passes every check on examples/scouttank.body (exit 0)") {
@@ -77,7 +77,7 @@ TEST_CASE("bodysim: check-tank passes every check on examples/scouttank.body (ex
   CHECK(r.status == 0);
   // Left and right by position: BELT_B (y = +0.31) is left although listed second.
   CHECK(contains(r.out, "tracks: left \"BELT_B\", right \"BELT_A\" (found by position), spacing B = 0.62 m"));
-  CHECK(contains(r.out, "30 of 30 checks passed"));
+  CHECK(contains(r.out, "33 of 33 checks passed, 0 failed, 0 skipped"));
 }
 
 TEST_CASE("bodysim: a failing check exits 1") {
@@ -296,6 +296,6 @@ TEST_CASE("bodysim: --cross-check mujoco runs body2mjcf's export in MuJoCo 2.2.2
   CHECK(contains(r.out, "MuJoCo vs Simbody: drive 1 m/s: speed"));
   CHECK(contains(r.out, "MuJoCo vs Simbody: spin L+0.5 R-0.5"));
   CHECK(contains(r.out, "MuJoCo vs Simbody: turret: pitch step"));
-  CHECK(contains(r.out, "40 of 40 checks passed"));
+  CHECK(contains(r.out, "43 of 43 checks passed"));
 }
 #endif

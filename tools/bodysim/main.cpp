@@ -18,6 +18,7 @@
 #endif
 #include <bodyfmt/dynamics/scenario.h>
 #include <bodyfmt/rules.h>
+#include <bodyfmt/validate.h>
 
 #include <fmt/format.h>
 
@@ -38,20 +39,56 @@ constexpr const char* kUsage =
     "  bodysim run MODEL --scenario S.yaml --csv OUT  run a scenario, write trajectories as CSV\n"
     "  bodysim SUBCOMMAND --help                      options of a subcommand\n";
 
+/// bodycheck's rules under bodysim's policy, except the inertia findings that Simulation::build
+/// reports itself with what it does about them (refused, or balanced with --balance-inertia).
+class ValidatorFirst : public DiagnosticSink {
+ public:
+  explicit ValidatorFirst(DiagnosticSink& inner) : inner_(inner) {}
+  void report(Diagnostic d) override {
+    if (d.rule_id == "inertia-triangle" || d.rule_id == "inertia-not-positive-definite") return;
+    inner_.report(std::move(d));
+  }
+
+ private:
+  DiagnosticSink& inner_;
+};
+
 std::string number(double v) { return fmt::format("{:.6g}", v); }
 
+void print_line(const dynamics::CheckResult& r, std::size_t width) {
+  if (r.skipped) {
+    std::cout << fmt::format("SKIP  {}: {}\n", r.name, r.note);
+    return;
+  }
+  if (!r.note.empty() && r.tolerance.empty()) {
+    std::cout << fmt::format("{}  {}: {}\n", r.passed ? "PASS" : "FAIL", r.name, r.note);
+    return;
+  }
+  const std::string unit = r.unit.empty() ? "" : " " + r.unit;
+  std::cout << fmt::format("{}  {:<{}}  measured {:>12}{:<6}  expected {:>12}  tolerance {}\n",
+                           r.passed ? "PASS" : "FAIL", r.name, width, number(r.measured), unit, number(r.expected),
+                           r.tolerance);
+  if (!r.note.empty()) std::cout << "      " << r.note << "\n";
+}
+
+/// The model's checks, then the build's self-test apart, then the counts.
 void print_results(const std::vector<dynamics::CheckResult>& results) {
   std::size_t width = 0;
   for (const auto& r : results) width = std::max(width, r.name.size());
-  for (const auto& r : results) {
-    const std::string unit = r.unit.empty() ? "" : " " + r.unit;
-    std::cout << fmt::format("{}  {:<{}}  measured {:>12}{:<6}  expected {:>12}  tolerance {}\n",
-                             r.passed ? "PASS" : "FAIL", r.name, width, number(r.measured), unit, number(r.expected),
-                             r.tolerance);
+  int self_tests = 0;
+  for (const auto& r : results) self_tests += r.self_test ? 1 : 0;
+  if (self_tests > 0) {
+    std::cout << "self-test of the Simbody build (its system against the derived data it was built from):\n";
+    for (const auto& r : results)
+      if (r.self_test) print_line(r, width);
+    std::cout << "checks of the model:\n";
   }
-  int failed = 0;
-  for (const auto& r : results) failed += r.passed ? 0 : 1;
-  std::cout << fmt::format("{} of {} checks passed\n", results.size() - failed, results.size());
+  int passed = 0, failed = 0, skipped = 0;
+  for (const auto& r : results) {
+    if (!r.self_test) print_line(r, width);
+    (r.skipped ? skipped : r.passed ? passed : failed) += 1;
+  }
+  std::cout << fmt::format("{} of {} checks passed, {} failed, {} skipped\n", passed, passed + failed, failed, skipped);
 }
 
 }  // namespace
@@ -157,6 +194,14 @@ int main(int argc, char** argv) {
     return finish(true, "the model is too large to simulate; nothing was simulated");
   }
   const Derived derived = compute_derived(*model, sink);
+  // The validator first: what bodycheck calls an error (a reversed range, a moving massless
+  // link, ...) is refused at its line before any engine sees it.
+  {
+    ValidatorFirst validator(sink);
+    validate::check_model(*model, derived, {}, validator);
+  }
+  if (collected.error_count() > 0)
+    return finish(true, "the model has errors (bodycheck's rules); nothing was simulated");
   if (sim.contact_model == dynamics::ContactModel::kSimbody) {
     // Simbody's elastic-foundation meshes did not finish 1 simulated second of SimpleTank (its
     // Extrusion tracks) in 10 CPU minutes: until that is understood, --contact simbody takes
@@ -267,9 +312,13 @@ int main(int argc, char** argv) {
 #endif
     print_results(results);
     bool failed = false;
-    for (const auto& r : results) failed = failed || !r.passed;
+    for (const auto& r : results) failed = failed || (!r.passed && !r.skipped);
     const int code = finish(false, "");
     return code == tools::kExitFatal ? code : (failed ? tools::kExitFindings : code);
+  } catch (const dynamics::EngineFailure& e) {
+    report_rule(sink, "dynamics-engine-failure", e.where, e.what());
+    return finish(true,
+                  "the simulation failed" + std::string(command == "run" ? "; " + csv_path + " was not written" : ""));
   } catch (const dynamics::WorkBudgetExceeded& e) {
     report_rule(sink, "dynamics-work-budget", e.where, e.what());
     return finish(

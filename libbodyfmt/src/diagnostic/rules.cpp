@@ -270,6 +270,10 @@ std::vector<RuleInfo> make_table() {
        "bodysim --contact simbody could not turn a collision shape into Simbody contact geometry (a Brick needs a "
        "rigid placement, a TriangleMesh a closed surface), so that shape does not touch the floor",
        "a shape without floor contact changes the simulation; it must not vanish silently", ""},
+      {"dynamics-engine-failure", F,
+       "Simbody or MuJoCo stopped with an exception while bodysim simulated the model; reported at the part of the "
+       "model most likely to cause it (the stiffest contact, servo or inertia), with the engine's message",
+       "an engine's exception names no link; the user needs the line of the model to look at", ""},
       {"dynamics-inertia-balanced", W,
        "bodysim --balance-inertia simulated a link with the balanced tensor instead of its unphysical inertia, with "
        "the old and new values",

@@ -5,6 +5,7 @@
 /// a particular model's names or numbers.
 
 #include <bodyfmt/dynamics/simulation.h>
+#include <bodyfmt/dynamics/spin_reference.h>
 
 #include <string>
 #include <vector>
@@ -13,19 +14,45 @@ namespace bodyfmt::dynamics {
 
 /// One line of a check report: measured against expected within a tolerance.
 struct CheckResult {
+  CheckResult() = default;
+  CheckResult(std::string name_, double measured_, double expected_, std::string unit_, std::string tolerance_,
+              bool passed_)
+      : name(std::move(name_)),
+        measured(measured_),
+        expected(expected_),
+        unit(std::move(unit_)),
+        tolerance(std::move(tolerance_)),
+        passed(passed_) {}
   std::string name;  ///< e.g. "drive 1 m/s: speed"
   double measured = 0;
   double expected = 0;
   std::string unit;       ///< for printing
   std::string tolerance;  ///< as printed, e.g. "±2 %", "≤ 1e-06 rel"
   bool passed = false;
+  /// Not run: printed as `SKIP  name: note` and counted apart from passes and failures.
+  bool skipped = false;
+  /// A cause in words, printed instead of the numbers (`FAIL  name: note`), or why skipped.
+  std::string note;
+  /// Compares the Simbody system with the derived data it was built from: a self-test of the
+  /// build, not of the model (listed apart).
+  bool self_test = false;
 };
+
+/// A check that cannot apply, with the reason.
+CheckResult skipped_check(std::string name, std::string reason);
+/// A check decided without numbers, with its cause or finding in words.
+CheckResult verdict_check(std::string name, bool passed, std::string note);
 
 /// What the tank suite found in the model: which tracks are left and right, and the turret.
 struct TankLayout {
   LinkIndex left = -1, right = -1;
   /// +1 when +dq on the track drives the vehicle forward (+X of the root), else −1.
   int left_sign = 1, right_sign = 1;
+  /// The tracks' joint axes in the root frame at the file pose.
+  Eigen::Vector3d left_axis = Eigen::Vector3d::Zero(), right_axis = Eigen::Vector3d::Zero();
+  /// Why the vehicle does not stand on its two tracks (a track above the floor, another link
+  /// lower than the tracks), or empty.
+  std::string standing_problem;
   double spacing = 0;  ///< B: distance between the centres of the two tracks' floor contacts (m)
   /// Floor contact points of each track in the root frame (the lowest vertices).
   std::vector<Eigen::Vector3d> left_points, right_points;
@@ -37,17 +64,6 @@ struct TankLayout {
 /// Finds the tank layout, or explains why the model is not a tank in `why`.
 std::optional<TankLayout> find_tank(const Model& model, const Derived& derived, const std::vector<ContactPoint>& points,
                                     std::string& why);
-
-/// Quasi-static Coulomb oracle for skid steering (spec §4 T6): the steady yaw rate of a rigid
-/// vehicle whose contact points (root frame, z ignored) carry the loads `loads` and whose belts
-/// move at `belt` (surface velocity added to each point's velocity, root frame). Returns the
-/// yaw rate; independent of μ.
-double coulomb_yaw_rate(const std::vector<Eigen::Vector3d>& points, const std::vector<double>& loads,
-                        const std::vector<Eigen::Vector3d>& belt);
-
-/// Static loads on coplanar contact points from a rigid body of weight `weight` whose centre
-/// of mass projects to `com` (equal-stiffness springs: loads linear in x and y).
-std::vector<double> static_loads(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& com, double weight);
 
 struct TankSuiteOptions {
   SimOptions sim;

@@ -39,7 +39,9 @@ enum class ContactModel {
 };
 
 struct SimOptions {
-  double gravity = 9.80665;  ///< along −Z of the world
+  double gravity = 9.80665;  ///< along −Z of the world, or along gravity_direction
+  /// The direction of gravity in the world (a tilted floor, for the tip-slope check).
+  Eigen::Vector3d gravity_direction = -Eigen::Vector3d::UnitZ();
   bool contact = true;
   ContactModel contact_model = ContactModel::kPoints;
   bool joint_stops = true;       ///< enforce joint_range (our choice; AIST does not, spec §0.7)
@@ -63,6 +65,14 @@ class WorkBudgetExceeded : public std::runtime_error {
       : std::runtime_error(message), where(at), by_commands(commands) {}
   SourceLocation where;
   bool by_commands;  ///< restarts for new commands were most of the steps: the caller knows where they are
+};
+
+/// Thrown by Simulation::advance_to() when Simbody itself throws: the engine's message with the
+/// likely cause in the model, and `where` at it.
+class EngineFailure : public std::runtime_error {
+ public:
+  EngineFailure(const std::string& message, SourceLocation at) : std::runtime_error(message), where(at) {}
+  SourceLocation where;
 };
 
 /// A joint servo: τ = P·(q_ref(t) − q) + D·(q̇_ref(t) − q̇) + feed-forward torque.
