@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <map>
 
 namespace bodyfmt::dynamics {
@@ -146,6 +147,7 @@ struct Sample {
   double t, z;
   Eigen::Matrix3d R;
   double force;
+  int contacts;
 };
 
 template <class Make>
@@ -157,7 +159,9 @@ DropMeasures drop(Make make, const Eigen::Isometry3d& start) {
   for (int i = 1; i <= n; ++i) {
     engine->advance_to(i * kSample);
     const Eigen::Isometry3d X = engine->root_pose();
-    samples.push_back({i * kSample, X.translation().z(), X.linear(), engine->floor_force()});
+    const bool late = i * kSample > kDuration - kForceWindow + 1e-9;
+    samples.push_back(
+        {i * kSample, X.translation().z(), X.linear(), engine->floor_force(), late ? engine->contacts() : 0});
   }
   DropMeasures r;
   const Sample& end = samples.back();
@@ -165,12 +169,18 @@ DropMeasures drop(Make make, const Eigen::Isometry3d& start) {
   r.rotation = end.R;
   r.turned = angle_of(end.R * start.linear().transpose());
   int counted = 0;
+  r.contacts_min = std::numeric_limits<int>::max();
   for (const Sample& s : samples)
     if (s.t > kDuration - kForceWindow + 1e-9) {
       r.floor_force += s.force;
+      r.contacts_min = std::min(r.contacts_min, s.contacts);
+      r.contacts_max = std::max(r.contacts_max, s.contacts);
       ++counted;
     }
   r.floor_force /= std::max(counted, 1);
+  const Sample& window_start =
+      samples[samples.size() - 1 - static_cast<std::size_t>(std::lround(kForceWindow / kSample))];
+  r.turn_rate = angle_of(end.R * window_start.R.transpose()) / (end.t - window_start.t);
   // Settled: the pose stays within the T8 bands of where it comes to rest.
   r.settle_time = 0;
   for (const Sample& s : samples) {
@@ -277,6 +287,14 @@ std::vector<CheckResult> run_drop_cross_check(const Model& model, const Derived&
   const double time_constant = m->geom_solref[2 * floor], damping_ratio = m->geom_solref[2 * floor + 1];
   const double dmax = m->geom_solimp[5 * floor + 1];
   DropCrossCheckReport measured;
+  // MuJoCo 2.2.2's mjc_PlaneConvex: tolplanemesh = 0.3 of the mesh geom's rbound.
+  for (int g = 0; g < m->ngeom; ++g) {
+    if (m->geom_type[g] != mjGEOM_MESH || (m->geom_contype[g] == 0 && m->geom_conaffinity[g] == 0)) continue;
+    const double skip = 0.3 * m->geom_rbound[g];
+    measured.mesh_contact_skip_min = measured.collision_meshes ? std::min(measured.mesh_contact_skip_min, skip) : skip;
+    measured.mesh_contact_skip_max = std::max(measured.mesh_contact_skip_max, skip);
+    ++measured.collision_meshes;
+  }
   measured.drop_height = kDrop;
   try {
     measured.simbody =
@@ -305,7 +323,10 @@ std::vector<CheckResult> run_drop_cross_check(const Model& model, const Derived&
   {
     const double apart = angle_of(mj.rotation * sb.rotation.transpose());
     CheckResult c = compare(
-        fmt::format("rest orientation, angle between the engines (turned {:.3g} and {:.3g} rad)", mj.turned, sb.turned),
+        fmt::format(
+            "rest orientation, angle between the engines (turned {:.3g} and {:.3g} rad; turning {:.2g} and {:.2g} "
+            "rad/s at the end)",
+            mj.turned, sb.turned, mj.turn_rate, sb.turn_rate),
         apart, 0, kOrientationTolerance, "rad", fmt::format("≤ {:g} rad", kOrientationTolerance));
     results.push_back(c);
   }
@@ -333,9 +354,21 @@ std::string describe(const DropCrossCheckReport& report) {
     out += fmt::format(
         "  drop {:g} cm, joints locked, {:<7}: rests at z = {:.6f} m, turned {:.4g} rad, ΣN = {:.6g} N, settled "
         "at {:.3f} s (impact: {:.2f} mm below rest, then {:.2f} mm above), kinetic energy {:.3g} J; {} contacts, "
-        "deepest {:.4f} mm\n",
+        "deepest {:.4f} mm ({}–{} over the last {:g} s), turning {:.2g} rad/s at the end\n",
         report.drop_height * 100, name, d.height, d.turned, d.floor_force, d.settle_time, d.impact_sink * 1e3,
-        d.rebound * 1e3, d.kinetic_energy, d.contacts, d.penetration * 1e3);
+        d.rebound * 1e3, d.kinetic_energy, d.contacts, d.penetration * 1e3, d.contacts_min, d.contacts_max,
+        kForceWindow, d.turn_rate);
+  if (report.collision_meshes > 0) {
+    const std::string skip =
+        report.mesh_contact_skip_min == report.mesh_contact_skip_max
+            ? fmt::format("{:.1f} mm", report.mesh_contact_skip_max * 1e3)
+            : fmt::format("{:.1f}–{:.1f} mm", report.mesh_contact_skip_min * 1e3, report.mesh_contact_skip_max * 1e3);
+    out += fmt::format(
+        "  MuJoCo 2.2.2 collides a mesh with the floor at its deepest vertex and at most 2 of that vertex's hull "
+        "neighbours, none closer to it than 0.3·rbound: {} here ({} collision mesh{}); a resting face narrower than "
+        "that stands on one corner at one end, which changes from step to step\n",
+        skip, report.collision_meshes, report.collision_meshes == 1 ? "" : "es");
+  }
   return out;
 }
 

@@ -28,6 +28,11 @@ struct DropMeasures {
   double kinetic_energy = 0;      ///< at the end (J)
   double penetration = 0;         ///< deepest point below the floor at the end (m)
   int contacts = 0;               ///< points (Simbody) or contacts (MuJoCo) under the floor at the end
+  /// Fewest and most contacts over the last 0.5 s: a rest that switches between contact sets.
+  int contacts_min = 0, contacts_max = 0;
+  /// How fast the root still turns at the end: the angle between its orientations 0.5 s
+  /// before the end and at the end, over 0.5 s (rad/s). A rest that creeps shows here.
+  double turn_rate = 0;
   /// The impact, which sets the settle time: how far the root sank below its rest height, and
   /// how far it rose above it afterwards (a bounce), in m.
   double impact_sink = 0;
@@ -53,6 +58,12 @@ struct DropCrossCheckReport {
   /// What MuJoCo's settle time is compared with: Simbody's first contact plus MuJoCo's
   /// relaxation, or Simbody's orientation settle when that is later (s).
   double expected_settle = 0;
+  /// MuJoCo 2.2.2 collides a mesh with a plane at its deepest vertex plus at most 2 of that
+  /// vertex's convex-hull neighbours, skipping a neighbour closer to it than 0.3·rbound (the
+  /// geom's bounding-sphere radius): that distance (m), the smallest and largest over the
+  /// export's collision meshes; 0 when it has none.
+  double mesh_contact_skip_min = 0, mesh_contact_skip_max = 0;
+  int collision_meshes = 0;
 };
 
 /// Runs the drop in both engines and compares them (measured = MuJoCo, expected = Simbody).
