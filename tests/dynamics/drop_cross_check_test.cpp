@@ -140,7 +140,9 @@ TEST_CASE("drop cross-check: each defective export fails the line that must catc
   for (const Case& c : cases) {
     CAPTURE(c.name);
     const std::map<std::string, bool> passed = run(box, c.edit);
-    for (const auto& [line, expected] : c.expected) {
+    for (const auto& entry : c.expected) {
+      const std::string& line = entry.first;  // named: clang 14's CAPTURE cannot take a structured binding
+      const bool expected = entry.second;
       CAPTURE(line);
       const bool got = passed.at(line);
       CHECK(got == expected);
