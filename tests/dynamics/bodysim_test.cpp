@@ -267,6 +267,15 @@ TEST_CASE("bodysim: commands denser in time than the step budget are refused, or
   r = bodysim(run);  // the default budget, 50,000 steps per second, runs them
   CHECK(r.status == 0);
   CHECK(contains(r.all, "0.5 s of ScoutTank simulated"));
+  // 100,000 commands (--max-commands) at one time restart the integrator once: they run.
+  {
+    std::ofstream out(dense);
+    out << "duration: 0.01\ncommands:\n";
+    for (int i = 0; i < 100000; ++i) out << "  - {time: 0.005, joints: {TOWER: {target: " << i * 1e-6 << ", p: 10}}}\n";
+  }
+  r = bodysim(run);
+  CHECK(r.status == 0);
+  CHECK(contains(r.all, "0.01 s of ScoutTank simulated"));
   std::filesystem::remove(dense);
   std::filesystem::remove(csv);
 }
