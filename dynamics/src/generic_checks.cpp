@@ -228,8 +228,10 @@ void drop(Generic& g, const std::vector<ContactPoint>& contacts) {
     if (!sim) break;
     double lowest = std::numeric_limits<double>::infinity();
     BoundingBox box;
+    // The built system's pose: the file's, with the joints at their initial displacements
+    // (derived.X_WL has them at zero, which would drop a bent model from the wrong height).
     for (const ContactPoint& p : sim->contact_points()) {
-      const Eigen::Vector3d x = as_isometry(derived.X_WL[p.link]) * p.position_in_link;
+      const Eigen::Vector3d x = sim->link_pose(p.link) * p.position_in_link;
       lowest = std::min(lowest, x.z() - p.radius);
       box.add(x - Eigen::Vector3d(0, 0, p.radius));
       box.add(x + Eigen::Vector3d(0, 0, p.radius));
@@ -561,14 +563,6 @@ void determinism(Generic& g, const std::vector<ContactPoint>& contacts) {
     std::vector<double> out;
     std::unique_ptr<Simulation> sim = g.build(o);
     if (!sim) return out;
-    if (is_free_root(g.model)) {
-      double lowest = std::numeric_limits<double>::infinity();
-      for (const ContactPoint& p : contacts)
-        lowest = std::min(lowest, (as_isometry(g.derived.X_WL[p.link]) * p.position_in_link).z() - p.radius);
-      Eigen::Isometry3d X = as_isometry(g.model.root().X_PL);
-      if (std::isfinite(lowest)) X.translation().z() += 0.02 - lowest;
-      sim->set_root_pose(X);
-    }
     const std::vector<double> q0 = hold_pose(g.model);
     for (std::size_t j = 1; j < g.model.links.size(); ++j)
       if (sim->has_joint(static_cast<LinkIndex>(j))) {
@@ -577,6 +571,15 @@ void determinism(Generic& g, const std::vector<ContactPoint>& contacts) {
         sim->set_servo(static_cast<LinkIndex>(j),
                        {gains.p[j], gains.d[j], [target](double) { return target; }, nullptr, 0});
       }
+    if (is_free_root(g.model)) {
+      // 2 cm above the floor in the held pose, not the zero pose.
+      double lowest = std::numeric_limits<double>::infinity();
+      for (const ContactPoint& p : contacts)
+        lowest = std::min(lowest, (sim->link_pose(p.link) * p.position_in_link).z() - p.radius);
+      Eigen::Isometry3d X = as_isometry(g.model.root().X_PL);
+      if (std::isfinite(lowest)) X.translation().z() += 0.02 - lowest;
+      sim->set_root_pose(X);
+    }
     std::vector<Eigen::Vector3d> start;
     for (std::size_t k = 0; k < g.model.links.size(); ++k)
       start.push_back(sim->link_pose(static_cast<LinkIndex>(k)).translation());

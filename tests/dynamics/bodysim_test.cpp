@@ -239,6 +239,24 @@ TEST_CASE("bodysim: run refuses scenarios that would not finish, each value loca
   std::filesystem::remove(csv);
 }
 
+TEST_CASE("bodysim check drops a model from its initial pose, joints at their initial displacements") {
+  // locked_displaced.body's leg starts at 90 deg, lying beside the body: the model is the
+  // body's 0.1 m box high. At the zero pose the leg would hang 0.3 m down, the drop would start
+  // 27 cm up instead of 2 cm, and the model would be 0.35 m high. The settle bound is
+  // 1e-4 · m · g · h with m = 2.2 kg.
+  const std::string model = std::string(BODYFMT_TEST_DATA_DIR) + "/dynamics/locked_displaced.body";
+  const Run r = bodysim("check -q '" + model + "'");
+  CHECK(r.status == 0);
+  const std::string line = "G5 drop 2 cm, joints locked: kinetic energy at 3 s";
+  const std::size_t at = r.out.find(line);
+  REQUIRE(at != std::string::npos);
+  const std::string row = r.out.substr(at, r.out.find('\n', at) - at);
+  const std::size_t expected_at = row.find("expected");
+  REQUIRE(expected_at != std::string::npos);
+  const double expected = std::stod(row.substr(expected_at + 8));
+  CHECK(expected == doctest::Approx(1e-4 * 2.2 * 9.80665 * 0.1).epsilon(1e-4));
+}
+
 TEST_CASE("bodysim: commands denser in time than the step budget are refused, or stopped, at a command") {
   // Each distinct command time restarts the integrator. 1,000 of them in 0.1 s: over a budget of
   // 900 steps per second they are refused before any work, at the first command over it; under
