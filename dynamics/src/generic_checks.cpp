@@ -29,10 +29,6 @@ CheckResult make(std::string name, double measured, double expected, std::string
 
 bool is_free_root(const Model& model) { return model.root().joint_type == JointType::kFree; }
 
-bool moving_joint(const Link& link) {
-  return link.joint_type == JointType::kRevolute || link.joint_type == JointType::kPrismatic;
-}
-
 bool limited(double value) { return std::isfinite(value) && std::abs(value) < kUnlimited; }
 
 bool in_subtree(const Model& model, LinkIndex link, LinkIndex top) {
@@ -66,7 +62,7 @@ HoldGains hold_gains(const Model& model, const Derived& derived, const std::vect
   const std::vector<Eigen::Isometry3d> X = compute_world_frames(model, q);
   for (std::size_t j = 0; j < model.links.size(); ++j) {
     const Link& link = model.links[j];
-    if (!moving_joint(link) || j == 0) continue;
+    if (!is_one_dof(link) || j == 0) continue;
     const bool revolute = link.joint_type == JointType::kRevolute;
     const Eigen::Vector3d a = (X[j].linear() * link.joint_axis.normalized()).normalized();
     double load = 0, mass = 0;
@@ -298,7 +294,7 @@ void joint_ranges(Generic& g) {
   std::string unlimited;
   for (std::size_t i = 1; i < model.links.size(); ++i) {
     const Link& link = model.links[i];
-    if (!moving_joint(link)) continue;
+    if (!is_one_dof(link)) continue;
     if (limited(link.joint_range_lower) || limited(link.joint_range_upper))
       joints.push_back(static_cast<LinkIndex>(i));
     else
@@ -413,7 +409,7 @@ std::vector<double> hold_pose(const Model& model) {
   double sign = 1;
   for (std::size_t j = 1; j < model.links.size(); ++j) {
     const Link& link = model.links[j];
-    if (!moving_joint(link)) continue;
+    if (!is_one_dof(link)) continue;
     const double lo = limited(link.joint_range_lower) ? link.joint_range_lower : -1e9;
     const double hi = limited(link.joint_range_upper) ? link.joint_range_upper : 1e9;
     const double wanted = link.joint_type == JointType::kRevolute

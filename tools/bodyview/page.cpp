@@ -189,7 +189,7 @@ std::string page_data_json(const PageInput& input) {
   for (std::size_t i = 0; i < model.links.size(); ++i) {
     const Link& l = model.links[i];
     const MassProperties& m = derived.mass[i];
-    const bool movable = l.joint_type == JointType::kRevolute || l.joint_type == JointType::kPrismatic;
+    const bool movable = is_one_dof(l);
     out += (i ? ",\n" : "\n") + std::string("{\"name\":") + text::json_quote(l.name) +
            ",\"parent\":" + std::to_string(l.parent) + ",\"joint\":" + text::json_quote(joint_name_of(l)) +
            ",\"type\":" + text::json_quote(joint_type_name(l.joint_type)) + ",\"axis\":" + numbers(l.joint_axis) +

@@ -29,9 +29,6 @@ std::string limit(double value) {
   return num(value);
 }
 
-bool is_one_dof(const Link& link) {
-  return link.joint_type == JointType::kRevolute || link.joint_type == JointType::kPrismatic;
-}
 
 BoundingBox geometry_bounds(const Derived& derived, LinkIndex link) {
   BoundingBox box;

@@ -39,9 +39,6 @@ std::string vec(const Eigen::Vector3d& v);
 /// A limit for messages: a number, or "unlimited" for the sentinel.
 std::string limit(double value);
 
-/// Joint types whose axis and range mean something: revolute, prismatic.
-bool is_one_dof(const Link& link);
-
 /// The union of a link's visual and collision boxes (tight, link frame); empty when none.
 BoundingBox geometry_bounds(const Derived& derived, LinkIndex link);
 

@@ -448,6 +448,9 @@ struct Link {
   LinkSources sources;
 };
 
+/// Revolute or prismatic: a joint with one coordinate, whose axis and range mean something.
+bool is_one_dof(const Link& link);
+
 /// A 3x4 transform (Link::X_PL, Derived::X_WL) as the isometry to multiply points with: the
 /// 3x4 and 4x4 storages round a transform-point product differently, and this keeps the
 /// values the tools gave before links kept their frames in 3x4.

@@ -47,10 +47,6 @@ PhysicalFinding finding(PhysicalDefect defect, LinkIndex link, SourceLocation at
   return f;
 }
 
-/// Joint types whose axis and range mean something.
-bool is_one_dof(const Link& link) {
-  return link.joint_type == JointType::kRevolute || link.joint_type == JointType::kPrismatic;
-}
 
 void assess_symmetry(const Link& link, LinkIndex index, double tolerance, std::vector<PhysicalFinding>& out) {
   for (std::size_t k = 0; k < link.mass_contributions.size(); ++k) {

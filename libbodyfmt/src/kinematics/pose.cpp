@@ -9,10 +9,6 @@
 namespace bodyfmt {
 namespace {
 
-bool movable(const Link& link) {
-  return link.joint_type == JointType::kRevolute || link.joint_type == JointType::kPrismatic;
-}
-
 std::string_view trim(std::string_view s) {
   while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
   while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
@@ -28,7 +24,7 @@ std::string_view joint_name_of(const Link& link) {
 std::vector<LinkIndex> movable_joints(const Model& model) {
   std::vector<LinkIndex> joints;
   for (std::size_t i = 0; i < model.links.size(); ++i)
-    if (movable(model.links[i])) joints.push_back(static_cast<LinkIndex>(i));
+    if (is_one_dof(model.links[i])) joints.push_back(static_cast<LinkIndex>(i));
   return joints;
 }
 
@@ -46,7 +42,7 @@ JointVector joint_vector(const Model& model, const std::vector<JointPosition>& p
     const bool found = it != by_joint.end() || (it = by_link.find(p.name)) != by_link.end();
     if (!found) {
       result.problems.push_back("no joint or link named '" + p.name + "'");
-    } else if (!movable(model.links[it->second])) {
+    } else if (!is_one_dof(model.links[it->second])) {
       result.problems.push_back("joint '" + p.name + "' is " +
                                 std::string(joint_type_name(model.links[it->second].joint_type)) +
                                 ", not revolute or prismatic");

@@ -16,6 +16,10 @@ std::string_view joint_type_name(JointType type) {
   return "fixed";
 }
 
+bool is_one_dof(const Link& link) {
+  return link.joint_type == JointType::kRevolute || link.joint_type == JointType::kPrismatic;
+}
+
 std::string_view geometry_type_name(const Geometry& geometry) {
   static constexpr std::string_view kNames[] = {"Box",          "Sphere",    "Cylinder",      "Cone",
                                                 "Capsule",      "Extrusion", "ElevationGrid", "IndexedFaceSet",
