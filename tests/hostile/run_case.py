@@ -40,6 +40,33 @@ WALL_LIMIT = 120 * SCALE
 LOCATED_ERROR = re.compile(r"^\S+?(:\d+:\d+)?: (error|fatal error): .*\[[a-z0-9-]+\]$", re.M)
 
 
+def run_tool(what, argv, cpu_limit, failures):
+    """Runs one tool; returns (exit code, output) or None after a hang or a crash, which it
+    records in `failures` with its CPU time when over the limit."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    try:
+        run = subprocess.run(argv, capture_output=True, timeout=WALL_LIMIT)
+    except subprocess.TimeoutExpired:
+        failures.append(f"{what}: no answer within {WALL_LIMIT:g} s")
+        return None
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    if cpu > cpu_limit:
+        failures.append(f"{what}: {cpu:.1f} CPU seconds, over the limit of {cpu_limit:g}")
+    text = (run.stdout + run.stderr).decode("utf-8", "replace")
+    if run.returncode < 0 or run.returncode not in (0, 1, 2):
+        failures.append(f"{what}: exit {run.returncode} (a crash)\n{text[-2000:]}")
+        return None
+    return run.returncode, text
+
+
+def check_rules(what, text, rules, failures):
+    """Each rule must appear in a located diagnostic: `file:line:col: severity: ... [rule]`."""
+    for rule in rules:
+        if not re.search(r"^\S+:\d+:\d+: [a-z ]+: .*\[" + re.escape(rule) + r"\]$", text, re.M):
+            failures.append(f"{what}: no located [{rule}] diagnostic\n{text[-2000:]}")
+
+
 def bodydiff_runs(bin_dir, model, expectations, cpu_limit):
     """bodydiff (issue 28) on the same cases: the model against itself (text and JSON), and
     --textconv. A model bodycheck cannot load (its exit 2) stops bodydiff
@@ -53,35 +80,21 @@ def bodydiff_runs(bin_dir, model, expectations, cpu_limit):
         expect = {"exit": "2", "rules": check["rules"]} if check.get("exit") == "2" else {"exit": "0", "rules": []}
     for args in ([model, model], ["--textconv", model], ["--format", "json", model, model]):
         what = "bodydiff " + " ".join(a if a != model else "MODEL" for a in args)
-        before = resource.getrusage(resource.RUSAGE_CHILDREN)
-        try:
-            run = subprocess.run([os.path.join(bin_dir, "bodydiff"), *args], capture_output=True, timeout=WALL_LIMIT)
-        except subprocess.TimeoutExpired:
-            failures.append(f"{what}: no answer within {WALL_LIMIT:g} s")
+        result = run_tool(what, [os.path.join(bin_dir, "bodydiff"), *args], cpu_limit, failures)
+        if result is None or expect is None:
             continue
-        after = resource.getrusage(resource.RUSAGE_CHILDREN)
-        cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-        if cpu > cpu_limit:
-            failures.append(f"{what}: {cpu:.1f} CPU seconds, over the limit of {cpu_limit:g}")
-        text = (run.stdout + run.stderr).decode("utf-8", "replace")
-        if run.returncode < 0 or run.returncode not in (0, 1, 2):
-            failures.append(f"{what}: exit {run.returncode} (a crash)\n{text[-2000:]}")
-            continue
-        if expect is None:
-            continue
-        if run.returncode != 2 and run.returncode != int(expect["exit"]) and args[0] != "--textconv":
-            failures.append(f"{what}: exit {run.returncode}, expected {expect['exit']}\n{text[-2000:]}")
+        code, text = result
+        if code != 2 and code != int(expect["exit"]) and args[0] != "--textconv":
+            failures.append(f"{what}: exit {code}, expected {expect['exit']}\n{text[-2000:]}")
             continue
         if expect["exit"] == "2":
-            if run.returncode != 2:
-                failures.append(f"{what}: exit {run.returncode}, expected 2\n{text[-2000:]}")
+            if code != 2:
+                failures.append(f"{what}: exit {code}, expected 2\n{text[-2000:]}")
             elif not LOCATED_ERROR.search(text):
                 failures.append(f"{what}: no located error\n{text[-2000:]}")
-            for rule in expect["rules"]:
-                if not re.search(r"^\S+:\d+:\d+: [a-z ]+: .*\[" + re.escape(rule) + r"\]$", text, re.M):
-                    failures.append(f"{what}: no located [{rule}] diagnostic\n{text[-2000:]}")
-        elif run.returncode != 0:
-            failures.append(f"{what}: exit {run.returncode}, expected 0\n{text[-2000:]}")
+            check_rules(what, text, expect["rules"], failures)
+        elif code != 0:
+            failures.append(f"{what}: exit {code}, expected 0\n{text[-2000:]}")
         elif args[0] != "--textconv" and args[0] != "--format" and text:
             failures.append(f"{what}: a model differs from itself\n{text[-2000:]}")
         elif args[0] == "--format" and '"changes": []' not in text:
@@ -111,28 +124,14 @@ def main():
             if tool.startswith("body2"):
                 extension = {"body2gltf": "glb"}.get(tool, tool[len("body2"):])
                 args += ["-o", os.path.join(out, "out." + extension)]
-            before = resource.getrusage(resource.RUSAGE_CHILDREN)
-            try:
-                run = subprocess.run(args, capture_output=True, timeout=WALL_LIMIT)
-            except subprocess.TimeoutExpired:
-                failures.append(f"{tool}: no answer within {WALL_LIMIT:g} s")
-                continue
-            after = resource.getrusage(resource.RUSAGE_CHILDREN)
-            cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-            if cpu > cpu_limit:
-                failures.append(f"{tool}: {cpu:.1f} CPU seconds, over the limit of {cpu_limit:g}")
-            text = (run.stdout + run.stderr).decode("utf-8", "replace")
-            if run.returncode < 0 or run.returncode not in (0, 1, 2):
-                failures.append(f"{tool}: exit {run.returncode} (a crash)\n{text[-2000:]}")
-                continue
+            result = run_tool(tool, args, cpu_limit, failures)
             expect = expectations.get(tool)
-            if expect is None:
+            if result is None or expect is None:
                 continue
-            if str(run.returncode) != expect.get("exit"):
-                failures.append(f"{tool}: exit {run.returncode}, expected {expect.get('exit')}\n{text[-2000:]}")
-            for rule in expect["rules"]:
-                if not re.search(r"^\S+:\d+:\d+: [a-z ]+: .*\[" + re.escape(rule) + r"\]$", text, re.M):
-                    failures.append(f"{tool}: no located [{rule}] diagnostic\n{text[-2000:]}")
+            code, text = result
+            if str(code) != expect.get("exit"):
+                failures.append(f"{tool}: exit {code}, expected {expect.get('exit')}\n{text[-2000:]}")
+            check_rules(tool, text, expect["rules"], failures)
         failures += bodydiff_runs(bin_dir, model, expectations, cpu_limit)
     for f in failures:
         print(f)
