@@ -309,26 +309,25 @@ FieldCollector::FieldCollector(const Model& model, bool derived)
     : model_(model), derived_(derived && !model.links.empty()) {  // an absent model (git: a new file) has none
   if (model.links.empty()) return;                                // no model at all: a file that git adds or deletes
   model_fields_.push_back(text_field("name", model.name, model.source));
-  mass_.resize(model.links.size());
-  for (std::size_t i = 0; i < model.links.size(); ++i) mass_[i] = compute_mass_properties(model.links[i]);
   if (derived_) {
-    X_WL_ = compute_world_frames(model);
-    double total = 0;
+    // Geometry and overflow problems are bodycheck's to report; a shape that cannot be
+    // tessellated adds nothing to the boxes.
+    struct Ignored : DiagnosticSink {
+      void report(Diagnostic) override {}
+    } ignored;
+    data_ = compute_derived(model, ignored);
+    const double total = data_.total_mass;
     Eigen::Vector3d moment = Eigen::Vector3d::Zero();
-    for (std::size_t i = 0; i < model.links.size(); ++i) {
-      total += mass_[i].mass;
-      moment += mass_[i].mass * (X_WL_[i] * mass_[i].center_of_mass);
-    }
+    for (std::size_t i = 0; i < model.links.size(); ++i)
+      moment += data_.mass[i].mass * (as_isometry(data_.X_WL[i]) * data_.mass[i].center_of_mass);
     model_fields_.push_back(number_field("total_mass", total, model.source));
     model_fields_.back().derived = true;
     model_fields_.push_back(
         vector_field("center_of_mass", total != 0 ? Eigen::Vector3d(moment / total) : moment, model.source));
     model_fields_.back().derived = true;
-    // Geometry problems are bodycheck's to report; a shape that cannot be tessellated adds nothing.
-    struct Ignored : DiagnosticSink {
-      void report(Diagnostic) override {}
-    } ignored;
-    bounds_ = compute_link_bounds(model, ignored);
+  } else {
+    data_.mass.reserve(model.links.size());
+    for (const Link& link : model.links) data_.mass.push_back(compute_mass_properties(link));
   }
   for (std::size_t i = 0; i < model.extra_joints.size(); ++i) {
     const ExtraJoint& j = model.extra_joints[i];
@@ -387,14 +386,14 @@ LinkFields FieldCollector::link(std::size_t i) {
   if (!link.actuation_mode.empty()) f.push_back(text_field("actuation_mode", link.actuation_mode, link.source));
   if (!link.contact_material.empty()) f.push_back(text_field("material", link.contact_material, link.source));
   f.push_back(
-      number_field("mass", mass_[i].mass, first_known({link.sources.mass(), rigid_body_source(link), link.source})));
-  f.push_back(vector_field("center_of_mass", mass_[i].center_of_mass,
+      number_field("mass", data_.mass[i].mass, first_known({link.sources.mass(), rigid_body_source(link), link.source})));
+  f.push_back(vector_field("center_of_mass", data_.mass[i].center_of_mass,
                            first_known({link.sources.center_of_mass(), rigid_body_source(link), link.source})));
-  f.push_back(inertia_field("inertia", mass_[i].inertia, inertia_source(link)));
+  f.push_back(inertia_field("inertia", data_.mass[i].inertia, inertia_source(link)));
   for (std::size_t s = 0; s < link.shapes.size(); ++s)
     add_shape_fields(f, fmt::format("shape {}", s), link.shapes[s], meshes_);
   if (derived_) {
-    f.push_back(transform_field("world_frame", FieldStyle::kPose, X_WL_[i], lf.source));
+    f.push_back(transform_field("world_frame", FieldStyle::kPose, as_isometry(data_.X_WL[i]), lf.source));
     f.back().derived = true;
     auto box = [&](const char* key, const BoundingBox& b) {
       if (b.empty()) return;
@@ -402,8 +401,8 @@ LinkFields FieldCollector::link(std::size_t i) {
                                 {b.min.x(), b.min.y(), b.min.z(), b.max.x(), b.max.y(), b.max.z()}, lf.source));
       f.back().derived = true;
     };
-    box("visual_bounding_box", bounds_[i].visual);
-    box("collision_bounding_box", bounds_[i].collision);
+    box("visual_bounding_box", data_.bounds[i].visual);
+    box("collision_bounding_box", data_.bounds[i].collision);
   }
   for (const auto& [device, key] : devices_[i]) add_device_fields(f, model_, *device, key);
   return lf;

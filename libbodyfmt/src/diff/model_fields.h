@@ -73,9 +73,8 @@ class FieldCollector {
   bool derived_;
   MeshContents meshes_;
   std::vector<Field> model_fields_;
-  std::vector<MassProperties> mass_;
-  std::vector<Eigen::Isometry3d> X_WL_;
-  std::vector<LinkBounds> bounds_;  // libbodyfmt's tight boxes, from the same tessellation as every tool's
+  // libbodyfmt's derived data, as every tool computes it; only the masses without `derived`.
+  Derived data_;
   std::vector<std::vector<std::pair<const Device*, std::string>>> devices_;  // per link, with their keys
 };
 
