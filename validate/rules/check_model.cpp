@@ -29,7 +29,6 @@ std::string limit(double value) {
   return num(value);
 }
 
-
 BoundingBox geometry_bounds(const Derived& derived, LinkIndex link) {
   BoundingBox box;
   if (link >= 0 && static_cast<std::size_t>(link) < derived.bounds.size()) {

@@ -47,7 +47,6 @@ PhysicalFinding finding(PhysicalDefect defect, LinkIndex link, SourceLocation at
   return f;
 }
 
-
 void assess_symmetry(const Link& link, LinkIndex index, double tolerance, std::vector<PhysicalFinding>& out) {
   for (std::size_t k = 0; k < link.mass_contributions.size(); ++k) {
     const MassContribution& c = link.mass_contributions[k];

@@ -385,8 +385,8 @@ LinkFields FieldCollector::link(std::size_t i) {
   f.push_back(number_field("joint_id", link.joint_id, source_of(link, LinkSources::kJointId)));
   if (!link.actuation_mode.empty()) f.push_back(text_field("actuation_mode", link.actuation_mode, link.source));
   if (!link.contact_material.empty()) f.push_back(text_field("material", link.contact_material, link.source));
-  f.push_back(
-      number_field("mass", data_.mass[i].mass, first_known({link.sources.mass(), rigid_body_source(link), link.source})));
+  f.push_back(number_field("mass", data_.mass[i].mass,
+                           first_known({link.sources.mass(), rigid_body_source(link), link.source})));
   f.push_back(vector_field("center_of_mass", data_.mass[i].center_of_mass,
                            first_known({link.sources.center_of_mass(), rigid_body_source(link), link.source})));
   f.push_back(inertia_field("inertia", data_.mass[i].inertia, inertia_source(link)));
