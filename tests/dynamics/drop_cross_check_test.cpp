@@ -11,6 +11,7 @@
 #include <tinyxml2.h>
 
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <map>
 #include <string>
@@ -69,6 +70,46 @@ tinyxml2::XMLElement* collision_geom(tinyxml2::XMLElement* body) {
     if (g->IntAttribute("group") == 3) return g;
   FAIL("no collision geom");
   return nullptr;
+}
+
+/// body2mjcf writes a mesh that is exactly a box as a box geom; this turns the export's
+/// collision box back into a mesh with the same 8 corners (an inline <mesh vertex>), as it was
+/// written before, to show what MuJoCo's mesh-plane contact does with it.
+bool collision_as_mesh(const std::filesystem::path& file, std::string& why) {
+  tinyxml2::XMLDocument doc;
+  if (doc.LoadFile(file.c_str()) != tinyxml2::XML_SUCCESS) {
+    why = "unreadable";
+    return false;
+  }
+  tinyxml2::XMLElement* root = doc.RootElement();
+  tinyxml2::XMLElement* body = root->FirstChildElement("worldbody")->FirstChildElement("body");
+  tinyxml2::XMLElement* geom = collision_geom(body);
+  double h[3] = {0, 0, 0};
+  if (!geom || std::string(geom->Attribute("type")) != "box" ||
+      std::sscanf(geom->Attribute("size"), "%lf %lf %lf", &h[0], &h[1], &h[2]) != 3) {
+    why = "the export's collision geom is no box";
+    return false;
+  }
+  // In the order of the test models' vertex lists, which the STL had: MuJoCo 2.2.2 picks a
+  // vertex's hull neighbours in the hull's order, so the contacts depend on it.
+  const int signs[8][3] = {{-1, 1, 1},  {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},
+                           {-1, 1, -1}, {-1, -1, -1}, {1, -1, -1}, {1, 1, -1}};
+  std::string vertices;
+  for (int c = 0; c < 8; ++c) {
+    char corner[100];
+    std::snprintf(corner, sizeof corner, "%s%.17g %.17g %.17g", c ? " " : "", signs[c][0] * h[0], signs[c][1] * h[1],
+                  signs[c][2] * h[2]);
+    vertices += corner;
+  }
+  tinyxml2::XMLElement* asset = root->FirstChildElement("asset");
+  if (!asset) asset = root->InsertFirstChild(doc.NewElement("asset"))->ToElement();
+  tinyxml2::XMLElement* mesh = asset->InsertNewChildElement("mesh");
+  mesh->SetAttribute("name", "collision_as_mesh");
+  mesh->SetAttribute("vertex", vertices.c_str());
+  geom->SetAttribute("type", "mesh");
+  geom->SetAttribute("mesh", "collision_as_mesh");
+  geom->DeleteAttribute("size");
+  return doc.SaveFile(file.c_str()) == tinyxml2::XML_SUCCESS;
 }
 
 struct Case {
@@ -178,8 +219,9 @@ TEST_CASE("drop cross-check: a fixed root is refused with a reason and nothing i
 }
 
 TEST_CASE("drop cross-check: MuJoCo's mesh-plane contact skips the corner across a face narrower than 0.3·rbound") {
-  // Two mesh boxes that land on an edge and tip onto a 0.16 m long face, 20 mm and 40 mm wide.
-  // MuJoCo 2.2.2 adds to the deepest vertex only hull neighbours farther from it than
+  // Two mesh boxes that land on an edge and tip onto a 0.16 m long face, 20 mm and 40 mm wide,
+  // their collision written as a mesh in MuJoCo (body2mjcf writes a box, collision_as_mesh
+  // turns it back). MuJoCo 2.2.2 adds to the deepest vertex only hull neighbours farther from it than
   // 0.3·rbound (about 30 mm for both): on the narrow face one end stands on one corner that
   // changes from step to step, the rest creeps and the orientation line fails; on the wide face
   // both corners of an end are contacts and MuJoCo rests as Simbody.
@@ -194,7 +236,9 @@ TEST_CASE("drop cross-check: MuJoCo's mesh-plane contact skips the corner across
     CollectingSink sink;
     std::string why;
     DropCrossCheckReport report;
-    const std::vector<CheckResult> results = run_drop_cross_check(l.model, l.derived, {}, sink, why, &report);
+    DropCrossCheckOptions options;
+    options.mutate_export = collision_as_mesh;
+    const std::vector<CheckResult> results = run_drop_cross_check(l.model, l.derived, options, sink, why, &report);
     INFO(why);
     REQUIRE(results.size() == 4);
     const double skip = 0.3 * std::sqrt(0.08 * 0.08 + face.half_width * face.half_width + 0.06 * 0.06);
