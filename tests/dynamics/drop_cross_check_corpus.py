@@ -23,13 +23,7 @@ LINES = {
 }
 
 # model (relative to the corpus) -> {line: reason}
-KNOWN = {
-    "house/cassette.body": {
-        "settle": "an IndexedFaceSet box (body2mjcf writes its collision as a MuJoCo box) that lands on an edge and "
-        "tips onto its 20 mm face: MuJoCo settles at 0.230 s, and the expected value (0.155 s: first contact + "
-        "relaxation, or Simbody's turning) omits the face's impact after the tip",
-    },
-}
+KNOWN = {}
 
 
 def root_is_free(bodyinfo, path):
