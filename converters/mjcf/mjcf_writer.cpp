@@ -1,5 +1,7 @@
 #include "mjcf_writer.h"
 
+#include "cuboid.h"
+
 #include <bodyfmt/converters/inertia_report.h>
 #include <bodyfmt/converters/loss.h>
 #include <bodyfmt/converters/names.h>
@@ -90,6 +92,10 @@ struct Inertial {
 struct Piece {
   Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();
   std::function<void(XMLElement*)> geometry;
+  /// The collision geom when it is not `geometry` at `origin`: a mesh that is exactly a box
+  /// collides as a box (cuboid.h).
+  std::function<void(XMLElement*)> collision_geometry;
+  Eigen::Isometry3d collision_origin = Eigen::Isometry3d::Identity();
   std::optional<Material> material;
   /// A mesh MuJoCo cannot hull: written as a visual geom only, and this reported.
   std::optional<converters::PlannedLoss> collision_dropped;
@@ -375,6 +381,7 @@ std::string Writer::mesh_piece(const converters::PlannedPiece& planned) {
 }
 
 std::vector<Piece> Writer::pieces(XMLElement* body, std::size_t link_index, std::size_t shape_index) {
+  const Shape& shape = model_.links[link_index].shapes[shape_index];
   converters::ShapePlan plan = converters::plan_shape(model_, link_index, shape_index, shape_target_, sink_);
   for (const converters::PlannedLoss& planned : plan.losses) loss(body, planned);
   std::vector<Piece> out;
@@ -399,6 +406,16 @@ std::vector<Piece> Writer::pieces(XMLElement* body, std::size_t link_index, std:
       case Kind::kCapsule: piece.geometry = typed("capsule", round()); break;
       case Kind::kMesh:
       case Kind::kMeshFile: {  // no file is referenced as it is (shape_target_)
+        // MuJoCo 2.2.2 collides a mesh with a plane at its deepest vertex and at most two hull
+        // neighbours, a box at its corners: a mesh that is exactly a box collides as one.
+        std::optional<Cuboid> box;
+        if (shape.collision && !piece.collision_dropped && planned.mesh)
+          box = exact_cuboid(*planned.mesh, planned.scale);
+        if (box) {
+          piece.collision_geometry = typed("box", vec3(box->half_edges));
+          piece.collision_origin = piece.origin * box->pose;
+          if (!shape.visual) break;  // no mesh file for a collision-only box
+        }
         const std::string name = mesh_piece(planned);
         if (name.empty()) continue;
         piece.geometry = [name](XMLElement* g) {
@@ -423,9 +440,14 @@ void Writer::write_shapes(XMLElement* body, std::size_t index) {
       if (piece.collision_dropped) loss(body, *piece.collision_dropped);
       for (bool visual : {true, false}) {
         if (visual ? !shape.visual : !shape.collision || piece.collision_dropped) continue;
+        const bool as_box = !visual && piece.collision_geometry;
+        if (as_box)
+          comment(body,
+                  "a collision mesh that is exactly a box, written as a box: the same geometry, and MuJoCo "
+                  "collides a box with a plane at its corners, a mesh at up to 3 vertices");
         XMLElement* g = element(body, "geom");
-        place(g, piece.origin);
-        piece.geometry(g);
+        place(g, as_box ? piece.collision_origin : piece.origin);
+        (as_box ? piece.collision_geometry : piece.geometry)(g);
         if (visual) {
           g->SetAttribute("group", 2);
           g->SetAttribute("contype", 0);

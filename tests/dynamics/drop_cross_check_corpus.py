@@ -23,16 +23,7 @@ LINES = {
 }
 
 # model (relative to the corpus) -> {line: reason}
-KNOWN = {
-    "house/cassette.body": {
-        "orientation": "an IndexedFaceSet box tipping onto its 20 mm wide face: MuJoCo 2.2.2's mesh-plane contact "
-        "skips hull neighbours within 0.3*rbound = 31.4 mm of the deepest vertex, so one end of the face stands on one "
-        "corner that changes from step to step (2-3 contacts); the rest yaws 0.40 mrad/s and pitches 0.51 mrad, "
-        "1.24 mrad from Simbody at 3 s",
-        "settle": "the same creep (0.531 s; it grows with the run), and the expected value (0.155 s) omits the face's "
-        "impact after a tip: a Box primitive, without the creep, settles at 0.230 s",
-    },
-}
+KNOWN = {}
 
 
 def root_is_free(bodyinfo, path):

@@ -11,6 +11,7 @@
 #include <tinyxml2.h>
 
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <map>
 #include <string>
@@ -69,6 +70,46 @@ tinyxml2::XMLElement* collision_geom(tinyxml2::XMLElement* body) {
     if (g->IntAttribute("group") == 3) return g;
   FAIL("no collision geom");
   return nullptr;
+}
+
+/// body2mjcf writes a mesh that is exactly a box as a box geom; this turns the export's
+/// collision box back into a mesh with the same 8 corners (an inline <mesh vertex>), as it was
+/// written before, to show what MuJoCo's mesh-plane contact does with it.
+bool collision_as_mesh(const std::filesystem::path& file, std::string& why) {
+  tinyxml2::XMLDocument doc;
+  if (doc.LoadFile(file.c_str()) != tinyxml2::XML_SUCCESS) {
+    why = "unreadable";
+    return false;
+  }
+  tinyxml2::XMLElement* root = doc.RootElement();
+  tinyxml2::XMLElement* body = root->FirstChildElement("worldbody")->FirstChildElement("body");
+  tinyxml2::XMLElement* geom = collision_geom(body);
+  double h[3] = {0, 0, 0};
+  if (!geom || std::string(geom->Attribute("type")) != "box" ||
+      std::sscanf(geom->Attribute("size"), "%lf %lf %lf", &h[0], &h[1], &h[2]) != 3) {
+    why = "the export's collision geom is no box";
+    return false;
+  }
+  // In the order of the test models' vertex lists, which the STL had: MuJoCo 2.2.2 picks a
+  // vertex's hull neighbours in the hull's order, so the contacts depend on it.
+  const int signs[8][3] = {{-1, 1, 1},  {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},
+                           {-1, 1, -1}, {-1, -1, -1}, {1, -1, -1}, {1, 1, -1}};
+  std::string vertices;
+  for (int c = 0; c < 8; ++c) {
+    char corner[100];
+    std::snprintf(corner, sizeof corner, "%s%.17g %.17g %.17g", c ? " " : "", signs[c][0] * h[0], signs[c][1] * h[1],
+                  signs[c][2] * h[2]);
+    vertices += corner;
+  }
+  tinyxml2::XMLElement* asset = root->FirstChildElement("asset");
+  if (!asset) asset = root->InsertFirstChild(doc.NewElement("asset"))->ToElement();
+  tinyxml2::XMLElement* mesh = asset->InsertNewChildElement("mesh");
+  mesh->SetAttribute("name", "collision_as_mesh");
+  mesh->SetAttribute("vertex", vertices.c_str());
+  geom->SetAttribute("type", "mesh");
+  geom->SetAttribute("mesh", "collision_as_mesh");
+  geom->DeleteAttribute("size");
+  return doc.SaveFile(file.c_str()) == tinyxml2::XML_SUCCESS;
 }
 
 struct Case {
@@ -178,8 +219,9 @@ TEST_CASE("drop cross-check: a fixed root is refused with a reason and nothing i
 }
 
 TEST_CASE("drop cross-check: MuJoCo's mesh-plane contact skips the corner across a face narrower than 0.3·rbound") {
-  // Two mesh boxes that land on an edge and tip onto a 0.16 m long face, 20 mm and 40 mm wide.
-  // MuJoCo 2.2.2 adds to the deepest vertex only hull neighbours farther from it than
+  // Two mesh boxes that land on an edge and tip onto a 0.16 m long face, 20 mm and 40 mm wide,
+  // their collision written as a mesh in MuJoCo (body2mjcf writes a box, collision_as_mesh
+  // turns it back). MuJoCo 2.2.2 adds to the deepest vertex only hull neighbours farther from it than
   // 0.3·rbound (about 30 mm for both): on the narrow face one end stands on one corner that
   // changes from step to step, the rest creeps and the orientation line fails; on the wide face
   // both corners of an end are contacts and MuJoCo rests as Simbody.
@@ -194,7 +236,9 @@ TEST_CASE("drop cross-check: MuJoCo's mesh-plane contact skips the corner across
     CollectingSink sink;
     std::string why;
     DropCrossCheckReport report;
-    const std::vector<CheckResult> results = run_drop_cross_check(l.model, l.derived, {}, sink, why, &report);
+    DropCrossCheckOptions options;
+    options.mutate_export = collision_as_mesh;
+    const std::vector<CheckResult> results = run_drop_cross_check(l.model, l.derived, options, sink, why, &report);
     INFO(why);
     REQUIRE(results.size() == 4);
     const double skip = 0.3 * std::sqrt(0.08 * 0.08 + face.half_width * face.half_width + 0.06 * 0.06);
@@ -217,5 +261,78 @@ TEST_CASE("drop cross-check: MuJoCo's mesh-plane contact skips the corner across
       CHECK(report.mujoco.contacts_min == 2);
       CHECK(report.mujoco.turn_rate > 3e-4);
     }
+  }
+}
+
+TEST_CASE(
+    "drop cross-check: a box that tips is held to MuJoCo's relaxation after its last impact, as a mesh it fails") {
+  // The 0.16 x 0.02 x 0.12 m box lands on an edge and tips onto its 20 mm face. MuJoCo's soft
+  // contact relaxes after every impact, and after the tip one end of the face sinks while the
+  // other rests, which turns the box: its settle ends 1e-3 rad across the face after the face's
+  // last point came down, not 0.5 mm after the first contact.
+  const Loaded l = load(std::string(BODYFMT_TEST_DATA_DIR) + "/dynamics/narrow_mesh_box.body");
+  auto passed_lines = [](const std::vector<CheckResult>& results) {
+    std::map<std::string, bool> passed;
+    for (const char* key : {"rest height", "rest orientation", "floor force", "settle time"})
+      for (const CheckResult& r : results)
+        if (r.name.find(key) != std::string::npos) passed[key] = r.passed;
+    return passed;
+  };
+  {
+    CollectingSink sink;
+    std::string why;
+    DropCrossCheckReport report;
+    const std::vector<CheckResult> results = run_drop_cross_check(l.model, l.derived, {}, sink, why, &report);
+    INFO(why);
+    REQUIRE(results.size() == 4);
+    for (const auto& entry : passed_lines(results)) {
+      const std::string& line = entry.first;
+      const bool passed = entry.second;
+      CAPTURE(line);
+      CHECK(passed);
+    }
+    const DropMeasures& sb = report.simbody;
+    CHECK(report.collision_meshes == 0);  // body2mjcf wrote a box
+    CHECK(sb.tipped);
+    CHECK(sb.support_points == 4);
+    CHECK(sb.support_span == doctest::Approx(std::hypot(0.16, 0.02)).epsilon(0.01));
+    CHECK(report.impact_time == sb.support_time);
+    CHECK(report.impact_time > sb.first_contact + 0.02);
+    CHECK(report.relaxation_band == doctest::Approx(1e-3 * sb.support_span));
+    CHECK(report.expected_settle == doctest::Approx(report.impact_time + report.mujoco_relaxation));
+    // Held to the first contact plus the 0.091 s a 2 cm drop's impact needs to come within
+    // 0.5 mm (the model for a flat landing), MuJoCo's settle would be more than 5 % later.
+    CHECK(report.mujoco.settle_time > 1.05 * (sb.first_contact + 0.091));
+    const std::string text = describe(report);
+    CHECK(text.find("its last impact is the last of the 4 points it rests on") != std::string::npos);
+    for (const CheckResult& r : results)
+      if (r.name.find("settle time") != std::string::npos) CHECK(r.name.find("tipped") != std::string::npos);
+  }
+  {
+    // The same export with its collision as a mesh rocks on one corner at one end.
+    DropCrossCheckOptions options;
+    options.mutate_export = collision_as_mesh;
+    CollectingSink sink;
+    std::string why;
+    DropCrossCheckReport report;
+    const std::vector<CheckResult> results = run_drop_cross_check(l.model, l.derived, options, sink, why, &report);
+    INFO(why);
+    REQUIRE(results.size() == 4);
+    CHECK(report.collision_meshes == 1);
+    const std::map<std::string, bool> passed = passed_lines(results);
+    CHECK_FALSE(passed.at("rest orientation"));
+    CHECK_FALSE(passed.at("settle time"));
+  }
+  {
+    // A box that lands flat has one impact: its first contact, relaxing into the height band.
+    const Loaded box = load(kBox);
+    CollectingSink sink;
+    std::string why;
+    DropCrossCheckReport report;
+    REQUIRE(run_drop_cross_check(box.model, box.derived, {}, sink, why, &report).size() == 4);
+    CHECK_FALSE(report.simbody.tipped);
+    CHECK(report.impact_time == report.simbody.first_contact);
+    CHECK(report.relaxation_band == 0.5e-3);
+    CHECK(describe(report).find("lands on its rest face: its impact is its first contact") != std::string::npos);
   }
 }

@@ -37,6 +37,17 @@ struct DropMeasures {
   /// how far it rose above it afterwards (a bounce), in m.
   double impact_sink = 0;
   double rebound = 0;
+  /// The support it comes to rest on (measured on Simbody's contact points): the points that
+  /// touch the floor at the end, the largest horizontal distance between them (m), and when
+  /// the last of them first came down onto the floor (s) and how fast (m/s): the support's
+  /// last impact.
+  int support_points = 0;
+  double support_span = 0;
+  double support_time = 0;
+  double support_speed = 0;
+  /// Landed tilted from its rest (more than 1e-3 rad at first contact) and tipped onto its
+  /// support afterwards: that second impact, not the first, sets the end of the settle.
+  bool tipped = false;
 };
 
 struct DropCrossCheckOptions {
@@ -51,12 +62,20 @@ struct DropCrossCheckReport {
   DropMeasures simbody, mujoco;
   double drop_height = 0;  ///< release height of the lowest contact point (m)
   /// MuJoCo's soft contact alone: the time its linear spring-damper (solref, solimp) needs to
-  /// bring an impact at the free-fall speed back within the height band (s), and its time
-  /// constant (solref[0], s).
+  /// bring the impact that sets the settle back within the rest band (s), and its time
+  /// constant (solref[0], s). The impact is the first contact at the free-fall speed, into the
+  /// height band; for a model that tipped, Simbody's tip onto its support at the support's
+  /// descent speed, into the tighter of the height band and the orientation band across the
+  /// support (1e-3 rad × support_span).
   double mujoco_relaxation = 0;
   double mujoco_time_constant = 0;
-  /// What MuJoCo's settle time is compared with: Simbody's first contact plus MuJoCo's
-  /// relaxation, or Simbody's orientation settle when that is later (s).
+  double relaxation_speed = 0;  ///< m/s
+  double relaxation_band = 0;   ///< m
+  /// When the impact that sets the settle happened in Simbody (s): its first contact, or, when
+  /// it tipped, the first touch of the last point of its rest support.
+  double impact_time = 0;
+  /// What MuJoCo's settle time is compared with: impact_time plus MuJoCo's relaxation, or
+  /// Simbody's orientation settle when that is later (s).
   double expected_settle = 0;
   /// MuJoCo 2.2.2 collides a mesh with a plane at its deepest vertex plus at most 2 of that
   /// vertex's convex-hull neighbours, skipping a neighbour closer to it than 0.3·rbound (the

@@ -571,7 +571,7 @@ TEST_CASE("mjcf: a mesh whose faces are flat has no collision geom, even when un
   CHECK(colliding == 0);
 }
 
-TEST_CASE("mjcf: a spot light without a direction is reported and left out; the other lights are written") {
+TEST_CASE("mjcf: a spot light without a direction is reported and left out, the other lights are written") {
   const fs::path dir = fresh_dir("mjcf_light_without_direction");
   Export e = export_file(kData / "light_without_direction.body", dir);
   REQUIRE(e.ok);
@@ -583,4 +583,76 @@ TEST_CASE("mjcf: a spot light without a direction is reported and left out; the 
   INFO(loaded.error);
   REQUIRE(loaded.m != nullptr);
   CHECK(loaded.m->nlight == 1);
+}
+
+TEST_CASE("mjcf: a collision mesh that is exactly a box is a box geom with the mesh's corners, other meshes stay") {
+  const fs::path dir = fresh_dir("mjcf_mesh_boxes");
+  Export e = export_file(kData / "mesh_boxes.body", dir);
+  REQUIRE(e.ok);
+  CHECK(e.diagnostics.empty());  // nothing is lost: the same geometry
+  Loaded loaded(e.xml);
+  INFO(loaded.error);
+  REQUIRE(loaded.m != nullptr);
+  const mjModel* m = loaded.m;
+  const mjData* d = loaded.d;
+  const std::map<std::string, bool> box_expected = {{"ALIGNED", true},  {"TURNED", true},   {"OPEN", false},
+                                                    {"BENT", false},    {"SHEARED", false}, {"INNER", false},
+                                                    {"OVERLAP", false}, {"NINE", false},    {"COLLISION_ONLY", true}};
+  for (const auto& entry : box_expected) {
+    const std::string& name = entry.first;
+    const bool expected = entry.second;
+    CAPTURE(name);
+    const int body = mj_name2id(m, mjOBJ_BODY, name.c_str());
+    REQUIRE(body >= 0);
+    int collision = -1, visual = -1;
+    for (int g = 0; g < m->ngeom; ++g)
+      if (m->geom_bodyid[g] == body) (m->geom_group[g] == 3 ? collision : visual) = g;
+    REQUIRE(collision >= 0);
+    REQUIRE(visual >= 0);
+    CHECK((m->geom_type[collision] == mjGEOM_BOX) == expected);
+    if (!expected) {
+      CHECK(m->geom_type[collision] == mjGEOM_MESH);
+      continue;
+    }
+    // The visual geom keeps the mesh (a sphere for COLLISION_ONLY, whose mesh is staged nowhere).
+    if (name == "COLLISION_ONLY") {
+      CHECK(m->geom_type[visual] == mjGEOM_SPHERE);
+      CHECK_FALSE(fs::exists(dir / "assets" / "model" / "COLLISION_ONLY_shape0.stl"));
+      continue;
+    }
+    REQUIRE(m->geom_type[visual] == mjGEOM_MESH);
+    // As MuJoCo compiled them: every corner of the box is a vertex of the visual mesh, and
+    // every vertex of the mesh a corner of the box (both in world coordinates).
+    const Eigen::Vector3d box_at = v3(d->geom_xpos + 3 * collision), size = v3(m->geom_size + 3 * collision);
+    const Eigen::Matrix3d box_R = m3(d->geom_xmat + 9 * collision);
+    std::vector<Eigen::Vector3d> corners;
+    for (int c = 0; c < 8; ++c)
+      corners.push_back(box_at + box_R * Eigen::Vector3d((c & 1 ? 1 : -1) * size.x(), (c & 2 ? 1 : -1) * size.y(),
+                                                         (c & 4 ? 1 : -1) * size.z()));
+    const int mesh = m->geom_dataid[visual];
+    const Eigen::Vector3d mesh_at = v3(d->geom_xpos + 3 * visual);
+    const Eigen::Matrix3d mesh_R = m3(d->geom_xmat + 9 * visual);
+    std::vector<Eigen::Vector3d> vertices;
+    for (int v = 0; v < m->mesh_vertnum[mesh]; ++v) {
+      const float* p = m->mesh_vert + 3 * (m->mesh_vertadr[mesh] + v);
+      vertices.push_back(mesh_at + mesh_R * Eigen::Vector3d(p[0], p[1], p[2]));
+    }
+    auto nearest = [](const Eigen::Vector3d& p, const std::vector<Eigen::Vector3d>& set) {
+      double best = std::numeric_limits<double>::infinity();
+      for (const Eigen::Vector3d& q : set) best = std::min(best, (p - q).norm());
+      return best;
+    };
+    // MuJoCo keeps mesh vertices as floats.
+    for (const Eigen::Vector3d& c : corners) CHECK(nearest(c, vertices) < 1e-7);
+    for (const Eigen::Vector3d& v : vertices) CHECK(nearest(v, corners) < 1e-7);
+  }
+  // The turned box keeps the link's rotation and the per-axis scale (edges 0.17, 0.04, 0.03).
+  const int turned = mj_name2id(m, mjOBJ_BODY, "TURNED");
+  for (int g = 0; g < m->ngeom; ++g)
+    if (m->geom_bodyid[g] == turned && m->geom_group[g] == 3) {
+      CHECK(m->geom_size[3 * g] == doctest::Approx(0.085).epsilon(1e-12));
+      CHECK(m->geom_size[3 * g + 1] == doctest::Approx(0.02).epsilon(1e-12));
+      CHECK(m->geom_size[3 * g + 2] == doctest::Approx(0.03).epsilon(1e-12));
+    }
+  CHECK(e.text.find("a collision mesh that is exactly a box, written as a box") != std::string::npos);
 }
