@@ -366,9 +366,10 @@ TEST_CASE("bodysim: --cross-check mujoco runs body2mjcf's export in MuJoCo 2.2.2
   const Run r = bodysim("check-tank --balance-inertia --cross-check mujoco '" + kScoutTank + "'");
   INFO(r.all);
   CHECK(r.status == 0);
-  CHECK(contains(r.out, "MuJoCo vs Simbody: drive 1 m/s: speed"));
-  CHECK(contains(r.out, "MuJoCo vs Simbody: spin L+0.5 R-0.5"));
+  CHECK(contains(r.out, "PASS  MuJoCo: drive dq = +1 on both tracks: heading drift"));
+  CHECK(contains(r.out, "PASS  MuJoCo vs Simbody: drive dq = +1 on both tracks: speed"));
+  CHECK(contains(r.out, "PASS  MuJoCo vs Simbody: spin dq_L = +0.5, dq_R = -0.5: ω / (2u/B)"));
   CHECK(contains(r.out, "MuJoCo vs Simbody: turret: pitch step"));
-  CHECK(contains(r.out, "43 of 43 checks passed"));
+  CHECK(contains(r.out, "45 of 45 checks passed"));
 }
 #endif

@@ -322,7 +322,8 @@ int main(int argc, char** argv) {
           suite.d_gain);
       if (!cross_check.empty())
         std::cout << "  cross-check: MuJoCo 2.2.2 on body2mjcf's export (elliptic cones, Euler 1 ms, belt velocity "
-                     "through mjcb_control); its lines: measured = MuJoCo, expected = Simbody\n";
+                     "through mjcb_control), the same commands in both engines; its \"MuJoCo vs Simbody\" lines: "
+                     "measured = MuJoCo, expected = Simbody\n";
     }
 #ifdef BODYFMT_HAVE_MUJOCO_CROSS_CHECK
     if (command == "check" && !cross_check.empty()) std::cout << dynamics::describe(drop_report);
