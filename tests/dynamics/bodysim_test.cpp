@@ -139,9 +139,19 @@ TEST_CASE("bodysim: one command line with three subcommands; help, version and u
   const Run no_file = bodysim("run --scenario s.yaml --csv out.csv");
   CHECK(no_file.status == 2);
   CHECK(contains(no_file.all, "file is required"));
-  const Run bad_value = bodysim("check-tank --p-gain -1 x.body");
+  const Run bad_value = bodysim("check-tank --p-gain=-1 x.body");
   CHECK(bad_value.status == 2);
+  CHECK(contains(bad_value.all, "--p-gain: must be a number above 0, not -1"));
   CHECK(!contains(bad_value.out, "PASS"));
+  const Run negative = bodysim("check-tank --d-gain=-0.5 x.body");
+  CHECK(negative.status == 2);
+  CHECK(contains(negative.all, "--d-gain: must be a number ≥ 0, not -0.5"));
+  const Run zero_gain = bodysim("check-tank --d-gain=0 no_such_model.body");  // 0 is a valid D gain
+  CHECK(!contains(zero_gain.all, "--d-gain"));
+  CHECK(contains(zero_gain.all, "no_such_model.body"));
+  const Run zero = bodysim("run --max-duration 0 --scenario s.yaml --csv out.csv x.body");
+  CHECK(zero.status == 2);
+  CHECK(contains(zero.all, "--max-duration: must be a number above 0, not 0"));
 }
 
 TEST_CASE("bodysim: a model over --max-links is refused at its first link over the limit, before any work") {

@@ -24,9 +24,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <iostream>
 #include <iterator>
+#include <limits>
 #include <map>
 #include <memory>
 #include <sstream>
@@ -87,6 +89,25 @@ void print_results(const std::vector<dynamics::CheckResult>& results) {
   std::cout << fmt::format("{} of {} checks passed, {} failed, {} skipped\n", passed, passed + failed, failed, skipped);
 }
 
+/// A number option's bound, said in words (CLI11's PositiveNumber prints its range as a
+/// 300-digit double, and calls 0 "not in range 0 to ...").
+CLI::Validator number_above(bool or_equal) {
+  return CLI::Validator(
+      [or_equal](const std::string& text) {
+        std::size_t used = 0;
+        double value = std::numeric_limits<double>::quiet_NaN();
+        try {
+          value = std::stod(text, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        const bool ok = used == text.size() && std::isfinite(value) && (or_equal ? value >= 0 : value > 0);
+        return ok ? std::string() : fmt::format("must be a number {} 0, not {}", or_equal ? "≥" : "above", text);
+      },
+      or_equal ? "NONNEGATIVE" : "POSITIVE");
+}
+const CLI::Validator kPositive = number_above(false), kNonNegative = number_above(true);
+
 /// The options every subcommand takes besides the front's: the simulation's.
 void add_simulation_options(CLI::App& app, dynamics::SimOptions& sim, std::size_t& max_links) {
   app.add_flag("--balance-inertia", sim.balance_inertia,
@@ -109,12 +130,12 @@ void add_simulation_options(CLI::App& app, dynamics::SimOptions& sim, std::size_
   app.add_option("--max-steps-per-second", sim.max_steps_per_second,
                  "stop a simulation whose integrator takes more steps per simulated second (default 50000; 0: no "
                  "limit)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kNonNegative);
   app.add_option("--max-cpu", sim.max_cpu_seconds, "stop after this many CPU seconds (default 300; 0: no limit)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kNonNegative);
   app.add_option("--max-links", max_links,
                  "refuse models with more links (default 200; integration time grows faster than the link count)")
-      ->check(CLI::PositiveNumber);
+      ->check(kPositive);
 }
 
 }  // namespace
@@ -144,10 +165,8 @@ int main(int argc, char** argv) {
       .add_option("--cross-check", cross_check,
                   "also run the drive, spin and turret scenarios in MuJoCo 2.2.2 on body2mjcf's export")
       ->check(CLI::IsMember({"mujoco"}));
-  check_tank.add_option("--p-gain", suite.p_gain, "turret servo P gain, N·m/rad (default 200)")
-      ->check(CLI::PositiveNumber);
-  check_tank.add_option("--d-gain", suite.d_gain, "turret servo D gain, N·m·s/rad (default 50)")
-      ->check(CLI::NonNegativeNumber);
+  check_tank.add_option("--p-gain", suite.p_gain, "turret servo P gain, N·m/rad (default 200)")->check(kPositive);
+  check_tank.add_option("--d-gain", suite.d_gain, "turret servo D gain, N·m·s/rad (default 50)")->check(kNonNegative);
   CLI::App& check = subcommand("check", "Run the generic dynamics checks (Simbody) on any model");
   check
       .add_option("--cross-check", cross_check,
@@ -157,11 +176,11 @@ int main(int argc, char** argv) {
   run.add_option("--scenario", scenario_path, "the scenario file (YAML; see dynamics/README.md)")->required();
   run.add_option("--csv", csv_path, "the CSV file to write")->required();
   run.add_option("--max-duration", limits.max_duration, "refuse scenarios that simulate longer (s, default 600)")
-      ->check(CLI::PositiveNumber);
+      ->check(kPositive);
   run.add_option("--max-rows", limits.max_rows, "refuse scenarios with more CSV rows (default 1000000)")
-      ->check(CLI::PositiveNumber);
+      ->check(kPositive);
   run.add_option("--max-commands", limits.max_commands, "refuse scenarios with more commands (default 100000)")
-      ->check(CLI::PositiveNumber);
+      ->check(kPositive);
 
   cli.footer("Run `bodysim SUBCOMMAND --help` for the options of a subcommand.");  // after them: not inherited
 
