@@ -4,6 +4,7 @@
 // apply is a SKIP line with its reason.
 
 #include <bodyfmt/dynamics/checks.h>
+#include <bodyfmt/dynamics/servo_reference.h>
 #include <bodyfmt/inertia.h>
 
 #include <fmt/format.h>
@@ -74,17 +75,14 @@ double min_jerk_rate(double t, double distance, double duration) {
 /// Shared by every scenario: a fresh system standing on the floor, joint servos holding 0.
 class Scenario {
  public:
-  Scenario(const Model& model, const Derived& derived, const TankLayout& tank, const TankSuiteOptions& options,
+  Scenario(const Model& model, const Derived& derived, const TankOpening& opening, const TankSuiteOptions& options,
            const SimOptions& sim_options, DiagnosticSink& sink)
-      : tank_(tank), options_(options) {
+      : tank_(opening.tank), options_(options) {
     sim_ = Simulation::build(model, derived, sim_options, sink);
     if (!sim_) return;
-    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-    X.translation() = Eigen::Vector3d(0, 0, -tank.lowest_z);
-    sim_->set_root_pose(X);
+    sim_->set_root_pose(opening.start);
     // As a controller holds them: every joint, not only the turret's (a joint left free swings).
-    for (std::size_t i = 0; i < model.links.size(); ++i)
-      if (sim_->has_joint(static_cast<LinkIndex>(i))) hold(static_cast<LinkIndex>(i), 0.0);
+    for (LinkIndex joint : opening.held_joints) hold(joint, 0.0);
   }
   explicit operator bool() const { return sim_ != nullptr; }
   Simulation& sim() { return *sim_; }
@@ -142,14 +140,14 @@ struct Suite {
   const Model& model;
   const Derived& derived;
   const TankSuiteOptions& options;
-  const TankLayout& tank;
-  CollectingSink quiet;  // scenario builds repeat nothing the first build reported
+  const TankOpening& opening;
+  const TankLayout& tank;  // opening.tank
+  CollectingSink quiet;    // scenario builds repeat nothing the first build reported
   std::vector<CheckResult>& results;
   double g, mu, mass, weight, B;
   Eigen::Vector3d com_root;  // centre of mass in the root frame at the file pose
-  std::vector<ContactPoint> contacts;
 
-  Scenario scenario() { return Scenario(model, derived, tank, options, options.sim, quiet); }
+  Scenario scenario() { return Scenario(model, derived, opening, options, options.sim, quiet); }
   void add(CheckResult r) { results.push_back(std::move(r)); }
   void skip(std::string name, std::string reason) {
     results.push_back(skipped_check(std::move(name), std::move(reason)));
@@ -247,7 +245,7 @@ void verify_sideways_tip(Suite& s, double slope_deg, bool to_left) {
     SimOptions o = s.options.sim;
     o.contact_params.friction = std::max(o.contact_params.friction, 1.2 * std::tan(theta));
     o.gravity_direction = Eigen::Vector3d(0, (to_left ? 1 : -1) * std::sin(theta), -std::cos(theta));
-    Scenario sc(s.model, s.derived, s.tank, s.options, o, s.quiet);
+    Scenario sc(s.model, s.derived, s.opening, s.options, o, s.quiet);
     if (!sc) return;
     // Below the slope 0.5 s; above it until it has tipped (20°; tumbling on is stiff and
     // costly), at most 1 s.
@@ -340,7 +338,7 @@ void settle(Suite& s) {
 
 /// Straight drive with the same dq on both tracks, as a controller commands it.
 void drive(Suite& s, double v) {
-  const int direction = s.tank.left_sign;  // where +dq takes a consistent vehicle
+  const int direction = s.opening.drive_direction;
   const double expected = direction * v;
   Scenario sc = s.scenario();
   if (!sc) return;
@@ -427,21 +425,40 @@ void spin(Suite& s, const std::vector<double>& loads, const std::string& loads_w
 
 /// Whether turning `joint` to q (the others at 0, the vehicle as it stands) brings a contact
 /// point of its subtree to within 1 cm of the floor: the link that would hit it, or empty.
-std::string floor_contact_at(const Suite& s, LinkIndex joint, double q) {
-  std::vector<double> at(s.model.links.size(), 0.0);
+std::string floor_contact_at(const Model& model, const std::vector<ContactPoint>& contacts, double lowest_z,
+                             LinkIndex joint, double q) {
+  std::vector<double> at(model.links.size(), 0.0);
   at[joint] = q;
-  const std::vector<Eigen::Isometry3d> X = compute_world_frames(s.model, at);
+  const std::vector<Eigen::Isometry3d> X = compute_world_frames(model, at);
   const Eigen::Isometry3d X_root = X[0];
-  for (const ContactPoint& p : s.contacts) {
+  for (const ContactPoint& p : contacts) {
     bool below = false;
-    for (LinkIndex k = p.link; k >= 0; k = s.model.links[k].parent) below = below || k == joint;
+    for (LinkIndex k = p.link; k >= 0; k = model.links[k].parent) below = below || k == joint;
     if (!below) continue;
     const double z = (X_root.inverse() * X[p.link] * p.position_in_link).z() - p.radius;
-    if (z < s.tank.lowest_z + 0.01)
-      return fmt::format("(link \"{}\" would reach {:.3g} m above the floor)", s.model.links[p.link].name,
-                         z - s.tank.lowest_z);
+    if (z < lowest_z + 0.01)
+      return fmt::format("(link \"{}\" would reach {:.3g} m above the floor)", model.links[p.link].name, z - lowest_z);
   }
   return {};
+}
+
+/// The pitch step of TankOpening: `no_step` says why there is none.
+double pitch_step_target(const Model& model, const std::vector<ContactPoint>& contacts, const TankLayout& t,
+                         std::string& no_step) {
+  if (t.pitch < 0) return 0;
+  const Link& pitch = model.links[t.pitch];
+  const double upper = std::min(pitch.joint_range_upper, kPi), lower = std::max(pitch.joint_range_lower, -kPi);
+  std::string blocked;
+  for (const double side :
+       upper >= -lower ? std::array<double, 2>{upper, lower} : std::array<double, 2>{lower, upper}) {
+    const double q = std::clamp(2.0 / 3 * side, -30 * kDeg, 30 * kDeg);
+    const std::string hit = floor_contact_at(model, contacts, t.lowest_z, t.pitch, q);
+    if (q != 0 && hit.empty()) return q;
+    if (!hit.empty()) blocked += fmt::format("{}at {:.4g} rad {}", blocked.empty() ? "" : "; ", q, hit);
+  }
+  no_step =
+      blocked.empty() ? "the pitch range leaves no room for a step from 0" : "a step would hit the floor: " + blocked;
+  return 0;
 }
 
 /// Pitch servo: sag under gravity and a step, against the rigid 1-DOF reference.
@@ -454,7 +471,6 @@ void pitch_servo(Suite& s) {
                      : fmt::format("no revolute joint about a horizontal axis below \"{}\"", s.name(t.yaw)));
     return;
   }
-  const Link& pitch = model.links[t.pitch];
   const double P = s.options.p_gain, D = s.options.d_gain;
   auto q_at = [&](double q) {
     std::vector<double> v(model.links.size(), 0.0);
@@ -462,61 +478,34 @@ void pitch_servo(Suite& s) {
     return v;
   };
   auto tau_g = [&](double q) { return subtree_gravity_torque(model, s.derived, t.pitch, q_at(q), s.g); };
-  // Sag under the servo: f(q) = τ_g(q) − P·q = 0, by Newton's method from q = 0 with steps
-  // of at most 0.1 rad (the nearest root).
-  double sag = 0;
-  for (int i = 0; i < 200; ++i) {
-    const double h = 1e-7, f = tau_g(sag) - P * sag;
-    const double df = (tau_g(sag + h) - tau_g(sag - h)) / (2 * h) - P;
-    if (df == 0) break;
-    sag -= std::clamp(f / df, -0.1, 0.1);
-  }
+  const ServoSag sag = servo_sag(tau_g, P);
   const double I = subtree_axis_inertia(model, s.derived, t.pitch, {}, model_inertias(model, s.derived, s.options.sim));
   Scenario sc = s.scenario();
   if (!sc) return;
   sc.run(1.5);
-  s.add(relative("turret: pitch sag under gravity (τ_g/P)", sc.sim().joint_position(t.pitch), sag, 0.03, "rad"));
+  if (sag.converged)
+    s.add(relative("turret: pitch sag under gravity (τ_g/P)", sc.sim().joint_position(t.pitch), sag.q, 0.03, "rad"));
+  else
+    s.skip("turret: pitch sag under gravity (τ_g/P)", "no reference: " + sag.why);
   if (t.yaw >= 0) s.add(absolute("turret: yaw holds 0", sc.sim().joint_position(t.yaw), 0, 1e-5, "rad"));
-  // Step to two thirds of the wider side of the range (at most 30°), or of the other side when
-  // that would put the turret into the floor: the rigid 1-DOF response
-  // I·q̈ = P·(q_s − q) − D·q̇ + τ_g(q), integrated with RK4 from the sag.
-  const double upper = std::min(pitch.joint_range_upper, kPi), lower = std::max(pitch.joint_range_lower, -kPi);
-  double q_step = 0;
-  std::string blocked;
-  for (const double side :
-       upper >= -lower ? std::array<double, 2>{upper, lower} : std::array<double, 2>{lower, upper}) {
-    const double q = std::clamp(2.0 / 3 * side, -30 * kDeg, 30 * kDeg);
-    const std::string hit = floor_contact_at(s, t.pitch, q);
-    if (q != 0 && hit.empty()) {
-      q_step = q;
-      break;
-    }
-    if (!hit.empty()) blocked += fmt::format("{}at {:.4g} rad {}", blocked.empty() ? "" : "; ", q, hit);
-  }
+  // The step of the opening (pitch_step_target) against the rigid 1-DOF response from the
+  // state the simulation reached.
+  const double q_step = s.opening.pitch_step;
   if (q_step == 0) {
-    s.skip("turret: pitch step response", blocked.empty() ? "the pitch range leaves no room for a step from 0"
-                                                          : "a step would hit the floor: " + blocked);
+    s.skip("turret: pitch step response", s.opening.no_pitch_step);
     return;
   }
-  auto rhs = [&](const Eigen::Vector2d& x) {
-    return Eigen::Vector2d(x[1], (P * (q_step - x[0]) - D * x[1] + tau_g(x[0])) / I);
-  };
-  Eigen::Vector2d x(sc.sim().joint_position(t.pitch), sc.sim().joint_velocity(t.pitch));
-  const double h = 1e-4;
-  std::vector<std::pair<double, double>> expected;
-  for (int i = 1; i <= 20000; ++i) {
-    const Eigen::Vector2d k1 = rhs(x), k2 = rhs(x + h / 2 * k1), k3 = rhs(x + h / 2 * k2), k4 = rhs(x + h * k3);
-    x += h / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
-    if (i == 2500 || i == 5000 || i == 10000 || i == 20000) expected.emplace_back(i * h, x[0]);
-  }
+  const std::vector<double> times = {0.25, 0.5, 1.0, 2.0};
+  const std::vector<double> expected = servo_step_response(tau_g, I, P, D, sc.sim().joint_position(t.pitch),
+                                                           sc.sim().joint_velocity(t.pitch), q_step, times);
   sc.hold(t.pitch, q_step);
   double elapsed = 0;
   const double tolerance[] = {0.03, 0.02, 0.01, 0.005};
-  for (std::size_t k = 0; k < expected.size(); ++k) {
-    sc.run(expected[k].first - elapsed);
-    elapsed = expected[k].first;
-    s.add(relative(fmt::format("turret: pitch step to {:.4g} rad, q at {:g} s", q_step, expected[k].first),
-                   sc.sim().joint_position(t.pitch), expected[k].second, tolerance[k], "rad"));
+  for (std::size_t k = 0; k < times.size(); ++k) {
+    sc.run(times[k] - elapsed);
+    elapsed = times[k];
+    s.add(relative(fmt::format("turret: pitch step to {:.4g} rad, q at {:g} s", q_step, times[k]),
+                   sc.sim().joint_position(t.pitch), expected[k], tolerance[k], "rad"));
   }
 }
 
@@ -745,22 +734,38 @@ std::optional<TankLayout> find_tank(const Model& model, const Derived& /*derived
   return tank;
 }
 
+std::optional<TankOpening> open_tank(const Model& model, const Derived& derived, const SimOptions& options,
+                                     DiagnosticSink& sink, std::string& why) {
+  TankOpening o;
+  o.probe = Simulation::build(model, derived, options, sink);
+  if (!o.probe) {
+    why = "the model cannot be simulated as written (see above)";
+    return std::nullopt;
+  }
+  o.contacts = o.probe->contact_points();
+  std::optional<TankLayout> found = find_tank(model, derived, o.contacts, why);
+  if (!found) return std::nullopt;
+  o.tank = std::move(*found);
+  o.start.translation() = Eigen::Vector3d(0, 0, -o.tank.lowest_z);
+  for (std::size_t i = 0; i < model.links.size(); ++i)
+    if (o.probe->has_joint(static_cast<LinkIndex>(i))) o.held_joints.push_back(static_cast<LinkIndex>(i));
+  o.drive_direction = o.tank.left_sign == o.tank.right_sign ? o.tank.left_sign : 0;
+  o.pitch_step = pitch_step_target(model, o.contacts, o.tank, o.no_pitch_step);
+  return o;
+}
+
 std::vector<CheckResult> run_tank_suite(const Model& model, const Derived& derived, const TankSuiteOptions& options,
                                         DiagnosticSink& sink, std::string& why, TankLayout* layout) {
   std::vector<CheckResult> results;
   // The first build reports the model's findings (inertia); later ones repeat nothing.
-  std::unique_ptr<Simulation> probe = Simulation::build(model, derived, options.sim, sink);
-  if (!probe) {
-    why = "the model cannot be simulated as written (see above)";
-    return results;
-  }
-  std::optional<TankLayout> found = find_tank(model, derived, probe->contact_points(), why);
-  if (!found) return results;
-  const TankLayout& tank = *found;
+  std::optional<TankOpening> opening = open_tank(model, derived, options.sim, sink, why);
+  if (!opening) return results;
+  const TankLayout& tank = opening->tank;
   if (layout) *layout = tank;
   Suite s{model,
           derived,
           options,
+          *opening,
           tank,
           {},
           results,
@@ -769,11 +774,9 @@ std::vector<CheckResult> run_tank_suite(const Model& model, const Derived& deriv
           derived.total_mass,
           derived.total_mass * options.sim.gravity,
           tank.spacing,
-          center_of_mass_in_root(model, derived),
-          {}};
-  build_self_test(s, *probe);
-  s.contacts = probe->contact_points();
-  probe.reset();
+          center_of_mass_in_root(model, derived)};
+  build_self_test(s, *opening->probe);
+  opening->probe.reset();
   if (!tank.standing_problem.empty()) {
     s.add(verdict_check("the vehicle stands on its two tracks", false, tank.standing_problem));
     s.skip("settle, drive, spin, turret and conservation checks", "the vehicle does not stand on its tracks");

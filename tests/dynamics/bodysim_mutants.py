@@ -8,7 +8,9 @@ models, with the outcome bodysim must give it:
 A `said` text starting with "re:" is a regular expression.
 A mutant is a list of exact text replacements; each must match the base model exactly once,
 so that a mutant cannot silently be the base model.
-    bodysim_mutants.py BODYSIM EXAMPLES_DIR DATA_DIR SHARED_DIR WORK_DIR
+    bodysim_mutants.py BODYSIM EXAMPLES_DIR DATA_DIR SHARED_DIR WORK_DIR [--with-mujoco]
+Mutants run with `--cross-check mujoco` need a bodysim built with MuJoCo (--with-mujoco); without
+it they are listed as not run, and the table says so.
 Prints the table (mutant, expected, got) and exits 1 when any mutant gets another outcome.
 """
 import os
@@ -23,6 +25,12 @@ BASES = {
     "arm": ("examples/arm.body", ["check"]),
     "conveyor": ("shared/corpus/choreonoid/misc/conveyor.body", ["check"]),
 }
+
+# ScoutTank's track axes turned over, one edit each.
+RIGHT_FLIPPED = ("    joint_axis: Y\n    mass: 3.0\n    inertia: [ 0.01, 0,      0,\n               0,    0.1664, 0,\n               0,    0,      0.1636 ]\n    elements: &belt",
+                 "    joint_axis: -Y\n    mass: 3.0\n    inertia: [ 0.01, 0,      0,\n               0,    0.1664, 0,\n               0,    0,      0.1636 ]\n    elements: &belt")
+LEFT_FLIPPED = ("    translation: [0, 0.31, 0]\n    joint_type: pseudo_continuous_track\n    joint_axis: Y",
+                "    translation: [0, 0.31, 0]\n    joint_type: pseudo_continuous_track\n    joint_axis: -Y")
 
 MUTANTS = [
     # --- tracked vehicles: defects that must fail with their cause named ----------------------
@@ -52,6 +60,21 @@ MUTANTS = [
     ("scout", "turret off the centre line", [("translation: [0.1, 0, 0.07]", "translation: [0.1, 0.12, 0.07]")], "pass", []),
     ("scout", "a heavier hull with consistent inertia", [("    mass: 20.0\n    center_of_mass: [0, 0, 0]\n    # Solid box 0.7 x 0.5 x 0.14: m/12 (b² + c²), ...\n    inertia: [ 0.449333, 0,        0,\n               0,        0.849333, 0,\n               0,        0,        1.233333 ]", "    mass: 50.0\n    center_of_mass: [0, 0, 0]\n    inertia: [ 1.123333, 0,        0,\n               0,        2.123333, 0,\n               0,        0,        3.083333 ]")], "pass", []),
     ("skid", "the skidder as written (axes -Y on both tracks)", [], "pass", ["drives backward for +dq"]),
+    # --- the same in the MuJoCo cross-check: the same dq to both tracks in both engines ---------------
+    ("scout", "right track axis flipped (--cross-check mujoco)", [RIGHT_FLIPPED], "fail",
+     ["tracks drive against each other", r"re:FAIL  MuJoCo: drive dq = \+1 on both tracks: heading drift .*\n      "
+      r"tracks drive against each other: \"BELT_B\" \(axis \(0, 1, 0\) in the root frame\) drives toward \+X and "
+      r"\"BELT_A\" \(axis \(0, -1, 0\)\) toward -X",
+      "FAIL  Simbody: drive dq = +1 on both tracks: heading drift",
+      "SKIP  MuJoCo vs Simbody: drive dq = +1 on both tracks: speed and time to 90 %",
+      "re:PASS  MuJoCo vs Simbody: drive dq = \\+1 on both tracks: yaw rate"], ["--cross-check", "mujoco"]),
+    ("scout", "both tracks flipped (--cross-check mujoco)", [RIGHT_FLIPPED, LEFT_FLIPPED], "pass",
+     [r"re:PASS  MuJoCo: drive dq = \+1 on both tracks: heading drift .*\n      drives backward for \+dq",
+      r"re:PASS  MuJoCo vs Simbody: drive dq = \+1 on both tracks: speed\s+measured\s+-1 m/s\s+expected\s+-1 "],
+     ["--cross-check", "mujoco"]),
+    ("scout", "ScoutTank as written (--cross-check mujoco)", [], "pass",
+     [r"re:PASS  MuJoCo vs Simbody: drive dq = \+1 on both tracks: speed\s+measured\s+1 m/s\s+expected\s+1 ",
+      "PASS  MuJoCo: drive dq = +1 on both tracks: heading drift"], ["--cross-check", "mujoco"]),
     # --- checks that cannot apply: said ------------------------------------------------------------
     ("scout", "no turret (tower and cannon welded)", [("    joint_type: revolute\n    joint_id: 0", "    joint_type: fixed"), ("    joint_type: revolute\n    joint_id: 1", "    joint_type: fixed")],
      "skip", ["SKIP  turret: yaw tracking, final error and chassis reaction: no revolute joint about the vertical", "SKIP  turret: pitch sag and step response: no turret yaw joint"]),
@@ -125,15 +148,20 @@ def run_mutant(bodysim, paths, work, index, mutant):
 
 
 def main():
-    if len(sys.argv) != 6:
+    if len(sys.argv) not in (6, 7) or (len(sys.argv) == 7 and sys.argv[6] != "--with-mujoco"):
         print(__doc__)
         return 2
-    bodysim, examples, data, shared, work = sys.argv[1:]
+    bodysim, examples, data, shared, work = sys.argv[1:6]
+    with_mujoco = len(sys.argv) == 7
     os.makedirs(work, exist_ok=True)
     roots = {"examples": examples, "data": data, "shared": shared}
     paths = {path: os.path.join(roots[path.split("/", 1)[0]], path.split("/", 1)[1]) for path, _ in BASES.values()}
-    rows, failures = [], 0
+    rows, failures, not_run = [], 0, 0
     for index, mutant in enumerate(MUTANTS):
+        if "--cross-check" in (mutant[5] if len(mutant) > 5 else []) and not with_mujoco:
+            rows.append((f"{mutant[0]}: {mutant[1]}", mutant[3], "not run", "bodysim has no MuJoCo"))
+            not_run += 1
+            continue
         result, detail = run_mutant(bodysim, paths, work, index, mutant)
         got, ok = result if result else ("edit error", False)
         failures += 0 if ok else 1
@@ -144,7 +172,8 @@ def main():
     print(f"| {'mutant':<{width}} | expected | got    | |")
     for r in rows:
         print(f"| {r[0]:<{width}} | {r[1]:<8} | {r[2]:<6} | {r[3]} |")
-    print(f"mutation score: {len(rows) - failures} of {len(rows)} mutants get their expected outcome")
+    print(f"mutation score: {len(rows) - not_run - failures} of {len(rows) - not_run} mutants get their expected "
+          f"outcome" + (f"; {not_run} not run (bodysim built without MuJoCo)" if not_run else ""))
     return 1 if failures else 0
 
 

@@ -98,6 +98,62 @@ TEST_CASE("bodysim: usage errors exit 2") {
   CHECK(contains(arm.all, "the tank suite needs a free root link"));
 }
 
+TEST_CASE("bodysim: one command line with three subcommands; help, version and usage errors said") {
+  const Run help = bodysim("--help");
+  CHECK(help.status == 0);
+  CHECK(contains(help.out, "Usage: bodysim [OPTIONS] SUBCOMMAND"));
+  for (const char* sub : {"check-tank", "check", "run"}) {
+    CAPTURE(sub);
+    CHECK(contains(help.out, std::string("\n  ") + sub + " "));
+    const Run sub_help = bodysim(std::string(sub) + " --help");
+    CHECK(sub_help.status == 0);
+    CHECK(contains(sub_help.out, std::string("Usage: bodysim ") + sub + " [OPTIONS] file"));
+    // The front's options and the simulation's in every subcommand.
+    CHECK(contains(sub_help.out, "--no-config"));
+    CHECK(contains(sub_help.out, "--balance-inertia"));
+    CHECK(contains(sub_help.out, "--max-links"));
+    // Each subcommand's own options, and not another's.
+    CHECK(contains(sub_help.out, "--cross-check") == (std::string(sub) != "run"));
+    CHECK(contains(sub_help.out, "--p-gain") == (std::string(sub) == "check-tank"));
+    CHECK(contains(sub_help.out, "--scenario") == (std::string(sub) == "run"));
+    CHECK(!contains(sub_help.out, "Run `bodysim SUBCOMMAND --help`"));  // the top footer is not inherited
+  }
+  const Run version = bodysim("--version");
+  CHECK(version.status == 0);
+  CHECK(version.out.rfind("bodysim ", 0) == 0);
+  CHECK(version.out.find_first_of("0123456789") == 8);
+
+  const Run none = bodysim("");
+  CHECK(none.status == 2);
+  CHECK(contains(none.all, "bodysim: error: a subcommand is required (check-tank, check or run)"));
+  CHECK(contains(none.all, "Subcommands:"));
+  const Run unknown = bodysim("frobnicate x.body");
+  CHECK(unknown.status == 2);
+  CHECK(contains(unknown.all, "bodysim: error: unknown subcommand \"frobnicate\" (check-tank, check or run)"));
+  const Run bad_option = bodysim("check --no-such-option x.body");
+  CHECK(bad_option.status == 2);
+  CHECK(contains(bad_option.all, "--no-such-option"));
+  const Run foreign_option = bodysim("check --p-gain=3 x.body");  // check-tank's, not check's
+  CHECK(foreign_option.status == 2);
+  CHECK(contains(foreign_option.all, "--p-gain"));
+  const Run no_file = bodysim("run --scenario s.yaml --csv out.csv");
+  CHECK(no_file.status == 2);
+  CHECK(contains(no_file.all, "file is required"));
+  const Run bad_value = bodysim("check-tank --p-gain=-1 x.body");
+  CHECK(bad_value.status == 2);
+  CHECK(contains(bad_value.all, "--p-gain: must be a number above 0, not -1"));
+  CHECK(!contains(bad_value.out, "PASS"));
+  const Run negative = bodysim("check-tank --d-gain=-0.5 x.body");
+  CHECK(negative.status == 2);
+  CHECK(contains(negative.all, "--d-gain: must be a number ≥ 0, not -0.5"));
+  const Run zero_gain = bodysim("check-tank --d-gain=0 no_such_model.body");  // 0 is a valid D gain
+  CHECK(!contains(zero_gain.all, "--d-gain"));
+  CHECK(contains(zero_gain.all, "no_such_model.body"));
+  const Run zero = bodysim("run --max-duration 0 --scenario s.yaml --csv out.csv x.body");
+  CHECK(zero.status == 2);
+  CHECK(contains(zero.all, "--max-duration: must be a number above 0, not 0"));
+}
+
 TEST_CASE("bodysim: a model over --max-links is refused at its first link over the limit, before any work") {
   // A 6-link chain, one line per link: with --max-links 4, link 5 (L4: line 9, its name at column
   // 12) is the first over.
@@ -320,9 +376,10 @@ TEST_CASE("bodysim: --cross-check mujoco runs body2mjcf's export in MuJoCo 2.2.2
   const Run r = bodysim("check-tank --balance-inertia --cross-check mujoco '" + kScoutTank + "'");
   INFO(r.all);
   CHECK(r.status == 0);
-  CHECK(contains(r.out, "MuJoCo vs Simbody: drive 1 m/s: speed"));
-  CHECK(contains(r.out, "MuJoCo vs Simbody: spin L+0.5 R-0.5"));
+  CHECK(contains(r.out, "PASS  MuJoCo: drive dq = +1 on both tracks: heading drift"));
+  CHECK(contains(r.out, "PASS  MuJoCo vs Simbody: drive dq = +1 on both tracks: speed"));
+  CHECK(contains(r.out, "PASS  MuJoCo vs Simbody: spin dq_L = +0.5, dq_R = -0.5: ω / (2u/B)"));
   CHECK(contains(r.out, "MuJoCo vs Simbody: turret: pitch step"));
-  CHECK(contains(r.out, "43 of 43 checks passed"));
+  CHECK(contains(r.out, "45 of 45 checks passed"));
 }
 #endif

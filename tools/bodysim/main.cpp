@@ -1,4 +1,5 @@
-// bodysim: the Simbody dynamics checker (dynamics/README.md).
+// bodysim: the Simbody dynamics checker (dynamics/README.md). One command line with three
+// CLI11 subcommands, each with the front's options (tools/common/front.h) and its own:
 //   bodysim check-tank MODEL [--balance-inertia]    the tank suite; one line per check
 //   bodysim check MODEL [--balance-inertia]         generic checks for any model
 //   bodysim run MODEL --scenario S.yaml --csv out.csv
@@ -22,22 +23,19 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <iostream>
+#include <iterator>
+#include <limits>
 #include <map>
+#include <memory>
 #include <sstream>
 
 namespace {
 
 using namespace bodyfmt;
-
-constexpr const char* kUsage =
-    "bodysim: the Simbody dynamics checker for Choreonoid .body models\n"
-    "usage:\n"
-    "  bodysim check-tank MODEL [--balance-inertia]   the tracked-vehicle suite (two pseudo_continuous_track links)\n"
-    "  bodysim check MODEL [--balance-inertia]        generic checks: mass matrix, drop and settle\n"
-    "  bodysim run MODEL --scenario S.yaml --csv OUT  run a scenario, write trajectories as CSV\n"
-    "  bodysim SUBCOMMAND --help                      options of a subcommand\n";
 
 /// bodycheck's rules under bodysim's policy, except the inertia findings that Simulation::build
 /// reports itself with what it does about them (refused, or balanced with --balance-inertia).
@@ -91,31 +89,27 @@ void print_results(const std::vector<dynamics::CheckResult>& results) {
   std::cout << fmt::format("{} of {} checks passed, {} failed, {} skipped\n", passed, passed + failed, failed, skipped);
 }
 
-}  // namespace
+/// A number option's bound, said in words (CLI11's PositiveNumber prints its range as a
+/// 300-digit double, and calls 0 "not in range 0 to ...").
+CLI::Validator number_above(bool or_equal) {
+  return CLI::Validator(
+      [or_equal](const std::string& text) {
+        std::size_t used = 0;
+        double value = std::numeric_limits<double>::quiet_NaN();
+        try {
+          value = std::stod(text, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        const bool ok = used == text.size() && std::isfinite(value) && (or_equal ? value >= 0 : value > 0);
+        return ok ? std::string() : fmt::format("must be a number {} 0, not {}", or_equal ? "≥" : "above", text);
+      },
+      or_equal ? "NONNEGATIVE" : "POSITIVE");
+}
+const CLI::Validator kPositive = number_above(false), kNonNegative = number_above(true);
 
-int main(int argc, char** argv) {
-  if (argc < 2 || std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0) {
-    (argc < 2 ? std::cerr : std::cout) << kUsage;
-    return argc < 2 ? tools::kExitFatal : tools::kExitClean;
-  }
-  const std::string command = argv[1];
-  if (command == "--version") {
-    std::cout << "bodysim " << BODYFMT_VERSION << "\n";
-    return tools::kExitClean;
-  }
-  if (command != "check-tank" && command != "check" && command != "run") {
-    std::cerr << "bodysim: error: unknown subcommand \"" << command << "\"\n" << kUsage;
-    return tools::kExitFatal;
-  }
-  const std::string description = command == "check-tank" ? "Run the tracked-vehicle dynamics suite (Simbody)"
-                                  : command == "check"    ? "Run the generic dynamics checks (Simbody)"
-                                                          : "Run a scenario and write trajectories as CSV (Simbody)";
-  tools::Front front("bodysim " + command, description, {false, false});
-  CLI::App& app = front.app();
-  dynamics::TankSuiteOptions suite;
-  dynamics::SimOptions& sim = suite.sim;
-  std::string scenario_path, csv_path, cross_check;
-  std::size_t max_links = 200;
+/// The options every subcommand takes besides the front's: the simulation's.
+void add_simulation_options(CLI::App& app, dynamics::SimOptions& sim, std::size_t& max_links) {
   app.add_flag("--balance-inertia", sim.balance_inertia,
                "simulate links with an unphysical inertia with the nearest valid one (a warning per link)");
   app.add_option("--accuracy", sim.accuracy, "Runge-Kutta-Merson accuracy (default 1e-5)")
@@ -136,39 +130,81 @@ int main(int argc, char** argv) {
   app.add_option("--max-steps-per-second", sim.max_steps_per_second,
                  "stop a simulation whose integrator takes more steps per simulated second (default 50000; 0: no "
                  "limit)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kNonNegative);
   app.add_option("--max-cpu", sim.max_cpu_seconds, "stop after this many CPU seconds (default 300; 0: no limit)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kNonNegative);
   app.add_option("--max-links", max_links,
                  "refuse models with more links (default 200; integration time grows faster than the link count)")
-      ->check(CLI::PositiveNumber);
-  if (command == "check-tank") {
-    app.add_option("--cross-check", cross_check,
-                   "also run the drive, spin and turret scenarios in MuJoCo 2.2.2 on body2mjcf's export")
-        ->check(CLI::IsMember({"mujoco"}));
-    app.add_option("--p-gain", suite.p_gain, "turret servo P gain, N·m/rad (default 200)")->check(CLI::PositiveNumber);
-    app.add_option("--d-gain", suite.d_gain, "turret servo D gain, N·m·s/rad (default 50)")
-        ->check(CLI::NonNegativeNumber);
-  }
-  if (command == "check")
-    app.add_option("--cross-check", cross_check,
-                   "also run the locked-joint drop in MuJoCo 2.2.2 on body2mjcf's export (a free root only)")
-        ->check(CLI::IsMember({"mujoco"}));
+      ->check(kPositive);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const char* const kSubcommands[] = {"check-tank", "check", "run"};
+  CLI::App cli("bodysim: the Simbody dynamics checker for Choreonoid .body models", "bodysim");
+  cli.set_version_flag("--version", std::string("bodysim ") + BODYFMT_VERSION, "print the version and exit");
+  cli.require_subcommand(1);
+  // Only one subcommand runs, so they share the variables their options set.
+  dynamics::TankSuiteOptions suite;
+  dynamics::SimOptions& sim = suite.sim;
+  std::string scenario_path, csv_path, cross_check;
+  std::size_t max_links = 200;
   dynamics::ScenarioLimits limits;
-  if (command == "run") {
-    app.add_option("--scenario", scenario_path, "the scenario file (YAML; see dynamics/README.md)")->required();
-    app.add_option("--csv", csv_path, "the CSV file to write")->required();
-    app.add_option("--max-duration", limits.max_duration, "refuse scenarios that simulate longer (s, default 600)")
-        ->check(CLI::PositiveNumber);
-    app.add_option("--max-rows", limits.max_rows, "refuse scenarios with more CSV rows (default 1000000)")
-        ->check(CLI::PositiveNumber);
-    app.add_option("--max-commands", limits.max_commands, "refuse scenarios with more commands (default 100000)")
-        ->check(CLI::PositiveNumber);
+  std::map<std::string, std::unique_ptr<tools::Front>> fronts;
+  auto subcommand = [&](const std::string& name, const std::string& description) -> CLI::App& {
+    CLI::App& app = *cli.add_subcommand(name, description);
+    fronts[name] = std::make_unique<tools::Front>("bodysim " + name, app, tools::Front::Features{false, false});
+    add_simulation_options(app, sim, max_links);
+    return app;
+  };
+  CLI::App& check_tank = subcommand("check-tank",
+                                    "Run the tracked-vehicle dynamics suite (Simbody) on a model with two "
+                                    "pseudo_continuous_track links");
+  check_tank
+      .add_option("--cross-check", cross_check,
+                  "also run the drive, spin and turret scenarios in MuJoCo 2.2.2 on body2mjcf's export")
+      ->check(CLI::IsMember({"mujoco"}));
+  check_tank.add_option("--p-gain", suite.p_gain, "turret servo P gain, N·m/rad (default 200)")->check(kPositive);
+  check_tank.add_option("--d-gain", suite.d_gain, "turret servo D gain, N·m·s/rad (default 50)")->check(kNonNegative);
+  CLI::App& check = subcommand("check", "Run the generic dynamics checks (Simbody) on any model");
+  check
+      .add_option("--cross-check", cross_check,
+                  "also run the locked-joint drop in MuJoCo 2.2.2 on body2mjcf's export (a free root only)")
+      ->check(CLI::IsMember({"mujoco"}));
+  CLI::App& run = subcommand("run", "Run a scenario and write trajectories as CSV (Simbody)");
+  run.add_option("--scenario", scenario_path, "the scenario file (YAML; see dynamics/README.md)")->required();
+  run.add_option("--csv", csv_path, "the CSV file to write")->required();
+  run.add_option("--max-duration", limits.max_duration, "refuse scenarios that simulate longer (s, default 600)")
+      ->check(kPositive);
+  run.add_option("--max-rows", limits.max_rows, "refuse scenarios with more CSV rows (default 1000000)")
+      ->check(kPositive);
+  run.add_option("--max-commands", limits.max_commands, "refuse scenarios with more commands (default 100000)")
+      ->check(kPositive);
+
+  cli.footer("Run `bodysim SUBCOMMAND --help` for the options of a subcommand.");  // after them: not inherited
+
+  if (argc < 2) {
+    std::cerr << "bodysim: error: a subcommand is required (check-tank, check or run)\n" << cli.help();
+    return tools::kExitFatal;
   }
-  std::vector<char*> args(argv + 1, argv + argc);
-  std::string name = "bodysim " + command;
-  args[0] = name.data();
-  if (auto code = front.parse(static_cast<int>(args.size()), args.data())) return *code;
+  // CLI11 would call an unknown subcommand an unexpected argument: name it as what it is.
+  if (argv[1][0] != '-' && std::none_of(std::begin(kSubcommands), std::end(kSubcommands),
+                                        [&](const char* name) { return std::strcmp(argv[1], name) == 0; })) {
+    std::cerr << "bodysim: error: unknown subcommand \"" << argv[1]
+              << "\" (check-tank, check or run)\nRun with --help for more information.\n";
+    return tools::kExitFatal;
+  }
+  try {
+    cli.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return cli.exit(e) == 0 ? tools::kExitClean : tools::kExitFatal;
+  }
+  std::string command;
+  for (const char* name : kSubcommands)
+    if (cli.got_subcommand(name)) command = name;
+  tools::Front& front = *fronts.at(command);
+  front.parsed();
 
   const std::string& path = front.inputs().front();
   auto policy = front.policy_for(path);
@@ -305,7 +341,8 @@ int main(int argc, char** argv) {
           suite.d_gain);
       if (!cross_check.empty())
         std::cout << "  cross-check: MuJoCo 2.2.2 on body2mjcf's export (elliptic cones, Euler 1 ms, belt velocity "
-                     "through mjcb_control); its lines: measured = MuJoCo, expected = Simbody\n";
+                     "through mjcb_control), the same commands in both engines; its \"MuJoCo vs Simbody\" lines: "
+                     "measured = MuJoCo, expected = Simbody\n";
     }
 #ifdef BODYFMT_HAVE_MUJOCO_CROSS_CHECK
     if (command == "check" && !cross_check.empty()) std::cout << dynamics::describe(drop_report);

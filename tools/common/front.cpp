@@ -75,7 +75,19 @@ bool regular_file(const std::string& path) {
 }  // namespace
 
 Front::Front(std::string tool_name, std::string description, Features features)
-    : name_(std::move(tool_name)), features_(features), app_(std::move(description), name_) {
+    : name_(std::move(tool_name)),
+      features_(features),
+      owned_app_(std::make_unique<CLI::App>(std::move(description), name_)),
+      app_(*owned_app_) {
+  add_options();
+}
+
+Front::Front(std::string tool_name, CLI::App& app, Features features)
+    : name_(std::move(tool_name)), features_(features), app_(app) {
+  add_options();
+}
+
+void Front::add_options() {
   app_.set_version_flag("--version", name_ + " " + BODYFMT_VERSION, "print the version and exit");
   if (features_.many_inputs) {
     app_.add_option("paths", inputs_,
@@ -166,9 +178,13 @@ std::optional<int> Front::parse(int argc, char** argv) {
     const int code = app_.exit(e);
     return code == 0 ? kExitClean : kExitFatal;
   }
+  parsed();
+  return std::nullopt;
+}
+
+void Front::parsed() {
   load_options_.package_paths = package_paths_;
   load_options_.load_meshes = !no_meshes_;
-  return std::nullopt;
 }
 
 std::optional<ModelInput> Front::open_input(const std::string& path, DiagnosticSink& sink) {

@@ -2,7 +2,9 @@
 /// The command-line front every bodyfmt tool shares: one spelling of the options that load a
 /// model, set the diagnostic policy and print diagnostics, one way to read a model from a file
 /// or from standard input, and one exit-code function. A tool's main adds its own options to
-/// app(), calls parse(), and then uses the rest.
+/// app(), calls parse(), and then uses the rest. A command with subcommands (bodysim) gives each
+/// subcommand's CLI::App to its own Front, parses the whole command line itself, and calls
+/// parsed() on the Front of the subcommand that ran.
 
 #include "check_config.h"
 
@@ -15,6 +17,7 @@
 #include <CLI/CLI.hpp>
 
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -59,13 +62,21 @@ class Front {
     bool exporter = false;     ///< --strict and --best-effort, and `export-*` warnings fail the run
   };
 
+  /// A front that owns its command line: one CLI::App named `tool_name`.
   Front(std::string tool_name, std::string description, Features features);
+  /// A front that adds its options to `app`, which the caller owns and parses (a subcommand);
+  /// `tool_name` is the name its messages start with.
+  Front(std::string tool_name, CLI::App& app, Features features);
+  Front(const Front&) = delete;  // CLI11 holds pointers to the members
+  Front& operator=(const Front&) = delete;
 
   CLI::App& app() { return app_; }
 
   /// Parses the command line. Returns the exit code to stop with (0 after --help and
   /// --version, 2 for a usage error, printed) or nullopt to go on.
   std::optional<int> parse(int argc, char** argv);
+  /// Completes the options after the caller has parsed the app given to the constructor.
+  void parsed();
 
   const std::string& tool_name() const { return name_; }
   const std::vector<std::string>& inputs() const { return inputs_; }
@@ -106,9 +117,12 @@ class Front {
   void print_error(const std::string& message) const;
 
  private:
+  void add_options();
+
   std::string name_;
   Features features_;
-  CLI::App app_;
+  std::unique_ptr<CLI::App> owned_app_;  // null when the caller owns the app
+  CLI::App& app_;
   std::vector<std::string> inputs_;
   std::string stdin_filename_;
   LoadOptions load_options_;

@@ -7,6 +7,8 @@
 #include <bodyfmt/dynamics/simulation.h>
 #include <bodyfmt/dynamics/spin_reference.h>
 
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -65,6 +67,35 @@ struct TankLayout {
 std::optional<TankLayout> find_tank(const Model& model, const Derived& derived, const std::vector<ContactPoint>& points,
                                     std::string& why);
 
+/// What the tank suite and its MuJoCo cross-check both start from, found once from the model:
+/// the system built as the options build it, the tank layout, the pose it starts in, the
+/// joints a controller holds, where the same +dq on both tracks drives it, and the turret's
+/// pitch step.
+struct TankOpening {
+  /// The first build of the system (it reports the model's findings, e.g. a balanced inertia).
+  std::unique_ptr<Simulation> probe;
+  std::vector<ContactPoint> contacts;  ///< the system's floor contact points
+  TankLayout tank;
+  /// The root pose the scenarios start from: the file pose lowered until the lowest contact
+  /// point touches the floor.
+  Eigen::Isometry3d start = Eigen::Isometry3d::Identity();
+  /// Every revolute and prismatic joint: held at 0 by servos, as a controller holds them.
+  std::vector<LinkIndex> held_joints;
+  /// +1 or −1: the root's x direction in which the same +dq on both tracks drives the vehicle;
+  /// 0 when the tracks drive against each other.
+  int drive_direction = 0;
+  /// The turret pitch step target: two thirds of the wider side of the range (at most 30°), or
+  /// of the other side when that would put the turret into the floor; 0 when there is none,
+  /// with the reason in `no_pitch_step` (empty without a pitch joint).
+  double pitch_step = 0;
+  std::string no_pitch_step;
+};
+
+/// Builds the system and finds the tank (find_tank). Returns nullopt with `why` (or a located
+/// diagnostic in `sink`) when the system cannot be built or the model is not a tank.
+std::optional<TankOpening> open_tank(const Model& model, const Derived& derived, const SimOptions& options,
+                                     DiagnosticSink& sink, std::string& why);
+
 struct TankSuiteOptions {
   SimOptions sim;
   double p_gain = 200;  ///< turret servo P (N·m/rad), Choreonoid's TurretController1
@@ -77,9 +108,11 @@ struct TankSuiteOptions {
 std::vector<CheckResult> run_tank_suite(const Model& model, const Derived& derived, const TankSuiteOptions& options,
                                         DiagnosticSink& sink, std::string& why, TankLayout* layout = nullptr);
 
-/// The Simbody–MuJoCo cross-check (spec §4 T8): settle, drive, spin and turret scenarios in
-/// both engines, MuJoCo 2.2.2 running body2mjcf's export with the belt velocity injected through
-/// mjcb_control (spec §3.2). Results: measured = MuJoCo, expected = Simbody. Built only with
+/// The Simbody–MuJoCo cross-check (spec §4 T8): from the suite's opening (open_tank), settle,
+/// drive, spin and turret scenarios in both engines with the same commands (the same dq to both
+/// tracks to drive), MuJoCo 2.2.2 running body2mjcf's export with the belt velocity injected
+/// through mjcb_control (spec §3.2). Each engine's drive must go straight; the "MuJoCo vs
+/// Simbody" results have measured = MuJoCo, expected = Simbody. Built only with
 /// MuJoCo (BODYFMT_HAVE_MUJOCO_CROSS_CHECK). Not thread-safe (mjcb_control is global).
 std::vector<CheckResult> run_mujoco_cross_check(const Model& model, const Derived& derived,
                                                 const TankSuiteOptions& options, DiagnosticSink& sink,
