@@ -98,7 +98,7 @@ TEST_CASE("bodysim: usage errors exit 2") {
   CHECK(contains(arm.all, "the tank suite needs a free root link"));
 }
 
-TEST_CASE("bodysim: one command line with three subcommands; help, version and usage errors said") {
+TEST_CASE("bodysim: one command line with three subcommands, help, version and usage errors said") {
   const Run help = bodysim("--help");
   CHECK(help.status == 0);
   CHECK(contains(help.out, "Usage: bodysim [OPTIONS] SUBCOMMAND"));

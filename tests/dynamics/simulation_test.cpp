@@ -129,7 +129,7 @@ links:
         doctest::Approx(-1.5 * 9.80665 * 0.4).epsilon(1e-12));
 }
 
-TEST_CASE("dynamics: a Slider carries its welded child; a prismatic q moves along the axis") {
+TEST_CASE("dynamics: a Slider carries its welded child, a prismatic q moves along the axis") {
   auto b = build(R"(format: ChoreonoidBody
 format_version: 2.0
 angle_unit: degree

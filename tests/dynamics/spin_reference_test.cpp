@@ -80,7 +80,7 @@ TEST_CASE("spin reference: converges with the centre of mass far off the axis, a
   CHECK(right.residual < 1e-6);
 }
 
-TEST_CASE("spin reference: no belt motion is rest; no loads is said, not answered") {
+TEST_CASE("spin reference: no belt motion is rest, no loads is said, not answered") {
   const std::vector<Eigen::Vector3d> points = corners(0.2);
   const std::vector<double> loads(points.size(), 10.0);
   const SpinSolution rest = coulomb_motion(points, loads, belts(points, 0, 0));
@@ -91,7 +91,7 @@ TEST_CASE("spin reference: no belt motion is rest; no loads is said, not answere
   CHECK(none.why == "no loaded contact points");
 }
 
-TEST_CASE("static loads: non-negative, balancing the weight and its moments; refused outside the polygon") {
+TEST_CASE("static loads: non-negative, balancing the weight and its moments, refused outside the polygon") {
   const std::vector<Eigen::Vector3d> square = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
   StaticLoads l = static_loads_on_springs(square, Eigen::Vector3d(0.5, 0, 0), 100);
   REQUIRE(l.why.empty());

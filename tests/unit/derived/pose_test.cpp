@@ -64,7 +64,7 @@ TEST_CASE("pose: unknown, fixed and non-finite joints are problems, not set") {
   CHECK(q.q == std::vector<double>{0, 0, 0.1, 0});
 }
 
-TEST_CASE("pose: NAME=VALUE lists parse; a bad item is named") {
+TEST_CASE("pose: NAME=VALUE lists parse, a bad item is named") {
   const auto good = parse_joint_positions(" a=1.5, b = -2e-3 ");
   const std::vector<JointPosition>& positions = good.first;
   REQUIRE(positions.size() == 2);

@@ -23,7 +23,7 @@ Diagnostic make(int line, Severity severity, std::string rule, std::string file 
 
 }  // namespace
 
-TEST_CASE("policy: disable drops a rule and enable wins; families match by prefix") {
+TEST_CASE("policy: disable drops a rule and enable wins, families match by prefix") {
   CollectingSink out;
   PolicyOptions options;
   options.disable = {"units-*", "yaml-duplicate-key"};

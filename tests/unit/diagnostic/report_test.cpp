@@ -75,7 +75,7 @@ TEST_CASE("report: text caret counts UTF-8 characters and tolerates odd position
         "report_text_utf8.body:1:3: error: m [r]\n");
 }
 
-TEST_CASE("report: text report drops notes on request; summary line counts") {
+TEST_CASE("report: text report drops notes on request, summary line counts") {
   Report report;
   report.files = {"a.body", "b.body"};
   report.diagnostics = {make("a.body", 1, 1, Severity::kNote, "n", "a note"),
@@ -207,7 +207,7 @@ TEST_CASE("report: a long source line is shown as a bounded window around the ca
   CHECK(lines[1][lines[2].size() - 1] == line[static_cast<std::size_t>(column - 1)]);
 }
 
-TEST_CASE("report: the caret counts two columns for wide characters; control bytes print as '?'") {
+TEST_CASE("report: the caret counts two columns for wide characters, control bytes print as '?'") {
   // "名前: X" - two CJK characters (3 bytes, 2 columns each), then ": " and the value.
   const std::string line = "\xE5\x90\x8D\xE5\x89\x8D: X";
   CHECK(caret_text(line, 9) == "x.body:1:9: error: m [load-number]\n" + line + "\n      ^\n");

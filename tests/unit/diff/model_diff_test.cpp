@@ -71,7 +71,7 @@ TEST_CASE("the tolerance: a change just inside is none, just outside is one") {
   CHECK(diff_models(load(arm("2.0")), load(arm("2.5")), options).size() == 1);
 }
 
-TEST_CASE("spelling and link order are no change; added and removed links are one change each") {
+TEST_CASE("spelling and link order are no change, added and removed links are one change each") {
   std::string legacy = arm();
   legacy.replace(legacy.find("joint_range"), 11, "jointRange");
   CHECK(diff_models(load(arm()), load(legacy)).empty());
@@ -91,7 +91,7 @@ TEST_CASE("spelling and link order are no change; added and removed links are on
   CHECK(removed[0].old_source.line == 15);
 }
 
-TEST_CASE("a joint range is compared in radians and shown in degrees too; the world frame moves") {
+TEST_CASE("a joint range is compared in radians and shown in degrees too, the world frame moves") {
   const auto changes = diff_models(load(arm("2.0", "[ -90, 90 ]")), load(arm("2.0", "[ -45, 90 ]")));
   REQUIRE(changes.size() == 1);
   CHECK(changes[0].field == "joint_range");

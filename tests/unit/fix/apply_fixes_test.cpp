@@ -66,7 +66,7 @@ TEST_CASE("unified_diff: diff -u hunks with 3 lines of context, split by 7 uncha
         "--- a/g\n+++ b/g\n@@ -1,3 +1,3 @@\n a\n-b\n-c\n\\ No newline at end of file\n+c\n+d\n");
 }
 
-TEST_CASE("model_difference: the same model written two ways is equal; a changed number is named") {
+TEST_CASE("model_difference: the same model written two ways is equal, a changed number is named") {
   const std::string head = "format: ChoreonoidBody\nformat_version: 1.0\n";
   auto degrees = load(head +
                       "links:\n  - name: R\n    jointType: free\n  - name: J\n    parent: R\n"

@@ -24,7 +24,7 @@ bool near(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double eps = 1e-12
 // ---------------------------------------------------------------------------------------
 // Header
 
-TEST_CASE("load: minimal body; name defaults to the file stem") {
+TEST_CASE("load: minimal body, name defaults to the file stem") {
   auto r = load(R"(
 format: ChoreonoidBody
 format_version: 2.0
@@ -230,7 +230,7 @@ links:
   r.expect_clean();
 }
 
-TEST_CASE("load: root_link selects the root; unknown root_link is fatal") {
+TEST_CASE("load: root_link selects the root, unknown root_link is fatal") {
   auto r = load(R"(
 format: ChoreonoidBody
 format_version: 2.0
@@ -391,7 +391,7 @@ links:
 // ---------------------------------------------------------------------------------------
 // Extra joints (§12)
 
-TEST_CASE("load: extra joints; axis normalised, unknown link error, link1_local_pos ignored") {
+TEST_CASE("load: extra joints, axis normalised, unknown link error, link1_local_pos ignored") {
   auto r = load_v2(R"(
 links:
   - name: A

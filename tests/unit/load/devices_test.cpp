@@ -41,7 +41,7 @@ links:
   r.expect_clean();
 }
 
-TEST_CASE("load: Camera formats select Camera or RangeCamera; field_of_view in degrees") {
+TEST_CASE("load: Camera formats select Camera or RangeCamera, field_of_view in degrees") {
   auto r = load_v2(R"(
 links:
   - name: A
@@ -131,7 +131,7 @@ links:
   r.expect_clean();
 }
 
-TEST_CASE("load: IMU is device type Imu; the manual's Imu node type is an error") {
+TEST_CASE("load: IMU is device type Imu, the manual's Imu node type is an error") {
   auto r = load_v2(R"(
 links:
   - name: A

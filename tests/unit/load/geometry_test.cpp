@@ -98,7 +98,7 @@ links:
   r.expect_clean();
 }
 
-TEST_CASE("load: Extrusion keys; beginCap works, begin_cap is ignored with a warning") {
+TEST_CASE("load: Extrusion keys, beginCap works, begin_cap is ignored with a warning") {
   auto r = load_v2(R"(
 links:
   - name: A

@@ -64,7 +64,7 @@ links:
   r.expect_clean();
 }
 
-TEST_CASE("load: yaml-duplicate-key passes through with its location; the last value wins") {
+TEST_CASE("load: yaml-duplicate-key passes through with its location, the last value wins") {
   auto r = load(R"(
 format: ChoreonoidBody
 format_version: 2.0

@@ -97,7 +97,7 @@ Outcome compare(MeshCache& cache, const Case& c, std::ostringstream& log) {
 
 }  // namespace
 
-TEST_CASE("mesh import: scene_bounds of a mesh leaf is its tight box; rotations inflate it") {
+TEST_CASE("mesh import: scene_bounds of a mesh leaf is its tight box, rotations inflate it") {
   // A 2 x 2 x 2 box (VRML default) rotated 45 degrees about Z: the tight box of the rotated
   // vertices is sqrt(2) wide, and so is the box of the 8 rotated corners (same 8 points).
   const BoundingBox one =

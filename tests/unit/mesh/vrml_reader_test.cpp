@@ -195,7 +195,7 @@ TEST_CASE("vrml: deep nesting and truncated corpus text never crash or hang") {
   }
 }
 
-TEST_CASE("vrml: Inline is resolved relative to the including file; cycles are reported") {
+TEST_CASE("vrml: Inline is resolved relative to the including file, cycles are reported") {
   const std::string dir = std::string(BODYFMT_TEST_DATA_DIR) + "/mesh/";
   MeshCache cache;
   CollectingSink sink;

@@ -12,7 +12,7 @@ using bodyfmt::HeapString;
 
 TEST_CASE("HeapString is one pointer") { CHECK(sizeof(HeapString) == sizeof(void*)); }
 
-TEST_CASE("HeapString reads as the string it holds; empty is unset") {
+TEST_CASE("HeapString reads as the string it holds, empty is unset") {
   HeapString s;
   CHECK(s.empty());
   CHECK(s.str().empty());
@@ -29,7 +29,7 @@ TEST_CASE("HeapString reads as the string it holds; empty is unset") {
   CHECK(s.empty());
 }
 
-TEST_CASE("HeapString copies are independent; concatenation gives std::string") {
+TEST_CASE("HeapString copies are independent, concatenation gives std::string") {
   HeapString a = "torque";
   HeapString b = a;
   b = "velocity";

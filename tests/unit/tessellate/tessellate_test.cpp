@@ -201,7 +201,7 @@ TEST_CASE("tessellate: capsule height is the cylindrical part, caps are hemisphe
   CHECK(sink.diagnostics().empty());
 }
 
-TEST_CASE("tessellate: division_number below 4 means 20; huge values are clamped") {
+TEST_CASE("tessellate: division_number below 4 means 20, huge values are clamped") {
   CollectingSink sink;
   for (int n : {-5, 0, 3}) {
     CAPTURE(n);
@@ -476,7 +476,7 @@ TEST_CASE("tessellate: indexed face set triangulates a concave polygon in any pl
   }
 }
 
-TEST_CASE("tessellate: indexed face set cube of quads; a last polygon without -1 is dropped") {
+TEST_CASE("tessellate: indexed face set cube of quads, a last polygon without -1 is dropped") {
   IndexedFaceSet f;
   for (int k = 0; k < 8; ++k) f.vertices.emplace_back(k & 1, (k >> 1) & 1, (k >> 2) & 1);
   f.faces = {0, 2, 3, 1, -1, 4, 5, 7, 6, -1, 0, 1, 5, 4, -1, 2, 6, 7, 3, -1, 0, 4, 6, 2, -1, 1, 3, 7, 5, -1};

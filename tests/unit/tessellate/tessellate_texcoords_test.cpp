@@ -272,7 +272,7 @@ TEST_CASE("tex coords: face sets without texCoord project onto the two largest e
     CHECK(tri.tex_coords[v].isApprox(Vector2d(tri.vertices[v].y() / 3, tri.vertices[v].z() / 3), 1e-15));
 }
 
-TEST_CASE("tex coords: elevation grid u along x, v along z; cone apex and base") {
+TEST_CASE("tex coords: elevation grid u along x, v along z, cone apex and base") {
   // 3 x 2 points: u = i / 2, v = j / 1.
   ElevationGrid grid;
   grid.x_dimension = 3;

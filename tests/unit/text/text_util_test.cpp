@@ -31,7 +31,7 @@ TEST_CASE("text: the boolean words are exactly YAML 1.1's, in three cases") {
   for (const char* word : {"yEs", "1", "0", "", "true ", "tRUE"}) CHECK_FALSE(parse_bool_word(word).has_value());
 }
 
-TEST_CASE("text: lines split on LF and CRLF without the breaks; no empty last line") {
+TEST_CASE("text: lines split on LF and CRLF without the breaks, no empty last line") {
   CHECK(split_lines("a\nb\r\nc") == std::vector<std::string>{"a", "b", "c"});
   CHECK(split_lines("a\n") == std::vector<std::string>{"a"});
   CHECK(split_lines("\n\n") == std::vector<std::string>{"", ""});

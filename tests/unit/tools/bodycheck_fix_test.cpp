@@ -110,7 +110,7 @@ TEST_CASE("bodycheck --fix edits a SubBody file only when it is named or with --
   CHECK(contains(read(dir2 / "part.body"), "    joint_type: revolute\n"));
 }
 
-TEST_CASE("bodycheck --fix keeps the file's permissions; --upgrade rewrites the header of a degree file") {
+TEST_CASE("bodycheck --fix keeps the file's permissions, --upgrade rewrites the header of a degree file") {
   const fs::path dir = copy_data("perms");
   fs::permissions(dir / "legacy.body", fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read);
   bodycheck_in(dir, "--fix --upgrade legacy.body");

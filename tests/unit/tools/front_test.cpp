@@ -161,7 +161,7 @@ TEST_CASE("front: an exporter writes nothing for a model with errors, unless --b
   }
 }
 
-TEST_CASE("front: --color always paints like GCC; never, and NO_COLOR with auto, do not") {
+TEST_CASE("front: --color always paints like GCC, never, and NO_COLOR with auto, do not") {
   for (const Tool& tool : tools()) {
     CAPTURE(tool.name);
     const Run colored = run(invoke(tool, "--color always warning.body"));

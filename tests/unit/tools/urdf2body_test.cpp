@@ -332,7 +332,7 @@ TEST_CASE("urdf2body: exit codes, standard output, --strict and --allow-loss, lo
   fs::remove_all(dir);
 }
 
-TEST_CASE("urdf2body: --copy-meshes copies each mesh once beside the body; the body refers to the copies") {
+TEST_CASE("urdf2body: --copy-meshes copies each mesh once beside the body, the body refers to the copies") {
   const fs::path dir = scratch("copy");
   fs::create_directories(dir / "pkg/meshes");
   fs::create_directories(dir / "pkg/urdf");

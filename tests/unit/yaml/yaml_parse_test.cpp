@@ -288,7 +288,7 @@ TEST_CASE("yaml: merge key - a non-mapping value is an error located at the valu
   CHECK(keys_of(*value_of(*doc->root, "n")) == "a* k ");
 }
 
-TEST_CASE("yaml: duplicate key warns, located at the second key; the last one wins") {
+TEST_CASE("yaml: duplicate key warns, located at the second key, the last one wins") {
   CollectingSink sink;
   auto doc = parse(
       "type: Collision\n"
@@ -374,7 +374,7 @@ TEST_CASE("yaml: a recursive alias is rejected") {
   CHECK(only_diagnostic(sink, "yaml-recursive-alias").location == at(1, 11));
 }
 
-TEST_CASE("yaml: imported anchors are visible to aliases; local anchors take priority") {
+TEST_CASE("yaml: imported anchors are visible to aliases, local anchors take priority") {
   CollectingSink library_sink;
   auto library = parse("RED: &RED {diffuse: [1, 0, 0]}\nBLUE: &BLUE {diffuse: [0, 0, 1]}\n", library_sink);
   REQUIRE(library);
@@ -422,7 +422,7 @@ TEST_CASE("yaml: a syntax error is fatal and located") {
   CHECK(only_diagnostic(flow, "yaml-syntax").location == at(2, 1));
 }
 
-TEST_CASE("yaml: columns count bytes in multi-byte text; bad UTF-8 is a located syntax error") {
+TEST_CASE("yaml: columns count bytes in multi-byte text, bad UTF-8 is a located syntax error") {
   // libyaml's marks count characters; the toolchain's columns count bytes (as before).
   CollectingSink sink;
   auto doc = parse("a: \"\xC3\xA9\xC3\xA9\"\nb: [\xC3\xA9, 1]\n", sink);
@@ -454,7 +454,7 @@ TEST_CASE("yaml: a tab inside a flow sequence is accepted") {
   CHECK(value_of(*doc->root, "next")->items().size() == 2);
 }
 
-TEST_CASE("yaml: empty and complex keys are errors; the rest of the mapping is kept") {
+TEST_CASE("yaml: empty and complex keys are errors, the rest of the mapping is kept") {
   CollectingSink sink;
   auto doc = parse("\"\": 1\n? [a, b]\n: 2\nok: 3\n", sink);
   REQUIRE(doc);
@@ -467,7 +467,7 @@ TEST_CASE("yaml: empty and complex keys are errors; the rest of the mapping is k
   CHECK(doc->expanded_node_count == 2);  // dropped keys and values are not counted
 }
 
-TEST_CASE("yaml: an empty document gives a null root; only the first document is read") {
+TEST_CASE("yaml: an empty document gives a null root, only the first document is read") {
   for (std::string_view text : {"", "# only a comment\n"}) {
     CollectingSink sink;
     auto doc = parse(text, sink);

@@ -223,7 +223,7 @@ TEST_CASE("shape plan: a cylinder scaled across its axis unevenly is a mesh with
   }
 }
 
-TEST_CASE("shape plan: a capsule is a primitive where the target has one, turned onto +Z; else a mesh, no loss") {
+TEST_CASE("shape plan: a capsule is a primitive where the target has one, turned onto +Z, else a mesh, no loss") {
   const std::string capsule = R"(      - type: Shape
         translation: [0, 0, 1]
         rotation: [1, 0, 0, 90]

@@ -411,7 +411,7 @@ TEST_CASE("gltf: a spot light shines along its direction with its cone angles") 
   CHECK((camera_forward(tank->main, "Light") - Eigen::Vector3d(1, 0, 0)).norm() < 1e-6);
 }
 
-TEST_CASE("gltf: light intensity is Choreonoid's factor in candela; a light that is off gives 0") {
+TEST_CASE("gltf: light intensity is Choreonoid's factor in candela, a light that is off gives 0") {
   auto e = export_model(kData / "lights.body");
   Json doc = json_of(e->main);
   const Json& lights = doc["extensions"]["KHR_lights_punctual"]["lights"];

@@ -105,7 +105,7 @@ std::vector<std::string> balancing_reports(const std::vector<Diagnostic>& diagno
 
 }  // namespace
 
-TEST_CASE("urdf inertia: reported exactly where MuJoCo refuses the URDF; --balance-inertia writes body2mjcf's tensor") {
+TEST_CASE("urdf inertia: reported exactly where MuJoCo refuses the URDF, --balance-inertia writes body2mjcf's tensor") {
   REQUIRE(fs::exists(kCorpus));
   std::vector<fs::path> bodies;
   for (const auto& e : fs::recursive_directory_iterator(kCorpus))
