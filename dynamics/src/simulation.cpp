@@ -63,6 +63,10 @@ struct Simulation::Impl {
   SimOptions options;
   double stiffness = 0;
   std::vector<ContactPoint> points;
+  // By point, for the first of each link's run of points: where the run ends, and how far it
+  // reaches from the link origin (|p| + radius). A link whose origin is higher touches nothing.
+  std::vector<std::size_t> run_end;
+  std::vector<double> reach;
   std::vector<Eigen::Matrix3d> inertias;
   std::vector<double> masses;               // by link, as simulated
   std::vector<Eigen::Vector3d> centres;     // of mass, link frame
@@ -128,6 +132,11 @@ struct Simulation::Impl {
         current = p.link;
         const SimTK::MobilizedBody& b = body(p.link);
         const SimTK::Transform& X = b.getBodyTransform(s);
+        if (X.p()[2] > reach[i]) {  // no point of this link is below the floor
+          i = run_end[i] - 1;
+          current = -1;
+          continue;
+        }
         const SimTK::SpatialVec& V = b.getBodyVelocity(s);
         R = to_eigen(X.R());
         origin = to_eigen(X.p());
@@ -162,8 +171,12 @@ struct Simulation::Impl {
 
   double contact_potential(const SimTK::State& s) const {
     double e = 0;
-    for (const ContactPoint& p : points) {
-      const double depth = touch(s, p).second;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      if (reach[i] > 0 && body(points[i].link).getBodyTransform(s).p()[2] > reach[i]) {  // a run's first point
+        i = run_end[i] - 1;
+        continue;
+      }
+      const double depth = touch(s, points[i]).second;
       if (depth > 0) e += 0.5 * stiffness * depth * depth;
     }
     return e;
@@ -375,6 +388,17 @@ std::unique_ptr<Simulation> Simulation::build(const Model& model, const Derived&
     m.stiffness = m.simbody_contact->brick_stiffness();
   } else if (options.contact) {
     m.points = collect_contact_points(model, sink);
+    m.run_end.assign(m.points.size(), m.points.size());
+    m.reach.assign(m.points.size(), 0.0);
+    for (std::size_t first = 0; first < m.points.size();) {
+      std::size_t end = first;
+      double reach = 0;
+      for (; end < m.points.size() && m.points[end].link == m.points[first].link; ++end)
+        reach = std::max(reach, m.points[end].position_in_link.norm() + m.points[end].radius);
+      m.run_end[first] = end;
+      m.reach[first] = reach * (1 + 1e-9) + 1e-12;  // rounding of R·p cannot make a point touch
+      first = end;
+    }
     m.stiffness = options.contact_params.stiffness > 0
                       ? options.contact_params.stiffness
                       : std::max(derived.total_mass, 1e-3) * std::max(options.gravity, 1.0) /
