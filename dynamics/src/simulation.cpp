@@ -306,6 +306,7 @@ std::unique_ptr<Simulation> Simulation::build(const Model& model, const Derived&
   m.commands.servo.assign(n, std::nullopt);
   struct Stop {
     SimTK::MobilizedBodyIndex body;
+    LinkIndex link;
     double lower, upper;
   };
   std::vector<Stop> stops;
@@ -357,7 +358,8 @@ std::unique_ptr<Simulation> Simulation::build(const Model& model, const Derived&
         const bool lower = link.joint_range_lower > -kUnlimited && std::isfinite(link.joint_range_lower);
         const bool upper = link.joint_range_upper < kUnlimited && std::isfinite(link.joint_range_upper);
         if (options.joint_stops && (lower || upper) && link.joint_range_lower <= link.joint_range_upper)
-          stops.push_back({m.mobod[i], lower ? link.joint_range_lower : -1e30, upper ? link.joint_range_upper : 1e30});
+          stops.push_back({m.mobod[i], static_cast<LinkIndex>(i), lower ? link.joint_range_lower : -1e30,
+                           upper ? link.joint_range_upper : 1e30});
         continue;
       }
       // Fixed links and pseudo tracks are welded: a track has no DOF (spec §1.1). A locked
@@ -378,9 +380,17 @@ std::unique_ptr<Simulation> Simulation::build(const Model& model, const Derived&
 
   if (options.gravity != 0)
     SimTK::Force::Gravity(m.forces, m.matter, SimTK::UnitVec3(vec3(options.gravity_direction)), options.gravity);
-  for (const Stop& stop : stops)
-    SimTK::Force::MobilityLinearStop(m.forces, m.matter.updMobilizedBody(stop.body), SimTK::MobilizerQIndex(0),
-                                     options.stop_stiffness, options.stop_dissipation, stop.lower, stop.upper);
+  std::vector<double> q0(n, 0.0);
+  for (std::size_t i = 1; i < n; ++i) q0[i] = model.links[i].initial_displacement;
+  for (const Stop& stop : stops) {
+    double k = options.stop_stiffness;
+    if (options.stop_frequency_limit > 0) {
+      const double w = options.stop_frequency_limit;
+      k = std::min(k, subtree_axis_inertia(model, derived, stop.link, q0, m.inertias) * w * w);
+    }
+    SimTK::Force::MobilityLinearStop(m.forces, m.matter.updMobilizedBody(stop.body), SimTK::MobilizerQIndex(0), k,
+                                     options.stop_dissipation, stop.lower, stop.upper);
+  }
   if (options.contact && options.contact_model == ContactModel::kSimbody) {
     m.simbody_contact = SimbodyContact::build(m.system, m.matter, model, m.mobod, options.contact_params,
                                               std::max(derived.total_mass, 1e-3) * std::max(options.gravity, 1.0),
