@@ -244,6 +244,13 @@ void drop(Generic& g, const std::vector<ContactPoint>& contacts) {
     bool finite = true;
     const Eigen::Vector3d start = sim->link_pose(0).translation();
     const double duration = 3.0;
+    const double settle = 1e-4 * mass * options.gravity * height;
+    // The free drop ends once the model has rested for kRest (kinetic energy under the settle
+    // bound of the locked drop), at the latest at `duration`. A passive model gains energy only
+    // through a force doing work on something that moves, and an unstable mode (a stop or
+    // contact that pumps energy) grows out of rest into motion above the bound within that time.
+    const double kRest = 0.5;
+    double rest_start = -1, end = duration;
     std::string failure;
     try {
       for (int i = 1; i <= static_cast<int>(duration / 0.005); ++i) {
@@ -253,6 +260,15 @@ void drop(Generic& g, const std::vector<ContactPoint>& contacts) {
           break;
         }
         gain = std::max(gain, sim->energy() - e0);
+        if (locked) continue;
+        if (sim->kinetic_energy() > settle) {
+          rest_start = -1;
+        } else if (rest_start < 0) {
+          rest_start = sim->time();
+        } else if (sim->time() - rest_start >= kRest - 1e-9) {
+          end = sim->time();
+          break;
+        }
       }
     } catch (const WorkBudgetExceeded&) {
       throw;  // not a check that failed: the run stops, located at the cause
@@ -267,12 +283,13 @@ void drop(Generic& g, const std::vector<ContactPoint>& contacts) {
     if (!locked) {
       // Energy never grows while passive, beyond integration error: 1e-4 of the drop energy.
       const double drop_energy = mass * options.gravity * drop;
-      results.push_back(make(label + ": energy gain max(E - E0)", gain, 1e-4 * drop_energy, "J", "≤ 1e-4·m·g·h",
-                             gain <= 1e-4 * drop_energy));
+      const std::string window = end < duration ? fmt::format("over {:.3g} s, at rest for the last {:g} s", end, kRest)
+                                                : fmt::format("over {:g} s", duration);
+      results.push_back(make(fmt::format("{}: energy gain max(E - E0) {}", label, window), gain, 1e-4 * drop_energy,
+                             "J", "≤ 1e-4·m·g·h", gain <= 1e-4 * drop_energy));
       continue;
     }
     const double ke = sim->kinetic_energy();
-    const double settle = 1e-4 * mass * options.gravity * height;
     results.push_back(make(fmt::format("{}: kinetic energy at {:g} s", label, duration), ke, settle, "J",
                            "≤ 1e-4·m·g·h_bbox", ke <= settle));
     const double depth = sim->max_penetration();
