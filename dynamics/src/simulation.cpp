@@ -63,6 +63,10 @@ struct Simulation::Impl {
   SimOptions options;
   double stiffness = 0;
   std::vector<ContactPoint> points;
+  // By point, for the first of each link's run of points: where the run ends, and how far it
+  // reaches from the link origin (|p| + radius). A link whose origin is higher touches nothing.
+  std::vector<std::size_t> run_end;
+  std::vector<double> reach;
   std::vector<Eigen::Matrix3d> inertias;
   std::vector<double> masses;               // by link, as simulated
   std::vector<Eigen::Vector3d> centres;     // of mass, link frame
@@ -75,7 +79,9 @@ struct Simulation::Impl {
   std::vector<SimTK::MobilizedBodyIndex> mobod;  // by link
   std::vector<bool> has_joint;
   std::unique_ptr<SimbodyContact> simbody_contact;  // --contact simbody
+  // The state to integrate from; once the integrator has stepped, its own state is the current one.
   SimTK::State state;
+  bool stepped = false;
   std::unique_ptr<SimTK::RungeKuttaMersonIntegrator> integrator;
   std::unique_ptr<SimTK::TimeStepper> stepper;
   bool running = false;
@@ -88,6 +94,18 @@ struct Simulation::Impl {
   mutable std::optional<WorkBudgetExceeded> spent;  // the budget ran out (thrown through Simbody)
 
   const SimTK::MobilizedBody& body(LinkIndex link) const { return matter.getMobilizedBody(mobod[link]); }
+
+  /// The current state, for queries: the integrator's own after a step. Copying it out after
+  /// every advance_to() was a quarter of check-tank's CPU time (a State holds every cache entry).
+  const SimTK::State& current() const { return stepped ? integrator->getState() : state; }
+  /// The current state, to change before (re)starting integration from it.
+  SimTK::State& editable() {
+    if (stepped) {
+      state = integrator->getState();
+      stepped = false;
+    }
+    return state;
+  }
 
   /// Where contact point `p` meets the floor: the station (link frame) and its depth below z = 0.
   std::pair<SimTK::Vec3, double> touch(const SimTK::State& s, const ContactPoint& p) const {
@@ -114,6 +132,11 @@ struct Simulation::Impl {
         current = p.link;
         const SimTK::MobilizedBody& b = body(p.link);
         const SimTK::Transform& X = b.getBodyTransform(s);
+        if (X.p()[2] > reach[i]) {  // no point of this link is below the floor
+          i = run_end[i] - 1;
+          current = -1;
+          continue;
+        }
         const SimTK::SpatialVec& V = b.getBodyVelocity(s);
         R = to_eigen(X.R());
         origin = to_eigen(X.p());
@@ -148,8 +171,12 @@ struct Simulation::Impl {
 
   double contact_potential(const SimTK::State& s) const {
     double e = 0;
-    for (const ContactPoint& p : points) {
-      const double depth = touch(s, p).second;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      if (reach[i] > 0 && body(points[i].link).getBodyTransform(s).p()[2] > reach[i]) {  // a run's first point
+        i = run_end[i] - 1;
+        continue;
+      }
+      const double depth = touch(s, points[i]).second;
       if (depth > 0) e += 0.5 * stiffness * depth * depth;
     }
     return e;
@@ -279,6 +306,7 @@ std::unique_ptr<Simulation> Simulation::build(const Model& model, const Derived&
   m.commands.servo.assign(n, std::nullopt);
   struct Stop {
     SimTK::MobilizedBodyIndex body;
+    LinkIndex link;
     double lower, upper;
   };
   std::vector<Stop> stops;
@@ -330,7 +358,8 @@ std::unique_ptr<Simulation> Simulation::build(const Model& model, const Derived&
         const bool lower = link.joint_range_lower > -kUnlimited && std::isfinite(link.joint_range_lower);
         const bool upper = link.joint_range_upper < kUnlimited && std::isfinite(link.joint_range_upper);
         if (options.joint_stops && (lower || upper) && link.joint_range_lower <= link.joint_range_upper)
-          stops.push_back({m.mobod[i], lower ? link.joint_range_lower : -1e30, upper ? link.joint_range_upper : 1e30});
+          stops.push_back({m.mobod[i], static_cast<LinkIndex>(i), lower ? link.joint_range_lower : -1e30,
+                           upper ? link.joint_range_upper : 1e30});
         continue;
       }
       // Fixed links and pseudo tracks are welded: a track has no DOF (spec §1.1). A locked
@@ -351,9 +380,17 @@ std::unique_ptr<Simulation> Simulation::build(const Model& model, const Derived&
 
   if (options.gravity != 0)
     SimTK::Force::Gravity(m.forces, m.matter, SimTK::UnitVec3(vec3(options.gravity_direction)), options.gravity);
-  for (const Stop& stop : stops)
-    SimTK::Force::MobilityLinearStop(m.forces, m.matter.updMobilizedBody(stop.body), SimTK::MobilizerQIndex(0),
-                                     options.stop_stiffness, options.stop_dissipation, stop.lower, stop.upper);
+  std::vector<double> q0(n, 0.0);
+  for (std::size_t i = 1; i < n; ++i) q0[i] = model.links[i].initial_displacement;
+  for (const Stop& stop : stops) {
+    double k = options.stop_stiffness;
+    if (options.stop_frequency_limit > 0) {
+      const double w = options.stop_frequency_limit;
+      k = std::min(k, subtree_axis_inertia(model, derived, stop.link, q0, m.inertias) * w * w);
+    }
+    SimTK::Force::MobilityLinearStop(m.forces, m.matter.updMobilizedBody(stop.body), SimTK::MobilizerQIndex(0), k,
+                                     options.stop_dissipation, stop.lower, stop.upper);
+  }
   if (options.contact && options.contact_model == ContactModel::kSimbody) {
     m.simbody_contact = SimbodyContact::build(m.system, m.matter, model, m.mobod, options.contact_params,
                                               std::max(derived.total_mass, 1e-3) * std::max(options.gravity, 1.0),
@@ -361,6 +398,17 @@ std::unique_ptr<Simulation> Simulation::build(const Model& model, const Derived&
     m.stiffness = m.simbody_contact->brick_stiffness();
   } else if (options.contact) {
     m.points = collect_contact_points(model, sink);
+    m.run_end.assign(m.points.size(), m.points.size());
+    m.reach.assign(m.points.size(), 0.0);
+    for (std::size_t first = 0; first < m.points.size();) {
+      std::size_t end = first;
+      double reach = 0;
+      for (; end < m.points.size() && m.points[end].link == m.points[first].link; ++end)
+        reach = std::max(reach, m.points[end].position_in_link.norm() + m.points[end].radius);
+      m.run_end[first] = end;
+      m.reach[first] = reach * (1 + 1e-9) + 1e-12;  // rounding of R·p cannot make a point touch
+      first = end;
+    }
     m.stiffness = options.contact_params.stiffness > 0
                       ? options.contact_params.stiffness
                       : std::max(derived.total_mass, 1e-3) * std::max(options.gravity, 1.0) /
@@ -394,36 +442,40 @@ const std::vector<Eigen::Matrix3d>& Simulation::link_inertias() const { return i
 void Simulation::set_root_pose(const Eigen::Isometry3d& X_WR) {
   impl_->running = false;
   if (impl_->model->links[0].joint_type != JointType::kFree) return;
-  impl_->body(0).setQToFitTransform(impl_->state, transform(X_WR));
-  impl_->system.realize(impl_->state, SimTK::Stage::Velocity);
+  SimTK::State& state = impl_->editable();
+  impl_->body(0).setQToFitTransform(state, transform(X_WR));
+  impl_->system.realize(state, SimTK::Stage::Velocity);
 }
 
 void Simulation::set_root_velocity(const Eigen::Vector3d& omega, const Eigen::Vector3d& v) {
   impl_->running = false;
   if (impl_->model->links[0].joint_type != JointType::kFree) return;
   const SimTK::MobilizedBody& root = impl_->body(0);
-  root.setUToFitAngularVelocity(impl_->state, vec3(omega));
-  root.setUToFitLinearVelocity(impl_->state, vec3(v));
-  impl_->system.realize(impl_->state, SimTK::Stage::Velocity);
+  SimTK::State& state = impl_->editable();
+  root.setUToFitAngularVelocity(state, vec3(omega));
+  root.setUToFitLinearVelocity(state, vec3(v));
+  impl_->system.realize(state, SimTK::Stage::Velocity);
 }
 
 void Simulation::set_joint_position(LinkIndex link, double q) {
   impl_->running = false;
   if (!impl_->has_joint[link]) return;
-  impl_->body(link).setOneQ(impl_->state, 0, q);
-  impl_->system.realize(impl_->state, SimTK::Stage::Velocity);
+  SimTK::State& state = impl_->editable();
+  impl_->body(link).setOneQ(state, 0, q);
+  impl_->system.realize(state, SimTK::Stage::Velocity);
 }
 
 void Simulation::set_joint_velocity(LinkIndex link, double qd) {
   impl_->running = false;
   if (!impl_->has_joint[link]) return;
-  impl_->body(link).setOneU(impl_->state, 0, qd);
-  impl_->system.realize(impl_->state, SimTK::Stage::Velocity);
+  SimTK::State& state = impl_->editable();
+  impl_->body(link).setOneU(state, 0, qd);
+  impl_->system.realize(state, SimTK::Stage::Velocity);
 }
 
 void Simulation::set_time(double t) {
   impl_->running = false;
-  impl_->state.setTime(t);
+  impl_->editable().setTime(t);
 }
 
 void Simulation::set_track_speed(LinkIndex link, double dq) {
@@ -455,7 +507,7 @@ void Simulation::restart() {
     m.integrator->resetAllStatistics();
     ++m.restarts;
   }
-  m.stepper->initialize(m.state);
+  m.stepper->initialize(m.editable());
   m.initialized = true;
   m.running = true;
 }
@@ -463,7 +515,7 @@ void Simulation::restart() {
 void Simulation::advance_to(double t) {
   Impl& m = *impl_;
   if (!m.running) restart();
-  if (t > m.state.getTime()) {
+  if (t > m.current().getTime()) {
     // In chunks of internal steps, so that the budget is looked at while the integrator crawls.
     m.integrator->setInternalStepLimit(kBudgetChunk);
     m.owner = this;
@@ -486,8 +538,8 @@ void Simulation::advance_to(double t) {
                           where);
     }
   }
-  m.state = m.integrator->getState();
-  m.system.realize(m.state, SimTK::Stage::Velocity);
+  m.stepped = true;
+  m.system.realize(m.current(), SimTK::Stage::Velocity);
 }
 
 void Simulation::check_budget() const {
@@ -590,10 +642,10 @@ std::string Simulation::stiffest_part(SourceLocation& where) const {
   return why.empty() ? std::string("no cause found in the model") : why;
 }
 
-double Simulation::time() const { return impl_->state.getTime(); }
+double Simulation::time() const { return impl_->current().getTime(); }
 
 Eigen::Isometry3d Simulation::link_pose(LinkIndex link) const {
-  const SimTK::Transform& X = impl_->body(link).getBodyTransform(impl_->state);
+  const SimTK::Transform& X = impl_->body(link).getBodyTransform(impl_->current());
   Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
   out.linear() = to_eigen(X.R());
   out.translation() = to_eigen(X.p());
@@ -601,34 +653,34 @@ Eigen::Isometry3d Simulation::link_pose(LinkIndex link) const {
 }
 
 std::pair<Eigen::Vector3d, Eigen::Vector3d> Simulation::link_velocity(LinkIndex link) const {
-  const SimTK::SpatialVec& V = impl_->body(link).getBodyVelocity(impl_->state);
+  const SimTK::SpatialVec& V = impl_->body(link).getBodyVelocity(impl_->current());
   return {to_eigen(V[0]), to_eigen(V[1])};
 }
 
 double Simulation::joint_position(LinkIndex link) const {
-  return impl_->has_joint[link] ? impl_->body(link).getOneQ(impl_->state, 0) : 0.0;
+  return impl_->has_joint[link] ? impl_->body(link).getOneQ(impl_->current(), 0) : 0.0;
 }
 double Simulation::joint_velocity(LinkIndex link) const {
-  return impl_->has_joint[link] ? impl_->body(link).getOneU(impl_->state, 0) : 0.0;
+  return impl_->has_joint[link] ? impl_->body(link).getOneU(impl_->current(), 0) : 0.0;
 }
 bool Simulation::has_joint(LinkIndex link) const { return impl_->has_joint[link]; }
 
-double Simulation::total_mass() const { return impl_->matter.calcSystemMass(impl_->state); }
+double Simulation::total_mass() const { return impl_->matter.calcSystemMass(impl_->current()); }
 Eigen::Vector3d Simulation::center_of_mass() const {
-  return to_eigen(impl_->matter.calcSystemMassCenterLocationInGround(impl_->state));
+  return to_eigen(impl_->matter.calcSystemMassCenterLocationInGround(impl_->current()));
 }
 Eigen::Vector3d Simulation::center_of_mass_velocity() const {
-  return to_eigen(impl_->matter.calcSystemMassCenterVelocityInGround(impl_->state));
+  return to_eigen(impl_->matter.calcSystemMassCenterVelocityInGround(impl_->current()));
 }
 std::pair<Eigen::Vector3d, Eigen::Vector3d> Simulation::central_momentum() const {
-  const SimTK::SpatialVec H = impl_->matter.calcSystemCentralMomentum(impl_->state);
+  const SimTK::SpatialVec H = impl_->matter.calcSystemCentralMomentum(impl_->current());
   return {to_eigen(H[0]), to_eigen(H[1])};
 }
 
-double Simulation::kinetic_energy() const { return impl_->system.calcKineticEnergy(impl_->state); }
+double Simulation::kinetic_energy() const { return impl_->system.calcKineticEnergy(impl_->current()); }
 
 double Simulation::energy() const {
-  SimTK::State s = impl_->state;
+  const SimTK::State& s = impl_->current();
   impl_->system.realize(s, SimTK::Stage::Dynamics);
   return impl_->system.calcEnergy(s);
 }
@@ -641,9 +693,9 @@ int Simulation::contact_meshes() const { return impl_->simbody_contact ? impl_->
 int Simulation::contact_mesh_faces() const { return impl_->simbody_contact ? impl_->simbody_contact->mesh_faces() : 0; }
 
 Eigen::Vector3d Simulation::total_contact_force(LinkIndex link) const {
-  if (impl_->simbody_contact) return impl_->simbody_contact->total_force(impl_->state, link);
+  if (impl_->simbody_contact) return impl_->simbody_contact->total_force(impl_->current(), link);
   std::vector<PointForce> forces;
-  impl_->contact_forces(impl_->state, forces);
+  impl_->contact_forces(impl_->current(), forces);
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   for (const PointForce& f : forces)
     if (link < 0 || impl_->points[f.point].link == link) sum += f.force;
@@ -654,14 +706,14 @@ double Simulation::max_penetration(LinkIndex link) const {
   double deepest = -std::numeric_limits<double>::infinity();
   for (const ContactPoint& p : impl_->points) {
     if (link >= 0 && p.link != link) continue;
-    deepest = std::max(deepest, impl_->touch(impl_->state, p).second);
+    deepest = std::max(deepest, impl_->touch(impl_->current(), p).second);
   }
   return deepest;
 }
 
 Eigen::MatrixXd Simulation::mass_matrix() const {
   SimTK::Matrix M;
-  impl_->matter.calcM(impl_->state, M);
+  impl_->matter.calcM(impl_->current(), M);
   Eigen::MatrixXd out(M.nrow(), M.ncol());
   for (int i = 0; i < M.nrow(); ++i)
     for (int j = 0; j < M.ncol(); ++j) out(i, j) = M(i, j);
@@ -670,7 +722,7 @@ Eigen::MatrixXd Simulation::mass_matrix() const {
 
 int Simulation::mobility_index(LinkIndex link) const {
   if (!impl_->has_joint[link]) return -1;
-  return static_cast<int>(impl_->body(link).getFirstUIndex(impl_->state));
+  return static_cast<int>(impl_->body(link).getFirstUIndex(impl_->current()));
 }
 
 long long Simulation::force_evaluations() const { return impl_->evaluations; }
@@ -680,8 +732,8 @@ long long Simulation::steps_taken() const {
 }
 
 bool Simulation::finite() const {
-  const SimTK::Vector& q = impl_->state.getQ();
-  const SimTK::Vector& u = impl_->state.getU();
+  const SimTK::Vector& q = impl_->current().getQ();
+  const SimTK::Vector& u = impl_->current().getU();
   for (int i = 0; i < q.size(); ++i)
     if (!std::isfinite(q[i])) return false;
   for (int i = 0; i < u.size(); ++i)
@@ -690,10 +742,11 @@ bool Simulation::finite() const {
 }
 
 Eigen::MatrixXd Simulation::mass_matrix_at(const std::vector<double>& q_by_link) {
+  SimTK::State& state = impl_->editable();
   for (std::size_t i = 0; i < q_by_link.size() && i < impl_->has_joint.size(); ++i)
-    if (impl_->has_joint[i]) impl_->body(static_cast<LinkIndex>(i)).setOneQ(impl_->state, 0, q_by_link[i]);
+    if (impl_->has_joint[i]) impl_->body(static_cast<LinkIndex>(i)).setOneQ(state, 0, q_by_link[i]);
   impl_->running = false;
-  impl_->system.realize(impl_->state, SimTK::Stage::Velocity);
+  impl_->system.realize(state, SimTK::Stage::Velocity);
   return mass_matrix();
 }
 

@@ -204,3 +204,40 @@ TEST_CASE("dynamics: +dq on a track drives along a_w × z, also when the vehicle
   CHECK(std::abs(v.x()) < 0.005);
   CHECK(std::abs(omega.z()) < 1e-3);
 }
+
+TEST_CASE("dynamics: a joint stop holds with stop_stiffness, or at most I·ω² under stop_frequency_limit") {
+  // ARM turns about Z (no gravity torque) with the COM 0.1 m off the axis: I = 0.01 + 1 · 0.1² =
+  // 0.02 kg·m² about the axis. A constant 18 N·m pushes it into its +10° stop, a damper settles
+  // it: at rest the stop pushes back k·x = 18 N·m, so x = 18/k past the limit.
+  const std::string text = R"(format: ChoreonoidBody
+format_version: 2.0
+angle_unit: degree
+links:
+  - name: BASE
+    joint_type: fixed
+    mass: 1.0
+  - name: ARM
+    parent: BASE
+    joint_type: revolute
+    joint_axis: Z
+    joint_range: [-10, 10]
+    mass: 1.0
+    center_of_mass: [0.1, 0, 0]
+    inertia: [0.01, 0, 0, 0, 0.01, 0, 0, 0, 0.01]
+)";
+  const double limit = 10 * M_PI / 180, torque = 18;
+  for (const double omega : {0.0, 300.0, 1000.0}) {
+    SimOptions o = no_contact();
+    o.gravity = 0;
+    o.stop_frequency_limit = omega;
+    auto b = build(text, o);
+    REQUIRE(b->sim);
+    // 0.02 · 300² = 1800 N·m/rad < 10⁴; 0.02 · 1000² = 2·10⁴ leaves stop_stiffness.
+    const double k = omega == 300 ? 1800 : o.stop_stiffness;
+    CAPTURE(omega);
+    b->sim->set_joint_position(1, limit);
+    b->sim->set_servo(1, {0, 2 * std::sqrt(k * 0.02) + 5, nullptr, nullptr, torque});
+    b->sim->advance_to(2.0);
+    CHECK(b->sim->joint_position(1) - limit == doctest::Approx(torque / k).epsilon(1e-4));
+  }
+}

@@ -47,6 +47,9 @@ struct SimOptions {
   bool joint_stops = true;       ///< enforce joint_range (our choice; AIST does not, spec §0.7)
   double stop_stiffness = 1e4;   ///< N·m/rad or N/m
   double stop_dissipation = 1;   ///< Simbody MobilityLinearStop's c
+  /// > 0: no stop stiffer than I·ω² (rad/s; I the inertia of the joint's subtree about its axis,
+  /// or its mass for a slider), so that no stop rings faster than ω; 0: stop_stiffness for all.
+  double stop_frequency_limit = 0;
   double accuracy = 1e-5;        ///< RungeKuttaMersonIntegrator accuracy
   bool balance_inertia = false;  ///< use bodyfmt::balance_inertia for invalid tensors
   bool lock_joints = false;      ///< weld every joint at its initial position (a rigid body)
