@@ -332,9 +332,10 @@ int main(int argc, char** argv) {
             : "at collision vertices",
         sim.contact_params.friction, sim.contact_params.dissipation, sim.contact_params.transition_velocity,
         sim.stop_stiffness,
-        command == "check" ? fmt::format(", in the generic checks at most I·({:g} rad/s)², I the joint's subtree inertia",
-                                         dynamics::kGenericStopFrequency)
-                           : "");
+        command == "check"
+            ? fmt::format(", in the generic checks at most I·({:g} rad/s)², I the joint's subtree inertia",
+                          dynamics::kGenericStopFrequency)
+            : "");
     if (command == "check-tank") {
       auto link = [&](LinkIndex i) { return i >= 0 ? model->links[i].name : std::string("none"); };
       std::cout << fmt::format(
