@@ -324,14 +324,18 @@ int main(int argc, char** argv) {
                              number(derived.total_mass));
     std::cout << fmt::format(
         "  Simbody 3.7, Runge-Kutta-Merson accuracy {:g}; floor contact {}, friction {:g}, "
-        "dissipation {:g} s/m, transition {:g} m/s; joint ranges enforced by stops ({:g} per rad or m)\n",
+        "dissipation {:g} s/m, transition {:g} m/s; joint ranges enforced by stops ({:g} per rad or m{})\n",
         sim.accuracy,
         sim.contact_model == dynamics::ContactModel::kSimbody
             ? "by Simbody's CompliantContactSubsystem (HalfSpace floor; Box shapes as Bricks, other shapes as "
               "elastic-foundation triangle meshes)"
             : "at collision vertices",
         sim.contact_params.friction, sim.contact_params.dissipation, sim.contact_params.transition_velocity,
-        sim.stop_stiffness);
+        sim.stop_stiffness,
+        command == "check"
+            ? fmt::format(", in the generic checks at most I·({:g} rad/s)², I the joint's subtree inertia",
+                          dynamics::kGenericStopFrequency)
+            : "");
     if (command == "check-tank") {
       auto link = [&](LinkIndex i) { return i >= 0 ? model->links[i].name : std::string("none"); };
       std::cout << fmt::format(

@@ -118,6 +118,10 @@ std::vector<CheckResult> run_mujoco_cross_check(const Model& model, const Derive
                                                 const TankSuiteOptions& options, DiagnosticSink& sink,
                                                 std::string& why);
 
+/// The generic checks' joint stops are no stiffer than I·ω² with this ω (rad/s; I the inertia of
+/// the joint's subtree about its axis, its mass for a slider): SimOptions::stop_frequency_limit.
+constexpr double kGenericStopFrequency = 300;
+
 /// The generic checks for any model (spec §4 "Generic checks"): mass matrix symmetric positive
 /// definite at random poses, drop onto the floor (no NaN, energy never grows, settles).
 std::vector<CheckResult> run_generic_checks(const Model& model, const Derived& derived, const SimOptions& options,
