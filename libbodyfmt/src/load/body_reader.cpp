@@ -360,6 +360,9 @@ bool BodyReader::read_header(LoadContext& ctx, const yaml::NodeRef& root, Model&
   }
   model.format_version = *v;
   version_node_ = version;
+  // The header alone decides the unit: the streamed links' probe may have left radians in
+  // ctx from an angle_unit that a later one overrides (the last key wins).
+  ctx.degrees = true;
   if (auto unit = r.take({"angle_unit", "angleUnit"})) {
     unit_node_ = unit;
     if (unit->scalar() == "radian") {

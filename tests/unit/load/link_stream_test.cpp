@@ -132,6 +132,22 @@ links:
   CHECK(before.model->links[1].joint_range_upper == 1.0);
 }
 
+TEST_CASE("link stream: angle_unit radian before links and degree after: the last one wins") {
+  // The streamed links are read in radians; the whole header says degrees (the last key wins),
+  // so they must be read again in degrees, and the format note must not call the file radian.
+  const Loaded r = check_same(R"(format: ChoreonoidBody
+format_version: 1.0
+angle_unit: radian
+links:
+  - {name: A, joint_type: free}
+  - {name: B, parent: A, joint_type: revolute, joint_id: 0, joint_range: [-90, 90]}
+angle_unit: degree
+)");
+  REQUIRE(r.model);
+  CHECK(r.model->angles_in_degrees);
+  CHECK(r.model->links[1].joint_range_upper == doctest::Approx(M_PI / 2));
+}
+
 TEST_CASE("link stream: format_version after links decides the format") {
   // Without format_version before links, the links are read once the whole header is known.
   const Loaded r = check_same(R"(format: ChoreonoidBody
