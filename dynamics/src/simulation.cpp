@@ -63,10 +63,14 @@ struct Simulation::Impl {
   SimOptions options;
   double stiffness = 0;
   std::vector<ContactPoint> points;
-  // By point, for the first of each link's run of points: where the run ends, and how far it
-  // reaches from the link origin (|p| + radius). A link whose origin is higher touches nothing.
-  std::vector<std::size_t> run_end;
-  std::vector<double> reach;
+  // The points come grouped by link: each link's run of them, and how far the run reaches from
+  // the link origin (|p| + radius). A link whose origin is higher touches nothing.
+  struct PointRun {
+    LinkIndex link;
+    std::size_t begin, end;
+    double reach;
+  };
+  std::vector<PointRun> runs;
   std::vector<Eigen::Matrix3d> inertias;
   std::vector<double> masses;               // by link, as simulated
   std::vector<Eigen::Vector3d> centres;     // of mass, link frame
@@ -118,66 +122,55 @@ struct Simulation::Impl {
   }
 
   /// Forces of every contact point touching the floor, for a state realized to Velocity. The
-  /// link's pose and velocity are read once per link (points come grouped by link), not once
-  /// per point: Simbody's cache lookups dominated the step otherwise.
+  /// link's pose and velocity are read once per link, not once per point: Simbody's cache
+  /// lookups dominated the step otherwise.
   void contact_forces(const SimTK::State& s, std::vector<PointForce>& out) const {
     out.clear();
     const ContactParams& c = options.contact_params;
-    LinkIndex current = -1;
-    Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
-    Eigen::Vector3d origin = Eigen::Vector3d::Zero(), omega = origin, velocity = origin, belt = origin;
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      const ContactPoint& p = points[i];
-      if (p.link != current) {
-        current = p.link;
-        const SimTK::MobilizedBody& b = body(p.link);
-        const SimTK::Transform& X = b.getBodyTransform(s);
-        if (X.p()[2] > reach[i]) {  // no point of this link is below the floor
-          i = run_end[i] - 1;
-          current = -1;
-          continue;
-        }
-        const SimTK::SpatialVec& V = b.getBodyVelocity(s);
-        R = to_eigen(X.R());
-        origin = to_eigen(X.p());
-        omega = to_eigen(V[0]);
-        velocity = to_eigen(V[1]);
-        belt.setZero();
-        if (const double dq = commands.track_speed[p.link]; dq != 0) {
-          // Belt surface velocity dq·normalize(a_w × n_out), n_out = −Z at a floor contact.
-          const Eigen::Vector3d d = (R * track_axis[p.link]).cross(Eigen::Vector3d(0, 0, -1));
-          if (d.norm() > 1e-9) belt = dq * d.normalized();
-        }
+    for (const PointRun& run : runs) {
+      const SimTK::MobilizedBody& b = body(run.link);
+      const SimTK::Transform& X = b.getBodyTransform(s);
+      if (X.p()[2] > run.reach) continue;  // no point of this link is below the floor
+      const SimTK::SpatialVec& V = b.getBodyVelocity(s);
+      const Eigen::Matrix3d R = to_eigen(X.R());
+      const Eigen::Vector3d origin = to_eigen(X.p()), omega = to_eigen(V[0]), velocity = to_eigen(V[1]);
+      Eigen::Vector3d belt = Eigen::Vector3d::Zero();
+      if (const double dq = commands.track_speed[run.link]; dq != 0) {
+        // Belt surface velocity dq·normalize(a_w × n_out), n_out = −Z at a floor contact.
+        const Eigen::Vector3d d = (R * track_axis[run.link]).cross(Eigen::Vector3d(0, 0, -1));
+        if (d.norm() > 1e-9) belt = dq * d.normalized();
       }
-      // The touching point, from the link origin (world axes); a sphere touches at its lowest.
-      Eigen::Vector3d lever = R * p.position_in_link;
-      lever.z() -= p.radius;
-      const double depth = -(origin.z() + lever.z());
-      if (!(depth > 0)) continue;
-      const Eigen::Vector3d v = velocity + omega.cross(lever);
-      // Hunt–Crossley: k·δ·(1 + c·δ̇), never pulling the body into the floor.
-      const double fn = std::max(0.0, stiffness * depth * (1 + c.dissipation * -v.z()));
-      Eigen::Vector3d slip(v.x() + belt.x(), v.y() + belt.y(), 0);
-      const double speed = slip.norm();
-      Eigen::Vector3d force(0, 0, fn);
-      if (speed > 0 && fn > 0) {
-        const double ratio = speed / c.transition_velocity;
-        const double mu = c.friction * (ratio < 1 ? ratio * (2 - ratio) : 1.0);
-        force -= mu * fn * slip / speed;
+      for (std::size_t i = run.begin; i < run.end; ++i) {
+        const ContactPoint& p = points[i];
+        // The touching point, from the link origin (world axes); a sphere touches at its lowest.
+        Eigen::Vector3d lever = R * p.position_in_link;
+        lever.z() -= p.radius;
+        const double depth = -(origin.z() + lever.z());
+        if (!(depth > 0)) continue;
+        const Eigen::Vector3d v = velocity + omega.cross(lever);
+        // Hunt–Crossley: k·δ·(1 + c·δ̇), never pulling the body into the floor.
+        const double fn = std::max(0.0, stiffness * depth * (1 + c.dissipation * -v.z()));
+        Eigen::Vector3d slip(v.x() + belt.x(), v.y() + belt.y(), 0);
+        const double speed = slip.norm();
+        Eigen::Vector3d force(0, 0, fn);
+        if (speed > 0 && fn > 0) {
+          const double ratio = speed / c.transition_velocity;
+          const double mu = c.friction * (ratio < 1 ? ratio * (2 - ratio) : 1.0);
+          force -= mu * fn * slip / speed;
+        }
+        out.push_back({i, lever, force, depth});
       }
-      out.push_back({i, lever, force, depth});
     }
   }
 
   double contact_potential(const SimTK::State& s) const {
     double e = 0;
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      if (reach[i] > 0 && body(points[i].link).getBodyTransform(s).p()[2] > reach[i]) {  // a run's first point
-        i = run_end[i] - 1;
-        continue;
+    for (const PointRun& run : runs) {
+      if (body(run.link).getBodyTransform(s).p()[2] > run.reach) continue;
+      for (std::size_t i = run.begin; i < run.end; ++i) {
+        const double depth = touch(s, points[i]).second;
+        if (depth > 0) e += 0.5 * stiffness * depth * depth;
       }
-      const double depth = touch(s, points[i]).second;
-      if (depth > 0) e += 0.5 * stiffness * depth * depth;
     }
     return e;
   }
@@ -398,15 +391,13 @@ std::unique_ptr<Simulation> Simulation::build(const Model& model, const Derived&
     m.stiffness = m.simbody_contact->brick_stiffness();
   } else if (options.contact) {
     m.points = collect_contact_points(model, sink);
-    m.run_end.assign(m.points.size(), m.points.size());
-    m.reach.assign(m.points.size(), 0.0);
     for (std::size_t first = 0; first < m.points.size();) {
       std::size_t end = first;
       double reach = 0;
       for (; end < m.points.size() && m.points[end].link == m.points[first].link; ++end)
         reach = std::max(reach, m.points[end].position_in_link.norm() + m.points[end].radius);
-      m.run_end[first] = end;
-      m.reach[first] = reach * (1 + 1e-9) + 1e-12;  // rounding of R·p cannot make a point touch
+      // Widened so that the rounding of R·p cannot make a skipped point touch.
+      m.runs.push_back({m.points[first].link, first, end, reach * (1 + 1e-9) + 1e-12});
       first = end;
     }
     m.stiffness = options.contact_params.stiffness > 0
