@@ -8,6 +8,7 @@
 // (an unphysical inertia without --balance-inertia, not a tank for check-tank) or a fatal error.
 
 #include "front.h"
+#include "number_options.h"
 #include "output_guard.h"
 
 #include <bodyfmt/converters/output_set.h>
@@ -24,11 +25,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cmath>
 #include <cstring>
 #include <iostream>
 #include <iterator>
-#include <limits>
 #include <map>
 #include <memory>
 #include <sstream>
@@ -89,24 +88,7 @@ void print_results(const std::vector<dynamics::CheckResult>& results) {
   std::cout << fmt::format("{} of {} checks passed, {} failed, {} skipped\n", passed, passed + failed, failed, skipped);
 }
 
-/// A number option's bound, said in words (CLI11's PositiveNumber prints its range as a
-/// 300-digit double, and calls 0 "not in range 0 to ...").
-CLI::Validator number_above(bool or_equal) {
-  return CLI::Validator(
-      [or_equal](const std::string& text) {
-        std::size_t used = 0;
-        double value = std::numeric_limits<double>::quiet_NaN();
-        try {
-          value = std::stod(text, &used);
-        } catch (const std::exception&) {
-          used = 0;
-        }
-        const bool ok = used == text.size() && std::isfinite(value) && (or_equal ? value >= 0 : value > 0);
-        return ok ? std::string() : fmt::format("must be a number {} 0, not {}", or_equal ? "≥" : "above", text);
-      },
-      or_equal ? "NONNEGATIVE" : "POSITIVE");
-}
-const CLI::Validator kPositive = number_above(false), kNonNegative = number_above(true);
+const CLI::Validator kPositive = tools::number_above_zero(false), kNonNegative = tools::number_above_zero(true);
 
 /// The options every subcommand takes besides the front's: the simulation's.
 void add_simulation_options(CLI::App& app, dynamics::SimOptions& sim, std::size_t& max_links) {

@@ -1,5 +1,7 @@
 #include "front.h"
 
+#include "number_options.h"
+
 #include <bodyfmt/rules.h>
 
 #include <sys/stat.h>
@@ -99,20 +101,7 @@ void Front::add_options() {
                   "the file name used for standard input in locations and to resolve its relative URIs");
 
   const std::string loading = "Loading";
-  // A limit of 0 or less would switch its guard off: a usage error, said in words (CLI11's
-  // PositiveNumber prints its range as a 300-digit double).
-  const CLI::Validator positive(
-      [](const std::string& value) {
-        std::size_t used = 0;
-        long long n = 0;
-        try {
-          n = std::stoll(value, &used);
-        } catch (const std::exception&) {
-          used = 0;
-        }
-        return used == value.size() && n > 0 ? std::string() : "must be a whole number above 0, not " + value;
-      },
-      "N > 0");
+  const CLI::Validator positive = whole_number_above_zero();
   app_.add_option("--package-path", package_paths_, "a folder holding ROS packages for package:// URIs (repeatable)")
       ->allow_extra_args(false)
       ->group(loading);

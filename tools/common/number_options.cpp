@@ -1,0 +1,41 @@
+#include "number_options.h"
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace bodyfmt::tools {
+
+CLI::Validator whole_number_above_zero() {
+  return CLI::Validator(
+      [](const std::string& value) {
+        std::size_t used = 0;
+        long long n = 0;
+        try {
+          n = std::stoll(value, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        return used == value.size() && n > 0 ? std::string() : "must be a whole number above 0, not " + value;
+      },
+      "N > 0");
+}
+
+CLI::Validator number_above_zero(bool or_equal) {
+  return CLI::Validator(
+      [or_equal](const std::string& text) {
+        std::size_t used = 0;
+        double value = std::numeric_limits<double>::quiet_NaN();
+        try {
+          value = std::stod(text, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        const bool ok = used == text.size() && std::isfinite(value) && (or_equal ? value >= 0 : value > 0);
+        return ok ? std::string()
+                  : std::string("must be a number ") + (or_equal ? "≥" : "above") + " 0, not " + text;
+      },
+      or_equal ? "NONNEGATIVE" : "POSITIVE");
+}
+
+}  // namespace bodyfmt::tools
