@@ -105,11 +105,6 @@ Measures measure(Make make, const TankOpening& opening, const TankSuiteOptions& 
   return r;
 }
 
-std::string vector_text(const Eigen::Vector3d& v) {
-  auto clean = [](double x) { return std::abs(x) < 5e-10 ? 0.0 : x; };
-  return fmt::format("({:.4g}, {:.4g}, {:.4g})", clean(v.x()), clean(v.y()), clean(v.z()));
-}
-
 /// Whether the same +dq on both tracks drives the vehicle straight in one engine: its heading
 /// drift |ω|/|v| against the suite's bound of 1°/m, the cause named when it turns.
 CheckResult drives_straight(const std::string& engine, const Measures& m, const Model& model,
@@ -123,11 +118,8 @@ CheckResult drives_straight(const std::string& engine, const Measures& m, const 
                 "≤ expected",
                 std::isfinite(drift) && drift <= 1.0};
   if (!r.passed && opening.drive_direction == 0)
-    r.note = fmt::format(
-        "tracks drive against each other: \"{}\" (axis {} in the root frame) drives toward {}X and \"{}\" (axis {}) "
-        "toward {}X for +dq; the vehicle turns at {:.4g} rad/s ({:.4g} m/s along its heading)",
-        model.links[t.left].name, vector_text(t.left_axis), t.left_sign > 0 ? "+" : "-", model.links[t.right].name,
-        vector_text(t.right_axis), t.right_sign > 0 ? "+" : "-", m.yaw_rate, m.speed);
+    r.note = tracks_against_each_other(model, t) +
+             fmt::format("; the vehicle turns at {:.4g} rad/s ({:.4g} m/s along its heading)", m.yaw_rate, m.speed);
   else if (!r.passed)
     r.note = fmt::format(
         "the vehicle turns at {:.4g} rad/s ({:.4g} m/s along its heading) although its tracks' axes "

@@ -135,6 +135,18 @@ std::string vector_text(const Eigen::Vector3d& v) {
   return fmt::format("({:.4g}, {:.4g}, {:.4g})", clean(v.x()), clean(v.y()), clean(v.z()));
 }
 
+}  // namespace
+
+std::string tracks_against_each_other(const Model& model, const TankLayout& t) {
+  return fmt::format(
+      "tracks drive against each other: \"{}\" (axis {} in the root frame) drives toward {}X and \"{}\" (axis {}) "
+      "toward {}X for +dq",
+      model.links[t.left].name, vector_text(t.left_axis), t.left_sign > 0 ? "+" : "-", model.links[t.right].name,
+      vector_text(t.right_axis), t.right_sign > 0 ? "+" : "-");
+}
+
+namespace {
+
 /// What every phase shares.
 struct Suite {
   const Model& model;
@@ -277,11 +289,8 @@ Stance stance(Suite& s) {
                           s.name(t.left), vector_text(t.left_axis), s.name(t.right), vector_text(t.right_axis))));
   else
     s.add(verdict_check("tracks drive the same way for the same dq", false,
-                        fmt::format("tracks drive against each other: \"{}\" (axis {} in the root frame) drives toward "
-                                    "{}X and \"{}\" (axis {}) toward {}X for +dq, so a controller's straight-drive "
-                                    "command turns the vehicle",
-                                    s.name(t.left), vector_text(t.left_axis), t.left_sign > 0 ? "+" : "-",
-                                    s.name(t.right), vector_text(t.right_axis), t.right_sign > 0 ? "+" : "-")));
+                        tracks_against_each_other(s.model, t) +
+                            ", so a controller's straight-drive command turns the vehicle"));
   std::vector<Eigen::Vector3d> pts = t.left_points;
   pts.insert(pts.end(), t.right_points.begin(), t.right_points.end());
   const std::vector<Eigen::Vector2d> polygon = support_polygon(pts);

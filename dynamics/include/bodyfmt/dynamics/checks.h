@@ -67,6 +67,11 @@ struct TankLayout {
 std::optional<TankLayout> find_tank(const Model& model, const Derived& derived, const std::vector<ContactPoint>& points,
                                     std::string& why);
 
+/// The cause both the suite and its cross-check name when the tracks disagree: "tracks drive
+/// against each other: "L" (axis (x, y, z) in the root frame) drives toward +X and "R" (axis
+/// ...) toward -X for +dq".
+std::string tracks_against_each_other(const Model& model, const TankLayout& tank);
+
 /// What the tank suite and its MuJoCo cross-check both start from, found once from the model:
 /// the system built as the options build it, the tank layout, the pose it starts in, the
 /// joints a controller holds, where the same +dq on both tracks drives it, and the turret's
