@@ -556,10 +556,11 @@ void Simulation::check_budget() const {
   // Every change of a track speed or servo restarts the integrator: when the restarts are most
   // of the steps, the commands are the cause, not a stiff part.
   const std::string cause =
-      by_commands ? fmt::format("{} of them were restarts for changed commands (each change of a track speed or a "
+      by_commands ? fmt::format(
+                        "{} of them were restarts for changed commands (each change of a track speed or a "
                         "servo restarts the integrator): the commands are denser in time than the budget",
                         m.restarts)
-          : stiffest_part(where);
+                  : stiffest_part(where);
   m.spent.emplace(spent + ": " + cause, where, by_commands);
   throw WorkBudgetExceeded(*m.spent);
 }

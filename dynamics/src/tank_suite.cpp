@@ -288,9 +288,9 @@ Stance stance(Suite& s) {
                           "consistent vehicle that drives backward for +dq",
                           s.name(t.left), vector_text(t.left_axis), s.name(t.right), vector_text(t.right_axis))));
   else
-    s.add(verdict_check("tracks drive the same way for the same dq", false,
-                        tracks_against_each_other(s.model, t) +
-                            ", so a controller's straight-drive command turns the vehicle"));
+    s.add(verdict_check(
+        "tracks drive the same way for the same dq", false,
+        tracks_against_each_other(s.model, t) + ", so a controller's straight-drive command turns the vehicle"));
   std::vector<Eigen::Vector3d> pts = t.left_points;
   pts.insert(pts.end(), t.right_points.begin(), t.right_points.end());
   const std::vector<Eigen::Vector2d> polygon = support_polygon(pts);

@@ -32,8 +32,7 @@ CLI::Validator number_above_zero(bool or_equal) {
           used = 0;
         }
         const bool ok = used == text.size() && std::isfinite(value) && (or_equal ? value >= 0 : value > 0);
-        return ok ? std::string()
-                  : std::string("must be a number ") + (or_equal ? "≥" : "above") + " 0, not " + text;
+        return ok ? std::string() : std::string("must be a number ") + (or_equal ? "≥" : "above") + " 0, not " + text;
       },
       or_equal ? "NONNEGATIVE" : "POSITIVE");
 }
