@@ -290,6 +290,10 @@ int main(int argc, char** argv) {
         fail(old_file.why + ", nor in the working tree");
         continue;
       }
+      if (!new_model) {
+        code = tools::kExitFatal;
+        continue;
+      }
       std::vector<ModelChange> changes = diff_models(*old_model, *new_model, options);
       name_old_side(changes, path, old_name);
       if (format == "json") {
