@@ -11,8 +11,13 @@ git init -q . && echo '*.body diff=body' > .gitattributes
 cp "$model" robot.body && git add .gitattributes robot.body && git commit -qm init || exit 2
 failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
-driver() { git -c diff.body.command="'$bodydiff' --git" diff "$@"; }
-textconv() { git -c diff.body.textconv="'$bodydiff' --textconv" diff "$@"; }
+# The two set-ups word for word as README.md gives them, bodydiff pointed at the build.
+readme=$(dirname "$(realpath "$0")")/../../README.md
+readme_config() { sed -n "s/^git config diff.body.$1 \"bodydiff \(.*\)\"\$/\1/p" "$readme"; }
+command_args=$(readme_config command) textconv_args=$(readme_config textconv)
+[ -n "$command_args" ] && [ -n "$textconv_args" ] || { echo "README.md gives no git config diff.body lines"; exit 2; }
+driver() { git -c diff.body.command="'$bodydiff' $command_args" diff "$@"; }
+textconv() { git -c diff.body.textconv="'$bodydiff' $textconv_args" diff "$@"; }
 
 grep -q '^    mass: 6.0$' robot.body || { echo "the model has no WAIST_P mass line"; exit 2; }
 lineno=$(grep -n '^    mass: 6.0$' robot.body | head -1 | cut -d: -f1)
@@ -56,6 +61,41 @@ out=$("$bodydiff" --git-rev HEAD robot.body) || fail "--git-rev HEAD exit $? on 
 "$bodydiff" --git-rev no-such-rev robot.body 2>/dev/null; [ $? = 2 ] || fail "--git-rev of no revision: not exit 2"
 out=$("$bodydiff" --git-rev HEAD arm.body)
 echo "$out" | grep -q "arm.body:[0-9]*:[0-9]*: added: link 'WAIST'" || fail "--git-rev on a new file: $out"
+
+# 4c. Only git's own "not in REV" (or "not in the index") means new (issue 34): an absolute
+#     path is the same file, and anything git cannot read is exit 2 with git's message.
+mkdir -p sub untracked && touch sub/.keep && cp "$model" untracked/u.body
+out=$("$bodydiff" --git-rev HEAD~1 "$PWD/robot.body"); code=$?
+[ $code = 1 ] && echo "$out" | grep -q "mass: 6 -> 8.5" && ! echo "$out" | grep -q "added: link" ||
+  fail "--git-rev of an absolute path: exit $code: $out"
+rev_error() {  # rev_error WHAT WORDS ARGS...: exit 2 and git's words on stderr, nothing on stdout
+  local what=$1 words=$2; shift 2
+  out=$("$@" 2>err.txt); code=$?
+  [ $code = 2 ] && [ -z "$out" ] && grep -q -- "$words" err.txt || fail "$what: exit $code, $out $(cat err.txt)"
+}
+rev_error "--git-rev of ../ outside the repository" "outside repository" \
+  "$bodydiff" --git-rev HEAD "../$(basename "$PWD")/robot.body"
+rev_error "--git-rev of a mistyped file" "does not exist in 'HEAD'" "$bodydiff" --git-rev HEAD robto.body
+rev_error "--git-rev of an untracked folder" "a folder" "$bodydiff" --git-rev HEAD untracked
+rev_error "--staged of a mistyped file" "neither on disk nor in the index" "$bodydiff" --staged robto.body
+out=$(cd sub && "$bodydiff" --git-rev HEAD~1 ../robot.body); code=$?
+[ $code = 1 ] && echo "$out" | grep -q "mass: 6 -> 8.5" || fail "--git-rev of ../robot.body from sub: exit $code: $out"
+outside=$(mktemp -d) && cp "$model" "$outside/m.body"
+out=$(cd "$outside" && "$bodydiff" --staged m.body 2>&1); code=$?
+[ $code = 2 ] && echo "$out" | grep -q "not a git repository" || fail "--staged outside a repository: exit $code: $out"
+rm -rf "$outside" untracked
+
+# 4d. A file whose name begins with '-' (issue 34): through both README set-ups, git diff works.
+cp "$model" ./-q.body && git add -- -q.body && git commit -qm dash
+sed -i 's/^    mass: 6.0$/    mass: 7.25/' ./-q.body
+out=$(driver -- -q.body 2>&1); code=$?
+[ $code = 0 ] && echo "$out" | grep -q "b/-q.body:$lineno:11: changed: link 'WAIST_P': mass: 6 -> 7.25" ||
+  fail "driver on -q.body: exit $code: $out"
+out=$(textconv -- -q.body 2>&1); code=$?
+[ $code = 0 ] && echo "$out" | grep -qx -- "+  mass: 7.25" || fail "textconv on -q.body: exit $code: $out"
+out=$("$bodydiff" --git-rev HEAD -- -q.body); code=$?
+[ $code = 1 ] && echo "$out" | grep -q "mass: 6 -> 7.25" || fail "--git-rev HEAD -- -q.body: exit $code: $out"
+cp "$model" ./-q.body
 
 # 5. A model that cannot be loaded: git stops with the driver's exit 2 and its message.
 echo "links: [ {" > robot.body

@@ -18,8 +18,11 @@ signal, and print each listed rule id in a located diagnostic (`file:line:col: .
 Tools the file does not name must still not crash or hang (exit 0, 1 or 2). `# limit: cpu=N`
 raises the CPU seconds each tool may take (the 100,000-link models, whose export builds a
 scene of 400,000 nodes). bodydiff runs too, its expectations derived from bodycheck's
-(bodydiff_runs).
+(bodydiff_runs). On the cases kept in the repository, bodyview's page keeps the model's text
+inside its data <script> (page_runs), and, on a case bodycheck can load, git diff works through
+both set-ups README.md gives, with the case's own file name (git_driver_runs).
 """
+import json
 import os
 import re
 import resource
@@ -102,6 +105,69 @@ def bodydiff_runs(bin_dir, model, expectations, cpu_limit):
     return failures
 
 
+FORBIDDEN_IN_DATA = ["<", ">", "&", "\u2028", "\u2029"]
+README = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "README.md")
+SMALL = 1 << 20  # the page and git checks run on the cases kept in the repository, not the generated giants
+
+
+def page_runs(bin_dir, model, out, cpu_limit, expect):
+    """bodyview (issue 34): a page it writes carries the model's text in a data <script> that
+    holds no character the HTML tokenizer reads there, and whose JSON parses."""
+    failures = []
+    if not os.access(os.path.join(bin_dir, "bodyview"), os.X_OK):
+        return failures  # bodyview is optional (no three.js at configure time)
+    page = os.path.join(out, "page.html")
+    result = run_tool("bodyview", [os.path.join(bin_dir, "bodyview"), model, "-q", "-o", page], cpu_limit, failures)
+    if result is not None and expect and str(result[0]) != expect.get("exit"):
+        failures.append(f"bodyview: exit {result[0]}, expected {expect.get('exit')}\n{result[1][-2000:]}")
+    if result is None or result[0] == 2:
+        return failures
+    with open(page, encoding="utf-8", errors="replace") as f:
+        html = f.read()
+    opening = '<script type="application/json" id="bv-data">'
+    start = html.index(opening) + len(opening)
+    data = html[start:re.compile(r"</script", re.I).search(html, start).start()]
+    found = [c for c in FORBIDDEN_IN_DATA if c in data]
+    if found:
+        failures.append(f"bodyview: the page's data <script> holds {found}")
+    try:
+        json.loads(data)
+    except ValueError as e:
+        failures.append(f"bodyview: the page's data <script> is not its JSON: {e}")
+    return failures
+
+
+def git_driver_runs(bin_dir, model, out):
+    """The git diff set-ups of README.md, word for word, on the case staged under its own name
+    as a new file: git diff --cached exits 0 through both, whatever the name."""
+    failures = []
+    lines = open(README, encoding="utf-8").read().splitlines()
+    configs = dict(re.findall(r'^git config (diff\.body\.\w+) "bodydiff (.*)"$', "\n".join(lines), re.M))
+    if set(configs) != {"diff.body.textconv", "diff.body.command"}:
+        return [f"README.md gives no git diff set-up: {configs}"]
+    repo = os.path.join(out, "repo")
+    name = os.path.basename(model)
+    env = dict(os.environ, GIT_CONFIG_NOSYSTEM="1", HOME=out, GIT_AUTHOR_NAME="t", GIT_AUTHOR_EMAIL="t@example.com",
+               GIT_COMMITTER_NAME="t", GIT_COMMITTER_EMAIL="t@example.com")
+    git = lambda *args: subprocess.run(["git", *args], cwd=repo, env=env, capture_output=True, timeout=WALL_LIMIT)
+    os.makedirs(repo)
+    git("init", "-q")
+    with open(os.path.join(repo, ".gitattributes"), "w") as f:
+        f.write("*.body diff=body\n")
+    with open(model, "rb") as f, open(os.path.join(repo, name), "wb") as g:
+        g.write(f.read())
+    git("add", "--", ".gitattributes")
+    git("commit", "-qm", "attributes")
+    git("add", "--", name)  # a new file: the drivers get its name and its text as it is
+    bodydiff = os.path.join(bin_dir, "bodydiff")
+    for key, args in sorted(configs.items()):
+        run = git("-c", f"{key}='{bodydiff}' {args}", "diff", "--cached")
+        if run.returncode != 0:
+            failures.append(f"git diff with {key} as README.md gives it: exit {run.returncode}\n"
+                            f"{run.stderr.decode('utf-8', 'replace')[-1000:]}")
+    return failures
+
+
 def main():
     case, bin_dir = sys.argv[1], sys.argv[2]
     model = os.path.join(case, "main.body") if os.path.isdir(case) else case
@@ -133,6 +199,10 @@ def main():
                 failures.append(f"{tool}: exit {code}, expected {expect.get('exit')}\n{text[-2000:]}")
             check_rules(tool, text, expect["rules"], failures)
         failures += bodydiff_runs(bin_dir, model, expectations, cpu_limit)
+        if os.path.getsize(model) < SMALL:
+            failures += page_runs(bin_dir, model, out, cpu_limit, expectations.get("bodyview"))
+            if expectations.get("bodycheck", {}).get("exit") in ("0", "1") and not os.path.isdir(case):
+                failures += git_driver_runs(bin_dir, model, out)
     for f in failures:
         print(f)
     print(f"{os.path.basename(case)}: {len(TOOLS) + 1} tools, {len(failures)} failures")

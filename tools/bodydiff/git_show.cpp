@@ -69,13 +69,21 @@ std::string first_line(const std::string& text) { return text.substr(0, text.fin
 
 }  // namespace
 
-std::optional<std::string> git_show(const std::string& revision, const std::string& path, std::string& why) {
+GitFile git_show(const std::string& revision, const std::string& path) {
+  GitFile file;
   std::string out, err;
-  if (run_git({"show", revision + ":./" + path}, out, err) != 0) {
-    why = first_line(err);
-    return std::nullopt;
+  if (run_git({"cat-file", "blob", revision + ":./" + path}, out, err) == 0) {
+    file.text = std::move(out);
+    return file;
   }
-  return out;
+  file.why = err.empty() ? "git cat-file failed on " + revision + ":./" + path : first_line(err);
+  // git's wording (builtin object-name.c) for a path that is simply not in the tree or index.
+  const std::string& why = file.why;
+  auto has = [&](const char* words) { return why.find(words) != std::string::npos; };
+  file.absent =
+      why.rfind("fatal: path '", 0) == 0 && (has("' does not exist in '") || has("' exists on disk, but not in ") ||
+                                             has("' does not exist (neither on disk nor in the index)"));
+  return file;
 }
 
 bool git_commit_exists(const std::string& revision, std::string& why) {

@@ -5,6 +5,7 @@
 
 #include "front.h"
 #include "git_show.h"
+#include "number_options.h"
 
 #include <bodyfmt/model_diff.h>
 #include <bodyfmt/rules.h>
@@ -164,7 +165,7 @@ int main(int argc, char** argv) {
   app.add_option("--format", format, "output format: text (GCC-style) or json (docs/bodydiff-json.md)")
       ->check(CLI::IsMember({"text", "json"}));
   app.add_option("--tolerance", options.tolerance, "numbers equal when |a - b| <= T * max(1, |a|, |b|) (default 1e-9)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(tools::number_above_zero(true));
   app.add_flag("--no-derived", no_derived,
                "do not report derived effects (total mass, centre of mass, world frames, bounding boxes)");
   app.add_flag("--textconv", textconv, "print the canonical text form of one model (git's diff.<driver>.textconv)");
@@ -224,7 +225,8 @@ int main(int argc, char** argv) {
     const std::string option = staged ? "--staged" : "--git-rev";
     std::string why;
     if (staged) {
-      // Before the first commit there is no HEAD: every staged model is new.
+      // Before the first commit there is no HEAD: every staged model is new. Outside a
+      // repository, reading the index below fails with git's message.
       if (tools::git_commit_exists("HEAD", why)) git_rev = "HEAD";
     } else if (!tools::git_commit_exists(git_rev, why)) {
       front.print_error("--git-rev: " + why);
@@ -237,13 +239,31 @@ int main(int argc, char** argv) {
     int code = tools::kExitClean;
     std::vector<std::string> documents;
     for (const std::string& file : args) {
-      const std::string path = std::filesystem::path(file).lexically_normal().string();
+      // git reads paths from the working folder; an absolute one would be taken from the
+      // repository's top (and missed there), so it is made relative first.
+      std::filesystem::path given(file);
+      if (given.is_absolute()) given = given.lexically_relative(std::filesystem::current_path());
+      const std::string path = given.lexically_normal().string();
       const std::string old_name = (git_rev.empty() ? std::string("HEAD") : git_rev) + ":" + path;
+      auto fail = [&](const std::string& why) {
+        front.print_error(fmt::format("{}: {}: {}", option, file, why));
+        code = tools::kExitFatal;
+      };
+      if (path.empty() || std::filesystem::is_directory(path)) {
+        fail("not a model file (a folder)");
+        continue;
+      }
+      tools::GitFile old_file;
+      old_file.absent = true;  // before the first commit, every staged model is new
+      if (!git_rev.empty()) old_file = tools::git_show(git_rev, path);
+      if (!old_file.text && !old_file.absent) {
+        fail(old_file.why);
+        continue;
+      }
       std::optional<Model> old_model = Model{};
-      std::string not_there;
-      if (auto text = git_rev.empty() ? std::nullopt : tools::git_show(git_rev, path, not_there)) {
+      if (old_file.text) {
         CollectingSink sink;
-        old_model = load_body_string(*text, path, front.load_options(), sink);
+        old_model = load_body_string(*old_file.text, path, front.load_options(), sink);
         if (!old_model) {
           front.print_error(fmt::format("{} cannot be loaded", old_name));
           code = tools::kExitFatal;
@@ -252,11 +272,23 @@ int main(int argc, char** argv) {
       }
       std::optional<Model> new_model = Model{};
       if (staged) {
-        // The index's text (git show :./PATH), loaded under the work-tree path so that its
-        // meshes and included files resolve there; a file not in the index is deleted.
-        if (auto text = tools::git_show("", path, not_there)) new_model = load_text_quietly(front, *text, path);
+        // The index's text, loaded under the work-tree path so that its meshes and included
+        // files resolve there; a file not in the index is deleted.
+        const tools::GitFile staged_file = tools::git_show("", path);
+        if (!staged_file.text && !staged_file.absent) {
+          fail(staged_file.why);
+          continue;
+        }
+        if (staged_file.text) new_model = load_text_quietly(front, *staged_file.text, path);
+        if (staged_file.absent && old_file.absent) {
+          fail(staged_file.why);  // in neither: mistyped, or never added
+          continue;
+        }
       } else if (std::filesystem::exists(path)) {
         new_model = load_quietly(front, path, "");
+      } else if (old_file.absent) {
+        fail(old_file.why + ", nor in the working tree");
+        continue;
       }
       if (!new_model) {
         code = tools::kExitFatal;

@@ -95,20 +95,20 @@ void add_simulation_options(CLI::App& app, dynamics::SimOptions& sim, std::size_
   app.add_flag("--balance-inertia", sim.balance_inertia,
                "simulate links with an unphysical inertia with the nearest valid one (a warning per link)");
   app.add_option("--accuracy", sim.accuracy, "Runge-Kutta-Merson accuracy (default 1e-5)")
-      ->check(CLI::Range(1e-12, 1e-1));
+      ->check(tools::finite_number_in(1e-12, 1e-1));
   app.add_option("--contact", sim.contact_model,
                  "floor contact: points (collision-shape vertices, the default) or simbody (Simbody's compliant "
                  "contact: Bricks and elastic-foundation meshes against a half-space)")
       ->transform(CLI::CheckedTransformer(std::map<std::string, dynamics::ContactModel>{
           {"points", dynamics::ContactModel::kPoints}, {"simbody", dynamics::ContactModel::kSimbody}}));
   app.add_option("--friction", sim.contact_params.friction, "Coulomb friction with the floor (default 0.5)")
-      ->check(CLI::Range(0.0, 10.0));
+      ->check(tools::finite_number_in(0.0, 10.0));
   app.add_option("--contact-depth", sim.contact_params.reference_depth,
                  "contact stiffness: the depth the model's weight on four points sinks (m, default 1e-4)")
-      ->check(CLI::Range(1e-7, 1e-1));
+      ->check(tools::finite_number_in(1e-7, 1e-1));
   app.add_option("--transition-velocity", sim.contact_params.transition_velocity,
                  "slip speed at which friction reaches μ (m/s, default 0.05)")
-      ->check(CLI::Range(1e-5, 1.0));
+      ->check(tools::finite_number_in(1e-5, 1.0));
   app.add_option("--max-steps-per-second", sim.max_steps_per_second,
                  "stop a simulation whose integrator takes more steps per simulated second (default 50000; 0: no "
                  "limit)")

@@ -157,7 +157,33 @@ std::string base64(std::string_view bytes) {
   return out;
 }
 
-/// JSON inside a <script> element: "</" would end the element, "<\/" is the same JSON string.
+/// JSON inside a <script> element, with no character the HTML tokenizer reads there: "<" (which
+/// begins "</script" and the "<!--" that makes a later "</script>" not end the element), ">" (of
+/// "-->"), "&", and U+2028/U+2029, as JSON escapes. They can only occur inside JSON strings, so
+/// the JSON means the same, whatever text the model carries.
+std::string json_for_script(std::string_view json) {
+  std::string out;
+  out.reserve(json.size());
+  for (std::size_t i = 0; i < json.size(); ++i) {
+    const char c = json[i];
+    if (c == '<')
+      out += "\\u003c";
+    else if (c == '>')
+      out += "\\u003e";
+    else if (c == '&')
+      out += "\\u0026";
+    else if (json.compare(i, 3, "\xE2\x80\xA8") == 0 || json.compare(i, 3, "\xE2\x80\xA9") == 0) {
+      out += json[i + 2] == '\xA8' ? "\\u2028" : "\\u2029";
+      i += 2;
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+/// The viewer's script inside a <script> element: "</" would end the element, and "<\/" means
+/// the same in its strings and regular expressions.
 std::string script_safe(std::string json) {
   for (std::size_t at = 0; (at = json.find("</", at)) != std::string::npos; at += 3) json.replace(at, 2, "<\\/");
   return json;
@@ -227,7 +253,7 @@ std::optional<std::string> build_page(const fs::path& assets, const PageInput& i
   }
   // The template's markers in page order; the text put in is never searched again.
   const std::pair<std::string_view, std::string> parts[] = {{"/*@STYLE@*/", *style},
-                                                            {"@DATA@", script_safe(page_data_json(input))},
+                                                            {"@DATA@", json_for_script(page_data_json(input))},
                                                             {"@GLB@", base64(input.glb)},
                                                             {"<!--@MODULES@-->", modules},
                                                             {"/*@SCRIPT@*/", script_safe(*script)}};

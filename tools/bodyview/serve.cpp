@@ -5,19 +5,36 @@
 #include <bodyfmt/text.h>
 
 #include <arpa/inet.h>
+#include <fcntl.h>
 #include <netinet/in.h>
 #include <poll.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <chrono>
 #include <csignal>
 #include <cstring>
 #include <iostream>
+#include <list>
 #include <map>
+#include <memory>
 
 namespace bodyfmt::bodyview {
 namespace {
+
+// One thread, non-blocking sockets and poll(): no client can hold the server, another client,
+// live reload or a signal for longer than one pass of the loop (kTick). A client gets kExchange
+// to send its request and read the answer; beyond kMaxConnections the oldest is dropped.
+using Clock = std::chrono::steady_clock;
+constexpr auto kTick = std::chrono::milliseconds(100);
+constexpr auto kExchange = std::chrono::seconds(10);
+constexpr auto kWatchEvery = std::chrono::milliseconds(200);
+constexpr std::size_t kMaxConnections = 32;
+constexpr std::size_t kMaxRequest = 16384;
 
 volatile std::sig_atomic_t g_stop = 0;
 void on_signal(int) { g_stop = 1; }
@@ -37,39 +54,59 @@ std::map<std::string, Stamp> stamps(const std::vector<std::string>& files) {
   return out;
 }
 
-void respond(int fd, const char* status, const char* type, const std::string& body) {
-  std::string head =
-      std::string("HTTP/1.1 ") + status + "\r\nContent-Type: " + type +
-      "\r\nCache-Control: no-store\r\nConnection: close\r\nContent-Length: " + std::to_string(body.size()) + "\r\n\r\n";
-  std::string all = head + body;
-  for (std::size_t sent = 0; sent < all.size();) {
-    const ssize_t n = ::send(fd, all.data() + sent, all.size() - sent, MSG_NOSIGNAL);
-    if (n <= 0) break;
-    sent += static_cast<std::size_t>(n);
-  }
+struct Connection {
+  int fd = -1;
+  Clock::time_point deadline;
+  std::string request;                      // until the blank line that ends the headers
+  std::string head;                         // the answer's status line and headers
+  std::shared_ptr<const std::string> body;  // shared: the page is not copied per client
+  std::size_t sent = 0;                     // of head, then body
+  bool answering = false;
+};
+
+struct Request {
+  std::string method, target, host;
+};
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
 }
 
-/// The request target of a GET ("/" when it cannot be read).
-std::string request_target(int fd) {
-  std::string request;
-  char buffer[2048];
-  while (request.find("\r\n\r\n") == std::string::npos && request.size() < 16384) {
-    pollfd p{fd, POLLIN, 0};
-    if (::poll(&p, 1, 2000) <= 0) break;
-    const ssize_t n = ::recv(fd, buffer, sizeof buffer, 0);
-    if (n <= 0) break;
-    request.append(buffer, static_cast<std::size_t>(n));
+/// The request line and the Host header of a request's head (up to the blank line).
+Request parse_request(const std::string& head) {
+  Request r;
+  const std::size_t line_end = head.find("\r\n");
+  const std::string line = head.substr(0, line_end);
+  const std::size_t a = line.find(' '), b = a == std::string::npos ? a : line.find(' ', a + 1);
+  if (a == std::string::npos || b == std::string::npos) return r;
+  r.method = line.substr(0, a);
+  r.target = line.substr(a + 1, b - a - 1);
+  for (std::size_t at = line_end; at != std::string::npos && at + 2 < head.size();) {
+    const std::size_t start = at + 2, end = head.find("\r\n", start);
+    const std::string field = head.substr(start, end == std::string::npos ? std::string::npos : end - start);
+    const std::size_t colon = field.find(':');
+    if (colon != std::string::npos && lower(field.substr(0, colon)) == "host") {
+      std::string value = field.substr(colon + 1);
+      value.erase(0, value.find_first_not_of(" \t"));
+      value.erase(value.find_last_not_of(" \t") + 1);
+      r.host = r.host.empty() ? value : std::string("\n");  // two Host headers: none is trusted
+    }
+    at = end;
   }
-  if (request.rfind("GET ", 0) != 0) return "";
-  const std::size_t end = request.find(' ', 4);
-  return request.substr(4, end == std::string::npos ? std::string::npos : end - 4);
+  return r;
+}
+
+void close_connection(Connection& c) {
+  if (c.fd >= 0) ::close(c.fd);
+  c.fd = -1;
 }
 
 }  // namespace
 
 int serve(tools::Front& front, const tools::Front::FilePolicy& policy, const std::string& path,
           const std::filesystem::path& assets, int port) {
-  const int listener = ::socket(AF_INET, SOCK_STREAM, 0);
+  const int listener = ::socket(AF_INET, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
   int yes = 1;
   ::setsockopt(listener, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
   sockaddr_in address{};
@@ -78,17 +115,24 @@ int serve(tools::Front& front, const tools::Front::FilePolicy& policy, const std
   address.sin_port = htons(static_cast<std::uint16_t>(port));
   socklen_t length = sizeof address;
   if (listener < 0 || ::bind(listener, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0 ||
-      ::listen(listener, 16) != 0 || ::getsockname(listener, reinterpret_cast<sockaddr*>(&address), &length) != 0) {
+      ::listen(listener, 64) != 0 || ::getsockname(listener, reinterpret_cast<sockaddr*>(&address), &length) != 0) {
     front.print_error("--serve: cannot listen on 127.0.0.1:" + std::to_string(port) + ": " + std::strerror(errno));
     return tools::kExitFatal;
   }
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
+  struct sigaction action {};
+  action.sa_handler = on_signal;  // no SA_RESTART: poll() returns at once
+  sigemptyset(&action.sa_mask);
+  ::sigaction(SIGINT, &action, nullptr);
+  ::sigaction(SIGTERM, &action, nullptr);
+  const std::string port_text = std::to_string(ntohs(address.sin_port));
+  // A DNS-rebinding page reaches this port under its own host name: only the loopback names
+  // the URL can be spelled with are answered (the page holds absolute paths).
+  const std::string hosts[] = {"127.0.0.1:" + port_text, "localhost:" + port_text, "[::1]:" + port_text};
 
-  std::string page;        // the last good page
-  std::string error_text;  // the latest load's errors, shown over it
-  long generation = 0;     // of the page
-  long attempt = 0;        // loads so far
+  auto page = std::make_shared<const std::string>();  // the last good page
+  std::string error_text;                             // the latest load's errors, shown over it
+  long generation = 0;                                // of the page
+  long attempt = 0;                                   // loads so far
   std::vector<std::string> watched{path};
   std::map<std::string, Stamp> seen;
   auto load = [&] {
@@ -102,7 +146,7 @@ int serve(tools::Front& front, const tools::Front::FilePolicy& policy, const std
         error_text += format_text_diagnostic(d, front.sources(), plain);
     front.print(r.diagnostics);
     if (r.page) {
-      page = std::move(*r.page);
+      page = std::make_shared<const std::string>(std::move(*r.page));
       ++generation;
       watched = {path};
       for (const InputFile& f : r.inputs)
@@ -114,30 +158,96 @@ int serve(tools::Front& front, const tools::Front::FilePolicy& policy, const std
               << (error_text.empty() ? "" : ", with errors") << std::endl;
   };
   load();
-  if (page.empty()) return tools::kExitFatal;
-  std::cout << "http://127.0.0.1:" << ntohs(address.sin_port) << "/" << std::endl;
+  if (page->empty()) return tools::kExitFatal;
+  std::cout << "http://127.0.0.1:" << port_text << "/" << std::endl;
 
+  auto answer = [&](Connection& c) {
+    const Request r = parse_request(c.request);
+    std::string status = "200 OK", type = "text/plain; charset=utf-8", extra;
+    std::shared_ptr<const std::string> body;
+    const bool known_host = std::find(std::begin(hosts), std::end(hosts), lower(r.host)) != std::end(hosts);
+    if (r.method.empty()) {
+      status = "400 Bad Request";
+      body = std::make_shared<const std::string>("bad request\n");
+    } else if (!known_host) {
+      status = "421 Misdirected Request";
+      body = std::make_shared<const std::string>("this server answers only http://127.0.0.1:" + port_text + "/\n");
+    } else if (r.method != "GET" && r.method != "HEAD") {
+      status = "405 Method Not Allowed";
+      extra = "Allow: GET, HEAD\r\n";
+      body = std::make_shared<const std::string>("only GET and HEAD\n");
+    } else if (r.target == "/" || r.target.rfind("/?", 0) == 0) {
+      type = "text/html; charset=utf-8";
+      body = page;
+    } else if (r.target == "/status") {
+      type = "application/json";
+      body = std::make_shared<const std::string>("{\"generation\":" + std::to_string(generation) +
+                                                 ",\"attempt\":" + std::to_string(attempt) +
+                                                 ",\"error\":" + text::json_quote(error_text) + "}");
+    } else {
+      status = "404 Not Found";
+      body = std::make_shared<const std::string>("not found\n");
+    }
+    c.head = "HTTP/1.1 " + status + "\r\nContent-Type: " + type + "\r\n" + extra +
+             "Cache-Control: no-store\r\nConnection: close\r\nContent-Length: " + std::to_string(body->size()) +
+             "\r\n\r\n";
+    if (r.method != "HEAD") c.body = std::move(body);
+    c.answering = true;
+  };
+
+  std::list<Connection> connections;  // oldest first
+  Clock::time_point next_watch = Clock::now() + kWatchEvery;
+  std::vector<pollfd> fds;
   while (!g_stop) {
-    pollfd p{listener, POLLIN, 0};
-    const int ready = ::poll(&p, 1, 200);
-    if (ready > 0) {
-      const int client = ::accept(listener, nullptr, nullptr);
-      if (client >= 0) {
-        const std::string target = request_target(client);
-        if (target == "/" || target.rfind("/?", 0) == 0) {
-          respond(client, "200 OK", "text/html; charset=utf-8", page);
-        } else if (target == "/status") {
-          respond(client, "200 OK", "application/json",
-                  "{\"generation\":" + std::to_string(generation) + ",\"attempt\":" + std::to_string(attempt) +
-                      ",\"error\":" + text::json_quote(error_text) + "}");
+    fds.clear();
+    fds.push_back({listener, POLLIN, 0});
+    for (const Connection& c : connections) fds.push_back({c.fd, short(c.answering ? POLLOUT : POLLIN), 0});
+    const int ready = ::poll(fds.data(), fds.size(), static_cast<int>(kTick.count()));
+    if (g_stop) break;
+    const Clock::time_point now = Clock::now();
+    std::size_t k = 1;
+    for (Connection& c : connections) {
+      const short events = fds[k++].revents;
+      if (ready > 0 && (events & (POLLERR | POLLNVAL))) {
+        close_connection(c);
+      } else if (ready > 0 && !c.answering && (events & (POLLIN | POLLHUP))) {
+        char buffer[4096];
+        const ssize_t n = ::recv(c.fd, buffer, sizeof buffer, 0);
+        if (n <= 0) {
+          if (n == 0 || (errno != EAGAIN && errno != EINTR)) close_connection(c);
         } else {
-          respond(client, "404 Not Found", "text/plain", "not found\n");
+          c.request.append(buffer, static_cast<std::size_t>(n));
+          if (c.request.find("\r\n\r\n") != std::string::npos || c.request.size() > kMaxRequest) answer(c);
         }
-        ::close(client);
+      } else if (ready > 0 && c.answering && (events & POLLOUT)) {
+        const std::string& part = c.sent < c.head.size() ? c.head : *c.body;
+        const std::size_t from = c.sent < c.head.size() ? c.sent : c.sent - c.head.size();
+        const ssize_t n = ::send(c.fd, part.data() + from, part.size() - from, MSG_NOSIGNAL);
+        if (n < 0 && errno != EAGAIN && errno != EINTR) close_connection(c);
+        if (n > 0) c.sent += static_cast<std::size_t>(n);
+        if (c.sent == c.head.size() + (c.body ? c.body->size() : 0)) close_connection(c);
+      }
+      if (c.fd >= 0 && now > c.deadline) close_connection(c);  // slow to ask, or slow to read
+    }
+    connections.remove_if([](const Connection& c) { return c.fd < 0; });
+    if (ready > 0 && (fds[0].revents & POLLIN)) {
+      for (int client; (client = ::accept4(listener, nullptr, nullptr, SOCK_NONBLOCK | SOCK_CLOEXEC)) >= 0;) {
+        if (connections.size() >= kMaxConnections) {
+          close_connection(connections.front());
+          connections.pop_front();
+        }
+        Connection c;
+        c.fd = client;
+        c.deadline = now + kExchange;
+        connections.push_back(std::move(c));
       }
     }
-    if (stamps(watched) != seen) load();
+    if (now >= next_watch) {
+      if (stamps(watched) != seen) load();
+      next_watch = Clock::now() + kWatchEvery;
+    }
   }
+  for (Connection& c : connections) close_connection(c);
   ::close(listener);
   return tools::kExitClean;
 }

@@ -1,6 +1,8 @@
 #pragma once
 // bodyview --serve: the page on a loopback port, rebuilt when the model, a file it includes or
-// a mesh changes; a load that fails keeps the last good page and shows its diagnostics.
+// a mesh changes; a load that fails keeps the last good page and shows its diagnostics. Clients
+// are served concurrently from one poll() loop with a deadline each, answered only under the
+// loopback host names of the URL (GET and HEAD), and a signal stops it within a tick.
 
 #include "front.h"
 

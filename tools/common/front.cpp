@@ -8,7 +8,10 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <iterator>
@@ -69,6 +72,30 @@ std::vector<std::string> disabled_rules(const std::vector<std::string>& cli_disa
 /// A CLI11 validator for rule ids and `family-*` patterns, with a did-you-mean.
 std::string check_patterns(const std::string& value) { return check_rule_pattern(value); }
 
+/// The name the standard-output check below reports under (the first Front's).
+std::string g_stdout_owner;
+
+/// Every tool's main output may go to standard output (a report, a canonical text, an export
+/// to '-', --help), and a full disk or an I/O error there must not end in exit 0 or 1. Run at
+/// exit, after main has returned its code: the one place that sees every return path.
+void check_stdout_at_exit() {
+  errno = 0;
+  std::cout.flush();  // through stdio: fails with stdout's buffer, and sets errno
+  int error = errno;
+  if (std::fflush(stdout) != 0) error = errno;
+  if (std::cout.good() && std::ferror(stdout) == 0) return;
+  // errno is the reason when this flush failed; an earlier write's reason is long gone.
+  std::fprintf(stderr, "%s: error: cannot write to standard output%s%s\n", g_stdout_owner.c_str(),
+               error != 0 ? ": " : "", error != 0 ? std::strerror(error) : "");
+  std::_Exit(kExitFatal);  // the exit code main returned would claim the output was written
+}
+
+void watch_stdout(const std::string& tool_name) {
+  if (!g_stdout_owner.empty()) return;
+  g_stdout_owner = tool_name;
+  std::atexit(check_stdout_at_exit);
+}
+
 bool regular_file(const std::string& path) {
   struct stat st {};
   return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
@@ -81,11 +108,13 @@ Front::Front(std::string tool_name, std::string description, Features features)
       features_(features),
       owned_app_(std::make_unique<CLI::App>(std::move(description), name_)),
       app_(*owned_app_) {
+  watch_stdout(name_);
   add_options();
 }
 
 Front::Front(std::string tool_name, CLI::App& app, Features features)
     : name_(std::move(tool_name)), features_(features), app_(app) {
+  watch_stdout(name_.substr(0, name_.find(' ')));
   add_options();
 }
 

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <string>
 
 namespace bodyfmt::tools {
@@ -35,6 +36,24 @@ CLI::Validator number_above_zero(bool or_equal) {
         return ok ? std::string() : std::string("must be a number ") + (or_equal ? "≥" : "above") + " 0, not " + text;
       },
       or_equal ? "NONNEGATIVE" : "POSITIVE");
+}
+
+CLI::Validator finite_number_in(double low, double high) {
+  std::ostringstream range;
+  range << low << " to " << high;
+  return CLI::Validator(
+      [low, high, range = range.str()](const std::string& text) {
+        std::size_t used = 0;
+        double value = std::numeric_limits<double>::quiet_NaN();
+        try {
+          value = std::stod(text, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        const bool ok = used == text.size() && std::isfinite(value) && value >= low && value <= high;
+        return ok ? std::string() : "must be a number from " + range + ", not " + text;
+      },
+      "NUMBER in [" + range.str() + "]");
 }
 
 }  // namespace bodyfmt::tools

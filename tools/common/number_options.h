@@ -14,4 +14,9 @@ CLI::Validator whole_number_above_zero();
 /// "must be a number ≥ 0, not X"); the type names POSITIVE and NONNEGATIVE.
 CLI::Validator number_above_zero(bool or_equal);
 
+/// A finite number from `low` to `high` ("must be a number from LOW to HIGH, not X"). CLI11's
+/// Range lets nan through (every comparison with it is false), and bodysim hands a nan accuracy
+/// to Simbody, which aborts; the type name "NUMBER in [LOW, HIGH]".
+CLI::Validator finite_number_in(double low, double high);
+
 }  // namespace bodyfmt::tools

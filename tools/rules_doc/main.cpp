@@ -6,5 +6,7 @@
 int main() {
   const std::string text = bodyfmt::validate::rules_markdown();
   std::fwrite(text.data(), 1, text.size(), stdout);
-  return 0;
+  if (std::fflush(stdout) == 0 && !std::ferror(stdout)) return 0;
+  std::fputs("rules_doc: error: cannot write to standard output\n", stderr);
+  return 2;
 }

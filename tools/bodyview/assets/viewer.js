@@ -64,7 +64,13 @@
     // model); the whole GLB is parsed again when collision geometry is first switched on.
     const jsonLength = new DataView(glb.buffer, glb.byteOffset).getUint32(12, true);
     const gltfJson = JSON.parse(new TextDecoder().decode(glb.subarray(20, 20 + jsonLength)));
-    const isCollision = (k) => /\/collision$/.test(gltfJson.nodes[k].name || '');
+    // Names are the model's data (a link may be called 'arm/collision'): a node's role is read
+    // from the extras body2gltf writes, and a geometry group's link from its parent node.
+    const geometryOf = (k) => (gltfJson.nodes[k].extras || {}).geometry;
+    const isCollision = (k) => geometryOf(k) === 'collision';
+    const parentNode = [];
+    gltfJson.nodes.forEach((n, p) => (n.children || []).forEach((k) => { parentNode[k] = p; }));
+    const nodeLink = new Map();  // GLB node index -> link index
     const visualJson = { ...gltfJson, nodes: gltfJson.nodes.map((n) => (n.children ? { ...n, children: n.children.filter((k) => !isCollision(k)) } : n)) };
     const parse = (json) => new Promise((resolve, reject) => new GLTFLoader().parse(withJson(json), '', resolve, reject));
     function withJson(json) {
@@ -99,9 +105,9 @@
       const node = gltfJson.nodes[a.nodes];
       if (node.extras && node.extras.joint_type !== undefined && linkIndex.has(node.name)) {
         const i = linkIndex.get(node.name);
-        if (!linkObject[i]) { linkObject[i] = o; objectLink.set(o, i); }
-      } else if (/\/visual$/.test(node.name || '')) visualGroups.push(o);
-      else if (/\/collision$/.test(node.name || '')) collisionGroups.push(o);
+        if (!linkObject[i]) { linkObject[i] = o; objectLink.set(o, i); nodeLink.set(a.nodes, i); }
+      } else if (geometryOf(a.nodes) === 'visual') visualGroups.push(o);
+      else if (isCollision(a.nodes)) collisionGroups.push(o);
     });
     const missing = links.filter((l, i) => !linkObject[i]).map((l) => l.name);
     if (missing.length) throw new Error('links without a node in the GLB: ' + missing.slice(0, 5).join(', '));
@@ -141,12 +147,12 @@
         const found = [];
         whole.scene.traverse((o) => {
           const a = whole.parser.associations.get(o);
-          if (a && a.nodes !== undefined && isCollision(a.nodes)) found.push([o, gltfJson.nodes[a.nodes].name.replace(/\/collision$/, '')]);
+          if (a && a.nodes !== undefined && isCollision(a.nodes)) found.push([o, nodeLink.get(parentNode[a.nodes])]);
         });
         for (const [g, link] of found) {
-          if (!linkIndex.has(link)) continue;
+          if (link === undefined) continue;
           g.traverse((o) => { if (o.isMesh) o.material = collisionMaterial; });
-          linkObject[linkIndex.get(link)].add(g);  // its transform was relative to this link's node
+          linkObject[link].add(g);  // its transform was relative to this link's node
           collisionGroups.push(g);
         }
       });
