@@ -56,4 +56,8 @@ install(FILES
   ${PROJECT_BINARY_DIR}/bodyfmtConfig.cmake
   ${PROJECT_BINARY_DIR}/bodyfmtConfigVersion.cmake
   DESTINATION ${BODYFMT_INSTALL_CMAKEDIR})
-install(FILES ${PROJECT_SOURCE_DIR}/LICENSE DESTINATION ${CMAKE_INSTALL_DATADIR}/doc/bodyfmt)
+# The manual next to the licence, in the folders the tools' --help names them by (docs/rules.md,
+# dynamics/README.md), so that a path in --help is a path under share/doc/bodyfmt.
+install(FILES ${PROJECT_SOURCE_DIR}/LICENSE ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DATADIR}/doc/bodyfmt)
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/ DESTINATION ${CMAKE_INSTALL_DATADIR}/doc/bodyfmt/docs)
+install(FILES ${PROJECT_SOURCE_DIR}/dynamics/README.md DESTINATION ${CMAKE_INSTALL_DATADIR}/doc/bodyfmt/dynamics)

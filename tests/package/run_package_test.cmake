@@ -43,6 +43,30 @@ if(at EQUAL -1)
   message(FATAL_ERROR "package test: bodyfmt was found outside the scratch prefix: ${found_dir}")
 endif()
 
+# Every document an installed tool's --help points at is installed, under the same relative path
+# in share/doc/bodyfmt (issue 40: only LICENSE was there while --help named docs/rules.md).
+set(doc_dir "${prefix}/share/doc/bodyfmt")
+file(GLOB installed_tools "${prefix}/bin/*")
+set(named_docs 0)
+foreach(tool IN LISTS installed_tools)
+  foreach(sub "" check-tank check run)
+    if(sub AND NOT tool MATCHES "bodysim$")
+      continue()
+    endif()
+    execute_process(COMMAND "${tool}" ${sub} --help OUTPUT_VARIABLE help ERROR_QUIET RESULT_VARIABLE rc)
+    string(REGEX MATCHALL "[A-Za-z_-]+/[A-Za-z_.-]+\\.md" docs "${help}")
+    foreach(doc IN LISTS docs)
+      math(EXPR named_docs "${named_docs} + 1")
+      if(NOT EXISTS "${doc_dir}/${doc}")
+        message(FATAL_ERROR "package test: ${tool} ${sub} --help names ${doc}, which is not installed in ${doc_dir}")
+      endif()
+    endforeach()
+  endforeach()
+endforeach()
+if(named_docs LESS 3 OR NOT EXISTS "${doc_dir}/README.md" OR NOT EXISTS "${doc_dir}/docs/rules.md")
+  message(FATAL_ERROR "package test: the manual is not installed in ${doc_dir} (${named_docs} documents named by --help)")
+endif()
+
 run("run" "${consumer_build}/package_consumer" "${SOURCE_DIR}/examples/simpletank.body")
 
 # The installed tools link libbodyfmt statically and look for the assimp module in the library

@@ -6,6 +6,7 @@
 #include "fix_run.h"
 #include "front.h"
 #include "output_guard.h"
+#include "text_view.h"
 
 #include <bodyfmt/derived.h>
 #include <bodyfmt/rules.h>
@@ -56,9 +57,11 @@ struct Settings {
   std::string output;
   bool stats = false;
   bool list_rules = false;
+  std::string explain;
   int jobs = 0;
   bool fix = false;
   bool git_models = false;
+  std::string min_severity = "note";
   tools::FixSettings fixing;
 };
 
@@ -116,6 +119,19 @@ void print_rules(std::ostream& out) {
   for (const auto& rule : all_rules()) width = std::max(width, rule.id.size());
   for (const auto& rule : all_rules())
     out << fmt::format("{:<{}}  {:<11}  {}\n", rule.id, width, severity_name(rule.default_severity), rule.summary);
+}
+
+/// `--explain RULE`: the rule's row of the table (what docs/rules.md shows) in words.
+void explain_rule(std::ostream& out, const RuleInfo& rule) {
+  out << fmt::format("{}: {} by default\n", rule.id, severity_name(rule.default_severity));
+  out << fmt::format("  what:      {}\n", rule.summary);
+  out << fmt::format("  why:       {}\n", rule.rationale);
+  if (!rule.tolerance.empty()) out << fmt::format("  threshold: {}\n", rule.tolerance);
+  if (!rule.fix.empty()) out << fmt::format("  fix-it:    {}\n", rule.fix);
+  out << fmt::format(
+      "  settings:  --disable {0}, --severity {0}=note|warning|error (or `disable:` and `severity:` in "
+      ".bodycheck.yaml), `# bodycheck: disable={0}` on a line\n",
+      rule.id);
 }
 
 /// The files to check: `files` (from --git-models), each named file, and every *.body below each
@@ -307,8 +323,13 @@ bool write_report(tools::Front& front, const Report& report, const Settings& set
     out << format_sarif_report(report, tool);
   } else {
     const bool terminal = settings.output.empty() && ::isatty(STDOUT_FILENO) != 0;
-    write_text_report(out, report, front.sources(), front.text_options(terminal));
-    if (!front.quiet()) out << format_summary_line(report);
+    tools::TextView view;
+    view.text = front.text_options(terminal);
+    view.min_severity = *tools::parse_rule_severity(settings.min_severity);
+    view.summary = !front.quiet();
+    if (settings.git_models) view.paths.push_back("--git-models");
+    view.paths.insert(view.paths.end(), front.inputs().begin(), front.inputs().end());
+    tools::write_text_view(out, report, front.sources(), view);
   }
   if (settings.stats) {
     std::string lines;
@@ -334,8 +355,20 @@ int main(int argc, char** argv) {
   Settings settings;
   CLI::App& app = front.app();
   app.add_option("--format", settings.format, "output format")->check(CLI::IsMember({"text", "json", "sarif"}));
+  app.add_option("--min-severity", settings.min_severity,
+                 "text format: print only findings at or above this severity (note, warning or error; every "
+                 "finding is still counted, and JSON and SARIF keep them all)")
+      ->check(CLI::IsMember({"note", "warning", "error"}));
   app.add_flag("--stats", settings.stats, "print the number of findings per rule");
   app.add_flag("--list-rules", settings.list_rules, "list every rule with its default severity and exit");
+  app.add_option("--explain", settings.explain, "print the documentation of a rule (its row of docs/rules.md) and exit")
+      ->check(
+          [](const std::string& id) {
+            return find_rule(id)                    ? std::string()
+                   : check_rule_pattern(id).empty() ? "not a rule id: " + id
+                                                    : check_rule_pattern(id);
+          },
+          "RULE");
   app.add_option("-o,--output", settings.output, "write the report to this file instead of stdout");
   app.add_option("-j,--jobs", settings.jobs, "worker threads (default: 2 to 4, by the cores available)")
       ->check(CLI::Range(1, 64));
@@ -362,6 +395,10 @@ int main(int argc, char** argv) {
   if (auto code = front.parse(argc, argv)) return *code;
   if (settings.list_rules) {
     print_rules(std::cout);
+    return tools::kExitClean;
+  }
+  if (!settings.explain.empty()) {
+    explain_rule(std::cout, *find_rule(settings.explain));
     return tools::kExitClean;
   }
   std::vector<std::string> tracked;

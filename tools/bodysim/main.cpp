@@ -99,8 +99,19 @@ void add_simulation_options(CLI::App& app, dynamics::SimOptions& sim, std::size_
   app.add_option("--contact", sim.contact_model,
                  "floor contact: points (collision-shape vertices, the default) or simbody (Simbody's compliant "
                  "contact: Bricks and elastic-foundation meshes against a half-space)")
-      ->transform(CLI::CheckedTransformer(std::map<std::string, dynamics::ContactModel>{
-          {"points", dynamics::ContactModel::kPoints}, {"simbody", dynamics::ContactModel::kSimbody}}));
+      ->transform(CLI::Validator(
+          [](std::string& value) {
+            // The names are all a user sees, in --help and in errors, never the enum's
+            // numbers (issue 40); CLI11 converts the number the name is replaced by.
+            static const std::map<std::string, dynamics::ContactModel> kModels = {
+                {"points", dynamics::ContactModel::kPoints}, {"simbody", dynamics::ContactModel::kSimbody}};
+            const auto model = kModels.find(value);
+            if (model == kModels.end()) return "must be points or simbody, not " + value;
+            value = std::to_string(static_cast<int>(model->second));
+            return std::string();
+          },
+          "{points,simbody}"))
+      ->type_name("TEXT");
   app.add_option("--friction", sim.contact_params.friction, "Coulomb friction with the floor (default 0.5)")
       ->check(tools::finite_number_in(0.0, 10.0));
   app.add_option("--contact-depth", sim.contact_params.reference_depth,

@@ -4,6 +4,7 @@
 //   enable: [units-degree-looks-radian]       # wins over disable
 //   fail_on: warning                          # or error
 //   werror: true
+//   severity: {joint-id-on-fixed: error, inertia-*: note}   # raise or lower a rule
 //
 // Read with libbodyfmt's YAML API (bodyfmt/yaml.h), so that the config and the body files share
 // one YAML dialect, one bounded file reader and 1-based positions like every other diagnostic.
@@ -52,6 +53,31 @@ bool read_rules(YamlReader& r, const YamlNode& node, const std::string& key, std
   return ok;
 }
 
+/// `severity: {RULE: LEVEL, ...}`.
+void read_severities(YamlReader& r, const YamlNode& node, std::vector<std::pair<std::string, Severity>>& out) {
+  if (node.is_null()) return;
+  if (!node.is_mapping()) {
+    r.error(node, "'severity' must be a mapping of rule ids to note, warning or error",
+            "e.g. severity: {joint-id-on-fixed: error}");
+    return;
+  }
+  for (const YamlEntry& entry : node.entries()) {
+    const std::string id(entry.key);
+    const std::string problem = check_rule_pattern(id);
+    if (!problem.empty()) {
+      r.error(entry.key_location, problem);
+      continue;
+    }
+    const std::optional<Severity> level =
+        entry.value.is_scalar() ? parse_rule_severity(entry.value.scalar()) : std::nullopt;
+    if (!level) {
+      r.error(entry.value, "the severity of '" + id + "' must be note, warning or error");
+      continue;
+    }
+    out.emplace_back(id, *level);
+  }
+}
+
 std::optional<CheckConfig> read_document(std::optional<YamlDocument> document, CollectingSink& yaml_sink,
                                          const std::string& path, DiagnosticSink& sink) {
   YamlReader r(sink, kRule);
@@ -70,10 +96,10 @@ std::optional<CheckConfig> read_document(std::optional<YamlDocument> document, C
   const YamlNode root = document->root();
   if (root.is_null()) return config;  // an empty file is a valid, empty config
   if (!root.is_mapping()) {
-    r.error(root, "a .bodycheck.yaml must be a mapping", "keys: disable, enable, fail_on, werror");
+    r.error(root, "a .bodycheck.yaml must be a mapping", "keys: disable, enable, fail_on, werror, severity");
     return std::nullopt;
   }
-  r.known_keys(root, {"disable", "enable", "fail_on", "werror"}, ".bodycheck.yaml");
+  r.known_keys(root, {"disable", "enable", "fail_on", "werror", "severity"}, ".bodycheck.yaml");
   for (const YamlEntry& entry : root.entries()) {
     const std::string key(entry.key);
     const YamlNode& value = entry.value;
@@ -88,6 +114,8 @@ std::optional<CheckConfig> read_document(std::optional<YamlDocument> document, C
       } else {
         r.error(value, "'fail_on' must be 'error' or 'warning'");
       }
+    } else if (key == "severity") {
+      read_severities(r, value, config.severity);
     } else if (key == "werror") {
       if (std::optional<bool> b = r.boolean(value, "'werror'")) config.werror = *b;
     }
@@ -97,6 +125,13 @@ std::optional<CheckConfig> read_document(std::optional<YamlDocument> document, C
 }
 
 }  // namespace
+
+std::optional<Severity> parse_rule_severity(std::string_view level) {
+  if (level == "note") return Severity::kNote;
+  if (level == "warning") return Severity::kWarning;
+  if (level == "error") return Severity::kError;
+  return std::nullopt;
+}
 
 std::string find_config(const std::string& file) {
   namespace fs = std::filesystem;

@@ -6,6 +6,8 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 namespace bodyfmt::tools {
@@ -17,7 +19,12 @@ struct CheckConfig {
   std::vector<std::string> enable;
   std::optional<Severity> fail_on;  ///< kWarning or kError
   std::optional<bool> werror;
+  /// `severity: {RULE: LEVEL}`: rule ids or patterns with note, warning or error, in file order.
+  std::vector<std::pair<std::string, Severity>> severity;
 };
+
+/// note, warning or error (the severities a policy may give a rule); nullopt otherwise.
+std::optional<Severity> parse_rule_severity(std::string_view level);
 
 /// The nearest `.bodycheck.yaml`, walking up from the directory of `file` (made absolute
 /// first). Empty when there is none up to the file system root.

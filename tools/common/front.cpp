@@ -96,6 +96,22 @@ void watch_stdout(const std::string& tool_name) {
   std::atexit(check_stdout_at_exit);
 }
 
+/// `RULE=LEVEL` of --severity, split at the last '='.
+std::pair<std::string, std::string> split_severity(const std::string& value) {
+  const std::size_t equals = value.rfind('=');
+  if (equals == std::string::npos) return {value, ""};
+  return {value.substr(0, equals), value.substr(equals + 1)};
+}
+
+std::string check_severity(const std::string& value) {
+  const auto [rule, level] = split_severity(value);
+  if (value.find('=') == std::string::npos) return "expected RULE=LEVEL, e.g. joint-id-on-fixed=error";
+  const std::string problem = check_rule_pattern(rule);
+  if (!problem.empty()) return problem;
+  if (!parse_rule_severity(level)) return "the level of " + rule + " must be note, warning or error";
+  return {};
+}
+
 bool regular_file(const std::string& path) {
   struct stat st {};
   return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
@@ -162,6 +178,13 @@ void Front::add_options() {
       ->allow_extra_args(false)
       ->delimiter(',')
       ->check(check_patterns, "RULE")
+      ->group(policy);
+  app_.add_option("--severity", severities_,
+                  "give a rule (or a family) a severity: RULE=note, RULE=warning or RULE=error, over .bodycheck.yaml "
+                  "(repeatable, or comma-separated)")
+      ->allow_extra_args(false)
+      ->delimiter(',')
+      ->check(check_severity, "RULE=LEVEL")
       ->group(policy);
   fail_on_option_ = app_.add_option("--fail-on", fail_on_, "lowest severity that fails the run (default error)")
                         ->check(CLI::IsMember({"error", "warning"}))
@@ -265,6 +288,11 @@ std::optional<Front::FilePolicy> Front::policy_for(const std::string& file) {
   }
   FilePolicy policy;
   policy.options.disable = disabled_rules(disable_, enable_, config);
+  if (config) policy.options.severities = config->severity;
+  for (const std::string& value : severities_) {
+    const auto [rule, level] = split_severity(value);
+    policy.options.severities.emplace_back(rule, *parse_rule_severity(level));
+  }
   policy.options.werror = werror_option_->count() > 0 ? werror_ : (config && config->werror && *config->werror);
   policy.options.strict = strict_;
   if (fail_on_option_->count() > 0)

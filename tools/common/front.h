@@ -129,6 +129,7 @@ class Front {
   std::vector<std::string> package_paths_;
   bool no_meshes_ = false;
   std::vector<std::string> enable_, disable_;
+  std::vector<std::string> severities_;  ///< --severity RULE=LEVEL, checked when parsed
   std::string fail_on_;
   bool werror_ = false;
   bool quiet_ = false;

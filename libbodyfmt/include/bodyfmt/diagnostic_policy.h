@@ -3,8 +3,8 @@
 ///
 /// Stages report with the rule table's default severities and know nothing about the run.
 /// A DiagnosticPolicy wraps the sink they report to and applies, in this order: per-rule
-/// enable/disable, inline suppressions (`# bodycheck: disable=RULE`), `strict` (`export-loss`
-/// becomes an error) and `werror` (warnings become errors). It counts what it forwards by
+/// enable/disable, inline suppressions (`# bodycheck: disable=RULE`), per-rule severities,
+/// `strict` (`export-loss` becomes an error) and `werror` (warnings become errors). It counts what it forwards by
 /// severity and by rule. It never throws. Fatal diagnostics are never dropped or changed.
 ///
 /// The `.bodycheck.yaml` file that sets these options for a folder is the tools' business
@@ -30,6 +30,9 @@ namespace BODYFMT_API bodyfmt {
 struct PolicyOptions {
   std::vector<std::string> disable;
   std::vector<std::string> enable;
+  /// Per-rule severities, (rule pattern, note/warning/error), applied before `werror`; a later
+  /// entry matching the same rule wins (a config's first, then the command line's).
+  std::vector<std::pair<std::string, Severity>> severities;
   bool werror = false;  ///< warnings become errors
   bool strict = false;  ///< `export-loss` findings become errors (converters)
   bool inline_suppressions = true;
@@ -109,6 +112,7 @@ class DiagnosticPolicy : public DiagnosticSink {
   PolicyOptions options_;
   std::map<std::string, Suppressions> suppressions_;
   std::map<std::string, bool> enabled_cache_;
+  std::map<std::string, std::optional<Severity>> severity_cache_;
   int counts_[4] = {0, 0, 0, 0};
   std::map<std::string, int> by_rule_;
   int disabled_ = 0;

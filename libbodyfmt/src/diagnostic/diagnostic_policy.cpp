@@ -222,6 +222,16 @@ void DiagnosticPolicy::report(Diagnostic d) {
           return;
         }
       }
+      if (!options_.severities.empty()) {
+        auto set = severity_cache_.find(d.rule_id);
+        if (set == severity_cache_.end()) {
+          std::optional<Severity> chosen;
+          for (const auto& [pattern, severity] : options_.severities)
+            if (rule_pattern_matches(pattern, d.rule_id)) chosen = severity;
+          set = severity_cache_.emplace(d.rule_id, chosen).first;
+        }
+        if (set->second) d.severity = *set->second;
+      }
       if (options_.strict && d.severity < Severity::kError && rule_pattern_matches("export-loss*", d.rule_id))
         d.severity = Severity::kError;
       if (options_.werror && d.severity == Severity::kWarning) d.severity = Severity::kError;

@@ -55,7 +55,15 @@ std::vector<RuleInfo> make_table() {
        "2.0 is snake_case keys and degrees only; converting radian values by hand is error-prone (per-key rules)", ""},
       {"load-unknown-key", W, "an unknown key close to a known one (probable typo)",
        "Choreonoid ignores it silently, so the intended value is lost",
-       "edit distance <= 1 (4-7 characters) or 2 (8+ characters), transpositions count once"},
+       "edit distance <= 1 (the longer word 4-7 characters) or 2 (8+ characters), transpositions count once"},
+      {"load-unknown-model-key", E,
+       "an unknown key close to a key that changes the model (probable typo of mass, inertia, center_of_mass, "
+       "translation, rotation, scale, parent, joint_type, joint_axis, joint_range, joint_angle, "
+       "joint_displacement, max_joint_velocity, joint_velocity_range, max_joint_effort, joint_axis_inertia, "
+       "rotor_inertia, gear_ratio, elements, geometry, size, radius, height)",
+       "Choreonoid ignores it silently, so the model is loaded with the default value (a 1 kg link, a joint about Z, "
+       "an unlimited joint)",
+       "as load-unknown-key; snake_case and camelCase spellings are both candidates"},
       {"load-info-key", N, "a key the format does not define", "Choreonoid keeps it as info for other subsystems", ""},
       {"load-ignored-key", W, "a key Choreonoid reads under another name or not at all", "its value has no effect", ""},
       {"load-ignored-value", W, "a value Choreonoid ignores (wrong type for an optional key)",
@@ -202,6 +210,14 @@ std::vector<RuleInfo> make_table() {
        "format 2.0 angles are degrees: [-1.57, 1.57] is +-1.57 degrees",
        "finite limits all within 2pi+0.002 (as written), one non-zero, and either one within 0.002 of k*pi/12 (k = "
        "1..24) or all within pi+0.002 and none a whole number"},
+      {"units-range-looks-degree", E, "a revolute range in a radian file (angle_unit: radian) looks like degrees",
+       "[-90, 90] read in radians lets the joint turn 14 times each way",
+       "a finite limit beyond 2pi+0.002, none beyond 360 (as written), and every one beyond 2pi a multiple of 0.5"},
+      {"units-velocity-looks-degree", E,
+       "a revolute velocity limit in a radian file (angle_unit: radian) looks like deg/s",
+       "max_joint_velocity: 180 read in rad/s lets the joint turn 29 times a second",
+       "a finite limit beyond 16pi rad/s (8 turns a second), none beyond 3600 (as written), and every one beyond "
+       "16pi a multiple of 0.5"},
       {"units-prismatic-millimetres", W, "a prismatic range beyond 10 m",
        "prismatic ranges are metres; millimetres make the limit 1000x too wide", "|limit| > 10 m"},
       {"units-mesh-millimetres", W, "a mesh in metres that is far too large for its link",
@@ -301,6 +317,7 @@ std::vector<RuleInfo> make_table() {
       {"load-legacy-key", "safe: the snake_case spelling (key or joint type value)"},
       {"load-format-upgrade", "upgrade: format_version 2.0, angle_unit degree, radian values in degrees (spec §3)"},
       {"load-unknown-key", "unsafe: the did-you-mean key (the value is then read, so the model changes)"},
+      {"load-unknown-model-key", "unsafe: the did-you-mean key (the value is then read, so the model changes)"},
   };
   for (RuleInfo& rule : rules)
     for (const auto& [id, fix] : fixes)

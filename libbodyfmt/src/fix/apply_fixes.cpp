@@ -158,7 +158,10 @@ std::string unified_diff(std::string_view before, std::string_view after, const 
   for (std::size_t i = 0; i < tail; ++i) push(Op::kKeep);
 
   constexpr std::size_t kContext = 3;
-  std::string out = "--- a/" + name + "\n+++ b/" + name + "\n";
+  // An absolute path is written as git writes one (`a/tmp/x.body`, not `a//tmp/x.body`), so that
+  // `patch -p1` run from the root applies it.
+  const std::string shown = name.substr(std::min(name.find_first_not_of('/'), name.size()));
+  std::string out = "--- a/" + shown + "\n+++ b/" + shown + "\n";
   std::size_t i = 0;
   while (i < steps.size()) {
     if (steps[i].op == Op::kKeep) {

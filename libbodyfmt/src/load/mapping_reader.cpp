@@ -94,6 +94,58 @@ bool MappingReader::has_unknown() const {
   return false;
 }
 
+namespace {
+
+/// Keys whose value changes the model's kinematics, dynamics or collision shapes: a typo of one
+/// silently leaves a default in place (a 1 kg link, a joint about Z, an unlimited joint), so it
+/// is an error. The modern spellings; legacy ones are mapped to these first.
+bool changes_model(std::string_view key) {
+  static constexpr std::string_view kModelKeys[] = {"mass",
+                                                    "inertia",
+                                                    "center_of_mass",
+                                                    "translation",
+                                                    "rotation",
+                                                    "scale",
+                                                    "parent",
+                                                    "joint_type",
+                                                    "joint_axis",
+                                                    "joint_range",
+                                                    "joint_angle",
+                                                    "joint_displacement",
+                                                    "max_joint_velocity",
+                                                    "joint_velocity_range",
+                                                    "max_joint_effort",
+                                                    "joint_axis_inertia",
+                                                    "rotor_inertia",
+                                                    "gear_ratio",
+                                                    "elements",
+                                                    "geometry",
+                                                    "size",
+                                                    "radius",
+                                                    "height"};
+  return std::find(std::begin(kModelKeys), std::end(kModelKeys), key) != std::end(kModelKeys);
+}
+
+/// The closest candidate within the typo distance: 1 for words of 4 to 7 characters and 2 from
+/// 8, counted on the longer of the two words, so that a dropped letter of a 4-letter key (`mas`)
+/// is caught while two 3-letter words are never taken for one another.
+std::string_view closest_key(std::string_view key, const std::vector<std::string_view>& candidates) {
+  std::string_view best;
+  int best_distance = 1 << 30;
+  for (std::string_view candidate : candidates) {
+    const std::size_t longer = std::max(key.size(), candidate.size());
+    const int allowed = longer >= 8 ? 2 : (longer >= 4 ? 1 : 0);
+    const int d = text::edit_distance(key, candidate);
+    if (d <= allowed && d < best_distance) {
+      best_distance = d;
+      best = candidate;
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
 void MappingReader::report_unknown(const std::vector<std::string_view>& known) {
   if (!has_unknown()) return;
   // Legacy spellings are candidates too (a typo of `jointRange` is closer to it than to
@@ -107,7 +159,8 @@ void MappingReader::report_unknown(const std::vector<std::string_view>& known) {
   for (std::size_t i = 0; i < mapping_->entries().size(); ++i) {
     const yaml::MapEntry& entry = mapping_->entries()[i];
     if (consumed(i) || entry.merged) continue;
-    std::string_view guess = text::suggest(entry.key, candidates);
+    const std::string_view match = closest_key(entry.key, candidates);
+    std::string_view guess = match;
     if (std::string_view modern = modern_of(guess); !modern.empty()) guess = modern;
     if (!guess.empty()) {
       // The rename is a fix-it only when the guess is the one candidate that close and no
@@ -115,10 +168,15 @@ void MappingReader::report_unknown(const std::vector<std::string_view>& known) {
       std::vector<FixIt> fixes;
       if (unique_guess(entry.key, candidates, guess) && !mapping_->find(guess) && !has_spelling_of(guess))
         if (auto fix = edit_key(entry, std::string(guess), FixSafety::kUnsafe)) fixes.push_back(std::move(*fix));
-      ctx_.report("load-unknown-key", entry.key_location,
+      // A second spelling of a key read under another (`jointType` beside `joint_type`) is no
+      // typo: the value read is the one written, so it stays a warning.
+      const bool physical = changes_model(guess) && entry.key != match;
+      ctx_.report(physical ? "load-unknown-model-key" : "load-unknown-key", entry.key_location,
                   "unknown key \"" + std::string(entry.key) + "\" in " + what_ + "; did you mean \"" +
-                      std::string(guess) + "\"?",
-                  "Choreonoid ignores it; rename it to " + std::string(guess), std::move(fixes));
+                      std::string(guess) + "\"?" +
+                      (physical ? " Choreonoid ignores it, so " + std::string(guess) + " keeps its default" : ""),
+                  (physical ? "" : "Choreonoid ignores it; ") + std::string("rename it to ") + std::string(guess),
+                  std::move(fixes));
     } else {
       ctx_.report("load-info-key", entry.key_location,
                   "key \"" + std::string(entry.key) + "\" is not part of the " + what_ + " format; it is kept as info");

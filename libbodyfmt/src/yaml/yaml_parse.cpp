@@ -5,6 +5,7 @@
 // bodycheck run. A DOM is not built first: a node reached through an alias must keep its use site
 // (toolchain.md §3), and the expansion and depth budgets are applied while the events arrive.
 
+#include "yaml/syntax_words.h"
 #include "yaml/yaml_node.h"
 
 #include <bodyfmt/rules.h>
@@ -224,6 +225,15 @@ class TreeBuilder {
         SourceLocation context = location(parser.context_mark);
         message += " (" + std::string(parser.context) + " at line " + std::to_string(context.line) + ", column " +
                    std::to_string(context.column) + ")";
+      }
+    }
+    // The user's terms first (a tab, a line indented unlike its neighbours); libyaml's words,
+    // which name the parser's state, stay as the note.
+    if (parser.error != YAML_READER_ERROR && utf8_) {
+      if (std::optional<SyntaxWords> words = syntax_in_words(text_, where.line)) {
+        report("yaml-syntax", SourceLocation{file_, words->line, words->column}, std::move(words->message),
+               "libyaml: " + message);
+        throw ParseAborted{};
       }
     }
     report("yaml-syntax", std::move(where), std::move(message));

@@ -46,6 +46,26 @@ TEST_CASE("policy: disable drops a rule and enable wins, families match by prefi
   CHECK(policy.enabled("units-prismatic-millimetres"));
 }
 
+TEST_CASE("policy: per-rule severities raise or lower a rule, the last match wins, werror comes after") {
+  CollectingSink out;
+  PolicyOptions options;
+  options.severities = {
+      {"yaml-*", Severity::kError}, {"yaml-duplicate-key", Severity::kNote}, {"load-info-key", Severity::kWarning}};
+  options.werror = true;
+  DiagnosticPolicy policy(out, options);
+  policy.report(make(1, Severity::kWarning, "yaml-duplicate-key"));
+  policy.report(make(2, Severity::kWarning, "yaml-empty-key"));
+  policy.report(make(3, Severity::kNote, "load-info-key"));
+  policy.report(make(4, Severity::kWarning, "load-legacy-key"));
+  policy.report(make(5, Severity::kFatal, "yaml-syntax"));  // fatal stays fatal
+  REQUIRE(out.diagnostics().size() == 5);
+  CHECK(out.diagnostics()[0].severity == Severity::kNote);
+  CHECK(out.diagnostics()[1].severity == Severity::kError);
+  CHECK(out.diagnostics()[2].severity == Severity::kError);  // raised to a warning, then werror
+  CHECK(out.diagnostics()[3].severity == Severity::kError);
+  CHECK(out.diagnostics()[4].severity == Severity::kFatal);
+}
+
 TEST_CASE("policy: werror turns warnings into errors, strict turns export-loss into an error") {
   CollectingSink out;
   PolicyOptions options;

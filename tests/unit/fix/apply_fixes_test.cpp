@@ -61,6 +61,8 @@ TEST_CASE("unified_diff: diff -u hunks with 3 lines of context, split by 7 uncha
         "@@ -1,5 +1,5 @@\n l1\n-l2\n+L2\n l3\n l4\n l5\n"
         "@@ -14,7 +14,7 @@\n l14\n l15\n l16\n-l17\n+L17\n l18\n l19\n l20\n");
   CHECK(unified_diff(before, before, "f.body").empty());
+  // An absolute path as git writes it: one slash after a/ and b/.
+  CHECK(unified_diff("a\n", "b\n", "/tmp/m/f.body") == "--- a/tmp/m/f.body\n+++ b/tmp/m/f.body\n@@ -1 +1 @@\n-a\n+b\n");
   // Line counts that differ go through the general edit script; a missing final newline is marked.
   CHECK(unified_diff("a\nb\nc", "a\nc\nd\n", "g") ==
         "--- a/g\n+++ b/g\n@@ -1,3 +1,3 @@\n a\n-b\n-c\n\\ No newline at end of file\n+c\n+d\n");

@@ -40,7 +40,7 @@ links:
   CHECK((r.has("load-unknown-key") || r.has("load-info-key")));
 }
 
-TEST_CASE("load: a misspelt link key is load-unknown-key with did-you-mean") {
+TEST_CASE("load: a misspelt joint_range is load-unknown-model-key, an error with did-you-mean") {
   auto r = load_v2(R"(
 links:
   - name: A
@@ -49,8 +49,8 @@ links:
     joint_type: revolute
     jointRnage: [-90, 90]
 )");
-  auto d = r.take("load-unknown-key");
-  CHECK(d.severity == bodyfmt::Severity::kWarning);
+  auto d = r.take("load-unknown-model-key");
+  CHECK(d.severity == bodyfmt::Severity::kError);
   CHECK(pos(d) == Pos{8, 5});  // the key, not the value
   CHECK(d.fix_hint.find("joint_range") != std::string::npos);
   // Ignored: the range stays unlimited.
@@ -58,16 +58,75 @@ links:
   r.expect_clean();
 }
 
-TEST_CASE("load: a snake_case typo of a link key is load-unknown-key") {
+TEST_CASE("load: a snake_case typo of a link key is load-unknown-model-key") {
   auto r = load_v2(R"(
 links:
   - name: A
     center_of_mas: [0, 0, 1]
 )");
-  auto d = r.take("load-unknown-key");
+  auto d = r.take("load-unknown-model-key");
   CHECK(pos(d) == Pos{5, 5});
   CHECK(d.fix_hint.find("center_of_mass") != std::string::npos);
   CHECK(r.link("A").mass_contributions.empty());
+  r.expect_clean();
+}
+
+// The three typos of issue 40: each leaves a default in place (1 kg, an unlimited joint, a joint
+// about Z), so each is an error at the key with the key it resembles, snake_case or camelCase.
+TEST_CASE("load: typos of keys that change the model are errors naming the key") {
+  const struct {
+    const char* key;
+    const char* meant;
+  } typos[] = {{"mas", "mass"},
+               {"joint_rnage", "joint_range"},
+               {"joint_axsi", "joint_axis"},
+               {"jointAxsi", "joint_axis"},
+               {"centerOfMas", "center_of_mass"},
+               {"inertai", "inertia"},
+               {"translaton", "translation"},
+               {"rotaton", "rotation"},
+               {"max_joint_velocty", "max_joint_velocity"},
+               {"maxJointVelocty", "max_joint_velocity"}};
+  for (const auto& typo : typos) {
+    CAPTURE(typo.key);
+    auto r = load_v2(std::string("links:\n  - name: A\n  - name: B\n    parent: A\n    joint_type: revolute\n    ") +
+                     typo.key + ": 1\n");
+    auto d = r.take("load-unknown-model-key");
+    CHECK(d.severity == bodyfmt::Severity::kError);
+    CHECK(pos(d) == Pos{8, 5});  // load_v2's two header lines come first
+    CHECK(d.message.find(std::string("did you mean \"") + typo.meant + "\"?") != std::string::npos);
+    REQUIRE(d.fixes.size() == 1);
+    CHECK(d.fixes[0].replacement == typo.meant);
+    CHECK(d.fixes[0].safety == bodyfmt::FixSafety::kUnsafe);
+    r.expect_clean();
+  }
+}
+
+TEST_CASE("load: a typo of a key that does not change the model stays a warning") {
+  auto r = load_v2(R"(
+links:
+  - name: A
+  - name: B
+    parent: A
+    joint_type: revolute
+    joint_nmae: J
+)");
+  auto d = r.take("load-unknown-key");
+  CHECK(d.severity == bodyfmt::Severity::kWarning);
+  CHECK(d.message.find("joint_name") != std::string::npos);
+  r.expect_clean();
+}
+
+TEST_CASE("load: a short key two edits from every known key is kept as info") {
+  // `ma` is two edits from `mass`: no typo is assumed below the distance the key lengths allow.
+  auto r = load_v2(R"(
+links:
+  - name: A
+    ma: 1
+    jid: 2
+)");
+  CHECK(r.take("load-info-key").severity == bodyfmt::Severity::kNote);
+  CHECK(r.take("load-info-key").severity == bodyfmt::Severity::kNote);
   r.expect_clean();
 }
 

@@ -5,6 +5,8 @@
 
 #include "support/run_command.h"
 
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 namespace {
@@ -47,6 +49,74 @@ TEST_CASE("bodycheck: --fail-on, --werror and --disable decide the exit code") {
   CHECK(disabled.status == 0);
   CHECK(contains(disabled.output, "1 disabled"));
   CHECK(bodycheck("--disable load-joint-type defective.body").status == 0);
+}
+
+TEST_CASE("bodycheck: --severity and a config's severity: raise or lower one rule") {
+  Run raised = bodycheck("--severity yaml-duplicate-key=error warning.body");
+  CHECK(raised.status == 1);
+  CHECK(contains(raised.output, "warning.body:11:5: error: duplicate key \"mass\""));
+  Run lowered = bodycheck("--severity load-joint-type=warning defective.body");
+  CHECK(lowered.status == 0);
+  CHECK(contains(lowered.output, "warning: illegal joint type"));
+  // The last setting of a rule wins; --werror still applies after it.
+  CHECK(bodycheck("--severity yaml-duplicate-key=error,yaml-duplicate-key=note warning.body").status == 0);
+  CHECK(bodycheck("--severity yaml-duplicate-key=note --werror warning.body").status == 0);
+  CHECK(bodycheck("--severity yaml-*=warning --werror warning.body").status == 1);
+  Run bad = bodycheck("--severity yaml-duplicat-key=error warning.body");
+  CHECK(bad.status == 2);
+  CHECK(contains(bad.output, "did you mean 'yaml-duplicate-key'"));
+  CHECK(bodycheck("--severity yaml-duplicate-key=fatal warning.body").status == 2);
+  CHECK(bodycheck("--severity yaml-duplicate-key warning.body").status == 2);
+}
+
+TEST_CASE("bodycheck: --explain prints a rule's documentation") {
+  Run r = bodycheck("--explain load-unknown-model-key", false);
+  CHECK(r.status == 0);
+  CHECK(r.output.rfind("load-unknown-model-key: error by default\n  what:      an unknown key close to a key that "
+                       "changes the model",
+                       0) == 0);
+  CHECK(contains(r.output, "  fix-it:    unsafe: the did-you-mean key"));
+  CHECK(contains(r.output, "--severity load-unknown-model-key=note|warning|error"));
+  CHECK(bodycheck("--explain load-unknown").status == 2);
+}
+
+TEST_CASE("bodycheck: errors first, repeats folded, --min-severity, and the --fix command in the summary") {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "bodyfmt_bodycheck_view_test";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  // Four legacy keys (warnings with a safe fix-it) before an error on line 12.
+  std::ofstream(dir / "m.body") << "format: ChoreonoidBody\nformat_version: 2.0\nlinks:\n"
+                                   "  - name: A\n    jointType: free\n    centerOfMass: [0, 0, 0]\n"
+                                   "    mass: 1\n    inertia: [1, 0, 0, 1, 0, 1]\n  - name: B\n    parent: A\n"
+                                   "    jointType: revolute\n    joint_axis: Q\n    jointRange: [-1, 1]\n"
+                                   "    jointId: 0\n    mass: 1\n    inertia: [1, 0, 0, 1, 0, 1]\n";
+  const std::string file = (dir / "m.body").string();
+  Run r = bodycheck("--no-config '" + file + "'", false);
+  CHECK(r.status == 1);
+  INFO(r.output);
+  CHECK(r.output.rfind(file + ":12:17: error: ", 0) == 0);  // the error first
+  CHECK(contains(r.output, file + ":5:5: warning: legacy key \"jointType\""));
+  // The line list wraps at 100 columns, so where depends on the length of the path.
+  CHECK(contains(r.output, file + ": note: 4 more [load-legacy-key] in this file, at lines 6,"));
+  CHECK(contains(r.output, " 11, 13, 14\n"));
+  CHECK(!contains(r.output, file + ":6:5: warning"));
+  CHECK(contains(r.output, "bodycheck: --min-severity error prints the errors only\n"));
+  CHECK(contains(r.output, "bodycheck: 5 findings have a safe fix-it: `bodycheck --fix " + file +
+                               "` applies them (add --dry-run to see the diff first)\n"));
+  Run errors = bodycheck("--no-config --min-severity error '" + file + "'", false);
+  CHECK(errors.status == 1);
+  CHECK(!contains(errors.output, "warning:"));
+  CHECK(contains(errors.output, "bodycheck: 1 file checked: 1 error, 5 warnings, 0 notes\n"));
+  CHECK(contains(errors.output, "bodycheck: 5 findings below error not shown (--min-severity)\n"));
+  // JSON keeps every finding whatever the view.
+  Run json = bodycheck("--no-config --min-severity error --format json '" + file + "'", false);
+  std::size_t rules = 0;
+  for (std::size_t at = json.output.find("\"rule\":"); at != std::string::npos;
+       at = json.output.find("\"rule\":", at + 1))
+    ++rules;
+  CHECK(rules == 6);
+  fs::remove_all(dir);
 }
 
 TEST_CASE("bodycheck: usage errors exit 2, unknown rule ids with did-you-mean") {

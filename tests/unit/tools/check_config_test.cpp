@@ -81,3 +81,27 @@ TEST_CASE("policy: a config that is not a regular file is refused before it is r
   REQUIRE(missing.diagnostics().size() == 1);
   CHECK(missing.diagnostics()[0].message == "cannot read the configuration file: no such file");
 }
+
+TEST_CASE("policy: severity in a config raises or lowers rules, located errors for a bad id or level") {
+  CollectingSink sink;
+  auto config = read_config_string("severity: {yaml-duplicate-key: error, inertia-*: note}\n", "c.yaml", sink);
+  REQUIRE(config);
+  CHECK(sink.diagnostics().empty());
+  REQUIRE(config->severity.size() == 2);
+  CHECK(config->severity[0] == std::pair<std::string, Severity>{"yaml-duplicate-key", Severity::kError});
+  CHECK(config->severity[1] == std::pair<std::string, Severity>{"inertia-*", Severity::kNote});
+
+  auto expect_error = [](const std::string& text, int line, int column, const std::string& fragment) {
+    CollectingSink errors;
+    CHECK(!read_config_string(text, "c.yaml", errors));
+    REQUIRE(errors.diagnostics().size() == 1);
+    const Diagnostic& d = errors.diagnostics()[0];
+    CHECK(d.rule_id == "config-invalid");
+    CHECK(d.location == SourceLocation{"c.yaml", line, column});
+    CHECK(d.message.find(fragment) != std::string::npos);
+  };
+  expect_error("severity: {yaml-duplicat-key: error}\n", 1, 12, "did you mean 'yaml-duplicate-key'");
+  expect_error("severity: {yaml-duplicate-key: fatal}\n", 1, 32, "must be note, warning or error");
+  expect_error("severity: [yaml-duplicate-key]\n", 1, 11, "'severity' must be a mapping");
+  expect_error("severty: {}\n", 1, 1, "did you mean 'severity'?");
+}

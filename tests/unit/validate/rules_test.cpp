@@ -180,6 +180,71 @@ links:
   CHECK_FALSE(sink.has("units-range-looks-radian"));
 }
 
+TEST_CASE("validate: units-range-looks-degree (a degree range in a radian file)") {
+  expect_finding("units-range-looks-degree.body", "units-range-looks-degree", {20, 18});
+  const auto result = bodyfmt::test::check_file(data("units-range-looks-degree.body"));
+  const Diagnostic* d = find(result.diagnostics, "units-range-looks-degree");
+  REQUIRE(d);
+  CHECK(d->severity == Severity::kError);
+  CHECK(d->fix_hint.find("[-1.5708, 1.5708]") != std::string::npos);
+}
+
+TEST_CASE("validate: units-velocity-looks-degree (deg/s in a radian file)") {
+  expect_finding("units-velocity-looks-degree.body", "units-velocity-looks-degree", {20, 25});
+  const auto result = bodyfmt::test::check_file(data("units-velocity-looks-degree.body"));
+  const Diagnostic* d = find(result.diagnostics, "units-velocity-looks-degree");
+  REQUIRE(d);
+  CHECK(d->severity == Severity::kError);
+  CHECK(d->fix_hint.find("3.1416") != std::string::npos);
+}
+
+// The thresholds of the two rules, each side: a limit beyond one turn (2pi + 0.002) that is a
+// multiple of 0.5 and at most 360 is a degree range; a velocity beyond 16pi rad/s, a multiple of
+// 0.5 and at most 3600 is deg/s. Radian values (pi, 2pi, 4pi as decimals), unlimited joints and
+// degree files are left alone.
+TEST_CASE("validate: units-*-looks-degree thresholds") {
+  const struct {
+    const char* unit;
+    const char* line;
+    const char* rule;  // expected, or nullptr
+  } cases[] = {
+      {"radian", "joint_range: [-90, 90]", "units-range-looks-degree"},
+      {"radian", "joint_range: [0, 360]", "units-range-looks-degree"},
+      {"radian", "joint_range: [-7, 7]", "units-range-looks-degree"},
+      {"radian", "joint_range: [-22.5, 0]", "units-range-looks-degree"},
+      {"radian", "joint_range: [-6.28, 6.28]", nullptr},
+      {"radian", "joint_range: [-6.285, 6.285]", nullptr},
+      {"radian", "joint_range: [-12.566, 12.566]", nullptr},
+      {"radian", "joint_range: [-3.14, 3.14]", nullptr},
+      {"radian", "joint_range: [-361, 361]", nullptr},
+      {"radian", "joint_range: [unlimited, unlimited]", nullptr},
+      {"radian", "joint_range: [-90, unlimited]", "units-range-looks-degree"},
+      {"degree", "joint_range: [-90, 90]", nullptr},
+      {"radian", "max_joint_velocity: 180", "units-velocity-looks-degree"},
+      {"radian", "max_joint_velocity: 51", "units-velocity-looks-degree"},
+      {"radian", "joint_velocity_range: [-90, 90]", "units-velocity-looks-degree"},
+      {"radian", "max_joint_velocity: 50", nullptr},
+      {"radian", "max_joint_velocity: 6.28", nullptr},
+      {"radian", "max_joint_velocity: 60.3", nullptr},
+      {"radian", "max_joint_velocity: 3601", nullptr},
+      {"degree", "max_joint_velocity: 180", nullptr},
+  };
+  for (const auto& c : cases) {
+    CAPTURE(c.unit);
+    CAPTURE(c.line);
+    const auto r =
+        bodyfmt::test::load(std::string("format: ChoreonoidBody\nformat_version: 1.0\nangle_unit: ") + c.unit +
+                            "\nlinks:\n  - name: BASE\n    joint_type: free\n  - name: A\n    parent: "
+                            "BASE\n    joint_type: revolute\n    " +
+                            c.line + "\n");
+    bodyfmt::CollectingSink sink;
+    const auto derived = bodyfmt::compute_derived(r.m(), sink);
+    bodyfmt::validate::check_model(r.m(), derived, {}, sink);
+    CHECK(sink.has("units-range-looks-degree") == (c.rule && std::string(c.rule) == "units-range-looks-degree"));
+    CHECK(sink.has("units-velocity-looks-degree") == (c.rule && std::string(c.rule) == "units-velocity-looks-degree"));
+  }
+}
+
 TEST_CASE("validate: units-prismatic-millimetres") {
   expect_finding("units-prismatic-millimetres.body", "units-prismatic-millimetres", {20, 18});
 }
@@ -216,7 +281,14 @@ TEST_CASE("validate: structure-root-link (loader)") {
 TEST_CASE("validate: load-unknown-key with a did-you-mean hint (loader)") {
   expect_finding("load-unknown-key.body", "load-unknown-key", {13, 5});
   const auto result = bodyfmt::test::check_file(data("load-unknown-key.body"));
-  CHECK(find(result.diagnostics, "load-unknown-key")->message.find("joint_range") != std::string::npos);
+  CHECK(find(result.diagnostics, "load-unknown-key")->message.find("joint_name") != std::string::npos);
+}
+TEST_CASE("validate: load-unknown-model-key, an error with a did-you-mean (loader)") {
+  expect_finding("load-unknown-model-key.body", "load-unknown-model-key", {13, 5});
+  const auto result = bodyfmt::test::check_file(data("load-unknown-model-key.body"));
+  const Diagnostic* d = find(result.diagnostics, "load-unknown-model-key");
+  CHECK(d->severity == Severity::kError);
+  CHECK(d->message.find("did you mean \"joint_range\"?") != std::string::npos);
 }
 TEST_CASE("validate: load-legacy-key (loader)") { expect_finding("load-legacy-key.body", "load-legacy-key", {11, 5}); }
 TEST_CASE("validate: yaml-duplicate-key (loader)") {

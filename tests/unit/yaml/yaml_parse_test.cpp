@@ -629,3 +629,57 @@ TEST_CASE("yaml: what a SequenceConsumer throws reaches the caller, not a YAML e
   CHECK_THROWS_AS(parse("items: [a]\n", sink, options), std::logic_error);
   CHECK(sink.diagnostics().empty());
 }
+
+// Issue 40: a syntax error in the words of someone editing by hand, at the line to change, with
+// libyaml's words (the parser's state) kept as the note.
+TEST_CASE("yaml: a line indented less than its siblings is named, libyaml's words are the note") {
+  CollectingSink sink;
+  CHECK(parse("links:\n  - name: A\n    mass: 1\n   inertia: [1, 0, 0, 1, 0, 1]\n    parent: B\n", sink) == nullptr);
+  const Diagnostic& d = only_diagnostic(sink, "yaml-syntax");
+  CHECK(d.location == at(4, 4));
+  CHECK(d.message ==
+        "line 4 is indented 3 spaces, which lines up with no line above it; the keys it follows (line 3) are "
+        "indented 4: the keys of one mapping start in the same column");
+  CHECK(d.fix_hint.rfind("libyaml: did not find expected", 0) == 0);
+}
+
+TEST_CASE("yaml: a line indented more than the value above it is named") {
+  CollectingSink sink;
+  CHECK(parse("links:\n  - name: A\n    mass: 1\n     inertia: [1, 0, 0, 1, 0, 1]\n", sink) == nullptr);
+  const Diagnostic& d = only_diagnostic(sink, "yaml-syntax");
+  CHECK(d.location == at(4, 6));
+  CHECK(d.message ==
+        "line 4 is indented 5 spaces, more than line 3 above it (4): the keys of one mapping start in the same column");
+  CHECK(d.fix_hint.rfind("libyaml: mapping values are not allowed", 0) == 0);
+}
+
+TEST_CASE("yaml: a top-level key indented by one space and a misaligned list item are named") {
+  CollectingSink top;
+  CHECK(parse("format: x\nlinks:\n  - name: A\n    mass: 1\n elements: []\n", top) == nullptr);
+  CHECK(only_diagnostic(top, "yaml-syntax").location == at(5, 2));
+  CHECK(only_diagnostic(top, "yaml-syntax").message.find("indented 1 space,") != std::string::npos);
+  CollectingSink item;
+  CHECK(parse("links:\n  - name: A\n    elements:\n      - type: Shape\n     - type: Shape\n", item) == nullptr);
+  CHECK(only_diagnostic(item, "yaml-syntax").location == at(5, 6));
+  CHECK(only_diagnostic(item, "yaml-syntax").message.find("are indented 6") != std::string::npos);
+}
+
+TEST_CASE("yaml: a tab in an indentation is named at the tab") {
+  CollectingSink sink;
+  CHECK(parse("links:\n  - name: A\n\tmass: 1\n", sink) == nullptr);
+  const Diagnostic& d = only_diagnostic(sink, "yaml-syntax");
+  CHECK(d.location == at(3, 1));
+  CHECK(d.message == "a tab in the indentation of line 3: YAML indents with spaces only; replace the tab with spaces");
+  CHECK(d.fix_hint.rfind("libyaml: ", 0) == 0);
+  CollectingSink after_spaces;
+  CHECK(parse("links:\n  - name: A\n    mass: 1\n  \tparent: x\n", after_spaces) == nullptr);
+  CHECK(only_diagnostic(after_spaces, "yaml-syntax").location == at(4, 3));
+}
+
+TEST_CASE("yaml: an error that is not about indentation keeps libyaml's words") {
+  CollectingSink sink;
+  CHECK(parse("a: 1\nb: c: d\n", sink) == nullptr);
+  const Diagnostic& d = only_diagnostic(sink, "yaml-syntax");
+  CHECK(d.message.find("mapping values are not allowed") != std::string::npos);
+  CHECK(d.fix_hint.empty());
+}

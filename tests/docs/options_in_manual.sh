@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# Every option a tool's --help lists is in the manual (README.md), and --help shows no
+# internals (an enum's numbers, CLI11's "value in {a->0} OR {0}"). Enumerates the options of
+# each tool given, and of each bodysim subcommand.
+#
+# usage: options_in_manual.sh README.md TOOL...   (registered in tests/CMakeLists.txt)
+set -euo pipefail
+manual=$1
+shift
+failed=0
+checked=0
+check_help() {
+  local name=$1 help=$2
+  if grep -nE 'ENUM|->|OR \{' <<<"$help"; then
+    echo "FAIL: $name --help shows internals (above)" >&2
+    failed=1
+  fi
+  local option
+  for option in $(grep -oE -- '(^|[ ,])--?[A-Za-z][A-Za-z0-9-]*' <<<"$help" | sed 's/^[ ,]*//' | sort -u); do
+    [ "$option" = "-h" ] || [ "$option" = "--help" ] && continue
+    checked=$((checked + 1))
+    if ! grep -qE -- "(^|[^A-Za-z0-9-])${option}([^A-Za-z0-9-]|\$)" "$manual"; then
+      echo "FAIL: $name $option is in --help but not in $manual" >&2
+      failed=1
+    fi
+  done
+}
+for tool in "$@"; do
+  name=$(basename "$tool")
+  check_help "$name" "$("$tool" --help)"
+  if [ "$name" = bodysim ]; then
+    for sub in $("$tool" --help | awk '/^Subcommands:/ {on = 1; next} on && !NF {exit} on {print $1}'); do
+      check_help "$name $sub" "$("$tool" "$sub" --help)"
+    done
+  fi
+done
+if [ "$checked" -lt 50 ]; then
+  echo "FAIL: only $checked options found in the tools' --help (is the parsing broken?)" >&2
+  failed=1
+fi
+[ "$failed" -eq 0 ] && echo "ok: $checked options of $# tools are in $manual"
+exit "$failed"
