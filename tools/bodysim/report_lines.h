@@ -17,8 +17,8 @@ constexpr std::size_t kReportColumns = 100;
 /// stays whole), each after the first indented by `indent` spaces; every line ends with '\n'.
 std::string wrap(const std::string& text, std::size_t indent);
 
-/// `value` and `other` to 6 significant digits, or more (up to 17) while the two would print
-/// the same but differ: a comparison never reads "measured 1 expected 1".
+/// `value` and `other` to 6 significant digits, or more (up to 10) while the two would print
+/// the same but differ: a comparison that fails for a difference in the 7th digit shows it.
 std::pair<std::string, std::string> distinct_numbers(double value, double other);
 
 /// One check: "PASS  name [G3]" then "      measured ...  expected ...  tolerance ...", or
