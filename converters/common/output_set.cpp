@@ -158,7 +158,8 @@ bool OutputSet::commit(DiagnosticSink& sink) {
 
   // What is at each destination decides how it is written, or whether anything is.
   std::vector<Destination> destinations;
-  std::map<fs::path, Record> records;  // subfolder -> its updated record
+  std::map<fs::path, Record> records;                      // subfolder -> its updated record
+  std::map<fs::path, std::set<std::string>> staged_names;  // subfolder -> the names this commit writes there
   const std::string main = main_key();
   for (auto& [relative, contents] : files_) {
     const bool is_main = relative == main;
@@ -195,6 +196,7 @@ bool OutputSet::commit(DiagnosticSink& sink) {
       }
       Record& record = it->second;
       const std::string name = d.given.filename().string();
+      staged_names[folder].insert(name);
       const std::string self =
           to_stdout() ? std::string("-")
                       : fs::absolute(main_path_, ec).lexically_relative(fs::absolute(folder, ec)).generic_string();
@@ -212,6 +214,23 @@ bool OutputSet::commit(DiagnosticSink& sink) {
       if (owner == record.end() || !d.unchanged) record[name] = self;
     }
     destinations.push_back(std::move(d));
+  }
+  // A file the record gives to this export that it no longer writes (a mesh renamed, removed
+  // or written in another format since) is stale: removed once the new files are in place. The
+  // record is the only evidence taken, so a file it does not list (the user's) is never removed.
+  std::vector<fs::path> stale;
+  for (auto& [folder, record] : records) {
+    const std::string self =
+        to_stdout() ? std::string("-")
+                    : fs::absolute(main_path_, ec).lexically_relative(fs::absolute(folder, ec)).generic_string();
+    for (auto it = record.begin(); it != record.end();) {
+      if (it->second == self && staged_names[folder].count(it->first) == 0) {
+        stale.push_back(folder / it->first);
+        it = record.erase(it);
+      } else {
+        ++it;
+      }
+    }
   }
   for (const auto& [folder, record] : records) {
     Destination d;
@@ -330,6 +349,8 @@ bool OutputSet::commit(DiagnosticSink& sink) {
   }
   std::error_code ignored;
   for (const auto& [backup, target] : kept) fs::remove(backup, ignored);
+  for (const fs::path& path : stale)
+    if (fs::is_regular_file(fs::symlink_status(path, ignored))) fs::remove(path, ignored);
   return true;
 }
 

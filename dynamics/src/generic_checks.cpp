@@ -145,16 +145,17 @@ void free_fall(Generic& g) {
   const double t = 1.0;
   sim->advance_to(t);
   const Eigen::Vector3d a = 2 * (sim->center_of_mass() - c0) / (t * t);
-  g.add(make(name + ": centre of mass acceleration |a - g|/g",
+  g.add(make(name + ": the centre of mass falls at g (relative error of its acceleration)",
              (a - Eigen::Vector3d(0, 0, -o.gravity)).norm() / o.gravity, 0, "", "≤ 1e-9",
              (a - Eigen::Vector3d(0, 0, -o.gravity)).norm() <= 1e-9 * o.gravity));
   double moved = 0;
   for (std::size_t i = 0; i < g.model.links.size(); ++i)
     if (sim->has_joint(static_cast<LinkIndex>(i)))
       moved = std::max(moved, std::abs(sim->joint_position(static_cast<LinkIndex>(i)) - q0[i]));
-  g.add(make(name + ": joints at rest stay at rest, max |Δq| over 1 s", moved, 0, "", "≤ 1e-9", moved <= 1e-9));
+  g.add(make(name + ": joints at rest stay at rest (largest joint motion over 1 s)", moved, 0, "", "≤ 1e-9",
+             moved <= 1e-9));
   const double h = sim->central_momentum().first.norm();
-  g.add(make(name + ": central angular momentum |H|", h, 0, "kg·m²/s", "≤ 1e-9", h <= 1e-9));
+  g.add(make(name + ": angular momentum about the centre of mass stays 0", h, 0, "kg·m²/s", "≤ 1e-9", h <= 1e-9));
 }
 
 /// G4: no gravity, contact, stops or servos, random velocities: energy (and, with a free root,
@@ -180,7 +181,7 @@ void conservation(Generic& g) {
       any = true;
     }
   if (!any) {
-    g.skip("G4 zero-g conservation", "nothing moves: a fixed root and no joint");
+    g.skip("G4 no gravity: conservation", "nothing moves: a fixed root and no joint");
     return;
   }
   const double e0 = sim->energy();
@@ -193,14 +194,15 @@ void conservation(Generic& g) {
     worst_h = std::max(worst_h, (h - h0).norm() / std::max(h0.norm(), 1e-12));
     worst_p = std::max(worst_p, (p - p0).norm() / std::max(p0.norm(), 1e-12));
   }
-  g.add(make("G4 zero-g 2 s: energy drift |ΔE|/E0", worst_e, 1e-6, "", "≤ 1e-6", worst_e <= 1e-6));
+  g.add(make("G4 no gravity, 2 s: energy drift, relative to the initial energy", worst_e, 1e-6, "", "≤ 1e-6",
+             worst_e <= 1e-6));
   if (!free) {
-    g.skip("G4 zero-g: momentum", "the root is fixed to the world, which exerts forces on the model");
+    g.skip("G4 no gravity: momentum", "the root is fixed to the world, which exerts forces on the model");
     return;
   }
-  g.add(
-      make("G4 zero-g 2 s: angular momentum |ΔH|/|H0| (about the COM)", worst_h, 1e-6, "", "≤ 1e-6", worst_h <= 1e-6));
-  g.add(make("G4 zero-g 2 s: linear momentum |Δp|/|p0|", worst_p, 1e-6, "", "≤ 1e-6", worst_p <= 1e-6));
+  g.add(make("G4 no gravity, 2 s: angular momentum drift about the centre of mass, relative", worst_h, 1e-6, "",
+             "≤ 1e-6", worst_h <= 1e-6));
+  g.add(make("G4 no gravity, 2 s: linear momentum drift, relative", worst_p, 1e-6, "", "≤ 1e-6", worst_p <= 1e-6));
 }
 
 /// G5: drop from 2 cm onto the floor (free roots).
@@ -277,26 +279,28 @@ void drop(Generic& g, const std::vector<ContactPoint>& contacts) {
       failure = e.what();
     }
     const std::string label = locked ? "G5 drop 2 cm, joints locked" : "G5 drop 2 cm, joints free";
-    results.push_back(make(label + ": state stays finite" + (failure.empty() ? "" : " (" + failure + ")"),
-                           finite ? 1 : 0, 1, "", "= 1", finite));
+    results.push_back(verdict_check(
+        label + ": state stays finite", finite,
+        finite ? "every position and velocity stayed finite"
+               : "the state became NaN or infinite" + (failure.empty() ? std::string() : " (" + failure + ")")));
     if (!finite) continue;
     if (!locked) {
       // Energy never grows while passive, beyond integration error: 1e-4 of the drop energy.
       const double drop_energy = mass * options.gravity * drop;
       const std::string window = end < duration ? fmt::format("over {:.3g} s, at rest for the last {:g} s", end, kRest)
                                                 : fmt::format("over {:g} s", duration);
-      results.push_back(make(fmt::format("{}: energy gain max(E - E0) {}", label, window), gain, 1e-4 * drop_energy,
-                             "J", "≤ 1e-4·m·g·h", gain <= 1e-4 * drop_energy));
+      results.push_back(make(fmt::format("{}: largest energy gain {}", label, window), gain, 1e-4 * drop_energy, "J",
+                             "≤ 1e-4 × drop energy", gain <= 1e-4 * drop_energy));
       continue;
     }
     const double ke = sim->kinetic_energy();
     results.push_back(make(fmt::format("{}: kinetic energy at {:g} s", label, duration), ke, settle, "J",
-                           "≤ 1e-4·m·g·h_bbox", ke <= settle));
+                           "≤ 1e-4 × weight × height", ke <= settle));
     const double depth = sim->max_penetration();
     results.push_back(
         make(label + ": penetration at rest", depth * 1e3, 2, "mm", "(0, 2] mm", depth > 0 && depth <= 2e-3));
     const double fz = sim->total_contact_force().z();
-    results.push_back(make(label + ": floor force at rest = m·g", fz, mass * options.gravity, "N", "±1 %",
+    results.push_back(make(label + ": floor force at rest equals the weight", fz, mass * options.gravity, "N", "±1 %",
                            std::abs(fz - mass * options.gravity) <= 0.01 * mass * options.gravity));
     const Eigen::Vector3d moved = sim->link_pose(0).translation() - start;
     const double drift = std::hypot(moved.x(), moved.y());
@@ -396,7 +400,8 @@ void joint_ranges(Generic& g) {
       }
     }
     const bool degrees = kind == JointType::kRevolute;
-    g.add(make(fmt::format("{} ({} joints, stops ≤ I·ω², ω = {:g}/s; {})", label, pushed.size(), kStopFrequency, where),
+    g.add(make(fmt::format("{} ({} joints, stops at most as stiff as the subtree inertia × ({:g} rad/s)²; {})", label,
+                           pushed.size(), kStopFrequency, where),
                worst, 1, degrees ? "°" : "mm", degrees ? "≤ 1°" : "≤ 1 mm", worst <= 1));
   }
 }
@@ -446,7 +451,7 @@ std::vector<double> hold_pose(const Model& model) {
 void gravity_load(Generic& g) {
   const std::string name = "G7 gravity load on the held joints";
   if (is_free_root(g.model)) {
-    g.skip(name, "a free root falls over; G7 holds the joints of a model whose root is fixed");
+    g.skip(name, "a free root falls over; this check holds the joints of a model whose root is fixed");
     return;
   }
   SimOptions o = g.options;
@@ -493,8 +498,9 @@ void gravity_load(Generic& g) {
   }
   (void)worst_sag;
   g.add(make(fmt::format("{}: kinetic energy after 2 s", name), ke, 1e-6, "J", "≤ 1e-6 J", ke <= 1e-6));
-  g.add(make(fmt::format("{}: worst error against τ_g(q)/P ({})", name, where), worst, 1, "of 1 % + 1e-7", "≤ 1",
-             worst <= 1));
+  g.add(make(
+      fmt::format("{}: worst sag error against gravity torque / servo gain, in units of 1 % + 1e-7 ({})", name, where),
+      worst, 1, "", "≤ 1", worst <= 1));
 }
 
 /// G8: each pseudo track's surface velocity: a box placed on a fixed conveyor's belt with

@@ -193,13 +193,15 @@ std::vector<CheckResult> run_mujoco_cross_check(const Model& model, const Derive
     results.push_back(compare(drive + ": time to 90 %", mj.t90, sb.t90, 0.05, true, "s"));
   } else {
     // The vehicle turns: what both engines can still agree on is how fast.
-    results.push_back(compare(drive + ": yaw rate ω / (2·dq/B)", mj.yaw_rate / (2 * kDrive / tank.spacing),
-                              sb.yaw_rate / (2 * kDrive / tank.spacing), 0.05, false, ""));
+    results.push_back(compare(drive + ": yaw rate / (2 × dq / track spacing)",
+                              mj.yaw_rate / (2 * kDrive / tank.spacing), sb.yaw_rate / (2 * kDrive / tank.spacing),
+                              0.05, false, ""));
     results.push_back(skipped_check("MuJoCo vs Simbody: " + drive + ": speed and time to 90 %",
                                     "the vehicle turns instead of driving straight (see above)"));
   }
-  results.push_back(compare(fmt::format("spin dq_L = {:+g}, dq_R = {:+g}: ω / (2u/B)", kSpin, -kSpin), mj.spin, sb.spin,
-                            0.05, false, ""));
+  results.push_back(compare(
+      fmt::format("spin dq_L = {:+g}, dq_R = {:+g}: yaw rate / (2 × belt speed / track spacing)", kSpin, -kSpin),
+      mj.spin, sb.spin, 0.05, false, ""));
   if (tank.pitch >= 0) {
     results.push_back(compare("turret: pitch sag", mj.sag, sb.sag, 0.01, true, "rad"));
     if (opening->pitch_step == 0)

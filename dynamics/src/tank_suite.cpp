@@ -328,7 +328,7 @@ void settle(Suite& s) {
   const double height = std::max(s.com_root.z() - s.tank.lowest_z, 1e-3);
   const double bound = 1e-4 * s.weight * height;
   const double ke = sc.sim().kinetic_energy();
-  s.add(at_most("settle: kinetic energy after 1 s (≤ 1e-4·m·g·h_com)", ke, bound, "J"));
+  s.add(at_most("settle: kinetic energy after 1 s (≤ 1e-4 × weight × height of the centre of mass)", ke, bound, "J"));
   double fz = 0, worst_ke = ke;
   int samples = 0;
   sc.run(0.5, [&](double) {
@@ -337,10 +337,10 @@ void settle(Suite& s) {
     ++samples;
   });
   if (worst_ke > bound)
-    s.skip("settle: floor contact force = m·g",
+    s.skip("settle: floor contact force equals the weight",
            fmt::format("the vehicle has not settled (kinetic energy up to {:.3g} J > {:.3g} J)", worst_ke, bound));
   else
-    s.add(relative("settle: floor contact force = m·g", fz / samples, s.weight, 0.01, "N"));
+    s.add(relative("settle: floor contact force equals the weight", fz / samples, s.weight, 0.01, "N"));
   const double depth = std::max(sc.sim().max_penetration(s.tank.left), sc.sim().max_penetration(s.tank.right));
   s.add(within("settle: track bottoms below the floor", depth * 1e3, 0, 0, 2, "mm"));
 }
@@ -381,8 +381,8 @@ void drive(Suite& s, double v) {
   s.add(relative(label + ": forward speed", speed, expected, 0.02, "m/s"));
   s.add(at_most(label + ": heading drift", drift, 1.0, "°/m"));
   const double t90_bound = 0.9 * v / (s.mu * s.g);  // Coulomb: acceleration ≤ μ·g
-  s.add(within(label + ": centre of mass time to 90 % (≥ 0.9·v/(μ·g))", t90, t90_bound, 0.99 * t90_bound,
-               1.3 * t90_bound, "s"));
+  s.add(within(label + ": centre of mass time to 90 % (≥ 0.9 × speed / (friction × g))", t90, t90_bound,
+               0.99 * t90_bound, 1.3 * t90_bound, "s"));
 }
 
 /// Spin in place, each direction against its own quasi-static reference.
@@ -395,7 +395,8 @@ void spin(Suite& s, const std::vector<double>& loads, const std::string& loads_w
       fmt::format("{}+{} contact points, B = {:.4g} m", t.left_points.size(), t.right_points.size(), s.B);
   for (int direction = 0; direction < 2; ++direction) {
     const double left = direction == 0 ? u : -u, right = -left;
-    const std::string label = fmt::format("spin dq_L = {:+g}, dq_R = {:+g}: ω / (2u/B) ({})", left, right, layout);
+    const std::string label = fmt::format(
+        "spin dq_L = {:+g}, dq_R = {:+g}: yaw rate / (2 × belt speed / track spacing) ({})", left, right, layout);
     if (!loads_why.empty()) {
       s.skip(label, "no quasi-static reference: " + loads_why);
       continue;
@@ -493,9 +494,10 @@ void pitch_servo(Suite& s) {
   if (!sc) return;
   sc.run(1.5);
   if (sag.converged)
-    s.add(relative("turret: pitch sag under gravity (τ_g/P)", sc.sim().joint_position(t.pitch), sag.q, 0.03, "rad"));
+    s.add(relative("turret: pitch sag under gravity (gravity torque / P gain)", sc.sim().joint_position(t.pitch), sag.q,
+                   0.03, "rad"));
   else
-    s.skip("turret: pitch sag under gravity (τ_g/P)", "no reference: " + sag.why);
+    s.skip("turret: pitch sag under gravity (gravity torque / P gain)", "no reference: " + sag.why);
   if (t.yaw >= 0) s.add(absolute("turret: yaw holds 0", sc.sim().joint_position(t.yaw), 0, 1e-5, "rad"));
   // The step of the opening (pitch_step_target) against the rigid 1-DOF response from the
   // state the simulation reached.
@@ -582,7 +584,8 @@ void yaw_tracking(Suite& s) {
   const double M_yy =
       subtree_axis_inertia(s.model, s.derived, t.yaw, {}, model_inertias(s.model, s.derived, s.options.sim));
   const double predicted = M_yy * (10 * std::sqrt(3.0) / 3 * theta / (T * T)) / s.options.p_gain;
-  s.add(at_most("turret: yaw min-jerk 1 rad / 2 s, max tracking error (2·M·α/P)", worst, 2 * predicted, "rad"));
+  s.add(at_most("turret: yaw min-jerk 1 rad / 2 s, max tracking error (2 × inertia × acceleration / P gain)", worst,
+                2 * predicted, "rad"));
   s.add(absolute("turret: yaw final error", sc.sim().joint_position(t.yaw), theta, 1e-4, "rad"));
   s.add(absolute("turret: chassis yaw reaction", wrap(yaw_of(sc.sim().link_pose(0)) - chassis_yaw0), 0, 1e-3, "rad"));
 }
@@ -614,10 +617,10 @@ void conservation(Suite& s) {
     worst_h = std::max(worst_h, (h - h0).norm() / std::max(h0.norm(), 1e-12));
     worst_p = std::max(worst_p, (p - p0).norm() / std::max(p0.norm(), 1e-12));
   }
-  s.add(at_most("conservation 3 s: energy drift |ΔE|/E0", worst_e, 1e-6, ""));
+  s.add(at_most("conservation 3 s: energy drift, relative to the initial energy", worst_e, 1e-6, ""));
   // Momentum to the same relative standard as energy: at accuracy 1e-8 both drift ~1e-8.
-  s.add(at_most("conservation 3 s: angular momentum |ΔH|/|H0| (about the COM)", worst_h, 1e-6, ""));
-  s.add(at_most("conservation 3 s: linear momentum |Δp|/|p0|", worst_p, 1e-6, ""));
+  s.add(at_most("conservation 3 s: angular momentum drift about the centre of mass, relative", worst_h, 1e-6, ""));
+  s.add(at_most("conservation 3 s: linear momentum drift, relative", worst_p, 1e-6, ""));
 }
 
 }  // namespace

@@ -62,14 +62,14 @@ MUTANTS = [
     ("skid", "the skidder as written (axes -Y on both tracks)", [], "pass", ["drives backward for +dq"]),
     # --- the same in the MuJoCo cross-check: the same dq to both tracks in both engines ---------------
     ("scout", "right track axis flipped (--cross-check mujoco)", [RIGHT_FLIPPED], "fail",
-     ["tracks drive against each other", r"re:FAIL  MuJoCo: drive dq = \+1 on both tracks: heading drift .*\n      "
-      r"tracks drive against each other: \"BELT_B\" \(axis \(0, 1, 0\) in the root frame\) drives toward \+X and "
-      r"\"BELT_A\" \(axis \(0, -1, 0\)\) toward -X",
+     ["tracks drive against each other", r"re:FAIL  MuJoCo: drive dq = \+1 on both tracks: heading drift[^\n]*\n"
+      r"(      [^\n]*\n)*?      tracks drive against each other: \"BELT_B\" \(axis \(0, 1, 0\) in the root\s+frame\)\s+"
+      r"drives\s+toward\s+\+X\s+and\s+\"BELT_A\"\s+\(axis\s+\(0,\s+-1,\s+0\)\)\s+toward\s+-X",
       "FAIL  Simbody: drive dq = +1 on both tracks: heading drift",
       "SKIP  MuJoCo vs Simbody: drive dq = +1 on both tracks: speed and time to 90 %",
       "re:PASS  MuJoCo vs Simbody: drive dq = \\+1 on both tracks: yaw rate"], ["--cross-check", "mujoco"]),
     ("scout", "both tracks flipped (--cross-check mujoco)", [RIGHT_FLIPPED, LEFT_FLIPPED], "pass",
-     [r"re:PASS  MuJoCo: drive dq = \+1 on both tracks: heading drift .*\n      drives backward for \+dq",
+     [r"re:PASS  MuJoCo: drive dq = \+1 on both tracks: heading drift[^\n]*\n(      [^\n]*\n)*?      drives backward for \+dq",
       r"re:PASS  MuJoCo vs Simbody: drive dq = \+1 on both tracks: speed\s+measured\s+-1 m/s\s+expected\s+-1 "],
      ["--cross-check", "mujoco"]),
     ("scout", "ScoutTank as written (--cross-check mujoco)", [], "pass",
@@ -86,20 +86,20 @@ MUTANTS = [
     ("skid", "no turret at all (the skidder)", [], "pass", ["SKIP  turret: pitch sag and step response"]),
     # --- bodysim check: an arm (fixed root) and Choreonoid's conveyor (G8) ----------------------------
     ("arm", "the arm as written", [], "pass",
-     ["PASS  G7 gravity load on the held joints: worst error", "PASS  G6 joint ranges: worst overshoot of a prismatic",
-      "SKIP  G5 drop and settle: the root is fixed"]),
+     ["PASS  gravity load on the held joints: worst sag error", "PASS  joint ranges: worst overshoot of a prismatic",
+      "SKIP  drop and settle [G5]: the root is fixed"]),
     ("arm", "a reversed elbow range", [("joint_range: [-135, 135]", "joint_range: [135, -135]")],
      "refuse", ["arm.body:{line}:", "[joint-range-reversed]"]),
     ("arm", "a massless forearm", [("        mass: 1.0\n", "        mass: 0.0\n")],
      "refuse", ["link \"FOREARM\" moves (a revolute joint) but has zero mass", "[inertia-nonpositive-mass]"]),
     ("arm", "an unlimited shoulder", [("joint_range: [-170, 170]", "joint_range: unlimited")],
-     "skip", ["SKIP  G6 joint ranges of \"SHOULDER\": unlimited ranges: no stop to test"]),
+     "skip", ["SKIP  joint ranges of \"SHOULDER\" [G6]: unlimited ranges: no stop to test"]),
     ("conveyor", "the conveyor as written (axis -Y: a box on it moves toward -X)", [], "pass",
-     [r"re:PASS  G8 .*velocity v_x\s+measured\s+-0\.5 m/s\s+expected\s+-0\.5 "]),
+     [r"re:(?s)PASS  surface velocity of .*?velocity v_x.*?\[G8\]\s+measured\s+-0\.5 m/s\s+expected\s+-0\.5 "]),
     ("conveyor", "the conveyor's axis flipped (+Y: toward +X)", [("jointAxis: -Y", "jointAxis: Y")], "pass",
-     [r"re:PASS  G8 .*velocity v_x\s+measured\s+0\.5 m/s\s+expected\s+0\.5 "]),
+     [r"re:(?s)PASS  surface velocity of .*?velocity v_x.*?\[G8\]\s+measured\s+0\.5 m/s\s+expected\s+0\.5 "]),
     ("conveyor", "the belt sunk below the base's top", [("translation: [ 0.0, 0.0, 0.15 ]", "translation: [ 0.0, 0.0, -0.05 ]")],
-     "skip", ["SKIP  G8 surface velocity of \"TRACK\" at dq = +0.5: a box on its top: link \"BASE\" reaches"]),
+     "skip", ["SKIP  surface velocity of \"TRACK\" at dq = +0.5: a box on its top [G8]: link \"BASE\" reaches"]),
 ]
 
 OUTCOME_EXIT = {"fail": 1, "pass": 0, "skip": 0, "refuse": 2}
@@ -134,7 +134,8 @@ def run_mutant(bodysim, paths, work, index, mutant):
         t = t.replace("{line}", str(line))
         if t.startswith("re:") and re.search(t[3:], out):
             continue
-        if t not in out:
+        # Lines are wrapped at 100 columns: a text may run on over a line break.
+        if t not in out and " ".join(t.split()) not in " ".join(out.split()):
             missing.append(t)
     if expected == "fail" and not any(l.startswith("FAIL") for l in proc.stdout.splitlines()):
         missing.append("a FAIL line")

@@ -58,7 +58,7 @@ TEST_CASE("bodysim: run refuses --scenario /dev/zero at once, located, exit 2, n
   CHECK(
       contains(r.stderr_text, "/dev/zero: fatal error: cannot read the scenario \"/dev/zero\": is not a regular file"));
   CHECK(contains(r.stderr_text, "[io-read]"));
-  CHECK(contains(r.stderr_text, "the scenario cannot be read; nothing was simulated"));
+  CHECK(contains(r.stderr_text, "nothing was simulated: the scenario cannot be read"));
   CHECK(r.seconds < 10);
   CHECK(!fs::exists(csv));
 }

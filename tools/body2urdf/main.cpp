@@ -38,8 +38,12 @@ int main(int argc, char** argv) {
   app.add_option("-o,--output", output, "the URDF file to write ('-': standard output)")->required();
   app.add_option("--mesh-format", mesh_format, "format of written and copied meshes")
       ->check(CLI::IsMember({"stl", "dae"}));
+  bool reference_meshes = false;
   app.add_flag("--copy-meshes", options.copy_meshes,
-               "copy external mesh files next to the URDF instead of referencing them (converted to --mesh-format)");
+               "copy external mesh files next to the URDF (converted to --mesh-format), even inside a ROS package");
+  app.add_flag("--reference-meshes", reference_meshes,
+               "refer to external mesh files where they are, by paths relative to the URDF (not portable)")
+      ->excludes("--copy-meshes");
   app.add_option("--package-uri", options.package_uri,
                  "package://NAME: mesh URIs relative to the ROS package that holds the URDF (the nearest "
                  "package.xml above it); meshes are copied")
@@ -48,7 +52,8 @@ int main(int argc, char** argv) {
             return package_name(value).empty() ? std::string("must be package://NAME (a ROS package name)")
                                                : std::string();
           },
-          "package://NAME");
+          "package://NAME")
+      ->excludes("--reference-meshes");
   app.add_option("--mesh-folder", options.mesh_folder,
                  "folder for meshes, relative to the URDF: inside its folder, or anywhere inside the ROS package "
                  "with --package-uri (default meshes/STEM)");
@@ -83,6 +88,19 @@ int main(int argc, char** argv) {
     }
     options.package_uri = "package://" + name + "/";
     options.package_root = package->root;
+  }
+  // The default is a URDF that resolves on another machine: package:// URIs inside the ROS
+  // package that holds it, else every mesh copied beside it (as MJCF and glTF are written).
+  if (!options.copy_meshes && !reference_meshes && !package) {
+    std::string why;
+    package = urdf::find_ros_package(out_dir, why);
+    if (package && package_name("package://" + package->name).empty()) package.reset();
+    if (package) {
+      options.package_uri = "package://" + package->name + "/";
+      options.package_root = package->root;
+    } else {
+      options.copy_meshes = true;
+    }
   }
   if (!options.mesh_folder.empty()) {
     std::string why = tools::check_inside_output_folder(options.mesh_folder);

@@ -10,6 +10,7 @@
 #include "front.h"
 #include "number_options.h"
 #include "output_guard.h"
+#include "report_lines.h"
 
 #include <bodyfmt/converters/output_set.h>
 #include <bodyfmt/converters/protect_inputs.h>
@@ -52,37 +53,19 @@ class ValidatorFirst : public DiagnosticSink {
 
 std::string number(double v) { return fmt::format("{:.6g}", v); }
 
-void print_line(const dynamics::CheckResult& r, std::size_t width) {
-  if (r.skipped) {
-    std::cout << fmt::format("SKIP  {}: {}\n", r.name, r.note);
-    return;
-  }
-  if (!r.note.empty() && r.tolerance.empty()) {
-    std::cout << fmt::format("{}  {}: {}\n", r.passed ? "PASS" : "FAIL", r.name, r.note);
-    return;
-  }
-  const std::string unit = r.unit.empty() ? "" : " " + r.unit;
-  std::cout << fmt::format("{}  {:<{}}  measured {:>12}{:<6}  expected {:>12}  tolerance {}\n",
-                           r.passed ? "PASS" : "FAIL", r.name, width, number(r.measured), unit, number(r.expected),
-                           r.tolerance);
-  if (!r.note.empty()) std::cout << "      " << r.note << "\n";
-}
-
 /// The model's checks, then the build's self-test apart, then the counts.
 void print_results(const std::vector<dynamics::CheckResult>& results) {
-  std::size_t width = 0;
-  for (const auto& r : results) width = std::max(width, r.name.size());
   int self_tests = 0;
   for (const auto& r : results) self_tests += r.self_test ? 1 : 0;
   if (self_tests > 0) {
     std::cout << "self-test of the Simbody build (its system against the derived data it was built from):\n";
     for (const auto& r : results)
-      if (r.self_test) print_line(r, width);
+      if (r.self_test) std::cout << tools::check_lines(r);
     std::cout << "checks of the model:\n";
   }
   int passed = 0, failed = 0, skipped = 0;
   for (const auto& r : results) {
-    if (!r.self_test) print_line(r, width);
+    if (!r.self_test) std::cout << tools::check_lines(r);
     (r.skipped ? skipped : r.passed ? passed : failed) += 1;
   }
   std::cout << fmt::format("{} of {} checks passed, {} failed, {} skipped\n", passed, passed + failed, failed, skipped);
@@ -208,7 +191,12 @@ int main(int argc, char** argv) {
   if (auto input = front.open_input(path, sink)) model = front.load(*input, sink);
   auto finish = [&](bool fatal, const std::string& why) {
     front.print(collected.diagnostics());
-    if (!why.empty()) front.print_error(why);
+    // The reason ends the run, with the first error that stopped it: after a hundred warnings
+    // (legacy keys, say) "see above" would point nowhere.
+    if (why.find("nothing was simulated") != std::string::npos)
+      std::cerr << tools::nothing_simulated(front.tool_name(), why, collected.diagnostics());
+    else if (!why.empty())
+      front.print_error(why);
     return tools::exit_code(collected.diagnostics(), policy->exit, fatal);
   };
   if (!model) return finish(true, "");
@@ -313,33 +301,39 @@ int main(int argc, char** argv) {
       }
     }
     if (results.empty()) return finish(true, why.empty() ? "nothing was simulated" : why + "; nothing was simulated");
-    std::cout << fmt::format("bodysim {}: {} ({}), total mass {} kg\n", command, model->name, path,
-                             number(derived.total_mass));
-    std::cout << fmt::format(
-        "  Simbody 3.7, Runge-Kutta-Merson accuracy {:g}; floor contact {}, friction {:g}, "
-        "dissipation {:g} s/m, transition {:g} m/s; joint ranges enforced by stops ({:g} per rad or m{})\n",
-        sim.accuracy,
-        sim.contact_model == dynamics::ContactModel::kSimbody
-            ? "by Simbody's CompliantContactSubsystem (HalfSpace floor; Box shapes as Bricks, other shapes as "
-              "elastic-foundation triangle meshes)"
-            : "at collision vertices",
-        sim.contact_params.friction, sim.contact_params.dissipation, sim.contact_params.transition_velocity,
-        sim.stop_stiffness,
-        command == "check"
-            ? fmt::format(", in the generic checks at most I·({:g} rad/s)², I the joint's subtree inertia",
-                          dynamics::kGenericStopFrequency)
-            : "");
+    std::cout << tools::wrap(
+        fmt::format("bodysim {}: {} ({}), total mass {} kg", command, model->name, path, number(derived.total_mass)),
+        2);
+    std::cout << tools::wrap(
+        fmt::format(
+            "  Simbody 3.7, Runge-Kutta-Merson accuracy {:g}; floor contact {}, friction {:g}, "
+            "dissipation {:g} s/m, transition {:g} m/s; joint ranges enforced by stops ({:g} per rad or m{})",
+            sim.accuracy,
+            sim.contact_model == dynamics::ContactModel::kSimbody
+                ? "by Simbody's CompliantContactSubsystem (HalfSpace floor; Box shapes as Bricks, other shapes as "
+                  "elastic-foundation triangle meshes)"
+                : "at collision vertices",
+            sim.contact_params.friction, sim.contact_params.dissipation, sim.contact_params.transition_velocity,
+            sim.stop_stiffness,
+            command == "check"
+                ? fmt::format(", in the generic checks at most the joint's subtree inertia × ({:g} rad/s)²",
+                              dynamics::kGenericStopFrequency)
+                : ""),
+        4);
     if (command == "check-tank") {
       auto link = [&](LinkIndex i) { return i >= 0 ? model->links[i].name : std::string("none"); };
-      std::cout << fmt::format(
-          "  tracks: left \"{}\", right \"{}\" (found by position), spacing B = {} m; turret yaw \"{}\", pitch "
-          "\"{}\", servo P = {:g}, D = {:g}\n",
-          link(tank.left), link(tank.right), number(tank.spacing), link(tank.yaw), link(tank.pitch), suite.p_gain,
-          suite.d_gain);
+      std::cout << tools::wrap(
+          fmt::format("  tracks: left \"{}\", right \"{}\" (found by position), spacing B = {} m; turret yaw \"{}\", "
+                      "pitch \"{}\", servo P = {:g}, D = {:g}",
+                      link(tank.left), link(tank.right), number(tank.spacing), link(tank.yaw), link(tank.pitch),
+                      suite.p_gain, suite.d_gain),
+          4);
       if (!cross_check.empty())
-        std::cout << "  cross-check: MuJoCo 2.2.2 on body2mjcf's export (elliptic cones, Euler 1 ms, belt velocity "
-                     "through mjcb_control), the same commands in both engines; its \"MuJoCo vs Simbody\" lines: "
-                     "measured = MuJoCo, expected = Simbody\n";
+        std::cout << tools::wrap(
+            "  cross-check: MuJoCo 2.2.2 on body2mjcf's export (elliptic cones, Euler 1 ms, belt velocity through "
+            "mjcb_control), the same commands in both engines; its \"MuJoCo vs Simbody\" lines: measured = MuJoCo, "
+            "expected = Simbody",
+            4);
     }
 #ifdef BODYFMT_HAVE_MUJOCO_CROSS_CHECK
     if (command == "check" && !cross_check.empty()) std::cout << dynamics::describe(drop_report);

@@ -12,6 +12,9 @@
 #include <bodyfmt/converters/output_set.h>
 #include <bodyfmt/converters/protect_inputs.h>
 
+#include <filesystem>
+#include <iostream>
+
 int main(int argc, char** argv) {
   using namespace bodyfmt;
   tools::Front front("bodyview", "Show a Choreonoid .body model in a browser: one self-contained HTML file", {});
@@ -19,16 +22,24 @@ int main(int argc, char** argv) {
   bool serve = false;
   int port = 0;
   CLI::App& app = front.app();
-  auto* o = app.add_option("-o,--output", output, "the .html file to write ('-': standard output)");
+  auto* o = app.add_option("-o,--output", output,
+                           "the .html file to write ('-': standard output; default: MODEL.html in the current folder)");
   auto* s = app.add_flag("--serve", serve,
                          "serve the page on 127.0.0.1 and rebuild it when the model, a file it includes or a mesh "
                          "changes (until interrupted)");
   app.add_option("--port", port, "the port for --serve (default: any free one)")->check(CLI::Range(0, 65535))->needs(s);
   s->excludes(o);
   if (auto code = front.parse(argc, argv)) return *code;
+  // Without -o the page goes to the current folder, named after the model, as a download
+  // would: the model's own folder may be read-only or shared (a package, a corpus), and a
+  // generated page beside it would be mixed into the sources. Over the model itself (a model
+  // named NAME.html) it is refused, as every output over an input is.
   if (!serve && output.empty()) {
-    front.print_error("name the page with -o FILE.html, or use --serve");
-    return tools::kExitFatal;
+    if (front.inputs().front() == "-") {
+      front.print_error("name the page with -o FILE.html when the model comes from standard input, or use --serve");
+      return tools::kExitFatal;
+    }
+    output = std::filesystem::path(front.inputs().front()).stem().string() + ".html";
   }
   const std::filesystem::path assets = bodyview::find_assets(argc > 0 ? argv[0] : nullptr);
   if (assets.empty()) {
@@ -52,5 +63,6 @@ int main(int argc, char** argv) {
   }
   front.print(r.diagnostics);
   if (!written) front.print_error(output + " was not written");
+  if (written && output != "-") std::cerr << "bodyview: wrote " << output << " (open it in a browser)\n";
   return tools::exit_code(r.diagnostics, policy->exit, !written);
 }

@@ -221,6 +221,7 @@ std::string page_data_json(const PageInput& input) {
            ",\"type\":" + text::json_quote(joint_type_name(l.joint_type)) + ",\"axis\":" + numbers(l.joint_axis) +
            ",\"lower\":" + (movable ? number(l.joint_range_lower) : "null") +
            ",\"upper\":" + (movable ? number(l.joint_range_upper) : "null") +
+           ",\"q0\":" + (movable ? number(l.initial_displacement) : "0") +
            ",\"X_PL\":" + matrix(as_isometry(l.X_PL).matrix()) + ",\"mass\":" + number(m.mass) +
            ",\"com\":" + numbers(m.center_of_mass) + ",\"inertia\":" + row_major(m.inertia) +
            ",\"inertia_box\":" + inertia_box(m) + ",\"source\":" + text::json_quote(where(l.source)) +

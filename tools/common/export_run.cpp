@@ -1,8 +1,11 @@
 #include "export_run.h"
 
+#include "export_summary.h"
+
 #include <bodyfmt/converters/protect_inputs.h>
 
 #include <filesystem>
+#include <iostream>
 
 namespace bodyfmt::tools {
 
@@ -15,6 +18,7 @@ int run_export(Front& front, const std::string& output, const ExportWriter& writ
   bool written = false;
   bool refused_by_writer = false;
   bool commit_failed = false;
+  std::string summary;
   if (auto input = front.open_input(path, sink)) {
     auto model = front.load(*input, sink);
     if (model && front.may_write(collected.diagnostics())) {
@@ -26,11 +30,13 @@ int run_export(Front& front, const std::string& output, const ExportWriter& writ
       if (!refused_by_writer && front.may_write(collected.diagnostics())) {
         written = out.commit(sink);
         commit_failed = !written;  // reported with its reason (export-write)
+        if (written) summary = export_summary(out, collected.diagnostics(), policy->exit);
       }
     }
   }
   const std::vector<Diagnostic>& diagnostics = collected.diagnostics();
   front.print(diagnostics);
+  if (written) std::cerr << front.tool_name() << ": " << summary << '\n';
   if (!written) {
     std::string why = refusal && !commit_failed ? refusal(diagnostics) : std::string();
     if (why.empty() && refused_by_writer) why = "the model has errors this format cannot be written with";

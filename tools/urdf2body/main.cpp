@@ -3,6 +3,7 @@
 // other findings reported; 2 not written (bad usage, a URDF that does not read or has errors,
 // a mesh that cannot be found, or --strict losses).
 
+#include "export_summary.h"
 #include "front.h"
 #include "urdf_reader.h"
 
@@ -14,6 +15,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 
 namespace {
@@ -86,6 +88,7 @@ int main(int argc, char** argv) {
   DiagnosticPolicy sink(collected, policy->options);  // --strict: export-loss is an error
   bool written = false;
   bool commit_failed = false;
+  std::string summary;
   if (auto input = front.open_input(path, sink)) {
     if (auto text = read_text(*input, front.load_options().max_file_bytes, sink)) {
       urdf_import::UrdfImportOptions options;
@@ -106,12 +109,14 @@ int main(int argc, char** argv) {
         if (front.may_write(collected.diagnostics())) {
           written = out.commit(sink);
           commit_failed = !written;  // reported with its reason (export-write)
+          if (written) summary = tools::export_summary(out, collected.diagnostics(), policy->exit);
         }
       }
     }
   }
   const std::vector<Diagnostic>& diagnostics = collected.diagnostics();
   front.print(diagnostics);
+  if (written) std::cerr << front.tool_name() << ": " << summary << '\n';
   if (!written) {
     const bool strict_losses = std::any_of(diagnostics.begin(), diagnostics.end(), [](const Diagnostic& d) {
       return d.rule_id == "export-loss" && d.severity >= Severity::kError;

@@ -121,6 +121,9 @@
     modelNode.matrix.copy(zUpToYUp);
     const offset = links.map((l) => new THREE.Matrix4().fromArray(l.X_PL));
     const q = new Float64Array(links.length);
+    // The file's pose: each joint at its initial displacement (joint_angle / joint_displacement).
+    const q0 = links.map((l) => ((l.type === 'revolute' || l.type === 'prismatic') && Number.isFinite(l.q0) ? l.q0 : 0));
+    q.set(q0);
     const motion = new THREE.Matrix4();
     function place(i) {
       const l = links[i], o = linkObject[i];
@@ -466,7 +469,7 @@
       requestRender();
     }
     document.getElementById('reset').addEventListener('click', () => {
-      for (const j of joints) setPosition(j.index, 0);
+      for (const j of joints) setPosition(j.index, q0[j.index]);
       home();
       requestRender();
     });
@@ -567,6 +570,50 @@
       };
       poll();
     }
+
+    // The URL fragment sets toggles and joints: #collision=1&q.ARM=90 (degrees for a revolute
+    // joint, millimetres for a prismatic one, as the sliders show them). Whatever it holds, a
+    // part that names nothing, or no number, is skipped with a console message; a position
+    // outside the joint's range is clamped to it.
+    api.fragmentMessages = [];
+    const fragmentMessage = (text) => { api.fragmentMessages.push(text); console.warn('bodyview: URL fragment: ' + text); };
+    async function applyFragment(fragment) {
+      for (const part of fragment.replace(/^#/, '').split('&')) {
+        if (!part) continue;
+        const eq = part.indexOf('=');
+        let key, value;
+        try {
+          key = decodeURIComponent(eq < 0 ? part : part.slice(0, eq));
+          value = eq < 0 ? '' : decodeURIComponent(part.slice(eq + 1));
+        } catch (e) {
+          fragmentMessage('"' + part.slice(0, 80) + '" is not URI-encoded text; skipped');
+          continue;
+        }
+        const shown = JSON.stringify(key.slice(0, 80));
+        if (key.startsWith('q.')) {
+          const name = key.slice(2);
+          const j = joints.find((x) => x.name === name) || joints.find((x) => x.link === name);
+          if (!j) { fragmentMessage(shown + ': no movable joint or link of that name; skipped'); continue; }
+          const number = value.trim() === '' ? NaN : Number(value);
+          if (!Number.isFinite(number)) { fragmentMessage(shown + ': ' + JSON.stringify(value.slice(0, 40)) + ' is not a number; skipped'); continue; }
+          let position = j.type === 'revolute' ? number * Math.PI / 180 : number / 1000;
+          const lower = j.lower === null ? -Infinity : j.lower, upper = j.upper === null ? Infinity : j.upper;
+          if (position < lower || position > upper) {
+            position = Math.min(Math.max(position, lower), upper);
+            fragmentMessage(shown + ': ' + value + ' is outside the joint range; clamped to ' +
+              (j.type === 'revolute' ? (position * 180 / Math.PI).toFixed(1) + '°' : (position * 1000).toFixed(1) + ' mm'));
+          }
+          setPosition(j.index, position);
+        } else if (key in toggles) {
+          if (!['0', '1', 'true', 'false', 'on', 'off'].includes(value)) { fragmentMessage(shown + ': ' + JSON.stringify(value.slice(0, 40)) + ' is not 0 or 1; skipped'); continue; }
+          await setToggle(key, value === '1' || value === 'true' || value === 'on');
+        } else {
+          fragmentMessage(shown + ': not a toggle (' + Object.keys(toggles).join(', ') + ') or q.JOINT; skipped');
+        }
+      }
+    }
+    await applyFragment(location.hash);
+    window.addEventListener('hashchange', () => { applyFragment(location.hash); });
 
     timings.setup = performance.now();
     render();

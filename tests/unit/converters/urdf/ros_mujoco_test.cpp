@@ -153,8 +153,8 @@ TEST_CASE("urdf user: copied meshes are written in --mesh-format, ASCII STL as b
   const fs::path dae = dir / "dae" / "meshes" / "robot";
   CHECK(files_in(dae) == std::set<std::string>{".bodyfmt-export", "arm.dae", "box.dae", "plate.dae", "TIP_shape1.dae"});
   CHECK(read(dae / "arm.dae") == read(dir / "src" / "parts" / "arm.dae"));
-  // Without copying, meshes are referenced where they are, in their own format.
-  REQUIRE(run_command(tool + " -o ref/robot.urdf", dir.string()).status == 0);
+  // --reference-meshes: meshes are referenced where they are, in their own format.
+  REQUIRE(run_command(tool + " -o ref/robot.urdf --reference-meshes", dir.string()).status == 0);
   const auto names = mesh_filenames(read(dir / "ref" / "robot.urdf"));
   CHECK(names.count("../src/parts/arm.dae") == 2);
   CHECK(names.count("../src/parts/box.stl") == 2);
@@ -205,6 +205,61 @@ TEST_CASE("urdf user: --package-uri writes URIs relative to the package root tha
     CHECK(!fs::exists(dir / "pkg" / "urdf"));
     CHECK(!fs::exists(dir / "elsewhere"));
   }
+  fs::remove_all(dir);
+}
+
+TEST_CASE("urdf user: by default every mesh URI resolves beside the URDF, or in the ROS package that holds it") {
+  const fs::path dir = fresh_dir("portable");
+  const fs::path body = mesh_model(dir);
+  const std::string tool = "'" + kTool + "' -q '" + body.string() + "'";
+  SUBCASE("no package.xml: copies beside the URDF, relative URIs that stay inside its folder") {
+    REQUIRE(run_command(tool + " -o out/robot.urdf", dir.string()).status == 0);
+    const auto names = mesh_filenames(read(dir / "out" / "robot.urdf"));
+    REQUIRE(names.size() == 8);
+    for (const std::string& name : names) {
+      CAPTURE(name);
+      CHECK(name.rfind("meshes/robot/", 0) == 0);
+      CHECK(fs::is_regular_file(dir / "out" / name));
+    }
+    // The folder moved elsewhere still resolves: nothing points back into src/.
+    fs::rename(dir / "out", dir / "moved");
+    for (const std::string& name : names) CHECK(fs::is_regular_file(dir / "moved" / name));
+  }
+  SUBCASE("a package.xml above the URDF: package://NAME/ URIs, meshes copied into the package") {
+    write(dir / "pkg" / "package.xml", kPackageXml);
+    REQUIRE(run_command(tool + " -o pkg/urdf/robot.urdf", dir.string()).status == 0);
+    const auto names = mesh_filenames(read(dir / "pkg" / "urdf" / "robot.urdf"));
+    REQUIRE(names.size() == 8);
+    for (const std::string& name : names) {
+      CAPTURE(name);
+      REQUIRE(name.rfind("package://my_robot/urdf/meshes/robot/", 0) == 0);
+      CHECK(fs::is_regular_file(dir / "pkg" / name.substr(std::string("package://my_robot/").size())));
+    }
+  }
+  fs::remove_all(dir);
+}
+
+TEST_CASE("urdf user: a new export removes the meshes its previous export wrote and no longer uses, only those") {
+  const fs::path dir = fresh_dir("stale");
+  const fs::path body = mesh_model(dir);
+  const std::string tool = "'" + kTool + "' -q '" + body.string() + "'";
+  REQUIRE(run_command(tool + " -o out/robot.urdf", dir.string()).status == 0);
+  const fs::path meshes = dir / "out" / "meshes" / "robot";
+  REQUIRE(files_in(meshes) ==
+          std::set<std::string>{".bodyfmt-export", "arm.stl", "box.stl", "plate.stl", "TIP_shape1.stl"});
+  // A file of the user's in the folder, and a name the record gives to another export.
+  write(meshes / "notes.txt", "mine\n");
+  write(meshes / "other.stl", "another export's\n");
+  {
+    std::ofstream record(meshes / ".bodyfmt-export", std::ios::app);
+    record << "other.stl\t../../other.urdf\n";
+  }
+  REQUIRE(run_command(tool + " -o out/robot.urdf --mesh-format dae", dir.string()).status == 0);
+  CHECK(files_in(meshes) == std::set<std::string>{".bodyfmt-export", "arm.dae", "box.dae", "plate.dae",
+                                                  "TIP_shape1.dae", "notes.txt", "other.stl"});
+  const std::string record = read(meshes / ".bodyfmt-export");
+  CHECK(record.find("box.stl") == std::string::npos);
+  CHECK(record.find("other.stl\t../../other.urdf") != std::string::npos);
   fs::remove_all(dir);
 }
 

@@ -10,7 +10,10 @@
 ///   never renamed over; a folder is refused;
 /// - a generated file in a subfolder (a mesh) that exists with other bytes is replaced only when
 ///   the folder's `.bodyfmt-export` record says this export wrote it, so two exports sharing a
-///   mesh folder never overwrite each other's files silently.
+///   mesh folder never overwrite each other's files silently;
+/// - a file the record gives to this export that it no longer writes (renamed, removed, in
+///   another format) is stale and removed after the commit; the record is the only evidence
+///   taken, so a file it does not list is never removed.
 /// Regular files then go to a temporary file beside their destination, and only when every
 /// temporary file has been written are they renamed over their destinations, the main file last,
 /// each existing destination kept under a hard link first. A failure at any point removes the
