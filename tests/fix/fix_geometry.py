@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """`bodycheck --fix=geometry` on every corpus model and on the tutorial tank (issue 39).
 
-usage: fix_geometry.py BODYCHECK BODYDIFF BODYSIM URDF2BODY CORPUS_DIR TANK URDF WORK_DIR
+usage: fix_geometry.py BODYCHECK BODYDIFF BODYSIM URDF2BODY BODYINFO CORPUS_DIR TANK URDF WORK_DIR
 
 1. Every corpus model, in a fresh writable copy of the corpus: `bodycheck --fix=geometry
    --fix-includes MODEL` exits 0 or 1 (never 2: no fix refused); afterwards bodycheck finds
@@ -11,7 +11,10 @@ usage: fix_geometry.py BODYCHECK BODYDIFF BODYSIM URDF2BODY CORPUS_DIR TANK URDF
    center_of_mass and inertia changes.
 2. The tutorial tank: fixed in one command, its chassis passes `bodysim check-tank` without
    --balance-inertia (the original cannot be simulated).
-3. urdf2body --mass-from-geometry gives a link without <inertial> its box's mass (density times
+3. bodyinfo --mass-from-geometry on the tank, JSON and YAML alike: the hull box 0.45 x 0.3 x 0.1
+   is 13.5 kg at 1000 kg/m³; a track (a trapezoid of 0.68 and 0.44 m by 0.16 m, 0.1 m wide) is
+   0.00896 m³ with its centroid h(2a + b)/(3(a + b)) = 0.0857 m above its bottom at -0.1 m.
+4. urdf2body --mass-from-geometry gives a link without <inertial> its box's mass (density times
    volume), reported as export-value-changed at the link's line.
 The corpus itself is only read.
 """
@@ -41,7 +44,7 @@ def writable_copy(src, dst):
 
 
 def main():
-    bodycheck, bodydiff, bodysim, urdf2body, corpus, tank, urdf, work = sys.argv[1:9]
+    bodycheck, bodydiff, bodysim, urdf2body, bodyinfo, corpus, tank, urdf, work = sys.argv[1:10]
     failures = []
     copy = os.path.join(work, "corpus")
     writable_copy(corpus, copy)
@@ -83,6 +86,16 @@ def main():
     sim = run(bodysim, "check-tank", tank_copy)
     if sim.returncode != 0:
         failures.append(f"tank: check-tank exit {sim.returncode}: {(sim.stdout + sim.stderr)[-600:]}")
+
+    import yaml
+    for form, parse in (("json", json.loads), ("yaml", yaml.safe_load)):
+        info = run(bodyinfo, "--mass-from-geometry", "--format", form, tank)
+        links = {link["name"]: link for link in parse(info.stdout)["links"]}
+        chassis, track = links["CHASSIS"], links["TRACK_L"]
+        centroid = -0.1 + 0.16 * (2 * 0.68 + 0.44) / (3 * (0.68 + 0.44))
+        if (abs(chassis["computed"]["mass"] - 13.5) > 1e-9 or abs(track["volume"] - 0.00896) > 1e-12
+                or abs(track["computed_at_written_mass"]["center_of_mass"][2] - centroid) > 1e-12):
+            failures.append(f"bodyinfo --format {form}: {chassis['computed']} {track}")
 
     # A URDF link without <inertial>: a 0.2 x 0.3 x 0.5 box at 500 kg/m³ is 15 kg.
     out = os.path.join(work, "massless.body")
