@@ -1,9 +1,13 @@
 #include "fix_run.h"
 
+#include <bodyfmt/derived.h>
 #include <bodyfmt/diagnostic_policy.h>
 #include <bodyfmt/fix.h>
+#include <bodyfmt/geometry_fix.h>
+#include <bodyfmt/geometry_mass.h>
 #include <bodyfmt/load.h>
 #include <bodyfmt/rules.h>
+#include <bodyfmt/validate.h>
 
 #include <fmt/format.h>
 
@@ -125,6 +129,7 @@ class ModelFixer {
     if (file == "-") return fail(file, "standard input cannot be fixed in place; name the file");
     auto policy = front_.policy_for(file);
     if (!policy) return fail(file, "its .bodycheck.yaml is malformed");
+    if (settings_.geometry) return fix_geometry(file, *policy);
     LoadOptions options = front_.load_options();
     options.load_meshes = false;  // fix-its never touch meshes; the model is compared without them
     CollectingSink collected;
@@ -160,6 +165,105 @@ class ModelFixer {
       }
       if (!upgrade.fixes.empty()) units.push_back(std::move(upgrade));
     }
+    apply_units(file, units);
+  }
+
+ private:
+  /// Edits that stand or fall together, and where to point when they are left out.
+  struct Unit {
+    std::vector<FixIt> fixes;
+    SourceLocation where;
+    bool upgrade = false;
+  };
+
+  /// `--fix=geometry`: the links an inertia rule flags get the centre of mass and inertia of
+  /// their shapes at their written mass. The proof is the same re-load, compared with the
+  /// original model whose link-level centre of mass and inertia are the written numbers.
+  void fix_geometry(const std::string& file, const Front::FilePolicy& policy) {
+    CollectingSink collected;
+    DiagnosticPolicy filter(collected, policy.options);
+    const std::optional<Model> original = load_body(file, front_.load_options(), filter);
+    bool fatal = !original;
+    for (const Diagnostic& d : collected.diagnostics()) fatal = fatal || d.severity == Severity::kFatal;
+    if (fatal) {
+      front_.print(collected.diagnostics());
+      return fail(file, "the file does not load (see the errors above); nothing is written");
+    }
+    const Derived derived = compute_derived(*original, filter);
+    CollectingSink checked;
+    DiagnosticPolicy check_filter(checked, policy.options);
+    validate::check_model(*original, derived, {}, check_filter);
+    const std::vector<bool> flagged = flagged_links(*original, checked.diagnostics());
+
+    Model expected = *original;
+    std::vector<Unit> units;
+    std::vector<Diagnostic> notes;
+    CollectingSink shapes;
+    for (std::size_t i = 0; i < original->links.size(); ++i) {
+      if (!flagged[i]) continue;
+      const Link& link = original->links[i];
+      const LinkGeometryMass geometry = link_geometry_mass(*original, link, shapes);
+      const std::optional<GeometryAtWrittenMass> at = geometry_at_written_mass(link, geometry);
+      const SourceLocation where = first_known({link.sources.inertia(), link.sources.mass(), link.source});
+      std::string why;
+      if (!at) {
+        why = geometry.empty() ? fmt::format("link \"{}\" has no solid {} geometry", link.name,
+                                             geometry.from_visual ? "visual" : "collision")
+                               : fmt::format("link \"{}\" has no link-level mass key", link.name);
+      }
+      std::vector<FixIt> fixes;
+      if (at) {
+        const std::string mass_file = link.sources.mass().file.str();
+        if (const std::optional<std::string> text = read_text(mass_file, why))
+          fixes = link_mass_fixes(*text, mass_file, link, at->link_keys, why);
+        if (!fixes.empty() && !allowed(mass_file)) {
+          why = "its keys are written in \"" + mass_file +
+                "\"; name that file on the command line too, or use "
+                "--fix-includes";
+          fixes.clear();
+        }
+      }
+      if (fixes.empty()) {
+        notes.push_back(make_diagnostic("fix-geometry-unavailable", where,
+                                        "no centre of mass and inertia from the geometry: " + why));
+        continue;
+      }
+      const MassProperties written = written_mass_keys(at->link_keys);
+      for (MassContribution& c : expected.links[i].mass_contributions) {
+        if (!c.from_link_keys) continue;
+        c.center_of_mass = written.center_of_mass;
+        c.inertia = written.inertia;
+      }
+      units.push_back(Unit{std::move(fixes), where, false});
+    }
+    std::vector<Diagnostic> shown = shapes.diagnostics();
+    shown.insert(shown.end(), notes.begin(), notes.end());
+    if (!shown.empty()) front_.print(shown);
+    original_ = &expected;
+    reload_meshes_ = true;
+    apply_units(file, units);
+  }
+
+  /// Links flagged by the four inertia rules whose tensor the geometry replaces, found by the
+  /// locations those rules report at.
+  static std::vector<bool> flagged_links(const Model& model, const std::vector<Diagnostic>& findings) {
+    std::vector<bool> flagged(model.links.size(), false);
+    for (const Diagnostic& d : findings) {
+      if (d.rule_id != "inertia-implausible" && d.rule_id != "inertia-triangle" &&
+          d.rule_id != "inertia-not-positive-definite" && d.rule_id != "inertia-com-outside")
+        continue;
+      for (std::size_t i = 0; i < model.links.size(); ++i) {
+        const Link& link = model.links[i];
+        bool at_link = d.location == link.source || d.location == link.sources.inertia() ||
+                       d.location == link.sources.mass() || d.location == link.sources.center_of_mass();
+        for (const MassContribution& c : link.mass_contributions) at_link = at_link || d.location == c.source;
+        if (at_link && d.location.known()) flagged[i] = true;
+      }
+    }
+    return flagged;
+  }
+
+  void apply_units(const std::string& file, const std::vector<Unit>& units) {
     if (units.empty()) return;
 
     Attempt attempt = try_units(file, units);
@@ -213,13 +317,6 @@ class ModelFixer {
     summary_.edits += attempt.edits;
   }
 
- private:
-  /// Edits that stand or fall together, and where to point when they are left out.
-  struct Unit {
-    std::vector<FixIt> fixes;
-    SourceLocation where;
-    bool upgrade = false;
-  };
   /// The outcome of applying some units: the files to rewrite, or why not. `failure` stops the
   /// fix of this model; `difference` says how the fixed text loads another model.
   struct Attempt {
@@ -242,7 +339,7 @@ class ModelFixer {
         shown.emplace(key, f.file.str());
       }
     LoadOptions reload_options = front_.load_options();
-    reload_options.load_meshes = false;
+    reload_options.load_meshes = reload_meshes_;
     const std::string main_key = canonical(file);
     std::string main_text;
     for (auto& [key, fixes] : a.by_file) {
@@ -303,7 +400,8 @@ class ModelFixer {
   }
 
   Front& front_;
-  const Model* original_ = nullptr;  ///< the model being fixed, as loaded
+  const Model* original_ = nullptr;  ///< the model being fixed, as loaded (--fix=geometry: as it should load)
+  bool reload_meshes_ = false;       ///< --fix=geometry compares a model loaded with its meshes
   const std::set<std::string>& named_;
   const FixSettings& settings_;
   FixSummary& summary_;

@@ -60,6 +60,7 @@ struct Settings {
   std::string explain;
   int jobs = 0;
   bool fix = false;
+  std::string fix_class;  ///< "safe" (--fix) or "geometry" (--fix=geometry)
   bool git_models = false;
   std::string min_severity = "note";
   tools::FixSettings fixing;
@@ -377,9 +378,11 @@ int main(int argc, char** argv) {
                "included file fails the models that use it)");
   const std::string fixing = "Fixing";
   CLI::Option* fix_option =
-      app.add_flag("--fix", settings.fix,
+      app.add_flag("--fix{safe}", settings.fix_class,
                    "apply the safe fix-its in place (docs/rules.md), after re-loading the result to prove the model "
-                   "is unchanged; then report what remains")
+                   "is unchanged; then report what remains. --fix=geometry instead replaces the centre of mass and "
+                   "inertia of the links an inertia rule flags with those of their shapes at their written mass")
+          ->check(CLI::IsMember({"safe", "geometry"}))
           ->group(fixing);
   app.add_flag("--dry-run", settings.fixing.dry_run, "with --fix: print a unified diff instead of writing")
       ->needs(fix_option)
@@ -393,6 +396,12 @@ int main(int argc, char** argv) {
       ->needs(fix_option)
       ->group(fixing);
   if (auto code = front.parse(argc, argv)) return *code;
+  settings.fix = !settings.fix_class.empty();
+  settings.fixing.geometry = settings.fix_class == "geometry";
+  if (settings.fixing.geometry && settings.fixing.upgrade) {
+    front.print_error("--fix=geometry and --upgrade are separate runs: upgrade first, then fix the geometry");
+    return tools::kExitFatal;
+  }
   if (settings.list_rules) {
     print_rules(std::cout);
     return tools::kExitClean;

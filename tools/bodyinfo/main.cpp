@@ -4,6 +4,8 @@
 
 #include "bodyinfo_report.h"
 #include "front.h"
+#include "mass_report.h"
+#include "number_options.h"
 
 #include <bodyfmt/derived.h>
 #include <bodyfmt/pose.h>
@@ -17,14 +19,33 @@ int main(int argc, char** argv) {
   tools::Front front("bodyinfo", "Summarise a Choreonoid .body model", {});
   std::string format = "text";
   front.app()
-      .add_option("--format", format, "output format: text, or yaml in the layout of Choreonoid's reference values")
-      ->check(CLI::IsMember({"text", "yaml"}));
+      .add_option("--format", format,
+                  "output format: text, or yaml in the layout of Choreonoid's reference values (json too with "
+                  "--mass-from-geometry)")
+      ->check(CLI::IsMember({"text", "yaml", "json"}));
+  // Empty when the option is given without a value: then water's 1000 kg/m³.
+  std::string density_text;
+  CLI::Option* geometry_option =
+      front.app()
+          .add_option("--mass-from-geometry", density_text,
+                      "print per link the written mass properties beside those computed from its collision shapes "
+                      "(its visual ones where it has none) at DENSITY kg/m³ (default 1000), with its RigidBody "
+                      "elements, and the tensor at the written mass")
+          ->expected(0, 1)
+          ->type_name("DENSITY")
+          ->check(tools::number_above_zero(false));
   std::string pose_text;
   CLI::Option* pose_option =
       front.app().add_option("--pose", pose_text,
                              "print every link's world frame at the joint positions NAME=VALUE,... (radians or "
                              "metres; '' is the zero pose) instead of the summary");
   if (auto code = front.parse(argc, argv)) return *code;
+  const bool mass_from_geometry = geometry_option->count() > 0;
+  const double density = density_text.empty() ? 1000.0 : std::strtod(density_text.c_str(), nullptr);
+  if (format == "json" && !mass_from_geometry) {
+    front.print_error("--format json is the form of --mass-from-geometry only");
+    return tools::kExitFatal;
+  }
   const auto [positions, pose_problems] = parse_joint_positions(pose_text);
   for (const std::string& problem : pose_problems) front.print_error("--pose: " + problem);
   if (!pose_problems.empty()) return tools::kExitFatal;
@@ -37,10 +58,12 @@ int main(int argc, char** argv) {
   std::optional<Model> model;
   Derived derived;
   std::vector<LinkBounds> choreonoid_boxes;
+  std::vector<tools::LinkMassComparison> mass_comparison;
   if (auto input = front.open_input(path, sink)) {
     model = front.load(*input, sink);
     if (model) derived = compute_derived(*model, sink);
-    if (model && format == "yaml") choreonoid_boxes = compute_choreonoid_bounds(*model, sink);
+    if (model && mass_from_geometry) mass_comparison = tools::compare_mass_with_geometry(*model, density, sink);
+    if (model && format == "yaml" && !mass_from_geometry) choreonoid_boxes = compute_choreonoid_bounds(*model, sink);
   }
 
   std::vector<Diagnostic> diagnostics = collected.diagnostics();
@@ -59,6 +82,8 @@ int main(int argc, char** argv) {
     for (const std::string& problem : q.problems) front.print_error("--pose: " + problem);
     if (!q.problems.empty()) return tools::kExitFatal;
     std::cout << tools::format_pose_yaml(*model, compute_world_frames(*model, q.q));
+  } else if (mass_from_geometry) {
+    std::cout << tools::format_mass_comparison(*model, derived, density, mass_comparison, format);
   } else if (format == "yaml") {
     std::cout << tools::format_reference_yaml(*model, derived, choreonoid_boxes, diagnostics);
   } else {

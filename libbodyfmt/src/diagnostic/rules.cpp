@@ -51,6 +51,10 @@ std::vector<RuleInfo> make_table() {
        "bodycheck --fix left a fix-it (or the whole --upgrade) out: its edit is of text another use shares (an "
        "anchor, alias or merge), which it would change too; the rest of the file is fixed",
        "a fix-it must never change the model; the note names the difference the edit would make", ""},
+      {"fix-geometry-unavailable", N,
+       "bodycheck --fix=geometry has no tensor from the shapes for a link an inertia rule flags: it has no solid "
+       "geometry, no link-level mass, or keys not written as plain numbers in place",
+       "the link's mass properties must then be set by hand; the note says which of these it is", ""},
       {"load-format-upgrade", N, "a format 1.0 file; `bodycheck --fix --upgrade` rewrites it as format 2.0",
        "2.0 is snake_case keys and degrees only; converting radian values by hand is error-prone (per-key rules)", ""},
       {"load-unknown-key", W, "an unknown key close to a known one (probable typo)",
@@ -188,6 +192,11 @@ std::vector<RuleInfo> make_table() {
        "the inertia is far from that of the link's geometry bounding box filled with its mass",
        "usually a placeholder, a unit error (g, mm) or an inertia about the wrong point",
        "only links that can move; trace ratio outside [1/f, f], f = CheckOptions::inertia_plausibility_factor (10)"},
+      {"inertia-geometry-not-solid", W,
+       "a shape whose mass properties are computed from the geometry is not a closed, consistently oriented solid",
+       "a shell bounds no volume: the divergence theorem over it gives a meaningless mass, so the shape is left out",
+       "only where mass is computed from the geometry (bodyinfo --mass-from-geometry, bodycheck --fix=geometry); "
+       "edges compared by vertex position: each must be run as often forwards as backwards"},
       // Joints (body-format-spec §5.3, §6, §15)
       {"joint-id-duplicate", E, "two joints share a joint_id",
        "Choreonoid keeps one joint per id; controllers drive the wrong joint", ""},
