@@ -305,7 +305,7 @@ TEST_CASE("urdf import: a world link with a fixed joint fixes the root") {
   CHECK(r.m().links[0].X_PL.translation() == Eigen::Vector3d(1, 2, 3));
 }
 
-TEST_CASE("urdf import: a world link keeps its joint's name and origin; a floating one frees the root") {
+TEST_CASE("urdf import: a world link keeps its joint's name and origin, a floating one frees the root") {
   LoadResult r = import_text(R"(
 <robot name="w">
   <link name="world"/>
@@ -320,7 +320,7 @@ TEST_CASE("urdf import: a world link keeps its joint's name and origin; a floati
   CHECK(r.m().links[0].X_PL.translation() == Eigen::Vector3d(0, 0, 1));
 }
 
-TEST_CASE("urdf import: a world link that is not empty is folded; its content is reported at its line") {
+TEST_CASE("urdf import: a world link that is not empty is folded, its content is reported at its line") {
   LoadResult r = import_text(R"(
 <robot name="w">
   <link name="world"><visual><geometry><box size="9 9 1"/></geometry></visual></link>
@@ -338,7 +338,7 @@ TEST_CASE("urdf import: a world link that is not empty is folded; its content is
   CHECK(r.m().links[0].joint_name == "fix");
 }
 
-TEST_CASE("urdf import: a world link on a planar joint stays a link; the planar joint is reported") {
+TEST_CASE("urdf import: a world link on a planar joint stays a link, the planar joint is reported") {
   LoadResult r = import_text(R"(
 <robot name="w">
   <link name="world"/>

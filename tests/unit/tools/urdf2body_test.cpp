@@ -497,7 +497,7 @@ TEST_CASE("urdf2body: public URDF collections (BODYFMT_URDF_COLLECTIONS)") {
     const char* kinds[] = {"world root",      "inertia defaults", "multi-shape",
                            "reversed limits", "zero radius",      "capsule"};
     std::map<std::string, std::pair<int, int>> per_kind;  // files of the kind, of them the same tree
-    int same = 0, reported = 0, refused = 0, other = 0;
+    int same = 0, reported = 0, refused = 0, unread = 0, other = 0;
     std::map<std::string, int> refusals;  // by rule
     for (const fs::path& file : files) {
       const std::string text = read(file);
@@ -513,6 +513,9 @@ TEST_CASE("urdf2body: public URDF collections (BODYFMT_URDF_COLLECTIONS)") {
         ++refused;
         ++refusals[rule.empty() ? "(no located error)" : rule];
         outcome = "refused: " + (line.empty() ? import.output.substr(0, 200) : line.substr(line.find(':') + 1));
+      } else if (!original) {  // urdfdom's own negative tests (a bad version, conflicting materials)
+        ++unread;
+        outcome = "imported; urdfdom refuses the original, so there is nothing to compare";
       } else if (run_command(bodycheck + " -q --no-config m.body", dir.string()).status > 1) {
         ++other;
         outcome = "bodycheck cannot read the import";
@@ -522,9 +525,8 @@ TEST_CASE("urdf2body: public URDF collections (BODYFMT_URDF_COLLECTIONS)") {
         auto again = urdf::parseURDF(for_urdfdom(read(dir / "m.urdf")));
         const std::string problem = back.status > 1 ? "body2urdf exit " + std::to_string(back.status) + ": " +
                                                           first_line_with(back.output, "error")
-                                    : !original ? "urdfdom cannot read the original"
-                                    : !again    ? "urdfdom cannot read the export"
-                                                : same_tree(*original, *again, 1);
+                                    : !again ? "urdfdom cannot read the export"
+                                             : same_tree(*original, *again, 1);
         if (problem.empty()) {
           ++same;
           outcome = "same tree";
@@ -556,7 +558,8 @@ TEST_CASE("urdf2body: public URDF collections (BODYFMT_URDF_COLLECTIONS)") {
     for (const auto& [rule, n] : refusals) refusal_counts += fmt::format(" {} {}", rule, n);
     MESSAGE(root << ": " << files.size() << " URDF: " << same << " the same tree, " << reported
                  << " differ where urdf2body reports a loss, " << refused << " refused at a line (" << refusal_counts
-                 << " ), " << other << " other" << kind_counts << " (same tree/files)");
+                 << " ), " << unread << " that urdfdom refuses, " << other << " other" << kind_counts
+                 << " (same tree/files)");
   }
   fs::remove_all(dir);
 }
@@ -581,7 +584,8 @@ TEST_CASE("urdf2body: a world root and the simulators' conventions come back fro
 )";
   std::ofstream(dir / "in.urdf") << text;
   const CommandResult import = run_command(std::string(BODYFMT_URDF2BODY) + " in.urdf -o in.body", dir.string());
-  REQUIRE_MESSAGE(import.status == 1, import.output);  // warnings: import-convention
+  REQUIRE_MESSAGE(import.status == 0, import.output);  // warnings only
+  CHECK(import.output.find("[import-convention]") != std::string::npos);
   const CommandResult back =
       run_command(std::string(BODYFMT_BODY2URDF) + " in.body --capsules -o out.urdf", dir.string());
   REQUIRE_MESSAGE(back.status <= 1, back.output);

@@ -356,7 +356,7 @@ links:
   for (const auto& d : e.diagnostics) CHECK_MESSAGE(d.message.find("initial pose") == std::string::npos, d.message);
 }
 
-TEST_CASE("urdf: a free root with a joint name hangs from a world link on a floating joint; without one, not") {
+TEST_CASE("urdf: a free root with a joint name hangs from a world link on a floating joint, one without a name not") {
   const char* const text = R"(format: ChoreonoidBody
 format_version: 2.0
 name: F
