@@ -539,7 +539,8 @@ TEST_CASE("urdf2body: public URDF collections (BODYFMT_URDF_COLLECTIONS)") {
           else
             ++other;
           outcome = "differs (" + problem + ")" +
-                    (loss.empty() ? "; NOT reported" : "; reported: " + loss.substr(loss.find(':') + 1));
+                    (loss.empty() ? "; urdf2body reported no loss"
+                                  : "; urdf2body's first loss: " + loss.substr(loss.find(':') + 1));
         }
       }
       std::string tags;
@@ -557,9 +558,9 @@ TEST_CASE("urdf2body: public URDF collections (BODYFMT_URDF_COLLECTIONS)") {
     std::string refusal_counts;
     for (const auto& [rule, n] : refusals) refusal_counts += fmt::format(" {} {}", rule, n);
     MESSAGE(root << ": " << files.size() << " URDF: " << same << " the same tree, " << reported
-                 << " differ where urdf2body reports a loss, " << refused << " refused at a line (" << refusal_counts
-                 << " ), " << unread << " that urdfdom refuses, " << other << " other" << kind_counts
-                 << " (same tree/files)");
+                 << " differ where urdf2body reported a loss (not necessarily the cause), " << refused
+                 << " refused at a line (" << refusal_counts << " ), " << unread << " that urdfdom refuses, " << other
+                 << " other" << kind_counts << " (same tree/files)");
   }
   fs::remove_all(dir);
 }
