@@ -5,7 +5,7 @@
 
 namespace bodyfmt::converters {
 
-bool check_joints(const Model& model, DiagnosticSink& sink) {
+bool check_joints(const Model& model, DiagnosticSink& sink, bool reversed_range_writable) {
   bool usable = true;
   // The joint half of the physical-validity gate, which bodycheck's joint rules report too.
   for (const PhysicalFinding& f : assess_joints(model)) {
@@ -15,7 +15,7 @@ bool check_joints(const Model& model, DiagnosticSink& sink) {
       report_physical(
           sink, f, fmt::format("joint axis of link \"{}\" is the zero vector; the joint cannot be exported", link.name),
           "give the axis a direction, e.g. joint_axis: Z");
-    } else if (f.defect == PhysicalDefect::kRangeReversed) {
+    } else if (f.defect == PhysicalDefect::kRangeReversed && !reversed_range_writable) {
       usable = false;
       report_physical(
           sink, f,

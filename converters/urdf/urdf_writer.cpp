@@ -104,6 +104,7 @@ class Writer : converters::XmlWriter {
   }
   std::string material_name(const Material& material);
   void write_joint(std::size_t index, const std::string& joint_name);
+  std::string write_world(const Link& root);
   void write_devices(XMLElement* link_el, std::size_t link_index);
   /// Prints the children of robot_ built so far and deletes them, so that the document never
   /// holds more than the element being written (a 100k-link robot would take ~4.5 KB a link).
@@ -116,7 +117,7 @@ class Writer : converters::XmlWriter {
 
   const UrdfOptions& options_;
   const converters::ShapeTarget shape_target_{kTarget,
-                                              /*capsule=*/false,
+                                              /*capsule=*/options_.capsules,
                                               /*min_box_half_edge=*/0,
                                               /*hull_collision=*/false,
                                               /*emissive_color=*/false,
@@ -138,7 +139,8 @@ class Writer : converters::XmlWriter {
 
 bool write_urdf(const Model& model, const Derived& derived, const UrdfOptions& options, converters::OutputSet& output,
                 DiagnosticSink& sink) {
-  return converters::write_xml<Writer>(model, derived, options, output, sink);
+  // A reversed range is written as it is (see write_joint).
+  return converters::write_xml<Writer>(model, derived, options, output, sink, /*reversed_range_writable=*/true);
 }
 
 void Writer::flush() {
@@ -287,9 +289,10 @@ std::vector<Piece> Writer::pieces(XMLElement* link_el, std::size_t link_index, s
         };
         break;
       case Kind::kCylinder:
-      case Kind::kCapsule:  // not in shape_target_: planned as a mesh
-        piece.geometry = [this, r = planned.radius, h = planned.length](XMLElement* g) {
-          XMLElement* c = element(g, "cylinder");
+      case Kind::kCapsule:  // planned only with --capsules, else as a mesh
+        piece.geometry = [this, r = planned.radius, h = planned.length,
+                          name = planned.kind == Kind::kCapsule ? "capsule" : "cylinder"](XMLElement* g) {
+          XMLElement* c = element(g, name);
           c->SetAttribute("radius", format_number(r).c_str());
           c->SetAttribute("length", format_number(h).c_str());
         };
@@ -414,6 +417,10 @@ void Writer::write_joint(std::size_t index, const std::string& joint_name) {
   const double effort = symmetric(link.effort_lower, link.effort_upper, "effort", link.source);
   XMLElement* limit = element(j, "limit");
   if (std::string_view(type) != "continuous") {
+    if (link.joint_range_lower > link.joint_range_upper)
+      comment(j,
+              "lower > upper as in the model (bodycheck: joint-range-reversed): urdfdom keeps it, MuJoCo reads "
+              "the joint as unlimited, Drake refuses it");
     limit->SetAttribute("lower", format_number(finite_or_stand_in(link.joint_range_lower)).c_str());
     limit->SetAttribute("upper", format_number(finite_or_stand_in(link.joint_range_upper)).c_str());
   }
@@ -427,6 +434,35 @@ void Writer::write_joint(std::size_t index, const std::string& joint_name) {
     loss(converters::LossKind::kDynamics, j, link.source,
          fmt::format("the initial displacement {} of '{}'", format_number(link.initial_displacement), joint_name));
   }
+}
+
+// Choreonoid holds a fixed root where the file places it, but a URDF consumer floats the root
+// unless it hangs from a `world` link: a fixed root is always written on a fixed joint to
+// `world` at its pose. A free root whose joint has a name of its own came from a `world` link on
+// a floating joint (urdf2body keeps the joint's name) and goes back to one; --floating-base
+// writes every root so. Returns the name of the joint written ("" when none is).
+std::string Writer::write_world(const Link& root) {
+  const bool named_joint = !root.joint_name.empty() && root.joint_name != root.name;
+  const bool wanted = options_.floating_base || root.joint_type == JointType::kFixed ||
+                      (root.joint_type == JointType::kFree && named_joint);
+  if (!wanted) return {};
+  if (link_names_.count("world")) {
+    if (options_.floating_base)
+      fatal("export-name-conflict", source_of(root, LinkSources::kName),
+            "--floating-base adds a link named 'world', but the model already has one");
+    return {};  // the root's pose is then reported lost with the root link
+  }
+  const std::string name = named_joint ? root.joint_name.str() : std::string("world_joint");
+  element(robot_, "link")->SetAttribute("name", "world");
+  comment(robot_, "the root's joint to the world, at its initial pose from the file");
+  XMLElement* j = element(robot_, "joint");
+  j->SetAttribute("name", name.c_str());
+  j->SetAttribute("type", root.joint_type == JointType::kFree ? "floating" : "fixed");
+  origin(j, root.X_PL);
+  element(j, "parent")->SetAttribute("link", "world");
+  element(j, "child")->SetAttribute("link", root.name.c_str());
+  check_name(name, "joint", source_of(root, LinkSources::kName));
+  return name;
 }
 
 bool Writer::run() {
@@ -451,29 +487,14 @@ bool Writer::run() {
   assess_inertias();
 
   for (const Link& link : model_.links) link_names_.insert(link.name);
-  const Link& root = model_.root();
-  if (options_.floating_base) {
-    if (link_names_.count("world")) {
-      fatal("export-name-conflict", source_of(root, LinkSources::kName),
-            "--floating-base adds a link named 'world', but the model already has one");
-    } else {
-      element(robot_, "link")->SetAttribute("name", "world");
-      comment(robot_, "--floating-base: the root's initial pose from the file");
-      XMLElement* j = element(robot_, "joint");
-      j->SetAttribute("name", "world_joint");
-      j->SetAttribute("type", root.joint_type == JointType::kFree ? "floating" : "fixed");
-      origin(j, root.X_PL);
-      element(j, "parent")->SetAttribute("link", "world");
-      element(j, "child")->SetAttribute("link", root.name.c_str());
-    }
-  }
+  const std::string world_joint = write_world(model_.root());
 
   for (std::size_t i = 0; i < model_.links.size(); ++i) {
     const Link& link = model_.links[i];
     check_name(link.name, "link", source_of(link, LinkSources::kName));
     XMLElement* link_el = element(robot_, "link");
     link_el->SetAttribute("name", link.name.c_str());
-    if (i == 0 && !options_.floating_base) {
+    if (i == 0 && world_joint.empty()) {
       if (!link.X_PL.isApprox(Eigen::AffineCompact3d::Identity(), 0)) {
         loss(converters::LossKind::kDynamics, link_el, source_of(link, LinkSources::kTranslation),
              "the root link's initial pose", "--floating-base writes it as the origin of a joint to a 'world' link");
@@ -506,6 +527,7 @@ bool Writer::run() {
     return (ia >= 0 ? ia : INT32_MAX) < (ib >= 0 ? ib : INT32_MAX);
   });
   std::set<std::string> joint_names;
+  if (!world_joint.empty()) joint_names.insert(world_joint);
   for (std::size_t i : order) {
     const Link& link = model_.links[i];
     std::string name = link.joint_name.empty() ? link.name : link.joint_name.str();

@@ -36,6 +36,9 @@ struct UrdfOptions {
   /// Adds a `world` link joined to the root by a floating joint (a fixed joint for a fixed
   /// root) placed at the root's initial pose.
   bool floating_base = false;
+  /// Writes a Capsule as `<capsule radius length>` (along Z, length the straight part), which
+  /// Drake and sdformat read but urdfdom refuses; without it a capsule is a tessellated mesh.
+  bool capsules = false;
   /// Writes each device as a child link on a fixed joint instead of reporting it.
   bool devices_as_frames = false;
   /// Writes the nearest valid tensor (bodyfmt::balance_inertia, the tensor body2mjcf writes)

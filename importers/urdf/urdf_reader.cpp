@@ -98,6 +98,14 @@ class Reader {
   std::optional<Geometry> read_geometry(const XMLElement* geometry, Eigen::Isometry3d& X_LS, Eigen::Vector3d& scale);
   void read_joint(const JointInfo& joint, Link& link, bool is_root_child_of_world);
   void report_unknown_children(const XMLElement* e, std::initializer_list<const char*> known, const char* where);
+  // Conventions outside the URDF spec that ROS tools and simulators accept (each an import-convention warning).
+  void convention(const SourceLocation& at, std::string message) {
+    report("import-convention", at, std::move(message));
+  }
+  std::optional<double> product_of_inertia(const XMLElement* inertia, const char* attribute);
+  void report_reversed_range(const XMLElement* limit, const std::string& joint, double lower, double upper);
+  bool zero_radius(const XMLElement* shape, double radius);
+  void report_world_content(const XMLElement* world);
   std::string mesh_uri(const XMLElement* mesh, const std::string& filename, std::string& resolved);
 
   std::string_view text_;
@@ -180,6 +188,45 @@ void Reader::report_unknown_children(const XMLElement* e, std::initializer_list<
   }
 }
 
+// urdfdom requires all six attributes; Drake and MuJoCo read a missing product of inertia as 0,
+// and files written for them leave the zeros out.
+std::optional<double> Reader::product_of_inertia(const XMLElement* inertia, const char* attribute) {
+  if (inertia->Attribute(attribute)) return number(inertia, attribute);
+  convention(at_.at(inertia), fmt::format("<inertia> has no {} attribute; read as 0, as Drake and MuJoCo do (urdfdom "
+                                          "refuses it)",
+                                          attribute));
+  return 0.0;
+}
+
+// Kept as written, as urdfdom keeps it (Choreonoid accepts it too, and body2urdf writes it back);
+// MuJoCo's URDF import reads the joint as unlimited and Drake refuses it.
+void Reader::report_reversed_range(const XMLElement* limit, const std::string& joint, double lower, double upper) {
+  convention(at_.at(limit, "lower"),
+             fmt::format("joint '{}' has lower {} > upper {}; kept as written (urdfdom keeps it, MuJoCo reads the "
+                         "joint as unlimited, Drake refuses it; bodycheck reports joint-range-reversed)",
+                         joint, converters::format_number(lower), converters::format_number(upper)));
+}
+
+// A zero radius (feet's contact points) is a point to urdfdom and Gazebo; Choreonoid refuses a
+// shape whose radius is not positive, so the shape is left out and reported.
+bool Reader::zero_radius(const XMLElement* shape, double radius) {
+  if (radius != 0) return false;
+  loss(at_.at(shape, "radius"), LossKind::kGeometry,
+       fmt::format("the <{}> of radius 0 (a point to urdfdom and Gazebo; Choreonoid refuses a radius that is not "
+                   "positive, so the shape is left out)",
+                   shape->Name()));
+  return true;
+}
+
+// What a folded `world` link holds is not part of the robot: consumers take `world` as the fixed
+// frame, and a .body has no link above its root to hold it.
+void Reader::report_world_content(const XMLElement* world) {
+  for (const XMLElement* c = world->FirstChildElement(); c; c = c->NextSiblingElement())
+    loss(at_.at(c), named(c, "inertial") ? LossKind::kDynamics : LossKind::kGeometry,
+         fmt::format("the <{}> of the 'world' link (the world is the fixed frame: its child is the root of the body)",
+                     c->Name()));
+}
+
 void Reader::read_material(const XMLElement* e, bool top_level) {
   const char* name = e->Attribute("name");
   const XMLElement* color = e->FirstChildElement("color");
@@ -233,6 +280,10 @@ void Reader::read_inertial(const XMLElement* e, Link& link) {
     const char* names[6] = {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"};
     double v[6] = {0, 0, 0, 0, 0, 0};
     for (int i = 0; i < 6; ++i) {
+      if (i == 1 || i == 2 || i == 4) {
+        v[i] = product_of_inertia(inertia, names[i]).value_or(0);
+        continue;
+      }
       if (!inertia->Attribute(names[i])) {
         report("import-structure", at_.at(inertia), fmt::format("<inertia> has no {} attribute", names[i]));
         continue;
@@ -291,9 +342,10 @@ std::optional<Geometry> Reader::read_geometry(const XMLElement* g, Eigen::Isomet
     report("import-structure", at_.at(g), "this <geometry> is empty");
     return std::nullopt;
   }
-  if (shape->NextSiblingElement())
-    report("import-structure", at_.at(shape->NextSiblingElement()),
-           "a <geometry> holds one shape; this one is ignored");
+  if (const XMLElement* extra = shape->NextSiblingElement())
+    convention(at_.at(extra), fmt::format("a <geometry> holds one shape; this <{}> is ignored (urdfdom, Gazebo and "
+                                          "MoveIt take the first, <{}>)",
+                                          extra->Name(), shape->Name()));
   auto require = [&](const char* attribute) -> std::optional<double> {
     if (!shape->Attribute(attribute)) {
       report("import-structure", at_.at(shape), fmt::format("<{}> has no {} attribute", shape->Name(), attribute));
@@ -312,7 +364,7 @@ std::optional<Geometry> Reader::read_geometry(const XMLElement* g, Eigen::Isomet
   }
   if (named(shape, "sphere")) {
     auto r = require("radius");
-    if (!r) return std::nullopt;
+    if (!r || zero_radius(shape, *r)) return std::nullopt;
     return Geometry(Sphere{*r});
   }
   // URDF's cylinder and capsule run along Z, Choreonoid's along Y: Rx(+90°) maps +Y onto +Z
@@ -320,7 +372,7 @@ std::optional<Geometry> Reader::read_geometry(const XMLElement* g, Eigen::Isomet
   auto along_z = [&](auto round_shape) -> std::optional<Geometry> {
     auto r = require("radius");
     auto h = require("length");
-    if (!r || !h) return std::nullopt;
+    if (!r || !h || zero_radius(shape, *r)) return std::nullopt;
     Eigen::Matrix3d Rx90;
     Rx90 << 1, 0, 0, 0, 0, -1, 0, 1, 0;
     X_LS.linear() = X_LS.linear() * Rx90;
@@ -344,7 +396,12 @@ std::optional<Geometry> Reader::read_geometry(const XMLElement* g, Eigen::Isomet
   }
   // Not URDF 1.0, but urdfdom-based tools (Drake, Gazebo's parser) read it: a Z-axis capsule
   // whose length is the cylindrical part.
-  if (named(shape, "capsule")) return along_z(Capsule{});
+  if (named(shape, "capsule")) {
+    convention(at_.at(shape),
+               "<capsule> is not URDF 1.0 (urdfdom refuses it); read as Drake and sdformat read it, a "
+               "capsule along Z whose length is the cylindrical part");
+    return along_z(Capsule{});
+  }
   report("import-value", at_.at(shape), fmt::format("<{}> is not a URDF geometry", shape->Name()));
   return std::nullopt;
 }
@@ -474,6 +531,7 @@ void Reader::read_joint(const JointInfo& joint, Link& link, bool collapsed_world
         const double upper = limit->Attribute("upper") ? number(limit, "upper").value_or(0) : 0.0;
         link.joint_range_lower = lower <= -converters::kUnlimitedStandIn ? -kUnlimited : lower;
         link.joint_range_upper = upper >= converters::kUnlimitedStandIn ? kUnlimited : upper;
+        if (lower > upper) report_reversed_range(limit, joint.name, lower, upper);
       }
       if (limit->Attribute("velocity"))
         if (auto v = number(limit, "velocity")) {
@@ -655,18 +713,21 @@ std::optional<Tree> Reader::connect(const Elements& elements) {
   return tree;
 }
 
-// A root named "world" without mass or shapes, with one fixed or floating joint, is the
-// convention for fixing (or freeing) the base in the world: the child becomes the root with
-// that joint type and pose (the form body2urdf --floating-base writes).
+// A root named "world" with one fixed or floating joint is the convention for fixing (or
+// freeing) the base in the world: the child becomes the root with that joint's type, name and
+// pose (the form body2urdf writes back); what the world link holds is reported lost. A world
+// on a planar joint, or with several children, stays a link (the body cannot fix its root to
+// a plane or several bodies to the world).
 void Reader::choose_root(const Elements& elements, Tree& tree) {
   const XMLElement* r = elements.links[tree.root];
   const std::vector<int>& children = tree.child_joints[tree.root];
-  if (std::strcmp(r->Attribute("name"), "world") != 0 || r->FirstChildElement() || children.size() != 1) return;
+  if (std::strcmp(r->Attribute("name"), "world") != 0 || children.size() != 1) return;
   const JointInfo& j = elements.joints[static_cast<std::size_t>(children[0])];
   const char* type = j.element->Attribute("type");
   if (type && (std::strcmp(type, "fixed") == 0 || std::strcmp(type, "floating") == 0)) {
     tree.root_joint = children[0];
     tree.root = elements.link_index.at(j.child);
+    report_world_content(r);
   }
 }
 

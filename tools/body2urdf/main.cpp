@@ -61,7 +61,10 @@ int main(int argc, char** argv) {
                "write <mujoco><compiler strippath=\"false\"/></mujoco> so that MuJoCo finds meshes in folders "
                "(default on)");
   app.add_flag("--floating-base", options.floating_base,
-               "add a 'world' link and a floating joint at the root's initial pose");
+               "add a 'world' link and a floating joint at the root's initial pose (a fixed root always gets a "
+               "fixed one)");
+  app.add_flag("--capsules", options.capsules,
+               "write capsules as <capsule> (Drake and sdformat read it, urdfdom refuses it; default: a mesh)");
   app.add_flag("--devices-as-frames", options.devices_as_frames, "write devices as fixed child links");
   app.add_flag("--balance-inertia", options.balance_inertia,
                "write the nearest valid inertia for links whose inertia Drake, gz-math and MuJoCo refuse (a warning "

@@ -290,6 +290,10 @@ std::vector<RuleInfo> make_table() {
        "the shape is imported without colour", ""},
       {"import-unknown-element", W, "an element URDF does not define (an extension of another tool)",
        "its content is not imported", ""},
+      {"import-convention", W,
+       "a URDF construct outside the URDF spec that ROS tools or simulators accept (missing products of "
+       "inertia, a second shape in a <geometry>, lower > upper, a zero radius, <capsule>); read as they do",
+       "another consumer of the same file may read it differently or refuse it", ""},
       // Dynamics checker (dynamics/, bodysim)
       {"dynamics-contact-geometry", W,
        "bodysim --contact simbody could not turn a collision shape into Simbody contact geometry (a Brick needs a "

@@ -305,5 +305,89 @@ TEST_CASE("urdf import: a world link with a fixed joint fixes the root") {
   CHECK(r.m().links[0].X_PL.translation() == Eigen::Vector3d(1, 2, 3));
 }
 
+TEST_CASE("urdf import: a world link keeps its joint's name and origin, a floating one frees the root") {
+  LoadResult r = import_text(R"(
+<robot name="w">
+  <link name="world"/>
+  <link name="base"/>
+  <joint name="float" type="floating"><parent link="world"/><child link="base"/><origin xyz="0 0 1"/></joint>
+</robot>
+)");
+  r.expect_clean();
+  REQUIRE(r.m().links.size() == 1);
+  CHECK(r.m().links[0].joint_type == JointType::kFree);
+  CHECK(r.m().links[0].joint_name == "float");
+  CHECK(r.m().links[0].X_PL.translation() == Eigen::Vector3d(0, 0, 1));
+}
+
+TEST_CASE("urdf import: a world link that is not empty is folded, its content is reported at its line") {
+  LoadResult r = import_text(R"(
+<robot name="w">
+  <link name="world"><visual><geometry><box size="9 9 1"/></geometry></visual></link>
+  <link name="base"/>
+  <joint name="fix" type="fixed"><parent link="world"/><child link="base"/></joint>
+</robot>
+)");
+  const Diagnostic d = r.take("export-loss");
+  CHECK(pos(d) == Pos{2, 22});
+  CHECK(d.category == "geometry");
+  r.expect_clean();
+  REQUIRE(r.m().links.size() == 1);
+  CHECK(r.m().links[0].name == "base");
+  CHECK(r.m().links[0].joint_type == JointType::kFixed);
+  CHECK(r.m().links[0].joint_name == "fix");
+}
+
+TEST_CASE("urdf import: a world link on a planar joint stays a link, the planar joint is reported") {
+  LoadResult r = import_text(R"(
+<robot name="w">
+  <link name="world"/>
+  <link name="base"/>
+  <joint name="plane" type="planar"><parent link="world"/><child link="base"/></joint>
+</robot>
+)");
+  const Diagnostic d = r.take("export-loss");
+  CHECK(pos(d) == Pos{4, 23});
+  CHECK(d.category == "joints");
+  r.expect_clean();
+  REQUIRE(r.m().links.size() == 2);
+  CHECK(r.m().links[0].name == "world");
+  CHECK(r.link("base").joint_type == JointType::kFixed);
+}
+
+TEST_CASE("urdf import: conventions outside the URDF spec are read as ROS tools and simulators read them") {
+  LoadResult r = import_text(R"(
+<robot name="c">
+  <link name="a">
+    <inertial><mass value="1"/><inertia ixx="1" iyy="2" izz="3"/></inertial>
+    <visual><geometry><box size="1 1 1"/><sphere radius="1"/></geometry></visual>
+    <collision><geometry><sphere radius="0"/></geometry></collision>
+    <collision><geometry><capsule radius="0.1" length="0.5"/></geometry></collision>
+  </link>
+  <link name="b"/>
+  <joint name="j" type="revolute"><parent link="a"/><child link="b"/>
+    <limit lower="1" upper="-1" effort="1" velocity="1"/></joint>
+</robot>
+)");
+  // ixy, ixz and iyz are missing: read as 0, one warning each at the <inertia>.
+  for (int i = 0; i < 3; ++i) CHECK(pos(r.take("import-convention")) == Pos{3, 32});
+  CHECK(pos(r.take("import-convention")) == Pos{4, 42});  // the second shape, ignored
+  const Diagnostic zero = r.take("export-loss");          // radius 0: Choreonoid refuses it
+  CHECK(pos(zero) == Pos{5, 34});
+  CHECK(zero.category == "geometry");
+  CHECK(pos(r.take("import-convention")) == Pos{6, 26});   // <capsule>
+  CHECK(pos(r.take("import-convention")) == Pos{10, 12});  // lower > upper
+  r.expect_clean();
+  const Link& a = r.link("a");
+  CHECK(a.mass_contributions.at(0).inertia == Eigen::Vector3d(1, 2, 3).asDiagonal().toDenseMatrix());
+  REQUIRE(a.shapes.size() == 2);
+  CHECK(geometry_get<Box>(a.shapes[0].geometry).size == Eigen::Vector3d(1, 1, 1));
+  const Capsule& capsule = geometry_get<Capsule>(a.shapes[1].geometry);
+  CHECK(capsule.radius == 0.1);
+  CHECK(capsule.height == 0.5);
+  CHECK(r.link("b").joint_range_lower == 1);
+  CHECK(r.link("b").joint_range_upper == -1);
+}
+
 }  // namespace
 }  // namespace bodyfmt::test

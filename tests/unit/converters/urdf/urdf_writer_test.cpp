@@ -322,6 +322,97 @@ TEST_CASE("urdf: --floating-base joins the root to a world link at its initial p
   for (const auto& d : e.diagnostics) CHECK(d.message.find("initial pose") == std::string::npos);
 }
 
+// A .body written by the test (into the temp folder) from `text`.
+fs::path body_file(const std::string& name, const std::string& text) {
+  const fs::path dir = fs::temp_directory_path() / "bodyfmt_urdf_writer_bodies";
+  fs::create_directories(dir);
+  std::ofstream(dir / name) << text;
+  return dir / name;
+}
+
+TEST_CASE("urdf: a fixed root hangs from a world link on its named joint, at its pose") {
+  Export e = export_file(body_file("fixed_root.body", R"(format: ChoreonoidBody
+format_version: 2.0
+name: F
+links:
+  - name: BASE
+    joint_type: fixed
+    joint_name: bolt
+    translation: [1, 2, 3]
+    rotation: [0, 0, 1, 90]
+    mass: 1
+)"));
+  REQUIRE(e.ok);
+  auto u = ::urdf::parseURDF(e.urdf);
+  REQUIRE(u);
+  CHECK(u->getRoot()->name == "world");
+  auto j = u->getLink("BASE")->parent_joint;
+  REQUIRE(j);
+  CHECK(j->name == "bolt");
+  CHECK(j->type == ::urdf::Joint::FIXED);
+  const Eigen::Isometry3d X = iso(j->parent_to_joint_origin_transform);
+  CHECK((X.translation() - Eigen::Vector3d(1, 2, 3)).norm() < 1e-12);
+  CHECK((X.linear() - Eigen::Matrix3d(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()))).norm() < 1e-12);
+  for (const auto& d : e.diagnostics) CHECK_MESSAGE(d.message.find("initial pose") == std::string::npos, d.message);
+}
+
+TEST_CASE("urdf: a free root with a joint name hangs from a world link on a floating joint, one without a name not") {
+  const char* const text = R"(format: ChoreonoidBody
+format_version: 2.0
+name: F
+links:
+  - name: BASE
+    joint_type: free
+    joint_name: float
+    mass: 1
+)";
+  Export e = export_file(body_file("named_free_root.body", text));
+  REQUIRE(e.ok);
+  auto u = ::urdf::parseURDF(e.urdf);
+  REQUIRE(u);
+  CHECK(u->getRoot()->name == "world");
+  REQUIRE(u->getJoint("float"));
+  CHECK(u->getJoint("float")->type == ::urdf::Joint::FLOATING);
+  std::string unnamed = text;
+  unnamed.erase(unnamed.find("    joint_name: float\n"), std::string("    joint_name: float\n").size());
+  Export f = export_file(body_file("free_root.body", unnamed));
+  REQUIRE(f.ok);
+  auto v = ::urdf::parseURDF(f.urdf);
+  REQUIRE(v);
+  CHECK(v->getRoot()->name == "BASE");
+}
+
+TEST_CASE("urdf: --capsules writes a capsule as <capsule>, a reversed range is written as it is") {
+  const fs::path body = body_file("capsule.body", R"(format: ChoreonoidBody
+format_version: 2.0
+name: C
+links:
+  - name: BASE
+    joint_type: free
+    mass: 1
+    elements:
+      - type: Shape
+        geometry: { type: Capsule, radius: 0.1, height: 0.5 }
+  - name: ARM
+    parent: BASE
+    joint_type: revolute
+    joint_axis: Z
+    joint_id: 0
+    joint_range: [30, -30]
+    mass: 1
+)");
+  UrdfOptions options;
+  options.capsules = true;
+  Export e = export_file(body, options);
+  REQUIRE(e.ok);
+  CHECK(e.urdf.find("<capsule radius=\"0.1\" length=\"0.5\"/>") != std::string::npos);
+  CHECK(e.urdf.find("<limit lower=\"0.5235987755982988\" upper=\"-0.5235987755982988\"") != std::string::npos);
+  Export mesh = export_file(body);
+  REQUIRE(mesh.ok);
+  CHECK(mesh.urdf.find("<capsule") == std::string::npos);
+  CHECK(mesh.urdf.find("<mesh") != std::string::npos);
+}
+
 TEST_CASE("urdf: materials, visual/collision split, cylinder axis and defaults") {
   Export e = export_file(kData / "clean.body");
   REQUIRE(e.ok);

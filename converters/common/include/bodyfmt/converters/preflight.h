@@ -9,8 +9,9 @@
 namespace bodyfmt::converters {
 
 /// Reports, as errors at the value, every revolute, prismatic or track joint whose axis is the
-/// zero vector (`joint-axis-zero`) and every joint range with lower > upper
+/// zero vector (`joint-axis-zero`) and, unless `reversed_range_writable` (URDF holds such a range
+/// as written, and files written for simulators use it), every joint range with lower > upper
 /// (`joint-range-reversed`); returns false if there was one.
-bool check_joints(const Model& model, DiagnosticSink& sink);
+bool check_joints(const Model& model, DiagnosticSink& sink, bool reversed_range_writable = false);
 
 }  // namespace bodyfmt::converters

@@ -61,8 +61,8 @@ class XmlWriter {
 /// `WriterType(model, derived, options, output, sink).run()`.
 template <typename WriterType, typename Options>
 bool write_xml(const Model& model, const Derived& derived, const Options& options, OutputSet& output,
-               DiagnosticSink& sink) {
-  if (!check_joints(model, sink)) {
+               DiagnosticSink& sink, bool reversed_range_writable = false) {
+  if (!check_joints(model, sink, reversed_range_writable)) {
     output.fail();
     return false;
   }
