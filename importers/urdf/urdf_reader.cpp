@@ -281,7 +281,18 @@ void Reader::read_inertial(const XMLElement* e, Link& link) {
 }
 
 std::string Reader::mesh_uri(const XMLElement* mesh, const std::string& filename, std::string& resolved) {
-  if (!options_.resolve_meshes) return filename;
+  if (!options_.resolve_meshes) {
+    // Kept as written: it must still be a URI the .body loader takes (found by fuzz_urdf_import:
+    // "meshes/a://b" made a file that did not load).
+    const std::string_view path =
+        std::string_view(filename).substr(filename.rfind("file://", 0) == 0 ? std::strlen("file://") : 0);
+    if (const std::size_t scheme = path.find("://");
+        scheme != std::string_view::npos && path.substr(0, scheme) != "package")
+      report("import-mesh", at_.at(mesh, "filename"),
+             fmt::format("the URI scheme {}:// of the mesh '{}' is not supported (package://, file:// and paths are)",
+                         path.substr(0, scheme), filename));
+    return filename;
+  }
   auto cached = mesh_cache_.find(filename);
   if (cached == mesh_cache_.end()) {
     MeshLookup found = find_mesh(filename, search_);

@@ -10,7 +10,8 @@
 4. the file name in the header comment cannot add lines (keys) to the model;
 9/10. bodydiff --git and urdf2body --copy-meshes go through the bounded reader: /dev/zero, a
    FIFO, a 300 MB and a 5 GB (sparse) file are refused with exit 2, never std::bad_alloc;
-16. names with C1 controls, NEL, U+2028, U+FFFE and U+FFFF come back from urdf2body byte for byte.
+16. names with C1 controls, NEL, U+2028, U+FFFE and U+FFFF come back from urdf2body byte for byte;
+17. a mesh URI kept as written (--no-meshes) is one the .body loader takes.
 
     urdf2body_files.py BIN_DIR SOURCE_DIR
 """
@@ -108,6 +109,17 @@ def copy_meshes(root):
     expect(f"--copy-meshes of a mesh inside the package: exit {code}", code == 0, text)
     expect("--copy-meshes: the mesh inside was not copied",
            os.path.exists(os.path.join(root, "inside", "meshes", "r", "ok.stl")))
+
+
+def unknown_scheme_kept(root):
+    """Found by fuzz_urdf_import: with --no-meshes a URI is kept as written, so a scheme the
+    .body loader refuses ("meshes/a://b") is an error at its line, not a file that fails to load."""
+    with open(os.path.join(root, "r.urdf"), "w") as f:
+        f.write(urdf("meshes/a://b.stl"))
+    code, text = run(["urdf2body", "--no-meshes", "r.urdf", "-o", "r.body"], root)
+    expect(f"urdf2body --no-meshes with meshes/a://b.stl: exit {code}, expected 2", code == 2, text)
+    expect("urdf2body --no-meshes with meshes/a://b.stl: no error at line 3", re.search(r"r\.urdf:3:\d+: ", text), text)
+    expect("urdf2body --no-meshes with meshes/a://b.stl: written", not os.path.exists(os.path.join(root, "r.body")))
 
 
 def output_onto_mesh(root):
@@ -219,7 +231,7 @@ def names_round_trip(root):
 
 def main():
     with tempfile.TemporaryDirectory() as root:
-        for check in (copy_meshes, output_onto_mesh, standard_input, header_comment, bounded_reads, names_round_trip):
+        for check in (copy_meshes, unknown_scheme_kept, output_onto_mesh, standard_input, header_comment, bounded_reads, names_round_trip):
             sub = os.path.join(root, check.__name__)
             os.makedirs(sub)
             check(sub)
