@@ -1,11 +1,11 @@
 #include <bodyfmt/converters/names.h>
 #include <bodyfmt/converters/staged_files.h>
 
+#include <bodyfmt/read_file.h>
+
 #include <fmt/format.h>
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 namespace bodyfmt::converters {
 
@@ -43,21 +43,21 @@ std::optional<std::string> StagedFiles::mesh(const std::string& key, const std::
   return add(key, relative, std::move(*bytes));
 }
 
-std::optional<std::string> StagedFiles::copy(const std::string& source_path, std::string& error) {
+std::optional<std::string> StagedFiles::copy(const std::string& source_path, std::uintmax_t max_bytes,
+                                             std::string& error) {
   // One copy per file, however its path is spelled.
   std::error_code ec;
   const std::filesystem::path canonical = std::filesystem::weakly_canonical(source_path, ec);
   const std::string key = "copy:" + (ec ? source_path : canonical.string());
   if (auto it = by_key_.find(key); it != by_key_.end()) return it->second;
-  std::ifstream in(source_path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (!in) {
-    error = fmt::format("cannot read mesh '{}' to copy it", source_path);
+  std::string why;
+  std::optional<std::string> bytes = read_regular_file(source_path, max_bytes, why);
+  if (!bytes) {
+    error = fmt::format("cannot read mesh '{}' to copy it: {}", source_path, why);
     return std::nullopt;
   }
   const std::filesystem::path p(source_path);
-  return add(key, unique_path(file_stem(p.stem().string()), p.extension().string()), text.str());
+  return add(key, unique_path(file_stem(p.stem().string()), p.extension().string()), std::move(*bytes));
 }
 
 }  // namespace bodyfmt::converters

@@ -6,6 +6,7 @@
 #include <bodyfmt/converters/loss.h>
 #include <bodyfmt/converters/staged_files.h>
 #include <bodyfmt/converters/transforms.h>
+#include <bodyfmt/read_file.h>
 #include <bodyfmt/rules.h>
 #include <bodyfmt/tessellate.h>
 
@@ -279,17 +280,14 @@ int Writer::texture_index(const Texture& texture, const SourceLocation& at) {
   if (auto it = image_keys_.find(texture.resolved_path); it != image_keys_.end()) {
     image = it->second;
   } else {
-    std::error_code ec;
-    const auto size = fs::file_size(texture.resolved_path, ec);
-    std::ifstream in(texture.resolved_path, std::ios::binary);
-    if (ec || !in || size > kMaxTextureBytes) {
+    std::string why;
+    const std::optional<std::string> bytes = read_regular_file(texture.resolved_path, kMaxTextureBytes, why);
+    if (!bytes) {
       loss(converters::LossKind::kTextures, at, fmt::format("the texture '{}'", texture.uri),
-           ec || !in ? "the file cannot be read" : "the file is larger than 64 MiB");
+           "the file cannot be read (" + why + ")");
       return -1;
     }
-    std::ostringstream bytes;
-    bytes << in.rdbuf();
-    const std::string data = bytes.str();
+    const std::string& data = *bytes;
     const bool png_magic = data.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0;
     const bool jpeg_magic = data.size() > 2 && data[0] == '\xFF' && data[1] == '\xD8';
     if (!png_magic && !jpeg_magic) {

@@ -1,5 +1,7 @@
 #include "package_paths.h"
 
+#include <bodyfmt/read_file.h>
+
 #include <tinyxml2.h>
 
 #include <cctype>
@@ -9,6 +11,8 @@
 namespace bodyfmt::urdf_import {
 namespace fs = std::filesystem;
 namespace {
+
+constexpr std::uintmax_t kMaxPackageXmlBytes = 1u << 20;
 
 bool is_file(const fs::path& path) {
   std::error_code ec;
@@ -49,9 +53,15 @@ std::vector<std::string> split_paths(const char* list) {
   return out;
 }
 
+bool found_in_package(const fs::path& package, const std::string& rest, MeshLookup& result) {
+  if (!try_path(package / rest, result)) return false;
+  result.package_folder = normal(package);
+  return true;
+}
+
 bool find_in_package_root(const fs::path& root, const std::string& name, const std::string& rest, MeshLookup& result) {
-  if (try_path(root / name / rest, result)) return true;
-  return package_xml_name(root) == name && try_path(root / rest, result);
+  if (found_in_package(root / name, rest, result)) return true;
+  return package_xml_name(root) == name && found_in_package(root, rest, result);
 }
 
 }  // namespace
@@ -59,12 +69,14 @@ bool find_in_package_root(const fs::path& root, const std::string& name, const s
 std::string package_xml_name(const fs::path& folder) {
   const fs::path file = folder / "package.xml";
   std::string name;
-  if (is_file(file)) {
+  std::string why;
+  // Bounded, and never a FIFO or a device: a package.xml is any file a downloaded tree holds.
+  if (const std::optional<std::string> text = read_regular_file(file.string(), kMaxPackageXmlBytes, why)) {
     tinyxml2::XMLDocument doc;
-    if (doc.LoadFile(file.string().c_str()) == tinyxml2::XML_SUCCESS)
+    if (doc.Parse(text->data(), text->size()) == tinyxml2::XML_SUCCESS)
       if (const tinyxml2::XMLElement* package = doc.FirstChildElement("package"))
         if (const tinyxml2::XMLElement* n = package->FirstChildElement("name"))
-          if (const char* text = n->GetText()) name = text;
+          if (const char* value = n->GetText()) name = value;
     while (!name.empty() && std::isspace(static_cast<unsigned char>(name.back()))) name.pop_back();
     while (!name.empty() && std::isspace(static_cast<unsigned char>(name.front()))) name.erase(0, 1);
   }
@@ -96,8 +108,8 @@ MeshLookup find_mesh(const std::string& uri, const MeshSearch& search) {
     while (true) {
       const std::string declared = package_xml_name(folder);
       if (declared == name || (declared.empty() && folder.filename() == name))
-        if (try_path(folder / path, result)) return result;
-      if (is_folder(folder / name) && try_path(folder / name / path, result)) return result;
+        if (found_in_package(folder, path, result)) return result;
+      if (is_folder(folder / name) && found_in_package(folder / name, path, result)) return result;
       if (!folder.has_relative_path()) break;
       folder = folder.parent_path();
     }
@@ -124,6 +136,24 @@ MeshLookup find_mesh(const std::string& uri, const MeshSearch& search) {
   const fs::path path(uri);
   try_path(path.is_absolute() ? path : search.urdf_folder / path, result);
   return result;
+}
+
+fs::path urdf_tree(const fs::path& urdf_folder) {
+  std::error_code ec;
+  const fs::path start = fs::weakly_canonical(fs::absolute(urdf_folder.empty() ? fs::path(".") : urdf_folder, ec), ec);
+  for (fs::path folder = start;; folder = folder.parent_path()) {
+    if (is_file(folder / "package.xml")) return folder;
+    if (!folder.has_relative_path()) break;
+  }
+  return start;
+}
+
+bool inside_tree(const std::string& file, const fs::path& tree) {
+  std::error_code ec;
+  const fs::path real = fs::canonical(file, ec);
+  if (ec) return false;
+  const fs::path relative = real.lexically_relative(tree);
+  return !relative.empty() && *relative.begin() != ".." && *relative.begin() != ".";
 }
 
 }  // namespace bodyfmt::urdf_import

@@ -17,6 +17,7 @@ struct MeshLookup {
   std::string path;                   ///< the file found (absolute, lexically normal); empty when none
   std::vector<std::string> searched;  ///< every place looked at, in order (for the error)
   std::string problem;                ///< why the URI cannot be looked up at all (an unknown scheme), or empty
+  std::string package_folder;         ///< for package://NAME/...: the folder of package NAME it was found in
 };
 
 /// Looks for the file of `uri`. For `package://NAME/PATH`, in order: each package path P as
@@ -28,5 +29,12 @@ MeshLookup find_mesh(const std::string& uri, const MeshSearch& search);
 
 /// The <name> of the package.xml in `folder`, or empty.
 std::string package_xml_name(const std::filesystem::path& folder);
+
+/// The folder tree a URDF came with: the nearest folder at or above `urdf_folder` holding a
+/// package.xml (its package), else `urdf_folder` itself; canonical (links resolved).
+std::filesystem::path urdf_tree(const std::filesystem::path& urdf_folder);
+
+/// True when `file`, with every link resolved, lies inside the canonical folder `tree`.
+bool inside_tree(const std::string& file, const std::filesystem::path& tree);
 
 }  // namespace bodyfmt::urdf_import

@@ -6,13 +6,16 @@
 #include <bodyfmt/converters/loss.h>
 #include <bodyfmt/converters/numbers.h>
 #include <bodyfmt/rules.h>
+#include <bodyfmt/text.h>
 
 #include <fmt/format.h>
 #include <tinyxml2.h>
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <map>
 #include <unordered_map>
@@ -59,6 +62,7 @@ class Reader {
     search_.package_paths = options.package_paths;
     search_.use_ros_package_path = options.use_ros_package_path;
     search_.urdf_folder = fs::path(file).parent_path();
+    if (options.confine_meshes) urdf_tree_ = urdf_tree(search_.urdf_folder);
     std::error_code ec;
     output_folder_ =
         fs::absolute(options.output_folder.empty() ? fs::path(".") : options.output_folder, ec).lexically_normal();
@@ -89,6 +93,8 @@ class Reader {
     return Eigen::Vector3d((*v)[0], (*v)[1], (*v)[2]);
   }
   std::string required_name(const XMLElement* e, const char* attribute, const char* what);
+  void check_text(const XMLElement* e, const char* attribute);
+  bool check_document();
   Eigen::Isometry3d origin(const XMLElement* parent);
 
   void read_material(const XMLElement* e, bool top_level);
@@ -114,6 +120,7 @@ class Reader {
   DiagnosticSink& sink_;
   XmlPositions at_;
   MeshSearch search_;
+  fs::path urdf_tree_;  ///< where confined meshes may be (UrdfImportOptions::confine_meshes)
   fs::path output_folder_;
   std::map<std::string, Material> materials_;
   std::unordered_map<std::string, std::pair<std::string, std::string>> mesh_cache_;  // uri -> relative, resolved
@@ -129,10 +136,13 @@ std::optional<std::vector<double>> Reader::numbers(const XMLElement* e, const ch
   while (true) {
     while (p < end && std::strchr(" \t\r\n", *p)) ++p;
     if (p == end) break;
-    if (*p == '+') ++p;  // from_chars takes no plus sign; URDF writers do emit them
+    // from_chars takes no plus sign; URDF writers do emit them. "+-1" is not a number.
+    const bool plus = *p == '+';
+    if (plus) ++p;
     double v = 0;
     auto [next, ec] = std::from_chars(p, end, v);
-    if (ec != std::errc() || (next < end && !std::strchr(" \t\r\n", *next)) || !std::isfinite(v)) {
+    if (ec != std::errc() || (plus && p < end && (*p == '-' || *p == '+')) ||
+        (next < end && !std::strchr(" \t\r\n", *next)) || !std::isfinite(v)) {
       report("import-value", at_.at(e, attribute),
              fmt::format("{}=\"{}\" is not {}", attribute, text,
                          count == 1 ? "a finite number" : fmt::format("{} finite numbers", count)));
@@ -161,7 +171,19 @@ std::string Reader::required_name(const XMLElement* e, const char* attribute, co
     report("import-structure", at_.at(e), fmt::format("this {} has no {} attribute", what, attribute));
     return {};
   }
+  check_text(e, attribute);
   return value;
+}
+
+// A text the .body keeps must come back byte for byte: the writer escapes every character
+// YAML cannot hold as it is, but a byte that is not UTF-8 has no YAML spelling.
+void Reader::check_text(const XMLElement* e, const char* attribute) {
+  const char* value = e->Attribute(attribute);
+  if (value && !text::is_utf8(value))
+    report("import-value", at_.at(e, attribute),
+           fmt::format("{}=\"{}\" is not valid UTF-8 (a .body file is UTF-8; a character reference such as "
+                       "&#xD800; or &#x110000; names no character)",
+                       attribute, value));
 }
 
 // URDF's origin: xyz, then rpy as R = Rz(yaw) Ry(pitch) Rx(roll).
@@ -310,12 +332,31 @@ void Reader::read_inertial(const XMLElement* e, Link& link) {
 }
 
 std::string Reader::mesh_uri(const XMLElement* mesh, const std::string& filename, std::string& resolved) {
-  if (!options_.resolve_meshes) return filename;
+  if (!options_.resolve_meshes) {
+    // Kept as written: it must still be a URI the .body loader takes (found by fuzz_urdf_import:
+    // "meshes/a://b" made a file that did not load).
+    const std::string_view path =
+        std::string_view(filename).substr(filename.rfind("file://", 0) == 0 ? std::strlen("file://") : 0);
+    if (const std::size_t scheme = path.find("://");
+        scheme != std::string_view::npos && path.substr(0, scheme) != "package")
+      report("import-mesh", at_.at(mesh, "filename"),
+             fmt::format("the URI scheme {}:// of the mesh '{}' is not supported (package://, file:// and paths are)",
+                         path.substr(0, scheme), filename));
+    return filename;
+  }
   auto cached = mesh_cache_.find(filename);
   if (cached == mesh_cache_.end()) {
-    const MeshLookup found = find_mesh(filename, search_);
+    MeshLookup found = find_mesh(filename, search_);
     std::string relative;
-    if (!found.path.empty()) {
+    if (!found.path.empty() && options_.confine_meshes && !inside_tree(found.path, urdf_tree_) &&
+        (found.package_folder.empty() || !inside_tree(found.path, fs::weakly_canonical(found.package_folder)))) {
+      report("import-mesh", at_.at(mesh, "filename"),
+             fmt::format("the mesh '{}' is the file '{}', outside the URDF's folder tree '{}'{}; --copy-meshes copies "
+                         "only files inside it",
+                         filename, found.path, urdf_tree_.string(),
+                         found.package_folder.empty() ? "" : " and the package '" + found.package_folder + "'"));
+      found.path.clear();
+    } else if (!found.path.empty()) {
       relative = fs::path(found.path).lexically_relative(output_folder_).generic_string();
       if (relative.empty()) relative = fs::path(found.path).generic_string();
     } else {
@@ -388,7 +429,16 @@ std::optional<Geometry> Reader::read_geometry(const XMLElement* g, Eigen::Isomet
       return std::nullopt;
     }
     if (shape->Attribute("scale"))
-      if (auto s = vec3(shape, "scale")) scale = *s;
+      if (auto s = vec3(shape, "scale")) {
+        // A zero factor flattens the mesh: its placement has no rotation to write.
+        if ((s->array() == 0).any())
+          report(
+              "import-value", at_.at(shape, "scale"),
+              fmt::format("scale=\"{}\" has a zero factor (a mesh cannot be scaled flat)", shape->Attribute("scale")));
+        else
+          scale = *s;
+      }
+    check_text(shape, "filename");
     MeshResource mesh;
     mesh.uri = mesh_uri(shape, filename, mesh.resolved_path);
     mesh.uri_source = at_.at(shape, "filename");
@@ -514,11 +564,13 @@ void Reader::read_joint(const JointInfo& joint, Link& link, bool collapsed_world
       if (a->Attribute("xyz"))
         if (auto v = vec3(a, "xyz")) axis = *v;
     }
-    if (axis.norm() == 0) {
+    if (axis.isZero(0)) {
       report("import-value", link.sources.joint_axis().known() ? link.sources.joint_axis() : at_.at(e),
              fmt::format("joint '{}' has a zero axis", joint.name));
     } else {
-      axis.normalize();  // urdfdom normalises; Choreonoid's body loader does not (body-format-spec §4.5)
+      // urdfdom normalises; Choreonoid's body loader does not (body-format-spec §4.5). Stable:
+      // the norm of "0 0 1e308" overflows to inf.
+      axis = axis.stableNormalized();
     }
     link.joint_axis = axis;
     const XMLElement* limit = e->FirstChildElement("limit");
@@ -526,9 +578,20 @@ void Reader::read_joint(const JointInfo& joint, Link& link, bool collapsed_world
       link.sources.set(LinkSources::kJointRange, at_.at(limit));
       // body2urdf writes 1e30 where Choreonoid has no limit (converters/common/numbers.h).
       auto bounded = [](double v) { return std::abs(v) >= converters::kUnlimitedStandIn ? kUnlimited : v; };
+      // A revolute bound is written in degrees: one that overflows there cannot be written.
+      // (A lower bound at or below -1e30 and an upper one at or above 1e30 mean no limit.)
+      auto in_degrees = [&](const char* attribute, double unlimited_side) -> double {
+        const double v = number(limit, attribute).value_or(0);
+        if (revolute && v * unlimited_side < converters::kUnlimitedStandIn && !std::isfinite(v * 180 / M_PI)) {
+          report("import-value", at_.at(limit, attribute),
+                 fmt::format("{}=\"{}\" is too large to write in degrees", attribute, limit->Attribute(attribute)));
+          return 0;
+        }
+        return v;
+      };
       if (type != "continuous") {
-        const double lower = limit->Attribute("lower") ? number(limit, "lower").value_or(0) : 0.0;
-        const double upper = limit->Attribute("upper") ? number(limit, "upper").value_or(0) : 0.0;
+        const double lower = limit->Attribute("lower") ? in_degrees("lower", -1) : 0.0;
+        const double upper = limit->Attribute("upper") ? in_degrees("upper", 1) : 0.0;
         link.joint_range_lower = lower <= -converters::kUnlimitedStandIn ? -kUnlimited : lower;
         link.joint_range_upper = upper >= converters::kUnlimitedStandIn ? kUnlimited : upper;
         if (lower > upper) report_reversed_range(limit, joint.name, lower, upper);
@@ -567,23 +630,92 @@ void Reader::read_joint(const JointInfo& joint, Link& link, bool collapsed_world
     loss(at_.at(c), LossKind::kJoints, fmt::format("the calibration of joint '{}'", joint.name));
 }
 
+// What tinyxml2 takes but XML does not, or reports without a line: UTF-16 text, a NUL byte,
+// and character references to what is not an XML character (&#0; would end a name there).
+// Comments and CDATA sections are skipped: a reference there is text.
+bool Reader::check_document() {
+  const SourceLocation start{file_, 1, 1};
+  if (text_.empty()) {
+    report("import-syntax", start, "the URDF is empty");
+    return false;
+  }
+  if (text_.size() >= 2 && ((text_[0] == '\xFE' && text_[1] == '\xFF') || (text_[0] == '\xFF' && text_[1] == '\xFE'))) {
+    report("import-syntax", start, "the URDF is UTF-16 text; a URDF is read as UTF-8",
+           "convert it, e.g. with iconv -f UTF-16 -t UTF-8");
+    return false;
+  }
+  int line = 1;
+  std::size_t line_start = 0;
+  auto here = [&](std::size_t at) { return SourceLocation{file_, line, static_cast<int>(at - line_start) + 1}; };
+  for (std::size_t i = 0; i < text_.size(); ++i) {
+    const char c = text_[i];
+    if (c == '\n') {
+      ++line;
+      line_start = i + 1;
+    } else if (c == '\0') {
+      report("import-syntax", here(i), "a NUL byte: a URDF is UTF-8 text (this may be UTF-16)");
+      return false;
+    } else if (c == '<' && (text_.compare(i, 4, "<!--") == 0 || text_.compare(i, 9, "<![CDATA[") == 0)) {
+      const std::size_t end = text_.find(text_[i + 2] == '-' ? "-->" : "]]>", i);
+      const std::size_t stop = end == std::string_view::npos ? text_.size() : end;
+      for (; i + 1 < stop; ++i)
+        if (text_[i + 1] == '\n') {
+          ++line;
+          line_start = i + 2;
+        }
+    } else if (c == '&' && i + 1 < text_.size() && text_[i + 1] == '#') {
+      const bool hex = i + 2 < text_.size() && text_[i + 2] == 'x';
+      std::size_t j = i + (hex ? 3 : 2);
+      std::uint64_t code = 0;
+      bool digits = false;
+      for (; j < text_.size() && std::isxdigit(static_cast<unsigned char>(text_[j])) &&
+             (hex || std::isdigit(static_cast<unsigned char>(text_[j])));
+           ++j) {
+        digits = true;
+        const char d = text_[j];
+        code = std::min<std::uint64_t>(
+            code * (hex ? 16 : 10) + static_cast<std::uint64_t>(
+                                         std::isdigit(static_cast<unsigned char>(d)) ? d - '0' : (d | 0x20) - 'a' + 10),
+            0x110000);
+      }
+      if (!digits || j >= text_.size() || text_[j] != ';') continue;  // tinyxml2 reports what is not a reference
+      const bool xml_char = code == 0x9 || code == 0xA || code == 0xD || (code >= 0x20 && code <= 0xD7FF) ||
+                            (code >= 0xE000 && code <= 0xFFFD) || (code >= 0x10000 && code <= 0x10FFFF);
+      if (!xml_char) {
+        report("import-syntax", here(i), fmt::format("{} is not a character XML allows", text_.substr(i, j + 1 - i)));
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
 std::optional<Model> Reader::read() {
+  if (!check_document()) return std::nullopt;
   tinyxml2::XMLDocument doc;
   if (doc.Parse(text_.data(), text_.size()) != tinyxml2::XML_SUCCESS) {
-    report("import-syntax", at_.at_line(doc.ErrorLineNum()),
+    // tinyxml2 gives line 0 for what has no line (an empty document).
+    const int line = std::max(doc.ErrorLineNum(), 1);
+    report("import-syntax", SourceLocation{file_, line, doc.ErrorLineNum() > 0 ? 0 : 1},
            fmt::format("the URDF is not well-formed XML: {}", doc.ErrorStr() ? doc.ErrorStr() : "parse error"));
     return std::nullopt;
   }
   const XMLElement* robot = doc.RootElement();
   if (!robot || !named(robot, "robot")) {
-    report("import-syntax", robot ? at_.at(robot) : at_.at_line(1),
+    report("import-syntax", robot ? at_.at(robot) : SourceLocation{file_, 1, 1},
            robot ? fmt::format("the document element is <{}>, not <robot>", robot->Name())
                  : std::string("the document has no element"));
+    return std::nullopt;
+  }
+  if (const XMLElement* second = robot->NextSiblingElement()) {
+    report("import-syntax", at_.at(second),
+           fmt::format("a second document element <{}> after the <robot>: an XML document has one", second->Name()));
     return std::nullopt;
   }
 
   Model model;
   model.name = robot->Attribute("name") ? robot->Attribute("name") : "";
+  check_text(robot, "name");
   model.source_file = file_;
   model.format_version = 2.0;
   model.source = at_.at(robot);
@@ -790,17 +922,31 @@ void Reader::report_cycles(const Elements& elements, const Tree& tree, const std
   const auto& parent_joint = tree.parent_joint;
   const auto& roots = tree.roots;
   const int root_joint = tree.root_joint;
+  // Whether each link's chain of parents ends at a root (a second one: the first was walked)
+  // or runs into a cycle; each link is decided once, so a cycle of n links costs n steps.
+  enum class Ends : char { kUnknown, kOnPath, kAtRoot, kInCycle };
+  std::vector<Ends> ends(links.size(), Ends::kUnknown);
+  auto parent_of = [&elements, &parent_joint](std::size_t i) {
+    return elements.link_index.at(elements.joints[static_cast<std::size_t>(parent_joint[i])].parent);
+  };
+  std::vector<std::size_t> path;
+  for (std::size_t i = 0; i < links.size(); ++i) {
+    std::size_t at = i;
+    while (ends[at] == Ends::kUnknown && parent_joint[at] >= 0) {
+      ends[at] = Ends::kOnPath;
+      path.push_back(at);
+      at = parent_of(at);
+    }
+    const Ends end = ends[at] == Ends::kUnknown ? Ends::kAtRoot : ends[at] == Ends::kOnPath ? Ends::kInCycle : ends[at];
+    if (ends[at] == Ends::kUnknown) ends[at] = Ends::kAtRoot;
+    for (std::size_t p : path) ends[p] = end;
+    path.clear();
+  }
   std::vector<std::string> cycle;
   for (std::size_t i = 0; i < links.size(); ++i)
-    if (!visited[i] && parent_joint[i] >= 0 && !(i == roots[0] && root_joint >= 0)) {
-      // Unreached links with a parent joint: they hang from a cycle (or from a second root).
-      bool under_root = false;
-      std::size_t at = i;
-      for (std::size_t steps = 0; steps <= links.size() && parent_joint[at] >= 0; ++steps)
-        at = link_index.at(joints[static_cast<std::size_t>(parent_joint[at])].parent);
-      under_root = parent_joint[at] < 0;
-      if (!under_root) cycle.push_back(links[i]->Attribute("name"));
-    }
+    // Unreached links with a parent joint: they hang from a cycle (or from a second root).
+    if (!visited[i] && parent_joint[i] >= 0 && !(i == roots[0] && root_joint >= 0) && ends[i] == Ends::kInCycle)
+      cycle.push_back(links[i]->Attribute("name"));
   if (!cycle.empty()) {
     std::string names;
     for (const std::string& n : cycle) names += (names.empty() ? "'" : ", '") + n + "'";

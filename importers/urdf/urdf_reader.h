@@ -30,6 +30,12 @@ struct UrdfImportOptions {
   std::filesystem::path output_folder = ".";
   /// Look meshes up (false: keep each URI as written, unresolved).
   bool resolve_meshes = true;
+  /// Accept only meshes inside the URDF's folder tree (its package: the nearest folder at or
+  /// above the URDF with a package.xml, else the URDF's folder) or inside the package a
+  /// package:// URI names; any other file (an absolute path, "../..", a link out of the tree)
+  /// is an `import-mesh` error. urdf2body --copy-meshes sets it: a downloaded URDF must not
+  /// make the tool copy /etc/shadow beside the model (issue 34).
+  bool confine_meshes = false;
 };
 
 /// The model of the URDF `text` (`file_name` is used in locations and to resolve relative

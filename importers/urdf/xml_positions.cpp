@@ -38,32 +38,35 @@ int XmlPositions::find_on_line(int line, std::string_view needle, std::size_t fr
   return -1;
 }
 
-namespace {
-
-// The element before `e` in document order (the previous sibling's last descendant, else the
-// parent), or nullptr.
-const tinyxml2::XMLElement* previous_in_document(const tinyxml2::XMLElement* e) {
-  if (const tinyxml2::XMLElement* p = e->PreviousSiblingElement()) {
-    while (const tinyxml2::XMLElement* last = p->LastChildElement()) p = last;
-    return p;
+// Every element of the document of `any`, once, in document order: its ordinal among the
+// elements of its name on its line, and the offsets of "<name" on each line that has one.
+void XmlPositions::index_elements(const tinyxml2::XMLElement* any) const {
+  std::map<std::pair<int, std::string>, std::size_t> seen;
+  std::vector<const tinyxml2::XMLElement*> stack;
+  for (const tinyxml2::XMLElement* e = any->GetDocument()->LastChildElement(); e; e = e->PreviousSiblingElement())
+    stack.push_back(e);
+  while (!stack.empty()) {
+    const tinyxml2::XMLElement* e = stack.back();
+    stack.pop_back();
+    std::pair<int, std::string> key(e->GetLineNum(), e->Name());
+    same_name_before_[e] = seen[key]++;
+    if (auto [it, fresh] = openings_.try_emplace(key); fresh) {
+      const std::string needle = "<" + key.second;
+      for (int at = find_on_line(key.first, needle, 0, true); at >= 0;
+           at = find_on_line(key.first, needle, static_cast<std::size_t>(at) + 1, true))
+        it->second.push_back(at);
+    }
+    for (const tinyxml2::XMLElement* c = e->LastChildElement(); c; c = c->PreviousSiblingElement()) stack.push_back(c);
   }
-  const tinyxml2::XMLNode* parent = e->Parent();
-  return parent ? parent->ToElement() : nullptr;
 }
 
-}  // namespace
-
 int XmlPositions::element_column(const tinyxml2::XMLElement* element) const {
-  const int line = element->GetLineNum();
-  int before = 0;  // elements of the same name earlier on this line
-  for (const tinyxml2::XMLElement* p = previous_in_document(element); p && p->GetLineNum() == line;
-       p = previous_in_document(p))
-    if (std::strcmp(p->Name(), element->Name()) == 0) ++before;
-  const std::string needle = std::string("<") + element->Name();
-  int found = find_on_line(line, needle, 0, true);
-  for (; found >= 0 && before > 0; --before)
-    found = find_on_line(line, needle, static_cast<std::size_t>(found) + 1, true);
-  return found < 0 ? 0 : found + 1;
+  if (same_name_before_.empty()) index_elements(element);
+  const auto before = same_name_before_.find(element);
+  const auto openings = openings_.find({element->GetLineNum(), element->Name()});
+  if (before == same_name_before_.end() || openings == openings_.end() || before->second >= openings->second.size())
+    return 0;
+  return openings->second[before->second] + 1;
 }
 
 SourceLocation XmlPositions::at(const tinyxml2::XMLElement* element) const {

@@ -35,14 +35,25 @@ cp tests/fuzz/seeds/* "$seeds/load/"
 # bodysim scenarios: the examples' and the tests'.
 mkdir -p "$seeds/scenario"
 for f in examples/*.scenario.yaml tests/data/dynamics/*.scenario.yaml; do cp "$f" "$seeds/scenario/"; done
-for target in yaml load urdf mjcf gltf text_outputs fix scenario; do
+# URDFs for the importer: the tests', the corpus', and body2urdf's exports of the examples.
+mkdir -p "$seeds/urdf_import"
+while IFS= read -r -d '' f; do
+  n=$((n + 1))
+  cp "$f" "$seeds/urdf_import/$n"
+done < <(find examples tests/data ../shared/corpus -name '*.urdf' -size -64k -print0 | sort -z)
+for f in examples/*.body; do
+  "$build/body2urdf" "$f" -o "$seeds/urdf_import/$(basename "$f" .body).urdf" --devices-as-frames >/dev/null 2>&1 || true
+done
+for target in yaml load urdf urdf_import mjcf gltf text_outputs fix scenario; do
   [ -x "$build/tests/fuzz/fuzz_$target" ] || continue  # fuzz_scenario needs Simbody
   corpus=$build/fuzz-corpus/$target
   mkdir -p "$corpus"
   seed_dir=$seeds/load
   [ "$target" = yaml ] && seed_dir=$seeds/yaml
   [ "$target" = scenario ] && seed_dir=$seeds/scenario
+  dict=tests/fuzz/body.dict
+  [ "$target" = urdf_import ] && seed_dir=$seeds/urdf_import && dict=tests/fuzz/urdf.dict
   echo "fuzz_$target: ${seconds} s"
   "$build/tests/fuzz/fuzz_$target" -max_total_time="$seconds" -rss_limit_mb=4096 -timeout=20 -max_len=65536 \
-    -dict=tests/fuzz/body.dict -print_final_stats=1 "$corpus" "$seed_dir" 2>&1 | tail -n 12
+    -dict="$dict" -print_final_stats=1 "$corpus" "$seed_dir" 2>&1 | tail -n 12
 done

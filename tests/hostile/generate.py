@@ -5,7 +5,10 @@
 - multi_megabyte_scalar.body: a 4 MB link name;
 - list_1M_single_line.body: a 1,000,000-element flow list on one line;
 - stl_over_triangle_limit.body (and big.stl): a binary STL of 1,000,001 triangles (50 MB), one over
-  --max-mesh-triangles, which every tool refuses at its uri before importing it.
+  --max-mesh-triangles, which every tool refuses at its uri before importing it;
+- urdf_100k_one_line.urdf: a 100,000-link chain with every element on one line, and
+  urdf_cycle_100k.urdf: a root and a cycle of 100,000 links, both of which urdf2body took
+  quadratic time on (issue 34: 10,000 links on one line, 23.5 s).
 
     generate.py OUT_DIR
 """
@@ -29,8 +32,34 @@ def tree(path, name, n, chain, expect):
             f.write(LINK.format(i=i, parent=f"L{i - 1}" if chain else "L0", j=i - 1))
 
 
+URDF_LINK = ('<link name="L{i}"><inertial><mass value="1"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" '
+             'izz="0.1"/></inertial><visual><geometry><box size="0.01 0.01 0.01"/></geometry></visual></link>')
+URDF_JOINT = ('<joint name="J{i}" type="revolute"><parent link="L{parent}"/><child link="L{i}"/>'
+              '<origin xyz="0.01 0 0"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>')
+
+
+def urdf_files(out):
+    with open(os.path.join(out, "urdf_100k_one_line.urdf"), "w") as f:
+        f.write("<!--\n# expect: urdf2body exit=0\n# limit: cpu=30\n-->\n<robot name=\"OneLine\">")
+        for i in range(100_000):
+            f.write(URDF_LINK.format(i=i))
+            if i > 0:
+                f.write(URDF_JOINT.format(i=i, parent=i - 1))
+        f.write("</robot>\n")
+    with open(os.path.join(out, "urdf_cycle_100k.urdf"), "w") as f:
+        f.write("<!--\n# expect: urdf2body exit=2 rule=import-structure\n# limit: cpu=30\n-->\n<robot name=\"Cycle\">\n")
+        f.write('<link name="root"/>\n')
+        n = 100_000
+        for i in range(n):
+            f.write(URDF_LINK.format(i=i) + "\n")
+        for i in range(n):
+            f.write(URDF_JOINT.format(i=i, parent=(i - 1) % n) + "\n")
+        f.write("</robot>\n")
+
+
 def main():
     out = sys.argv[1]
+    urdf_files(out)
     os.makedirs(out, exist_ok=True)
     clean = ("# expect: bodyinfo exit=0\n# expect: bodycheck exit=0\n# expect: body2urdf exit=0\n"
              "# expect: body2gltf exit=0\n# limit: cpu=20\n")

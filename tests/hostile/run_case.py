@@ -4,7 +4,8 @@
     run_case.py CASE BIN_DIR
 
 CASE is a .body file (or a folder holding main.body) under tests/data/hostile, or one that
-tests/hostile/generate.py wrote. Its comment lines (or, for a file that cannot hold comments,
+tests/hostile/generate.py wrote; or a .urdf file, which urdf2body imports (urdf_case): what it
+writes must load back in bodycheck without an error (issue 34). Its comment lines (or, for a file that cannot hold comments,
 such as an empty or a binary one, the lines of CASE.expect beside it) say what each tool must
 do:
 
@@ -168,6 +169,29 @@ def git_driver_runs(bin_dir, model, out):
     return failures
 
 
+def urdf_case(bin_dir, case, expectations, cpu_limit):
+    """urdf2body on a URDF case; a .body it writes must load in bodycheck without an error
+    (a URDF link without <inertial> is massless, which bodycheck's mass rule would report)."""
+    failures = []
+    with tempfile.TemporaryDirectory() as out:
+        written = os.path.join(out, "out.body")
+        result = run_tool("urdf2body", [os.path.join(bin_dir, "urdf2body"), case, "-o", written], cpu_limit, failures)
+        expect = expectations.get("urdf2body")
+        if result is not None and expect is not None:
+            code, text = result
+            if str(code) != expect.get("exit"):
+                failures.append(f"urdf2body: exit {code}, expected {expect.get('exit')}\n{text[-2000:]}")
+            check_rules("urdf2body", text, expect["rules"], failures)
+            if code == 2 and not LOCATED_ERROR.search(text):
+                failures.append(f"urdf2body: no located error\n{text[-2000:]}")
+        if os.path.exists(written):
+            check = run_tool("bodycheck", [os.path.join(bin_dir, "bodycheck"), "--disable", "inertia-nonpositive-mass",
+                                            written], cpu_limit, failures)
+            if check is not None and (check[0] == 2 or re.search(r": (error|fatal error): ", check[1])):
+                failures.append(f"bodycheck on what urdf2body wrote: exit {check[0]}\n{check[1][-2000:]}")
+    return failures
+
+
 def main():
     case, bin_dir = sys.argv[1], sys.argv[2]
     model = os.path.join(case, "main.body") if os.path.isdir(case) else case
@@ -181,6 +205,12 @@ def main():
     cpu_limit = CPU_LIMIT
     for value in re.findall(r"^# limit: cpu=(\S+)$", head, re.M):
         cpu_limit = float(value) * SCALE
+    if case.endswith(".urdf"):
+        failures = urdf_case(bin_dir, case, expectations, cpu_limit)
+        for f in failures:
+            print(f)
+        print(f"{os.path.basename(case)}: urdf2body, {len(failures)} failures")
+        return 1 if failures else 0
     failures = []
     with tempfile.TemporaryDirectory() as out:
         for tool in TOOLS:

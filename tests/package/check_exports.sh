@@ -3,7 +3,7 @@
 # the internals. Fails when
 #  - a symbol of an internal namespace is exported: bodyfmt::detail (the loader), bodyfmt::yaml
 #    (the YAML tree), bodyfmt::mesh (the mesh readers), an anonymous namespace, or a
-#    bodyfmt::text function other than the public quoting ones (bodyfmt/text.h);
+#    bodyfmt::text function other than the public quoting and UTF-8 ones (bodyfmt/text.h);
 #  - a function of the public API is missing (the library was built without BODYFMT_API);
 #  - a public header opens a namespace without BODYFMT_API, so that what it declares would be
 #    hidden from other projects.
@@ -21,7 +21,7 @@ fi
 
 internal=$(grep -E 'bodyfmt::(detail|yaml|mesh)::|\(anonymous namespace\)' <<<"$symbols")
 text_private=$(grep -E 'bodyfmt::text::' <<<"$symbols" |
-               grep -vE '^bodyfmt::text::(json_quote|xml_escape|xml_comment_text|is_xml_text)(\[abi:cxx11\])?\(')
+               grep -vE '^bodyfmt::text::(json_quote|xml_escape|xml_comment_text|is_xml_text|utf8_sequence|is_utf8)(\[abi:cxx11\])?\(')
 if [ -n "$internal$text_private" ]; then
   echo "FAIL: $library exports internals ($(printf '%s\n%s' "$internal" "$text_private" | grep -c .) symbols), e.g.:"
   printf '%s\n%s\n' "$internal" "$text_private" | grep . | head -10

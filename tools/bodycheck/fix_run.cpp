@@ -6,6 +6,7 @@
 #include <bodyfmt/geometry_fix.h>
 #include <bodyfmt/geometry_mass.h>
 #include <bodyfmt/load.h>
+#include <bodyfmt/read_file.h>
 #include <bodyfmt/rules.h>
 #include <bodyfmt/validate.h>
 
@@ -35,19 +36,10 @@ std::string canonical(const std::string& path) {
   return ec ? path : p.string();
 }
 
+// Bounded like every file a tool reads (bodyfmt/read_file.h); the loader read it within the
+// same limit moments ago.
 std::optional<std::string> read_text(const std::string& path, std::string& why) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    why = std::strerror(errno);
-    return std::nullopt;
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) {
-    why = "a read error";
-    return std::nullopt;
-  }
-  return text.str();
+  return read_regular_file(path, LoadOptions{}.max_file_bytes, why);
 }
 
 /// One file to rewrite: where, and its new text.

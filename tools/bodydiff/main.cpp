@@ -8,6 +8,7 @@
 #include "number_options.h"
 
 #include <bodyfmt/model_diff.h>
+#include <bodyfmt/read_file.h>
 #include <bodyfmt/rules.h>
 #include <bodyfmt/text.h>
 
@@ -116,13 +117,12 @@ std::optional<Model> load_quietly(tools::Front& front, const std::string& path, 
   } else {
     // A git temporary file: loaded under the name of the file in the work tree, so that relative
     // URIs resolve there and locations name it.
-    std::ifstream file(path, std::ios::binary);
-    std::stringstream text;
-    text << file.rdbuf();
-    if (!file)
-      report_rule(sink, "io-read", SourceLocation{path, 0, 0}, "cannot read \"" + path + "\"");
+    // Bounded like every file read: git hands any path it is given (/dev/zero, a FIFO).
+    std::string why;
+    if (std::optional<std::string> text = read_regular_file(path, front.load_options().max_file_bytes, why))
+      model = load_body_string(*text, name, front.load_options(), sink);
     else
-      model = load_body_string(text.str(), name, front.load_options(), sink);
+      report_rule(sink, "io-read", SourceLocation{path, 0, 0}, "cannot read \"" + path + "\": " + why);
   }
   if (!model) print_fatal(front, sink);
   return model;

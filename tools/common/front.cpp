@@ -2,6 +2,7 @@
 
 #include "number_options.h"
 
+#include <bodyfmt/input_files.h>
 #include <bodyfmt/rules.h>
 
 #include <sys/stat.h>
@@ -240,6 +241,7 @@ std::optional<ModelInput> Front::open_input(const std::string& path, DiagnosticS
     report_rule(sink, "io-read", SourceLocation{path, 0, 0}, "\"" + path + "\" is a directory, not a .body file");
     return std::nullopt;
   }
+  if (path == "-") note_standard_input_read();
   std::ifstream file;
   if (path != "-") file.open(path, std::ios::binary);
   std::istream& in = path == "-" ? std::cin : file;

@@ -22,6 +22,13 @@ std::string xml_escape(std::string_view text);
 /// space, and characters XML 1.0 forbids are replaced by '?'.
 std::string xml_comment_text(std::string_view text);
 
+/// The length of the valid UTF-8 sequence that starts at s[i] (1 for ASCII) with its code point
+/// in `code_point`; 0 when it is malformed (truncated, overlong, a surrogate, above U+10FFFF).
+std::size_t utf8_sequence(std::string_view s, std::size_t i, unsigned& code_point);
+
+/// True when `s` is valid UTF-8.
+bool is_utf8(std::string_view s);
+
 /// True when every byte is allowed in an XML 1.0 document (no control characters other than
 /// tab, newline and carriage return) and the text is valid UTF-8.
 bool is_xml_text(std::string_view text);

@@ -1,4 +1,5 @@
 #include <bodyfmt/diagnostic_policy.h>
+#include <bodyfmt/read_file.h>
 #include <bodyfmt/report.h>
 #include <bodyfmt/rules.h>
 
@@ -8,6 +9,7 @@
 #include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 namespace bodyfmt {
@@ -194,8 +196,13 @@ Suppressions& DiagnosticPolicy::suppressions_for(const std::string& file) {
   if (it != suppressions_.end()) return it->second;
   Suppressions s;
   try {
-    std::ifstream in(file, std::ios::binary);
-    if (in) s = Suppressions::from_stream(in);
+    // Never a FIFO or a device (a pipe the front read already would block here); the loader
+    // applied the size limit to the same file.
+    std::string why;
+    if (std::optional<std::string> text = read_regular_file(file, std::numeric_limits<std::uintmax_t>::max(), why)) {
+      std::istringstream in(std::move(*text));
+      s = Suppressions::from_stream(in);
+    }
   } catch (...) {
     // Unreadable: no suppressions. The loader reports the file itself.
   }

@@ -2,7 +2,7 @@
 
 #include <bodyfmt/report.h>
 
-#include "io/read_file.h"
+#include <bodyfmt/read_file.h>
 #include "text/text_util.h"
 
 #include <algorithm>

@@ -1,6 +1,6 @@
 #include "diff/model_fields.h"
 
-#include "io/read_file.h"
+#include <bodyfmt/read_file.h>
 
 #include <bodyfmt/derived.h>
 

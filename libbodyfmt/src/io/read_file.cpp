@@ -1,4 +1,4 @@
-#include "io/read_file.h"
+#include <bodyfmt/read_file.h>
 
 #include <fmt/format.h>
 
@@ -11,7 +11,7 @@
 #include <cstring>
 #include <limits>
 
-namespace bodyfmt::detail {
+namespace bodyfmt {
 
 namespace {
 
@@ -97,4 +97,4 @@ std::optional<std::string> read_regular_file(const std::string& path, std::uintm
   return std::string(bytes->view());
 }
 
-}  // namespace bodyfmt::detail
+}  // namespace bodyfmt

@@ -1,7 +1,7 @@
 #include <bodyfmt/load.h>
 
+#include <bodyfmt/read_file.h>
 #include <bodyfmt/rules.h>
-#include "io/read_file.h"
 #include "load/body_reader.h"
 
 #include <fstream>

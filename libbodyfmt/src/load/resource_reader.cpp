@@ -1,6 +1,6 @@
 #include "load/resource_reader.h"
 
-#include "io/read_file.h"
+#include <bodyfmt/read_file.h>
 #include "load/body_reader.h"
 #include "load/geometry.h"
 #include "load/link_reader.h"

@@ -3,7 +3,7 @@
 #include <bodyfmt/mesh_import.h>
 #include <bodyfmt/rules.h>
 
-#include "io/read_file.h"
+#include <bodyfmt/read_file.h>
 #include "mesh/assimp_module.h"
 #include "mesh/scene_tree.h"
 #include "mesh/vrml_reader.h"

@@ -1,8 +1,18 @@
 #include <bodyfmt/input_files.h>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <atomic>
 #include <set>
 
 namespace bodyfmt {
+
+namespace {
+std::atomic<bool> standard_input_read{false};
+}  // namespace
+
+void note_standard_input_read() { standard_input_read = true; }
 
 std::vector<InputFile> input_files(const Model& model) {
   // Each location's file name is interned, so the set of model files stays small however many
@@ -37,6 +47,9 @@ std::vector<InputFile> input_files(const Model& model) {
     if (!file.empty()) files.push_back({file, "a mesh of the model"});
   for (const std::string& file : textures)
     if (!file.empty()) files.push_back({file, "a texture of the model"});
+  struct stat st {};
+  if (standard_input_read && ::fstat(STDIN_FILENO, &st) == 0 && S_ISREG(st.st_mode))
+    files.push_back({"/dev/stdin", "the model's file, read from standard input"});
   return files;
 }
 

@@ -6,8 +6,18 @@ namespace bodyfmt::text {
 
 namespace {
 
-/// Length of the valid UTF-8 sequence starting at s[i] (1 for ASCII), or 0 when it is
-/// malformed: truncated, overlong, a surrogate or above U+10FFFF. `code_point` gets its value.
+/// utf8_sequence's length, also 0 for the characters XML 1.0 does not allow (U+FFFE, U+FFFF; the Char
+/// production of XML 1.0 §2.2). Control characters are checked by the callers.
+std::size_t xml_char_length(std::string_view text, std::size_t i) {
+  unsigned code_point = 0;
+  const std::size_t n = utf8_sequence(text, i, code_point);
+  return code_point == 0xFFFE || code_point == 0xFFFF ? 0 : n;
+}
+
+bool allowed_control(char c) { return c == '\t' || c == '\n' || c == '\r'; }
+
+}  // namespace
+
 std::size_t utf8_sequence(std::string_view s, std::size_t i, unsigned& code_point) {
   const auto c = static_cast<unsigned char>(s[i]);
   code_point = c;
@@ -32,17 +42,15 @@ std::size_t utf8_sequence(std::string_view s, std::size_t i, unsigned& code_poin
   return n;
 }
 
-/// The same, also 0 for the characters XML 1.0 does not allow (U+FFFE, U+FFFF; the Char
-/// production of XML 1.0 §2.2). Control characters are checked by the callers.
-std::size_t xml_char_length(std::string_view text, std::size_t i) {
+bool is_utf8(std::string_view s) {
   unsigned code_point = 0;
-  const std::size_t n = utf8_sequence(text, i, code_point);
-  return code_point == 0xFFFE || code_point == 0xFFFF ? 0 : n;
+  for (std::size_t i = 0; i < s.size();) {
+    const std::size_t n = utf8_sequence(s, i, code_point);
+    if (n == 0) return false;
+    i += n;
+  }
+  return true;
 }
-
-bool allowed_control(char c) { return c == '\t' || c == '\n' || c == '\r'; }
-
-}  // namespace
 
 std::string json_quote(std::string_view s) {
   static const char kHex[] = "0123456789abcdef";

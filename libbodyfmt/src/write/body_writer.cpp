@@ -1,6 +1,7 @@
 #include <bodyfmt/body_writer.h>
 #include <bodyfmt/derived.h>
 #include <bodyfmt/rules.h>
+#include <bodyfmt/text.h>
 
 #include <fmt/format.h>
 
@@ -11,19 +12,44 @@ namespace {
 
 constexpr double kDegreesPerRadian = 180.0 / 3.14159265358979323846;
 
-std::string quoted(std::string_view text) {
-  std::string out = "\"";
-  for (char c : text) {
-    const auto u = static_cast<unsigned char>(c);
-    if (c == '"' || c == '\\')
-      out += {'\\', c};
-    else if (u < 0x20 || u == 0x7f)
-      out += fmt::format("\\x{:02x}", u);
-    else
-      out += c;
-  }
-  return out + "\"";
+// A character YAML cannot carry as it is: C0 and C1 controls and DEL (not printable, or a
+// line break: NEL), U+2028 and U+2029 (line breaks, folded in a quoted scalar) and U+FFFE,
+// U+FFFF (not printable). Each is written as an escape, so a name comes back byte for byte.
+bool needs_escape(unsigned code_point) {
+  return code_point < 0x20 || (code_point >= 0x7f && code_point <= 0x9f) || code_point == 0x2028 ||
+         code_point == 0x2029 || code_point == 0xfffe || code_point == 0xffff;
 }
+
+// `text` with every character needs_escape() names written as a double-quoted scalar's escape,
+// and `quote` and `\` escaped when `quote` is set. A byte that is not UTF-8 (the importers
+// refuse such names) is written as \xNN, which loads as U+00NN: the file still loads.
+std::string escaped(std::string_view text, bool quote) {
+  std::string out;
+  out.reserve(text.size());
+  for (std::size_t i = 0; i < text.size();) {
+    unsigned code_point = 0;
+    const std::size_t n = text::utf8_sequence(text, i, code_point);
+    if (n == 0) {
+      out += fmt::format("\\x{:02x}", static_cast<unsigned char>(text[i]));
+      ++i;
+      continue;
+    }
+    if (quote && (text[i] == '"' || text[i] == '\\'))
+      out += {'\\', text[i]};
+    else if (needs_escape(code_point))
+      out += code_point <= 0xff ? fmt::format("\\x{:02x}", code_point) : fmt::format("\\u{:04x}", code_point);
+    else
+      out.append(text.substr(i, n));
+    i += n;
+  }
+  return out;
+}
+
+std::string quoted(std::string_view text) { return "\"" + escaped(text, true) + "\""; }
+
+// A comment's text: nothing in it can end the comment's line (issue 34: a newline in a file
+// name added keys to the model).
+std::string comment_text(std::string_view text) { return escaped(text, false); }
 
 void report_not_written(DiagnosticSink& sink, const SourceLocation& at, std::string_view kind, std::string what) {
   Diagnostic d =
@@ -37,7 +63,7 @@ class Writer {
   Writer(const Model& model, DiagnosticSink& sink) : model_(model), sink_(sink) {}
 
   std::string write(const BodyWriteOptions& options) {
-    if (!options.comment.empty()) line(0, "# " + options.comment);
+    if (!options.comment.empty()) line(0, "# " + comment_text(options.comment));
     line(0, "format: ChoreonoidBody");
     line(0, "format_version: 2.0");
     line(0, "angle_unit: degree");

@@ -1,10 +1,10 @@
-// The public YAML API (bodyfmt/yaml.h) over the library's own YAML tree (yaml/yaml_node.h)
-// and bounded file reader (io/read_file.h), which stay private.
+// The public YAML API (bodyfmt/yaml.h) over the library's own YAML tree (yaml/yaml_node.h),
+// which stays private, and the bounded file reader (bodyfmt/read_file.h).
 
 #include <bodyfmt/rules.h>
 #include <bodyfmt/yaml.h>
 
-#include "io/read_file.h"
+#include <bodyfmt/read_file.h>
 #include "load/scalar.h"
 #include "text/text_util.h"
 #include "yaml/yaml_node.h"

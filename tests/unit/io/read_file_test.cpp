@@ -1,6 +1,6 @@
-// io/read_file.cpp: the file's bytes exactly, the size limit, and the files it refuses.
+// io/read_file.cpp (bodyfmt/read_file.h): the file's bytes exactly, the size limit, and the files it refuses.
 
-#include "io/read_file.h"
+#include <bodyfmt/read_file.h>
 
 #include <doctest/doctest.h>
 

@@ -3,6 +3,7 @@
 /// unique relative path in one folder, each written once however often it is used.
 #include <bodyfmt/converters/mesh_writer.h>
 #include <bodyfmt/converters/output_set.h>
+#include <bodyfmt/load.h>
 
 #include <map>
 #include <optional>
@@ -30,7 +31,12 @@ class StagedFiles {
 
   /// Stages a copy of the file at `source_path` once, under its own (safe) name. Returns the
   /// relative path, or nullopt with `error` set when it cannot be read.
-  std::optional<std::string> copy(const std::string& source_path, std::string& error);
+  /// The file is read through the bounded reader (bodyfmt/read_file.h): a regular file of at
+  /// most `max_bytes`.
+  std::optional<std::string> copy(const std::string& source_path, std::uintmax_t max_bytes, std::string& error);
+  std::optional<std::string> copy(const std::string& source_path, std::string& error) {
+    return copy(source_path, LoadOptions{}.max_file_bytes, error);
+  }
 
  private:
   std::string unique_path(const std::string& base, const std::string& dot_extension);

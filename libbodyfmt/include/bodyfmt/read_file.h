@@ -1,7 +1,8 @@
 #pragma once
-// The one way the library reads a file: only a regular file (never a device, a FIFO or a
-// directory, which could block or never end), and only up to a size limit checked before
-// anything is read.
+/// The one way the library and the tools read a file: only a regular file (never a device, a
+/// FIFO or a directory, which could block or never end), and only up to a size limit checked
+/// before anything is read (issue 34: a plain stream on /dev/zero ended in std::bad_alloc).
+#include <bodyfmt/export.h>
 
 #include <cstdint>
 #include <memory>
@@ -9,7 +10,7 @@
 #include <string>
 #include <string_view>
 
-namespace bodyfmt::detail {
+namespace BODYFMT_API bodyfmt {
 
 /// A file's bytes in a buffer that nothing writes before the read does: a std::string of the
 /// file's size would be zero-filled first, 24 MB for a 100,000-link model.
@@ -29,4 +30,12 @@ std::optional<std::string> read_regular_file(const std::string& path, std::uintm
 /// Checks what read_regular_file checks, without reading (for files another library reads).
 bool readable_regular_file(const std::string& path, std::uintmax_t max_bytes, std::string& why);
 
-}  // namespace bodyfmt::detail
+/// The library's spelling from before the reader was public.
+namespace detail {
+using bodyfmt::FileBytes;
+using bodyfmt::read_regular_file;
+using bodyfmt::read_regular_file_bytes;
+using bodyfmt::readable_regular_file;
+}  // namespace detail
+
+}  // namespace bodyfmt
