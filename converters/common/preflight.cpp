@@ -1,5 +1,6 @@
 #include <bodyfmt/converters/preflight.h>
 #include <bodyfmt/physical.h>
+#include <bodyfmt/rules.h>
 
 #include <fmt/format.h>
 
@@ -15,7 +16,13 @@ bool check_joints(const Model& model, DiagnosticSink& sink, bool reversed_range_
       report_physical(
           sink, f, fmt::format("joint axis of link \"{}\" is the zero vector; the joint cannot be exported", link.name),
           "give the axis a direction, e.g. joint_axis: Z");
-    } else if (f.defect == PhysicalDefect::kRangeReversed && !reversed_range_writable) {
+    } else if (f.defect == PhysicalDefect::kRangeReversed && reversed_range_writable) {
+      // Written back as it came in (a URDF that some simulators read as "no limit"), but never
+      // without a word at the range's line.
+      report_rule(sink, "export-range-reversed", f.at,
+                  fmt::format("joint range of link \"{}\" is reversed (lower > upper); written as it is", link.name),
+                  "swap the two bounds if the joint is meant to move between them");
+    } else if (f.defect == PhysicalDefect::kRangeReversed) {
       usable = false;
       report_physical(
           sink, f,

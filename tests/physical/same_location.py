@@ -29,7 +29,7 @@ TOOLS = ["bodycheck", "body2mjcf", "body2urdf", "bodysim"]
 # The gate's rules, and the tools' own rules for what they do about its findings.
 GATE_RULES = {"inertia-asymmetric", "inertia-nonpositive-mass", "inertia-not-positive-definite", "inertia-triangle",
               "inertia-tiny", "joint-axis-zero", "joint-axis-not-unit", "joint-range-reversed",
-              "joint-range-zero-width", "export-value-changed", "dynamics-inertia-balanced"}
+              "joint-range-zero-width", "export-value-changed", "export-range-reversed", "dynamics-inertia-balanced"}
 LINE = re.compile(r"^(?P<file>.+?):(?P<line>\d+):(?P<column>\d+): (?:fatal|error|warning|note): .*\[(?P<rule>[a-z0-9-]+)\]$")
 
 

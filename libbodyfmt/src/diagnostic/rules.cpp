@@ -261,6 +261,11 @@ std::vector<RuleInfo> make_table() {
       {"export-name-conflict", F,
        "a name the export must add is already used by the model (e.g. --floating-base's 'world')",
        "two elements of one name make the output ambiguous, so nothing is written", ""},
+      {"export-range-reversed", W,
+       "a joint range with lower > upper written as it is (URDF), as urdfdom and Choreonoid keep it",
+       "a URDF consumer may read the joint as unlimited (MuJoCo does) or as unable to move; bodycheck reports the "
+       "range itself as joint-range-reversed",
+       ""},
       {"export-value-changed", W,
        "the export changed a value so that the target accepts it (a balanced inertia, a raised mass), with the old and "
        "new values",
