@@ -41,6 +41,18 @@ ENGINE = re.compile(r"joints locked, (Simbody|MuJoCo)\s*: rests at z = (\S+) m, 
                     r"settled at (\S+) s \(impact: (\S+) mm below rest, then (\S+) mm above\).*; (\d+) contacts")
 
 
+def records(text):
+    """bodysim's report as one line per record: a check's wrapped and indented continuation lines
+    (measured / expected / tolerance go on the line below its name) joined to it by one space."""
+    out = []
+    for line in text.splitlines():
+        if line[:1] in (" ", "\t") and out:
+            out[-1] += " " + line.strip()
+        else:
+            out.append(line)
+    return out
+
+
 def cpu(start):
     now = resource.getrusage(resource.RUSAGE_CHILDREN)
     return now.ru_utime + now.ru_stime - start.ru_utime - start.ru_stime
@@ -61,7 +73,7 @@ def main():
         engines = {m.group(1): m.groups()[1:] for m in map(ENGINE.search, r.stdout.splitlines()) if m}
         outcome, value = {}, {}
         for key, text in LINES.items():
-            found = [l for l in r.stdout.splitlines() if "MuJoCo vs Simbody" in l and text in l]
+            found = [l for l in records(r.stdout) if "MuJoCo vs Simbody" in l and text in l]
             if len(found) != 1:
                 problems.append(f"{name}: {len(found)} lines for '{text}' (exit {r.returncode}): {r.stderr[-300:]}")
                 continue
@@ -74,7 +86,7 @@ def main():
                 problems.append(f"{name}: '{LINES[key]}' fails")
             if passed and key in known:
                 problems.append(f"{name}: '{LINES[key]}' passes but is listed as a known difference; update KNOWN")
-        generic_failed = [l for l in r.stdout.splitlines() if l.startswith("FAIL") and "MuJoCo vs Simbody" not in l]
+        generic_failed = [l for l in records(r.stdout) if l.startswith("FAIL") and "MuJoCo vs Simbody" not in l]
         if generic_failed:
             problems.append(f"{name}: generic checks fail: {generic_failed}")
         expected_exit = 1 if any(not p for p in outcome.values()) else 0
