@@ -9,7 +9,9 @@
 #include <bodyfmt/text.h>
 
 #include <fmt/format.h>
+
 #include <tinyxml2.h>
+#include <type_traits>
 
 #include <algorithm>
 #include <cctype>
@@ -110,7 +112,7 @@ class Reader {
   }
   std::optional<double> product_of_inertia(const XMLElement* inertia, const char* attribute);
   void report_reversed_range(const XMLElement* limit, const std::string& joint, double lower, double upper);
-  bool zero_radius(const XMLElement* shape, double radius);
+  bool unusable_size(const XMLElement* shape, const char* attribute, double value, bool zero_allowed);
   void report_world_content(const XMLElement* world);
   std::string mesh_uri(const XMLElement* mesh, const std::string& filename, std::string& resolved);
 
@@ -229,14 +231,21 @@ void Reader::report_reversed_range(const XMLElement* limit, const std::string& j
                          joint, converters::format_number(lower), converters::format_number(upper)));
 }
 
-// A zero radius (feet's contact points) is a point to urdfdom and Gazebo; Choreonoid refuses a
-// shape whose radius is not positive, so the shape is left out and reported.
-bool Reader::zero_radius(const XMLElement* shape, double radius) {
-  if (radius != 0) return false;
-  loss(at_.at(shape, "radius"), LossKind::kGeometry,
-       fmt::format("the <{}> of radius 0 (a point to urdfdom and Gazebo; Choreonoid refuses a radius that is not "
-                   "positive, so the shape is left out)",
-                   shape->Name()));
+// A size the Body format cannot hold must not reach the written file, which would then fail to
+// load: a zero radius or cylinder length (feet's contact points; a point or a disc to urdfdom and
+// Gazebo) leaves the shape out as a reported loss, since Choreonoid refuses a size that is not
+// positive; a negative size is no shape at all and is an error at its attribute.
+bool Reader::unusable_size(const XMLElement* shape, const char* attribute, double value, bool zero_allowed) {
+  if (value < 0) {
+    report("import-value", at_.at(shape, attribute),
+           fmt::format("<{}> has a negative {} ({})", shape->Name(), attribute, converters::format_number(value)));
+    return true;
+  }
+  if (value > 0 || zero_allowed) return false;
+  loss(at_.at(shape, attribute), LossKind::kGeometry,
+       fmt::format("the <{}> of {} 0 (a point or a flat shape to urdfdom and Gazebo; Choreonoid refuses a size that "
+                   "is not positive, so the shape is left out)",
+                   shape->Name(), attribute));
   return true;
 }
 
@@ -401,11 +410,13 @@ std::optional<Geometry> Reader::read_geometry(const XMLElement* g, Eigen::Isomet
     }
     auto size = vec3(shape, "size");
     if (!size) return std::nullopt;
+    // A zero edge is a flat box, which the Body format holds (bodycheck warns geometry-zero-size).
+    if ((size->array() < 0).any() && unusable_size(shape, "size", size->minCoeff(), true)) return std::nullopt;
     return Geometry(Box{*size});
   }
   if (named(shape, "sphere")) {
     auto r = require("radius");
-    if (!r || zero_radius(shape, *r)) return std::nullopt;
+    if (!r || unusable_size(shape, "radius", *r, false)) return std::nullopt;
     return Geometry(Sphere{*r});
   }
   // URDF's cylinder and capsule run along Z, Choreonoid's along Y: Rx(+90°) maps +Y onto +Z
@@ -413,7 +424,9 @@ std::optional<Geometry> Reader::read_geometry(const XMLElement* g, Eigen::Isomet
   auto along_z = [&](auto round_shape) -> std::optional<Geometry> {
     auto r = require("radius");
     auto h = require("length");
-    if (!r || !h || zero_radius(shape, *r)) return std::nullopt;
+    if (!r || !h || unusable_size(shape, "radius", *r, false)) return std::nullopt;
+    // A capsule of length 0 is a sphere; a cylinder of length 0 is a disc, which Choreonoid refuses.
+    if (unusable_size(shape, "length", *h, std::is_same_v<decltype(round_shape), Capsule>)) return std::nullopt;
     Eigen::Matrix3d Rx90;
     Rx90 << 1, 0, 0, 0, 0, -1, 0, 1, 0;
     X_LS.linear() = X_LS.linear() * Rx90;
