@@ -1,11 +1,28 @@
 #include "number_options.h"
 
 #include <cmath>
-#include <limits>
+#include <optional>
 #include <sstream>
 #include <string>
 
 namespace bodyfmt::tools {
+
+namespace {
+
+/// The whole text as a finite number (nan, inf and 1e999 are not), or nothing.
+std::optional<double> parse_finite(const std::string& text) {
+  std::size_t used = 0;
+  double value = 0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  if (used != text.size() || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
+}  // namespace
 
 CLI::Validator whole_number_above_zero() {
   return CLI::Validator(
@@ -25,14 +42,8 @@ CLI::Validator whole_number_above_zero() {
 CLI::Validator number_above_zero(bool or_equal) {
   return CLI::Validator(
       [or_equal](const std::string& text) {
-        std::size_t used = 0;
-        double value = std::numeric_limits<double>::quiet_NaN();
-        try {
-          value = std::stod(text, &used);
-        } catch (const std::exception&) {
-          used = 0;
-        }
-        const bool ok = used == text.size() && std::isfinite(value) && (or_equal ? value >= 0 : value > 0);
+        const std::optional<double> value = parse_finite(text);
+        const bool ok = value && (or_equal ? *value >= 0 : *value > 0);
         return ok ? std::string() : std::string("must be a number ") + (or_equal ? "≥" : "above") + " 0, not " + text;
       },
       or_equal ? "NONNEGATIVE" : "POSITIVE");
@@ -43,14 +54,8 @@ CLI::Validator finite_number_in(double low, double high) {
   range << low << " to " << high;
   return CLI::Validator(
       [low, high, range = range.str()](const std::string& text) {
-        std::size_t used = 0;
-        double value = std::numeric_limits<double>::quiet_NaN();
-        try {
-          value = std::stod(text, &used);
-        } catch (const std::exception&) {
-          used = 0;
-        }
-        const bool ok = used == text.size() && std::isfinite(value) && value >= low && value <= high;
+        const std::optional<double> value = parse_finite(text);
+        const bool ok = value && *value >= low && *value <= high;
         return ok ? std::string() : "must be a number from " + range + ", not " + text;
       },
       "NUMBER in [" + range.str() + "]");
