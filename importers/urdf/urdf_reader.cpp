@@ -411,7 +411,7 @@ std::optional<Geometry> Reader::read_geometry(const XMLElement* g, Eigen::Isomet
     auto size = vec3(shape, "size");
     if (!size) return std::nullopt;
     // A zero edge is a flat box, which the Body format holds (bodycheck warns geometry-zero-size).
-    if ((size->array() < 0).any() && unusable_size(shape, "size", size->minCoeff(), true)) return std::nullopt;
+    if (unusable_size(shape, "size", size->minCoeff(), /*zero_allowed=*/true)) return std::nullopt;
     return Geometry(Box{*size});
   }
   if (named(shape, "sphere")) {
