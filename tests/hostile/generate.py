@@ -59,8 +59,8 @@ def urdf_files(out):
 
 def main():
     out = sys.argv[1]
-    urdf_files(out)
     os.makedirs(out, exist_ok=True)
+    urdf_files(out)
     clean = ("# expect: bodyinfo exit=0\n# expect: bodycheck exit=0\n# expect: body2urdf exit=0\n"
              "# expect: body2gltf exit=0\n# limit: cpu=20\n")
     tree(os.path.join(out, "chain_100k.body"), "Chain", 100_000, True, "# A 100,000-link chain.\n" + clean)
