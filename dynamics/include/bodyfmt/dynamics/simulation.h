@@ -44,9 +44,9 @@ struct SimOptions {
   Eigen::Vector3d gravity_direction = -Eigen::Vector3d::UnitZ();
   bool contact = true;
   ContactModel contact_model = ContactModel::kPoints;
-  bool joint_stops = true;       ///< enforce joint_range (our choice; AIST does not, spec §0.7)
-  double stop_stiffness = 1e4;   ///< N·m/rad or N/m
-  double stop_dissipation = 1;   ///< Simbody MobilityLinearStop's c
+  bool joint_stops = true;      ///< enforce joint_range (our choice; AIST does not, spec §0.7)
+  double stop_stiffness = 1e4;  ///< N·m/rad or N/m
+  double stop_dissipation = 1;  ///< Simbody MobilityLinearStop's c
   /// > 0: no stop stiffer than I·ω² (rad/s; I the inertia of the joint's subtree about its axis,
   /// or its mass for a slider), so that no stop rings faster than ω; 0: stop_stiffness for all.
   double stop_frequency_limit = 0;
