@@ -1,5 +1,7 @@
 #include <bodyfmt/converters/shape_plan.h>
 
+#include <bodyfmt/angles.h>
+
 #include <bodyfmt/converters/numbers.h>
 #include <bodyfmt/converters/transforms.h>
 #include <bodyfmt/derived.h>
@@ -111,7 +113,7 @@ void Planner::geometry() {
   const Geometry& g = shape_.geometry;
   // Rx(-90°) maps a target's +Z axis onto the Body's +Y exactly (Choreonoid's URDF importer
   // uses +90°; the shapes are symmetric).
-  const Eigen::Matrix3d z_to_y = Eigen::AngleAxisd(-M_PI / 2, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  const Eigen::Matrix3d z_to_y = Eigen::AngleAxisd(-kPi / 2, Eigen::Vector3d::UnitX()).toRotationMatrix();
   PlannedPiece piece;
   if (const auto* box = geometry_if<Box>(g); box && sr_) {
     piece.size = box->size.cwiseProduct(sr_->scale);

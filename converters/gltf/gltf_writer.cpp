@@ -3,6 +3,7 @@
 #include "gltf_finish.h"
 #include "json.h"
 
+#include <bodyfmt/angles.h>
 #include <bodyfmt/converters/loss.h>
 #include <bodyfmt/converters/staged_files.h>
 #include <bodyfmt/converters/transforms.h>
@@ -33,7 +34,6 @@ namespace {
 
 namespace fs = std::filesystem;
 constexpr std::string_view kTarget = "glTF";
-constexpr double kPi = 3.14159265358979323846;
 /// Crease angle for tessellated primitives: smooth across the facets of a round surface
 /// (18 degrees apart at the default 20 divisions, up to 51 degrees at 7), sharp at box edges
 /// and cylinder caps (90 degrees), as Choreonoid shades them.

@@ -2,6 +2,7 @@
 
 #include "cuboid.h"
 
+#include <bodyfmt/angles.h>
 #include <bodyfmt/converters/inertia_report.h>
 #include <bodyfmt/converters/loss.h>
 #include <bodyfmt/converters/names.h>
@@ -73,7 +74,7 @@ std::string quat_text(const Eigen::Matrix3d& R) {
 
 using converters::moments_text;
 
-double radians_to_degrees(double a) { return a * 180.0 / M_PI; }
+double radians_to_degrees(double a) { return a * 180.0 / kPi; }
 
 /// MuJoCo allows free joints only on bodies of the world body, so a free non-root link becomes
 /// a top-level body at its initial world pose: a 6-DoF joint to the parent and a free body in

@@ -1,5 +1,7 @@
 #include "contact_points.h"
 
+#include <bodyfmt/angles.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -12,7 +14,7 @@ namespace {
 /// Directions spread evenly over the sphere (a Fibonacci lattice).
 std::vector<Eigen::Vector3d> sphere_directions(int count) {
   std::vector<Eigen::Vector3d> out;
-  const double golden = M_PI * (3 - std::sqrt(5.0));
+  const double golden = kPi * (3 - std::sqrt(5.0));
   for (int i = 0; i < count; ++i) {
     const double z = 1 - (2 * i + 1.0) / count;
     const double r = std::sqrt(std::max(0.0, 1 - z * z));

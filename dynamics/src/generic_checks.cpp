@@ -4,6 +4,7 @@
 // is the validator's, which bodysim runs first. Each phase is a function; one that cannot apply
 // says why in a SKIP line.
 
+#include <bodyfmt/angles.h>
 #include <bodyfmt/dynamics/checks.h>
 
 #include <fmt/format.h>
@@ -19,7 +20,6 @@
 namespace bodyfmt::dynamics {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180;
 constexpr double kStopFrequency = kGenericStopFrequency;  // rad/s: no stop rings faster (a 21 ms period)
 

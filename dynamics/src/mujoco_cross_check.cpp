@@ -3,6 +3,7 @@
 // model, with the tracks' belt velocity injected through mjcb_control into the friction rows'
 // reference acceleration (spec §3.2). Each quantity is reported from both engines.
 
+#include <bodyfmt/angles.h>
 #include <bodyfmt/dynamics/checks.h>
 
 #include "mujoco_engine.h"
@@ -16,7 +17,6 @@
 namespace bodyfmt::dynamics {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180;
 
 /// The scenarios' numbers from one engine. Commands as a controller sends them: the same dq to

@@ -3,6 +3,7 @@
 // with two pseudo tracks. Each phase is a function that appends its lines; a check that cannot
 // apply is a SKIP line with its reason.
 
+#include <bodyfmt/angles.h>
 #include <bodyfmt/dynamics/checks.h>
 #include <bodyfmt/dynamics/servo_reference.h>
 #include <bodyfmt/inertia.h>
@@ -18,7 +19,6 @@
 namespace bodyfmt::dynamics {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180;
 
 bool is_track(const Link& link) { return link.joint_type == JointType::kPseudoContinuousTrack; }

@@ -3,6 +3,7 @@
 #include "package_paths.h"
 #include "xml_positions.h"
 
+#include <bodyfmt/angles.h>
 #include <bodyfmt/converters/loss.h>
 #include <bodyfmt/converters/numbers.h>
 #include <bodyfmt/rules.h>
@@ -595,7 +596,7 @@ void Reader::read_joint(const JointInfo& joint, Link& link, bool collapsed_world
       // (A lower bound at or below -1e30 and an upper one at or above 1e30 mean no limit.)
       auto in_degrees = [&](const char* attribute, double unlimited_side) -> double {
         const double v = number(limit, attribute).value_or(0);
-        if (revolute && v * unlimited_side < converters::kUnlimitedStandIn && !std::isfinite(v * 180 / M_PI)) {
+        if (revolute && v * unlimited_side < converters::kUnlimitedStandIn && !std::isfinite(v * 180 / kPi)) {
           report("import-value", at_.at(limit, attribute),
                  fmt::format("{}=\"{}\" is too large to write in degrees", attribute, limit->Attribute(attribute)));
           return 0;

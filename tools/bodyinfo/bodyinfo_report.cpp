@@ -1,5 +1,7 @@
 #include "bodyinfo_report.h"
 
+#include <bodyfmt/angles.h>
+
 #include <fmt/compile.h>
 #include <fmt/format.h>
 
@@ -114,7 +116,7 @@ std::string bbox(const BoundingBox& b) {
 
 std::string pair(double lo, double hi) { return "[" + number(lo) + ", " + number(hi) + "]"; }
 
-double degrees(double radians) { return radians * 180.0 / M_PI; }
+double degrees(double radians) { return radians * 180.0 / kPi; }
 
 // " range ..." of a revolute or prismatic joint.
 void append_range(std::string& out, const Link& link) {

@@ -1,6 +1,7 @@
 #pragma once
 // Shared helpers for the rule families in validate/rules/. Internal: not installed.
 
+#include <bodyfmt/angles.h>
 #include <bodyfmt/physical.h>
 #include <bodyfmt/validate.h>
 
@@ -10,8 +11,6 @@
 #include <utility>
 
 namespace bodyfmt::validate::detail {
-
-constexpr double kPi = 3.14159265358979323846;
 
 /// What every rule family reads, plus report() which takes the severity from the rule table.
 struct RuleContext {

@@ -1,3 +1,4 @@
+#include <bodyfmt/angles.h>
 #include <bodyfmt/derived.h>
 #include <bodyfmt/geometry_mass.h>
 #include <bodyfmt/rules.h>
@@ -101,7 +102,7 @@ MassProperties mesh_mass_properties(const TriangleMesh& mesh) {
 }
 
 std::optional<MassProperties> primitive_mass_properties(const Geometry& geometry) {
-  constexpr double pi = M_PI;
+  constexpr double pi = kPi;
   if (const auto* box = geometry_if<Box>(geometry)) {
     const Eigen::Vector3d s = box->size;
     if (!(s.minCoeff() >= 0)) return std::nullopt;

@@ -1,5 +1,7 @@
 #include <bodyfmt/model_diff.h>
 
+#include <bodyfmt/angles.h>
+
 #include "diff/model_fields.h"
 
 #include <fmt/format.h>
@@ -15,7 +17,7 @@ namespace {
 using detail::Field;
 using detail::LinkFields;
 
-constexpr double kDegree = 180.0 / 3.14159265358979323846;
+constexpr double kDegree = 180.0 / kPi;
 
 ModelChange change(ChangeKind kind, std::string link, const Field* a, const Field* b) {
   ModelChange c;

@@ -1,5 +1,6 @@
 #include "diff/model_fields.h"
 
+#include <bodyfmt/angles.h>
 #include <bodyfmt/read_file.h>
 
 #include <bodyfmt/derived.h>
@@ -16,7 +17,7 @@
 namespace bodyfmt::detail {
 namespace {
 
-constexpr double kDegree = 180.0 / 3.14159265358979323846;
+constexpr double kDegree = 180.0 / kPi;
 
 std::string number_text(double x, int precision) {
   if (x == kUnlimited) return "unlimited";

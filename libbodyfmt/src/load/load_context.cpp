@@ -1,5 +1,6 @@
 #include "load/load_context.h"
 
+#include <bodyfmt/angles.h>
 #include <bodyfmt/rules.h>
 
 #include <fmt/format.h>
@@ -70,14 +71,14 @@ void LoadContext::emit(std::string_view rule, const SourceLocation& at, std::opt
 }
 
 double LoadContext::angle(double value, const yaml::NodeRef& at) {
-  if (degrees) return value * M_PI / 180.0;
+  if (degrees) return value * kPi / 180.0;
   record_upgrade(at, value);
   return value;
 }
 
 void LoadContext::record_upgrade(const yaml::NodeRef& at, double radians) {
   if (degrees || !at) return;
-  std::optional<FixIt> fix = edit_value(*at, number_text(radians * 180.0 / M_PI), FixSafety::kUpgrade);
+  std::optional<FixIt> fix = edit_value(*at, number_text(radians * 180.0 / kPi), FixSafety::kUpgrade);
   if (!fix) {
     upgrade_blockers.push_back(at->location);
     return;

@@ -4,6 +4,7 @@
 
 #include "tessellate/tessellate_internal.h"
 
+#include <bodyfmt/angles.h>
 #include <bodyfmt/rules.h>
 
 #include <fmt/format.h>
@@ -60,8 +61,6 @@ using detail::kRuleDegenerate;
 using detail::kRuleIndexOutOfRange;
 using detail::kRuleInvalidSize;
 using detail::Reporter;
-
-constexpr double kPi = 3.14159265358979323846;
 
 bool positive(double x) { return std::isfinite(x) && x > 0; }
 bool non_negative(double x) { return std::isfinite(x) && x >= 0; }

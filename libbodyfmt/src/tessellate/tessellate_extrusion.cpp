@@ -16,6 +16,8 @@
 
 #include "tessellate/tessellate_internal.h"
 
+#include <bodyfmt/angles.h>
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -26,8 +28,6 @@
 namespace bodyfmt::detail {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 /// The VRML97 rotation that takes +Y onto the spine direction `y` (unit), used when the
 /// whole spine is collinear.

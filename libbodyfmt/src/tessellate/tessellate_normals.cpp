@@ -2,6 +2,7 @@
 // Extrusion and ElevationGrid carry a crease_angle; Choreonoid's MeshFilter generates normals
 // the same way when none are given).
 
+#include <bodyfmt/angles.h>
 #include <bodyfmt/tessellate.h>
 
 #include <algorithm>
@@ -55,7 +56,6 @@ TriangleMesh with_vertex_normals(const TriangleMesh& mesh, double crease_angle) 
   // Faces meeting at less than the crease angle are smoothed together; at exactly the crease
   // angle they are not, so that Choreonoid's pi/2 for cylinders keeps the cap edges sharp.
   // Coplanar faces always share normals (that is what crease angle 0, flat shading, means).
-  constexpr double kPi = 3.14159265358979323846;
   const double cos_crease = std::cos(std::min(std::max(crease_angle, 0.0), kPi));
   const bool smooth_all = crease_angle >= kPi;
   auto smoothed_together = [&](std::size_t f, std::size_t g) {

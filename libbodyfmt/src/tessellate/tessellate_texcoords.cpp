@@ -9,6 +9,8 @@
 
 #include "tessellate/tessellate_internal.h"
 
+#include <bodyfmt/angles.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -19,8 +21,6 @@
 namespace bodyfmt::detail {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 using Corners = std::array<Eigen::Vector2d, 3>;
 using CornerTexCoords = std::vector<Corners>;  // one per triangle

@@ -1,3 +1,4 @@
+#include <bodyfmt/angles.h>
 #include <bodyfmt/body_writer.h>
 #include <bodyfmt/derived.h>
 #include <bodyfmt/rules.h>
@@ -10,7 +11,7 @@
 namespace bodyfmt {
 namespace {
 
-constexpr double kDegreesPerRadian = 180.0 / 3.14159265358979323846;
+constexpr double kDegreesPerRadian = 180.0 / kPi;
 
 // A character YAML cannot carry as it is: C0 and C1 controls and DEL (not printable, or a
 // line break: NEL), U+2028 and U+2029 (line breaks, folded in a quoted scalar) and U+FFFE,

@@ -3,6 +3,7 @@
 // theorem's exactness on polyhedra, and the convergence of fine tessellations to the closed
 // forms (the tessellator is a separate path: it never sees the formulas).
 
+#include <bodyfmt/angles.h>
 #include <bodyfmt/derived.h>
 #include <bodyfmt/geometry_mass.h>
 #include <bodyfmt/load.h>
@@ -19,7 +20,7 @@ using Eigen::Vector3d;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using bodyfmt::kPi;
 
 Matrix3d diagonal(double x, double y, double z) { return Vector3d(x, y, z).asDiagonal(); }
 

@@ -5,6 +5,7 @@
 
 #include "support/load_helpers.h"
 
+#include <bodyfmt/angles.h>
 #include <bodyfmt/derived.h>
 
 #include <doctest/doctest.h>
@@ -19,8 +20,6 @@ namespace {
 namespace fs = std::filesystem;
 using urdf_import::import_urdf;
 using urdf_import::UrdfImportOptions;
-
-constexpr double kPi = 3.14159265358979323846;
 
 LoadResult import_text(std::string_view text, const std::string& file = "robot.urdf", UrdfImportOptions options = {}) {
   if (!text.empty() && text.front() == '\n') text.remove_prefix(1);

@@ -3,6 +3,7 @@
 
 #include "support/load_helpers.h"
 
+#include <bodyfmt/angles.h>
 #include <bodyfmt/derived.h>
 
 #include <cmath>
@@ -14,7 +15,7 @@ using bodyfmt::test::Pos;
 using bodyfmt::test::pos;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
+using bodyfmt::kPi;
 
 bool near(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double eps = 1e-12) {
   return a.rows() == b.rows() && a.cols() == b.cols() && (a - b).cwiseAbs().maxCoeff() <= eps;

@@ -3,6 +3,8 @@
 
 #include "support/load_helpers.h"
 
+#include <bodyfmt/angles.h>
+
 #include <cmath>
 
 using namespace bodyfmt;
@@ -12,7 +14,7 @@ using bodyfmt::test::Pos;
 using bodyfmt::test::pos;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
+using bodyfmt::kPi;
 constexpr double kDeg = kPi / 180;
 
 bool near(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double eps = 1e-12) {

@@ -4,6 +4,8 @@
 
 #include "support/load_helpers.h"
 
+#include <bodyfmt/angles.h>
+
 #include <cmath>
 
 using namespace bodyfmt;
@@ -12,7 +14,7 @@ using bodyfmt::test::Pos;
 using bodyfmt::test::pos;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
+using bodyfmt::kPi;
 }  // namespace
 
 TEST_CASE("load: Box, Sphere, Cylinder, Cone and Capsule keys") {

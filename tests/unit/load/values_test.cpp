@@ -4,6 +4,8 @@
 
 #include "support/load_helpers.h"
 
+#include <bodyfmt/angles.h>
+
 #include <cmath>
 
 using bodyfmt::kUnlimited;
@@ -13,7 +15,7 @@ using bodyfmt::test::Pos;
 using bodyfmt::test::pos;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
+using bodyfmt::kPi;
 constexpr double kEps = 1e-12;
 
 bool near(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double eps = kEps) {

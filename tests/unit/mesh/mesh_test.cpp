@@ -1,4 +1,5 @@
 // Unit tests for mesh.h: bounding boxes, signed volume, append_mesh.
+#include <bodyfmt/angles.h>
 #include <bodyfmt/mesh.h>
 #include <doctest/doctest.h>
 
@@ -10,7 +11,7 @@ using Eigen::Vector3d;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using bodyfmt::kPi;
 
 // Axis-aligned box [0, sx] x [0, sy] x [0, sz], triangles counter-clockwise from outside.
 TriangleMesh corner_box(double sx, double sy, double sz) {

@@ -1,5 +1,6 @@
 // Unit tests for tessellate.h. Expected values are analytic: exact volumes of the polyhedra the
 // tessellator must produce (derived in comments), plus a loose comparison with the smooth solid.
+#include <bodyfmt/angles.h>
 #include <bodyfmt/tessellate.h>
 #include <doctest/doctest.h>
 
@@ -15,7 +16,7 @@ using Eigen::Vector3d;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using bodyfmt::kPi;
 const SourceLocation kWhere{"robot.body", 12, 7};
 
 TriangleMesh run(const Geometry& geometry, int division, CollectingSink& sink) {

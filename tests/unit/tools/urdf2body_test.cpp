@@ -3,6 +3,7 @@
 // bodyfmt's frames); body -> URDF -> body on the corpus; exit codes and located errors.
 #include "support/run_command.h"
 
+#include <bodyfmt/angles.h>
 #include <bodyfmt/derived.h>
 #include <bodyfmt/load.h>
 
@@ -212,8 +213,8 @@ std::string same_tree(const urdf::ModelInterface& a, const urdf::ModelInterface&
     std::map<std::string, double> q;
     for (const auto& [name, j] : a.joints_) {
       if (!j->limits) continue;
-      const double lo = j->type == urdf::Joint::CONTINUOUS ? -M_PI : j->limits->lower;
-      const double hi = j->type == urdf::Joint::CONTINUOUS ? M_PI : j->limits->upper;
+      const double lo = j->type == urdf::Joint::CONTINUOUS ? -kPi : j->limits->lower;
+      const double hi = j->type == urdf::Joint::CONTINUOUS ? kPi : j->limits->upper;
       q[name] = std::uniform_real_distribution<double>(std::min(lo, hi), std::max(lo, hi))(rng);  // lower > upper too
     }
     const auto fa = forward_kinematics(a, q);
@@ -646,7 +647,7 @@ TEST_CASE("urdf2body: Choreonoid's SR1.urdf against its SR1.body") {
   CHECK(body->links[0].X_PL.translation() == Eigen::Vector3d(0, 0, 0.7135));
   CHECK(imported->links[0].X_PL.translation() == Eigen::Vector3d::Zero());
   std::mt19937 rng(27);
-  std::uniform_real_distribution<double> angle(-M_PI, M_PI);
+  std::uniform_real_distribution<double> angle(-kPi, kPi);
   for (int k = 0; k < 100; ++k) {
     std::vector<double> q(body->links.size()), q_imported(imported->links.size());
     for (std::size_t i = 0; i < q.size(); ++i) q_imported[static_cast<std::size_t>(to_imported[i])] = q[i] = angle(rng);

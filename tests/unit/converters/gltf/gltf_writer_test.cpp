@@ -4,6 +4,7 @@
 #include "gltf_finish.h"
 #include "json.h"
 
+#include <bodyfmt/angles.h>
 #include <bodyfmt/derived.h>
 #include <bodyfmt/load.h>
 #include <bodyfmt/mesh.h>
@@ -301,8 +302,8 @@ TEST_CASE("gltf: link extras, root Y-up node, materials and the textured mesh") 
   CHECK(x.find("joint_type")->string() == "revolute");
   CHECK(x.find("joint_id")->number() == 3);
   CHECK(x.find("joint_axis")->items()[1].number() == doctest::Approx(1.0));  // normalised [0, 2, 0]
-  CHECK(x.find("joint_range")->items()[0].number() == doctest::Approx(-M_PI / 2));
-  CHECK(x.find("joint_range")->items()[1].number() == doctest::Approx(M_PI / 4));
+  CHECK(x.find("joint_range")->items()[0].number() == doctest::Approx(-kPi / 2));
+  CHECK(x.find("joint_range")->items()[1].number() == doctest::Approx(kPi / 4));
   CHECK(x.find("joint_velocity_range")->items()[0].is_null());  // unlimited
   // The first node is the model's, turning Body's +Z onto glTF's +Y.
   CHECK(nodes.items()[0].find("name")->string() == "Losses");
@@ -382,7 +383,7 @@ TEST_CASE("gltf: cameras face where Choreonoid's camera faces") {
   CHECK((camera_forward(tank->main, "Camera") - Eigen::Vector3d(1, 0, 0)).norm() < 1e-6);
   Json doc = json_of(tank->main);
   const Json& cam = doc["cameras"].items()[0];
-  CHECK(cam.find("perspective")->find("yfov")->number() == doctest::Approx(65 * M_PI / 180));  // landscape
+  CHECK(cam.find("perspective")->find("yfov")->number() == doctest::Approx(65 * kPi / 180));  // landscape
   CHECK(cam.find("perspective")->find("aspectRatio")->number() == doctest::Approx(320.0 / 240.0));
 
   // A cv camera with no rotation looks along its frame's +Z; portrait: the 60 degrees span
@@ -391,7 +392,7 @@ TEST_CASE("gltf: cameras face where Choreonoid's camera faces") {
   CHECK((camera_forward(e->main, "EYE") - Eigen::Vector3d(0, 0, 1)).norm() < 1e-6);
   Json ldoc = json_of(e->main);
   const Json& eye = ldoc["cameras"].items()[0];
-  CHECK(eye.find("perspective")->find("yfov")->number() == doctest::Approx(2 * std::atan(std::tan(M_PI / 6) * 2)));
+  CHECK(eye.find("perspective")->find("yfov")->number() == doctest::Approx(2 * std::atan(std::tan(kPi / 6) * 2)));
 }
 
 TEST_CASE("gltf: optical_frame_rotation turns the camera as in Choreonoid (TankBody's Kinect looks forward)") {
@@ -406,8 +407,8 @@ TEST_CASE("gltf: a spot light shines along its direction with its cone angles") 
   Json doc = json_of(tank->main);
   const Json& light = doc["extensions"]["KHR_lights_punctual"]["lights"].items()[0];
   CHECK(light.find("type")->string() == "spot");
-  CHECK(light.find("spot")->find("innerConeAngle")->number() == doctest::Approx(36 * M_PI / 180));
-  CHECK(light.find("spot")->find("outerConeAngle")->number() == doctest::Approx(40 * M_PI / 180));
+  CHECK(light.find("spot")->find("innerConeAngle")->number() == doctest::Approx(36 * kPi / 180));
+  CHECK(light.find("spot")->find("outerConeAngle")->number() == doctest::Approx(40 * kPi / 180));
   CHECK((camera_forward(tank->main, "Light") - Eigen::Vector3d(1, 0, 0)).norm() < 1e-6);
 }
 
