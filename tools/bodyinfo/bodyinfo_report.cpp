@@ -1,6 +1,7 @@
 #include "bodyinfo_report.h"
 
 #include <bodyfmt/angles.h>
+#include <bodyfmt/text.h>
 
 #include <fmt/compile.h>
 #include <fmt/format.h>
@@ -47,67 +48,7 @@ std::string matrix(const Eigen::Matrix3d& m) {
   return out + "]";
 }
 
-/// The code point of the UTF-8 sequence at s[i] and its length; length 0 for a byte that
-/// starts no valid sequence (overlong, surrogate, past U+10FFFF or cut short).
-std::pair<char32_t, std::size_t> decode_utf8(const std::string& s, std::size_t i) {
-  const auto c = static_cast<unsigned char>(s[i]);
-  if (c < 0x80) return {c, 1};
-  std::size_t n = 0;
-  char32_t value = 0, min = 0;
-  if ((c & 0xE0) == 0xC0)
-    n = 2, min = 0x80, value = c & 0x1F;
-  else if ((c & 0xF0) == 0xE0)
-    n = 3, min = 0x800, value = c & 0x0F;
-  else if ((c & 0xF8) == 0xF0)
-    n = 4, min = 0x10000, value = c & 0x07;
-  else
-    return {0, 0};
-  if (i + n > s.size()) return {0, 0};
-  for (std::size_t k = 1; k < n; ++k) {
-    const auto cc = static_cast<unsigned char>(s[i + k]);
-    if ((cc & 0xC0) != 0x80) return {0, 0};
-    value = (value << 6) | (cc & 0x3F);
-  }
-  if (value < min || value > 0x10FFFF || (value >= 0xD800 && value <= 0xDFFF)) return {0, 0};
-  return {value, n};
-}
-
-/// A YAML double-quoted scalar that reads back as `s`. YAML allows only its printable set in a
-/// document (YAML 1.2 §5.1: tab, LF, CR, x20-x7E, x85, xA0-xD7FF, xE000-xFFFD, x10000 up):
-/// everything else is written as an escape, and so are the line breaks and the byte order mark,
-/// which a parser would fold or drop. An invalid UTF-8 byte becomes U+FFFD.
-std::string quoted(const std::string& s) {
-  std::string out = "\"";
-  for (std::size_t i = 0; i < s.size();) {
-    const auto [code, length] = decode_utf8(s, i);
-    if (length == 0) {
-      out += "\\uFFFD";
-      ++i;
-      continue;
-    }
-    const bool printable = (code >= 0x20 && code <= 0x7E) || (code >= 0xA0 && code <= 0xD7FF) ||
-                           (code >= 0xE000 && code <= 0xFFFD && code != 0xFEFF) || code >= 0x10000;
-    if (code == '"' || code == '\\') {
-      out += '\\';
-      out += static_cast<char>(code);
-    } else if (code == '\n') {
-      out += "\\n";
-    } else if (code == '\t') {
-      out += "\\t";
-    } else if (code == '\r') {
-      out += "\\r";
-    } else if (code == 0x2028 || code == 0x2029) {
-      out += code == 0x2028 ? "\\L" : "\\P";
-    } else if (!printable) {
-      out += code <= 0xFF ? fmt::format("\\x{:02X}", static_cast<unsigned>(code))
-                          : fmt::format("\\u{:04X}", static_cast<unsigned>(code));
-    } else {
-      out.append(s, i, length);
-    }
-    i += length;
-  }
-  return out + "\"";
-}
+std::string quoted(const std::string& s) { return text::yaml_quote(s); }
 
 std::string bbox(const BoundingBox& b) {
   return "[" + number(b.min.x()) + ", " + number(b.min.y()) + ", " + number(b.min.z()) + ", " + number(b.max.x()) +

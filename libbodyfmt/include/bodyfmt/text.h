@@ -1,5 +1,5 @@
 #pragma once
-/// Quoting text for the formats the tools write: JSON strings and XML 1.0 text. One copy for
+/// Quoting text for the formats the tools write: JSON strings, YAML scalars and XML 1.0 text. One copy for
 /// the reports (JSON, SARIF), the writers (URDF, MJCF, glTF) and any later tool.
 
 #include <bodyfmt/export.h>
@@ -13,6 +13,17 @@ namespace text {
 /// JSON text for `s` between quotes: `"` `\` and control characters escaped, UTF-8 kept,
 /// invalid UTF-8 bytes replaced by U+FFFD.
 std::string json_quote(std::string_view s);
+
+/// A YAML double-quoted scalar that reads back as `s`, for the .body writer and the YAML
+/// reports: `"` and `\` escaped, every character outside YAML's printable set (controls, DEL,
+/// C1, the byte order mark, U+FFFE/U+FFFF) as \xNN or \uNNNN, tab, LF and CR as \t \n \r, and
+/// the line breaks a parser would fold (NEL, U+2028, U+2029) as \N \L \P. An invalid UTF-8 byte
+/// becomes U+FFFD.
+std::string yaml_quote(std::string_view s);
+
+/// The same escapes without the quotes, `"` and `\` escaped only when `escape_quotes` is set:
+/// text for a YAML comment, which no character can then end.
+std::string yaml_escape(std::string_view s, bool escape_quotes);
 
 /// Escapes & < > " ' for use in XML attribute values and text. (tinyxml2 escapes attributes
 /// itself; this is for hand-written XML and for tests.)

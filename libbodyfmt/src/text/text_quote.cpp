@@ -2,6 +2,8 @@
 
 #include <cstddef>
 
+#include <fmt/format.h>
+
 namespace bodyfmt::text {
 
 namespace {
@@ -137,5 +139,46 @@ std::string xml_comment_text(std::string_view text) {
   if (!out.empty() && out.back() == '-') out += ' ';
   return out;
 }
+
+namespace {
+
+// YAML 1.2's printable set (§5.1) less the byte order mark, which a parser drops: tab, LF, CR,
+// x20-x7E, x85, xA0-xD7FF, xE000-xFFFD without xFEFF, x10000 up.
+bool yaml_printable(unsigned c) {
+  return c == '\t' || c == '\n' || c == '\r' || (c >= 0x20 && c <= 0x7e) || c == 0x85 || (c >= 0xa0 && c <= 0xd7ff) ||
+         (c >= 0xe000 && c <= 0xfffd && c != 0xfeff) || c >= 0x10000;
+}
+
+}  // namespace
+
+std::string yaml_escape(std::string_view s, bool escape_quotes) {
+  std::string out;
+  out.reserve(s.size());
+  for (std::size_t i = 0; i < s.size();) {
+    unsigned c = 0;
+    const std::size_t n = utf8_sequence(s, i, c);
+    if (n == 0) {
+      out += "\\ufffd";
+      ++i;
+      continue;
+    }
+    if (escape_quotes && (c == '"' || c == '\\')) {
+      out += '\\';
+      out += static_cast<char>(c);
+    } else if (c == '\n' || c == '\t' || c == '\r') {
+      out += c == '\n' ? "\\n" : c == '\t' ? "\\t" : "\\r";
+    } else if (c == 0x85 || c == 0x2028 || c == 0x2029) {
+      out += c == 0x85 ? "\\N" : c == 0x2028 ? "\\L" : "\\P";  // line breaks a parser would fold
+    } else if (!yaml_printable(c)) {
+      out += c <= 0xff ? fmt::format("\\x{:02x}", c) : fmt::format("\\u{:04x}", c);
+    } else {
+      out.append(s.substr(i, n));
+    }
+    i += n;
+  }
+  return out;
+}
+
+std::string yaml_quote(std::string_view s) { return "\"" + yaml_escape(s, true) + "\""; }
 
 }  // namespace bodyfmt::text

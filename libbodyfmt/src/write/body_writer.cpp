@@ -13,44 +13,11 @@ namespace {
 
 constexpr double kDegreesPerRadian = 180.0 / kPi;
 
-// A character YAML cannot carry as it is: C0 and C1 controls and DEL (not printable, or a
-// line break: NEL), U+2028 and U+2029 (line breaks, folded in a quoted scalar) and U+FFFE,
-// U+FFFF (not printable). Each is written as an escape, so a name comes back byte for byte.
-bool needs_escape(unsigned code_point) {
-  return code_point < 0x20 || (code_point >= 0x7f && code_point <= 0x9f) || code_point == 0x2028 ||
-         code_point == 0x2029 || code_point == 0xfffe || code_point == 0xffff;
-}
-
-// `text` with every character needs_escape() names written as a double-quoted scalar's escape,
-// and `quote` and `\` escaped when `quote` is set. A byte that is not UTF-8 (the importers
-// refuse such names) is written as \xNN, which loads as U+00NN: the file still loads.
-std::string escaped(std::string_view text, bool quote) {
-  std::string out;
-  out.reserve(text.size());
-  for (std::size_t i = 0; i < text.size();) {
-    unsigned code_point = 0;
-    const std::size_t n = text::utf8_sequence(text, i, code_point);
-    if (n == 0) {
-      out += fmt::format("\\x{:02x}", static_cast<unsigned char>(text[i]));
-      ++i;
-      continue;
-    }
-    if (quote && (text[i] == '"' || text[i] == '\\'))
-      out += {'\\', text[i]};
-    else if (needs_escape(code_point))
-      out += code_point <= 0xff ? fmt::format("\\x{:02x}", code_point) : fmt::format("\\u{:04x}", code_point);
-    else
-      out.append(text.substr(i, n));
-    i += n;
-  }
-  return out;
-}
-
-std::string quoted(std::string_view text) { return "\"" + escaped(text, true) + "\""; }
+std::string quoted(std::string_view text) { return text::yaml_quote(text); }
 
 // A comment's text: nothing in it can end the comment's line (issue 34: a newline in a file
 // name added keys to the model).
-std::string comment_text(std::string_view text) { return escaped(text, false); }
+std::string comment_text(std::string_view text) { return text::yaml_escape(text, false); }
 
 void report_not_written(DiagnosticSink& sink, const SourceLocation& at, std::string_view kind, std::string what) {
   Diagnostic d =
