@@ -7,9 +7,10 @@
 // Primitives (Box, Sphere, Cylinder, Capsule) are MuJoCo geoms with their closed forms in double
 // precision: 1e-9 relative. Meshes: MuJoCo 2.2.2 stores mesh vertices as float and computes a
 // mesh's inertia from tetrahedra between its faces and its centroid with their absolute volumes
-// (what later versions call inertia="legacy"), which is exact only for meshes that are convex
-// (star-shaped from the centroid); so meshes are compared here on convex tessellations only,
-// at 1e-5 relative (float vertices: ~6e-8 each, summed over the faces). And MuJoCo 2.2.2 gives
+// (what later versions call inertia="legacy"), which is exact only for meshes star-shaped about
+// the centroid (every convex mesh, some others); so meshes are compared here on convex
+// tessellations and on the corpus meshes star-shaped about their centroid, at 1e-5 relative
+// (float vertices: ~6e-8 each, summed over the faces). And MuJoCo 2.2.2 gives
 // a mesh geom the mass of its equivalent-inertia box, not of the mesh (measured: a cylinder's
 // mass comes out 0.9549 of ours, which is the box's volume over the cylinder's), with the
 // mesh's inertia per unit mass: so for meshes the centre of mass and the principal moments per
