@@ -84,20 +84,27 @@ std::string inertia_box(const MassProperties& mass) {
 
 /// The link's mass properties with its shapes' tensor at its written mass (what `bodycheck
 /// --fix=geometry` computes), their inertia box beside the written one's, and the centre of mass
-/// and inertia the fix writes where bodycheck offers it (`fix`); null where the link has no
-/// solid shape or no link-level mass. A shape that is no solid is left out and counted.
-std::string geometry_json(const Model& model, const Link& link, bool offered) {
+/// and inertia the fix writes where bodycheck offers it (`fix`). A link whose mass only RigidBody
+/// elements carry gets its shapes at that mass, with no fix-it (it has no link-level keys to
+/// write). null where the link has no solid shape or no mass. A shape that is no solid is left
+/// out and counted.
+std::string geometry_json(const Model& model, const Link& link, double total_mass, bool offered) {
   CollectingSink ignored;  // a shape that is no solid is counted in left_out
   const LinkGeometryMass geometry = link_geometry_mass(model, link, ignored);
   const std::optional<GeometryAtWrittenMass> at = geometry_at_written_mass(link, geometry);
-  if (!at) return "null";
-  const MassProperties keys = written_mass_keys(at->link_keys);
+  const std::optional<MassProperties> combined =
+      at ? std::optional<MassProperties>(at->combined) : geometry_at_mass(geometry, total_mass);
+  if (!combined || !(combined->mass > 0)) return "null";
+  std::string fix = ",\"fix\":false,\"fix_center_of_mass\":null,\"fix_inertia\":null";
+  if (at) {
+    const MassProperties keys = written_mass_keys(at->link_keys);
+    fix = ",\"fix\":" + std::string(offered ? "true" : "false") +
+          ",\"fix_center_of_mass\":" + numbers(keys.center_of_mass) + ",\"fix_inertia\":" + row_major(keys.inertia);
+  }
   return "{\"from\":" + std::string(geometry.from_visual ? "\"visual\"" : "\"collision\"") +
          ",\"solids\":" + std::to_string(geometry.solids) + ",\"left_out\":" + std::to_string(geometry.left_out) +
-         ",\"mass\":" + number(at->combined.mass) + ",\"com\":" + numbers(at->combined.center_of_mass) +
-         ",\"inertia\":" + row_major(at->combined.inertia) + ",\"inertia_box\":" + inertia_box(at->combined) +
-         ",\"fix\":" + (offered ? "true" : "false") + ",\"fix_center_of_mass\":" + numbers(keys.center_of_mass) +
-         ",\"fix_inertia\":" + row_major(keys.inertia) + "}";
+         ",\"mass\":" + number(combined->mass) + ",\"com\":" + numbers(combined->center_of_mass) +
+         ",\"inertia\":" + row_major(combined->inertia) + ",\"inertia_box\":" + inertia_box(*combined) + fix + "}";
 }
 
 std::string devices_json(const Model& model) {
@@ -245,7 +252,7 @@ std::string page_data_json(const PageInput& input) {
            ",\"q0\":" + (movable ? number(l.initial_displacement) : "0") +
            ",\"X_PL\":" + matrix(as_isometry(l.X_PL).matrix()) + ",\"mass\":" + number(m.mass) +
            ",\"com\":" + numbers(m.center_of_mass) + ",\"inertia\":" + row_major(m.inertia) +
-           ",\"inertia_box\":" + inertia_box(m) + ",\"geometry\":" + geometry_json(model, l, offered[i]) +
+           ",\"inertia_box\":" + inertia_box(m) + ",\"geometry\":" + geometry_json(model, l, m.mass, offered[i]) +
            ",\"source\":" + text::json_quote(where(l.source)) +
            ",\"mass_source\":" + text::json_quote(where(source_of(l, LinkSources::kMass))) +
            ",\"inertia_source\":" + text::json_quote(where(inertia_source(l))) +

@@ -430,7 +430,7 @@
       const g = l.geometry;
       if (g) {
         const G = g.inertia;
-        rows.push(['from the shapes', g.solids + ' ' + g.from + ' solid' + (g.solids === 1 ? '' : 's') + (g.left_out ? ', ' + g.left_out + ' not solid left out' : '') + ', at the written mass'],
+        rows.push(['from the shapes', g.solids + ' ' + g.from + ' solid' + (g.solids === 1 ? '' : 's') + (g.left_out ? ', ' + g.left_out + ' not solid left out' : '') + ", at the link's mass"],
           ['centre of mass', vec(g.com) + ' m'], ['inertia', vec(G.slice(0, 3)) + '\n' + vec(G.slice(3, 6)) + '\n' + vec(G.slice(6, 9)) + ' kg·m²'],
           ['inertia box', g.inertia_box ? vec(g.inertia_box.size) + ' m' : 'none']);
         if (g.fix) {
