@@ -185,7 +185,7 @@ class ModelFixer {
     CollectingSink checked;
     DiagnosticPolicy check_filter(checked, policy.options);
     validate::check_model(*original, derived, {}, check_filter);
-    const std::vector<bool> flagged = flagged_links(*original, checked.diagnostics());
+    const std::vector<bool> flagged = links_for_geometry_fix(*original, checked.diagnostics());
 
     Model expected = *original;
     std::vector<Unit> units;
@@ -234,25 +234,6 @@ class ModelFixer {
     original_ = &expected;
     reload_meshes_ = true;
     apply_units(file, units);
-  }
-
-  /// Links flagged by the four inertia rules whose tensor the geometry replaces, found by the
-  /// locations those rules report at.
-  static std::vector<bool> flagged_links(const Model& model, const std::vector<Diagnostic>& findings) {
-    std::vector<bool> flagged(model.links.size(), false);
-    for (const Diagnostic& d : findings) {
-      if (d.rule_id != "inertia-implausible" && d.rule_id != "inertia-triangle" &&
-          d.rule_id != "inertia-not-positive-definite" && d.rule_id != "inertia-com-outside")
-        continue;
-      for (std::size_t i = 0; i < model.links.size(); ++i) {
-        const Link& link = model.links[i];
-        bool at_link = d.location == link.source || d.location == link.sources.inertia() ||
-                       d.location == link.sources.mass() || d.location == link.sources.center_of_mass();
-        for (const MassContribution& c : link.mass_contributions) at_link = at_link || d.location == c.source;
-        if (at_link && d.location.known()) flagged[i] = true;
-      }
-    }
-    return flagged;
   }
 
   void apply_units(const std::string& file, const std::vector<Unit>& units) {

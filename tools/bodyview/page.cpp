@@ -1,5 +1,7 @@
 #include "page.h"
 
+#include <bodyfmt/geometry_fix.h>
+#include <bodyfmt/geometry_mass.h>
 #include <bodyfmt/inertia.h>
 #include <bodyfmt/pose.h>
 #include <bodyfmt/text.h>
@@ -78,6 +80,31 @@ std::string inertia_box(const MassProperties& mass) {
   if (X.topLeftCorner<3, 3>().determinant() < 0) X.col(2).head<3>() *= -1;  // a rotation, not a mirror
   X.col(3).head<3>() = mass.center_of_mass;
   return "{\"size\":" + numbers(size) + ",\"X\":" + matrix(X) + "}";
+}
+
+/// The link's mass properties with its shapes' tensor at its written mass (what `bodycheck
+/// --fix=geometry` computes), their inertia box beside the written one's, and the centre of mass
+/// and inertia the fix writes where bodycheck offers it (`fix`). A link whose mass only RigidBody
+/// elements carry gets its shapes at that mass, with no fix-it (it has no link-level keys to
+/// write). null where the link has no solid shape or no mass. A shape that is no solid is left
+/// out and counted.
+std::string geometry_json(const Model& model, const Link& link, double total_mass, bool offered) {
+  CollectingSink ignored;  // a shape that is no solid is counted in left_out
+  const LinkGeometryMass geometry = link_geometry_mass(model, link, ignored);
+  const std::optional<GeometryAtWrittenMass> at = geometry_at_written_mass(link, geometry);
+  const std::optional<MassProperties> combined =
+      at ? std::optional<MassProperties>(at->combined) : geometry_at_mass(geometry, total_mass);
+  if (!combined || !(combined->mass > 0)) return "null";
+  std::string fix = ",\"fix\":false,\"fix_center_of_mass\":null,\"fix_inertia\":null";
+  if (at) {
+    const MassProperties keys = written_mass_keys(at->link_keys);
+    fix = ",\"fix\":" + std::string(offered ? "true" : "false") +
+          ",\"fix_center_of_mass\":" + numbers(keys.center_of_mass) + ",\"fix_inertia\":" + row_major(keys.inertia);
+  }
+  return "{\"from\":" + std::string(geometry.from_visual ? "\"visual\"" : "\"collision\"") +
+         ",\"solids\":" + std::to_string(geometry.solids) + ",\"left_out\":" + std::to_string(geometry.left_out) +
+         ",\"mass\":" + number(combined->mass) + ",\"com\":" + numbers(combined->center_of_mass) +
+         ",\"inertia\":" + row_major(combined->inertia) + ",\"inertia_box\":" + inertia_box(*combined) + fix + "}";
 }
 
 std::string devices_json(const Model& model) {
@@ -212,6 +239,7 @@ std::string page_data_json(const PageInput& input) {
   std::string out = "{\"model\":" + text::json_quote(model.name) + ",\"file\":" + text::json_quote(model.source_file) +
                     ",\"total_mass\":" + number(derived.total_mass) +
                     ",\"serve\":" + text::json_quote(input.serve_status_url) + ",\"links\":[";
+  const std::vector<bool> offered = links_for_geometry_fix(model, input.findings);
   for (std::size_t i = 0; i < model.links.size(); ++i) {
     const Link& l = model.links[i];
     const MassProperties& m = derived.mass[i];
@@ -224,7 +252,8 @@ std::string page_data_json(const PageInput& input) {
            ",\"q0\":" + (movable ? number(l.initial_displacement) : "0") +
            ",\"X_PL\":" + matrix(as_isometry(l.X_PL).matrix()) + ",\"mass\":" + number(m.mass) +
            ",\"com\":" + numbers(m.center_of_mass) + ",\"inertia\":" + row_major(m.inertia) +
-           ",\"inertia_box\":" + inertia_box(m) + ",\"source\":" + text::json_quote(where(l.source)) +
+           ",\"inertia_box\":" + inertia_box(m) + ",\"geometry\":" + geometry_json(model, l, m.mass, offered[i]) +
+           ",\"source\":" + text::json_quote(where(l.source)) +
            ",\"mass_source\":" + text::json_quote(where(source_of(l, LinkSources::kMass))) +
            ",\"inertia_source\":" + text::json_quote(where(inertia_source(l))) +
            ",\"visual_box\":" + box(derived.bounds[i].visual) +

@@ -1,7 +1,8 @@
 #pragma once
 // bodyview's page: one self-contained HTML file holding the model as GLB (body2gltf's writer,
-// visual and collision), what the viewer shows beside it (joints, mass, inertia, devices,
-// sources, bodycheck's findings) as JSON, the viewer script and three.js, all inline.
+// visual and collision), what the viewer shows beside it (joints, mass, inertia and the shapes'
+// inertia with bodycheck --fix=geometry's values, devices, sources, bodycheck's findings) as
+// JSON, the viewer script and three.js, all inline.
 
 #include <bodyfmt/derived.h>
 #include <bodyfmt/diagnostic.h>

@@ -27,4 +27,9 @@ std::vector<FixIt> link_mass_fixes(std::string_view text, const std::string& fil
 /// The numbers link_mass_fixes writes for `keys`, as they read back.
 MassProperties written_mass_keys(const MassProperties& keys);
 
+/// The links `--fix=geometry` replaces the centre of mass and inertia of: those that
+/// inertia-implausible, -triangle, -not-positive-definite or -com-outside report at (the link,
+/// its mass keys or one of its RigidBody elements), among `findings`.
+std::vector<bool> links_for_geometry_fix(const Model& model, const std::vector<Diagnostic>& findings);
+
 }  // namespace bodyfmt

@@ -11,6 +11,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <set>
+#include <string>
+#include <tuple>
 
 namespace bodyfmt {
 namespace {
@@ -181,6 +183,30 @@ std::vector<FixIt> link_mass_fixes(std::string_view text, const std::string& fil
     fixes.push_back(std::move(*f));
   }
   return fixes;
+}
+
+std::vector<bool> links_for_geometry_fix(const Model& model, const std::vector<Diagnostic>& findings) {
+  // A set of the places the rules reported at, so that a model whose every link is flagged
+  // (10,000 links in bodyview) is not searched once per finding.
+  std::set<std::tuple<std::string, int, int>> at;
+  for (const Diagnostic& d : findings) {
+    if ((d.rule_id == "inertia-implausible" || d.rule_id == "inertia-triangle" ||
+         d.rule_id == "inertia-not-positive-definite" || d.rule_id == "inertia-com-outside") &&
+        d.location.known())
+      at.emplace(d.location.file.str(), d.location.line, d.location.column);
+  }
+  const auto reported = [&](const SourceLocation& l) {
+    return l.known() && at.count({l.file.str(), l.line, l.column}) > 0;
+  };
+  std::vector<bool> flagged(model.links.size(), false);
+  for (std::size_t i = 0; i < model.links.size() && !at.empty(); ++i) {
+    const Link& link = model.links[i];
+    bool hit = reported(link.source) || reported(link.sources.inertia()) || reported(link.sources.mass()) ||
+               reported(link.sources.center_of_mass());
+    for (const MassContribution& c : link.mass_contributions) hit = hit || reported(c.source);
+    flagged[i] = hit;
+  }
+  return flagged;
 }
 
 }  // namespace bodyfmt

@@ -213,6 +213,15 @@
     // Overlays, made the first time they are switched on.
     const maxMass = Math.max(1e-12, ...links.map((l) => l.mass || 0));
     const overlayMaterial = (color, opacity) => new THREE.MeshLambertMaterial({ color, transparent: opacity < 1, opacity, depthWrite: opacity >= 1 });
+    // A box of uniform density with the tensor's mass and principal moments, about its centre of mass.
+    function inertiaBox(i, box, material) {
+      const b = new THREE.Mesh(new THREE.BoxGeometry(...box.size.map((v) => Math.max(v, 1e-6))), material);
+      b.matrixAutoUpdate = false;
+      b.matrix.fromArray(box.X);
+      b.renderOrder = 1;
+      linkObject[i].add(b);
+      return b;
+    }
     const makers = {
       frames() {
         return links.map((l, i) => { const h = new THREE.AxesHelper(mark * 2); linkObject[i].add(h); return h; });
@@ -243,13 +252,18 @@
       inertia() {
         const material = overlayMaterial(0xff8800, 0.5);
         const out = [];
+        links.forEach((l, i) => { if (l.inertia_box) out.push(inertiaBox(i, l.inertia_box, material)); });
+        return out;
+      },
+      shape_inertia() {
+        // The box of the tensor the shapes give at the written mass (bodycheck --fix=geometry's),
+        // green with its edges drawn, so that it reads beside or inside the written one's.
+        const material = overlayMaterial(0x22aa44, 0.35), edges = new THREE.LineBasicMaterial({ color: 0x117722 });
+        const out = [];
         links.forEach((l, i) => {
-          if (!l.inertia_box) return;
-          const b = new THREE.Mesh(new THREE.BoxGeometry(...l.inertia_box.size.map((v) => Math.max(v, 1e-6))), material);
-          b.matrixAutoUpdate = false;
-          b.matrix.fromArray(l.inertia_box.X);
-          b.renderOrder = 1;
-          linkObject[i].add(b);
+          if (!l.geometry || !l.geometry.inertia_box) return;
+          const b = inertiaBox(i, l.geometry.inertia_box, material);
+          b.add(new THREE.LineSegments(new THREE.EdgesGeometry(b.geometry), edges));
           out.push(b);
         });
         return out;
@@ -305,8 +319,8 @@
         return out;
       },
     };
-    const toggles = { visual: true, collision: false, frames: false, axes: false, com: false, inertia: false, devices: false, tracks: true };
-    const labels = { visual: 'visual', collision: 'collision', frames: 'link frames', axes: 'joint axes', com: 'centres of mass', inertia: 'inertia boxes', devices: 'devices', tracks: 'track belts' };
+    const toggles = { visual: true, collision: false, frames: false, axes: false, com: false, inertia: false, shape_inertia: false, devices: false, tracks: true };
+    const labels = { visual: 'visual', collision: 'collision', frames: 'link frames', axes: 'joint axes', com: 'centres of mass', inertia: 'inertia boxes', shape_inertia: 'inertia boxes from the shapes', devices: 'devices', tracks: 'track belts' };
     const made = {};
     async function setToggle(name, on) {
       if (!(name in toggles)) throw new Error('no toggle ' + name + ' (' + Object.keys(toggles).join(', ') + ')');
@@ -412,7 +426,21 @@
         rows.push(['axis', vec(l.axis)], ['range', '[' + fmt(l.lower) + ', ' + fmt(l.upper) + '] ' + (l.type === 'revolute' ? 'rad' : 'm')], ['position', fmt(q[i]) + (l.type === 'revolute' ? ' rad' : ' m')]);
       rows.push(['mass', fmt(l.mass) + ' kg'], ['centre of mass', vec(l.com) + ' m'],
         ['inertia', vec(I.slice(0, 3)) + '\n' + vec(I.slice(3, 6)) + '\n' + vec(I.slice(6, 9)) + ' kg·m²'],
-        ['written at', l.source], ['mass at', l.mass_source], ['inertia at', l.inertia_source]);
+        ['inertia box', l.inertia_box ? vec(l.inertia_box.size) + ' m' : 'none']);
+      const g = l.geometry;
+      if (g) {
+        const G = g.inertia;
+        rows.push(['from the shapes', g.solids + ' ' + g.from + ' solid' + (g.solids === 1 ? '' : 's') + (g.left_out ? ', ' + g.left_out + ' not solid left out' : '') + ", at the link's mass"],
+          ['centre of mass', vec(g.com) + ' m'], ['inertia', vec(G.slice(0, 3)) + '\n' + vec(G.slice(3, 6)) + '\n' + vec(G.slice(6, 9)) + ' kg·m²'],
+          ['inertia box', g.inertia_box ? vec(g.inertia_box.size) + ' m' : 'none']);
+        if (g.fix) {
+          // As bodycheck writes them: the numbers read back from its text, shortest form.
+          const exact = (v) => '[' + v.map((x) => String(Number(x))).join(', ') + ']';
+          const F = g.fix_inertia;
+          rows.push(['bodycheck --fix=geometry writes', 'center_of_mass: ' + exact(g.fix_center_of_mass) + '\ninertia: ' + exact(F.slice(0, 3)) + '\n         ' + exact(F.slice(3, 6)) + '\n         ' + exact(F.slice(6, 9))]);
+        }
+      }
+      rows.push(['written at', l.source], ['mass at', l.mass_source], ['inertia at', l.inertia_source]);
       panel.replaceChildren(el('table', {}, ...rows.map(([k, v]) => el('tr', {}, el('td', {}, k), el('td', {}, el('pre', { style: 'margin:0' }, String(v)))))));
       panel.hidden = false;
       requestRender();
