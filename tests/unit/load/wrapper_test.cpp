@@ -169,3 +169,17 @@ TEST_CASE("wrapper: a model file that cannot be read") {
   CHECK_FALSE(uri.model);
   CHECK(pos(uri.take("wrapper-format")) == Pos{1, 13});
 }
+
+TEST_CASE("wrapper: a chain of wrappers deeper than 64 levels is refused, not followed to the end of the stack") {
+  std::map<std::string, std::string> files;
+  for (int i = 0; i < 200; ++i)
+    files["/wrapped/w" + std::to_string(i) + ".body"] = "model_file: w" + std::to_string(i + 1) + ".body\n";
+  files["/wrapped/w200.body"] = kInner;
+  auto r = load_wrapper("model_file: w0.body\n", {}, files);
+  CHECK_FALSE(r.model);
+  const Diagnostic deep = r.take("wrapper-recursion");
+  CHECK(deep.location.file.str() == "/wrapped/w62.body");
+  CHECK(pos(deep) == Pos{1, 13});
+  auto shallow = load_wrapper("model_file: w190.body\n", {}, files);
+  CHECK(shallow.m().links.size() == 2);
+}
