@@ -1,8 +1,10 @@
-// libFuzzer target: the whole loader (YAML, keys, SubBody and YAML resources, mesh files
-// through the VRML reader and assimp) and the derived data, on a folder of files (fuzz_files.h).
+// libFuzzer target: the whole loader (YAML, keys, SubBody and YAML resources, wrapper body files
+// around a .body or a URDF, mesh files through the VRML reader and assimp) and the derived data,
+// on a folder of files (fuzz_files.h).
 // Differential too: links read during the parse (the default) must give the findings and the
 // link tree of a load from the whole YAML tree (LoadOptions::stream_links = false).
 #include "fuzz_files.h"
+#include "model_file_readers.h"
 
 #include <bodyfmt/derived.h>
 #include <bodyfmt/load.h>
@@ -31,6 +33,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   options.max_expanded_yaml_nodes = 200'000;
   options.max_yaml_depth = 64;
   options.max_file_bytes = 1 << 20;
+  bodyfmt::tools::add_model_file_readers(options);
   bodyfmt::CollectingSink sink;
   auto model = bodyfmt::load_body(main, options, sink);
   if (model) {

@@ -1,5 +1,6 @@
 #include "front.h"
 
+#include "model_file_readers.h"
 #include "number_options.h"
 
 #include <bodyfmt/input_files.h>
@@ -227,6 +228,7 @@ std::optional<int> Front::parse(int argc, char** argv) {
 void Front::parsed() {
   load_options_.package_paths = package_paths_;
   load_options_.load_meshes = !no_meshes_;
+  add_model_file_readers(load_options_);  // wrapper body files naming a URDF
 }
 
 std::optional<ModelInput> Front::open_input(const std::string& path, DiagnosticSink& sink) {

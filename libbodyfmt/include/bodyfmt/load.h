@@ -7,12 +7,22 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace BODYFMT_API bodyfmt {
+
+struct LoadOptions;
+
+/// Reads a model file of another format that a wrapper body file names in `model_file`
+/// (body-format-spec §2.4): `text` is the file's content, read under the options' limits;
+/// `path` names it in locations. Reports to `sink` with locations in that file; returns nullopt
+/// when no model comes out.
+using ModelFileReader = std::function<std::optional<Model>(const std::string& path, const std::string& text,
+                                                           const LoadOptions& options, DiagnosticSink& sink)>;
 
 struct LoadOptions {
   /// "Billion laughs" guard: the document's node count with every alias expanded. A
@@ -38,6 +48,12 @@ struct LoadOptions {
   /// them all (a 100,000-link model). The model and the findings are the same either way;
   /// false keeps the whole tree first, as a reference for tests.
   bool stream_links = true;
+  /// Readers of the formats a wrapper body file's `model_file` may name besides .body, .yaml
+  /// and .yml (which this loader reads), by extension with its dot, as Choreonoid matches it
+  /// (case-sensitive): {".urdf", ...}. libbodyfmt reads no other format itself; a wrapper naming
+  /// an extension without a reader gets a located `load-wrapper` error. The bodyfmt tools
+  /// install the URDF importer here.
+  std::map<std::string, ModelFileReader> model_file_readers;
 };
 
 /// Loads a .body file. Reports every problem it can find to `sink` and returns the model

@@ -65,7 +65,12 @@ std::vector<LinkBounds> compute_choreonoid_bounds(const Model& model, Diagnostic
         const BoundingBox box = has_asset ? model.meshes[static_cast<std::size_t>(resource->mesh)].scene_bounds
                                           : bounding_box(tessellate(shape.geometry, shape.division_number, sink,
                                                                     shape.source, ExtrusionFrames::kChoreonoid));
-        (shape.frame >= 0 ? in_frame[static_cast<std::size_t>(shape.frame)] : in_link).add(box);
+        // A shape outside every frame (a model not read from a body file: an imported URDF's)
+        // is placed by its own transform; the loader gives every shape a frame.
+        if (shape.frame >= 0)
+          in_frame[static_cast<std::size_t>(shape.frame)].add(box);
+        else
+          in_link.add(transform_box(shape.X_LS, box));
       }
       for (std::size_t f = link.frames.size(); f-- > 0;) {
         const BoundingBox box = transform_box(link.frames[f].X_PF, in_frame[f]);

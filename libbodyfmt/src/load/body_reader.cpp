@@ -6,6 +6,7 @@
 #include "load/scalar.h"
 #include "load/uri.h"
 #include "load/values.h"
+#include "load/wrapper_reader.h"
 #include "text/text_util.h"
 
 #include <algorithm>
@@ -66,9 +67,12 @@ void advise_huge_pages([[maybe_unused]] const void* data, [[maybe_unused]] std::
 
 }  // namespace
 
+const std::vector<std::string_view>& known_body_info_keys() { return kKnownInfoKeys; }
+
 BodyReader::BodyReader(const LoadOptions& options, DiagnosticSink& sink, LoadSession& session)
     : options_(options), sink_(sink), redirect_(sink), ctx_(redirect_), session_(session) {
   ctx_.package_paths = options.package_paths;
+  ctx_.default_division_number = session.default_division_number;
 }
 
 BodyReader::~BodyReader() = default;
@@ -178,7 +182,8 @@ std::optional<Model> BodyReader::read_once(std::string_view text, const std::str
   } chain_entry(session_.chain, file_identity(file_name));
   Model model;
   model.source_file = file_name;
-  model.name = std::filesystem::path(file_name).stem().string();
+  model.name = session_.default_model_name.empty() ? std::filesystem::path(file_name).stem().string()
+                                                   : session_.default_model_name;
   resources_ = make_resource_handler(options_, ctx_, model, session_);
   std::vector<LinkEntry> entries;
 
@@ -213,6 +218,12 @@ std::optional<Model> BodyReader::read_once(std::string_view text, const std::str
   }
   model.source = root->location;
   documents_.push_back(std::move(document));
+  if (is_wrapper(*root)) {
+    release();
+    std::optional<Model> wrapped = read_wrapper(options_, ctx_, session_, root, file_name);
+    if (wrapped && top_level && options_.load_meshes) import_meshes(*wrapped);
+    return wrapped;
+  }
   const bool header_read = read_header(ctx_, root, model);
   const yaml::MapEntry* links = root->find("links");
   if (header_read && (!link_stream.matches(links ? links->value : yaml::NodeRef{}, model, ctx_) ||
@@ -333,9 +344,8 @@ bool BodyReader::read_header(LoadContext& ctx, const yaml::NodeRef& root, Model&
   MappingReader r(ctx, root, "body");
   yaml::NodeRef format = r.take({"format"});
   if (!format) {
-    if (r.take({"model_file", "modelFile"}))
-      ctx.report("load-wrapper", root.use_site(), "wrapper body files (model_file without format) are not supported");
-    else
+    // A wrapper (§2.4) is read by read_wrapper; only the streamed links' silent probe comes here.
+    if (!r.has({"model_file", "modelFile"}))
       ctx.report("load-format", root.use_site(), "neither format nor model_file is specified",
                  "add format: ChoreonoidBody");
     return false;

@@ -25,7 +25,14 @@ struct LoadSession {
   std::map<std::string, std::shared_ptr<const Model>> subbodies;
   /// Canonical paths of the body files being read, outermost first (recursion detection).
   std::vector<std::string> chain;
+  /// While a wrapper body file's model is read (§2.4): the division number of primitives that
+  /// give none, and the model's name unless the file sets one.
+  int default_division_number = 20;
+  std::string default_model_name;
 };
+
+/// The top-level keys other Choreonoid subsystems read from the body info (§2.3).
+const std::vector<std::string_view>& known_body_info_keys();
 
 class BodyReader {
  public:

@@ -270,6 +270,7 @@ void ElementReader::read_shape(const yaml::NodeRef& node, const ElementFrame& fr
   MappingReader r(ctx_, node, "Shape node");
   r.take({"type"});
   Shape shape;
+  shape.division_number = ctx_.default_division_number;
   if (auto name = r.take({"name"})) shape.name = name->scalar();
   ElementFrame inner = *enter(r, frame);
   shape.source = node.use_site();

@@ -25,6 +25,8 @@ std::string number_text(double value);
 struct LoadContext {
   DiagnosticSink& sink;
   bool degrees = true;  ///< the file's angle unit (body-format-spec §3)
+  /// Of a primitive without division_number: 20, or a wrapper's geometry.divisionNumber (§2.4).
+  int default_division_number = 20;
   int errors = 0;
   /// Roots searched for `package://NAME/...` before ROS_PACKAGE_PATH.
   std::vector<std::string> package_paths;

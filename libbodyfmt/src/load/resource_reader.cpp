@@ -17,9 +17,7 @@
 #include <sstream>
 
 namespace bodyfmt::detail {
-namespace {
 
-// An included file's text: the stand-in of LoadOptions::file_texts, else the file on disk.
 std::optional<std::string> read_included_file(const std::string& path, const LoadOptions& options, std::string& why) {
   if (!options.file_texts.empty()) {
     std::error_code ec;
@@ -29,7 +27,6 @@ std::optional<std::string> read_included_file(const std::string& path, const Loa
   return read_regular_file(path, options.max_file_bytes, why);
 }
 
-}  // namespace
 namespace {
 
 std::string lower_extension(const std::string& path) {

@@ -9,6 +9,8 @@
 #include "load/link_reader.h"
 
 #include <memory>
+#include <optional>
+#include <string>
 #include <vector>
 
 namespace bodyfmt::detail {
@@ -25,6 +27,10 @@ class ResourceReader : public ResourceHandler {
   /// anchor of the main file, so the file must be read again with its whole tree.
   virtual bool read_yaml_without_main_document() const = 0;
 };
+
+/// An included file's text (SubBody, YAML resource, a wrapper's model file): the stand-in of
+/// LoadOptions::file_texts, else the regular file on disk within the size limit.
+std::optional<std::string> read_included_file(const std::string& path, const LoadOptions& options, std::string& why);
 
 struct LoadSession;
 std::unique_ptr<ResourceReader> make_resource_handler(const LoadOptions& options, LoadContext& ctx, Model& model,

@@ -1,0 +1,189 @@
+#!/usr/bin/env python3
+"""Wrapper body files (body-format-spec §2.4, issue 37) through every tool.
+
+    wrapper_tools.py BIN_DIR SHARED_DIR EXAMPLES_DIR WORK_DIR
+
+A one-line wrapper around the corpus URDF SR1.urdf (written at test time in WORK_DIR, naming
+the URDF by a relative path) must be the model urdf2body makes of SR1.urdf: the same bodyinfo
+values (--format yaml), the same body2urdf and body2mjcf outputs, no difference in bodydiff, and every other tool
+reads it. bodycheck on a wrapper around a URDF with a planted defect locates the finding at the
+URDF's line and column. A wrapper around a .body is that model, with its linkInfo checked.
+"""
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+import yaml
+
+BIN, SHARED, EXAMPLES, WORK = sys.argv[1:5]
+failures = []
+
+
+def run(tool, *args):
+    result = subprocess.run([os.path.join(BIN, tool), *args], capture_output=True, timeout=300)
+    return result.returncode, result.stdout.decode("utf-8", "replace"), result.stderr.decode("utf-8", "replace")
+
+
+def expect(condition, message):
+    if not condition:
+        failures.append(message)
+    return condition
+
+
+def write(path, text):
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(text)
+
+
+def read(path):
+    with open(path, encoding="utf-8") as f:
+        return f.read()
+
+
+# urdf2body's .body holds degrees and axis-angle rotations: read back, its numbers differ from the
+# URDF's in the last bits (1.57 rad comes back as 1.5699999999999996). They are compared to this.
+TOLERANCE = 1e-9
+NUMBER = re.compile(r"-?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
+worst = [0.0]
+
+
+def close(a, b):
+    if a == b:
+        return True
+    difference = abs(a - b) / max(1.0, abs(a), abs(b))
+    worst[0] = max(worst[0], difference)
+    return difference <= TOLERANCE
+
+
+def same_values(a, b):
+    """bodyinfo values equal, numbers to TOLERANCE."""
+    if isinstance(a, dict) and isinstance(b, dict):
+        return a.keys() == b.keys() and all(same_values(a[k], b[k]) for k in a)
+    if isinstance(a, list) and isinstance(b, list):
+        return len(a) == len(b) and all(same_values(x, y) for x, y in zip(a, b))
+    if isinstance(a, (int, float)) and isinstance(b, (int, float)) and not isinstance(a, bool):
+        return close(float(a), float(b))
+    return a == b
+
+
+def same_export(a, b):
+    """Two exports with the same text around their numbers, and numbers equal to TOLERANCE."""
+    if a is None or b is None:
+        return a is b
+    if NUMBER.sub("#", a) != NUMBER.sub("#", b):
+        return False
+    return all(close(float(x), float(y)) for x, y in zip(NUMBER.findall(a), NUMBER.findall(b)))
+
+
+def zero_origin(match):
+    """An <origin> of zeros to TOLERANCE is the default, which a writer leaves out when exact."""
+    return "" if all(abs(float(x)) <= TOLERANCE for x in NUMBER.findall(match.group(0))) else match.group(0)
+
+
+def identity_quat(match):
+    """The same for an MJCF quat of (1, 0, 0, 0)."""
+    q = [float(x) for x in NUMBER.findall(match.group(1))]
+    return "" if len(q) == 4 and all(abs(a - b) <= TOLERANCE for a, b in zip(q, (1, 0, 0, 0))) else match.group(0)
+
+
+def export_text(path):
+    """An export without its header comment (it names the file it came from) and without
+    <origin> elements and quat attributes that are the default to rounding."""
+    text = re.sub(r"<!--.*?-->", "", read(path), flags=re.S)
+    text = re.sub(r' quat="([^"]*)"', identity_quat, text)
+    return re.sub(r"\n *<origin [^>]*/>", zero_origin, text)
+
+
+shutil.rmtree(WORK, ignore_errors=True)
+os.makedirs(WORK)
+
+# --- SR1: the wrapper against urdf2body's output -------------------------------------------
+sr1 = os.path.join(SHARED, "corpus", "choreonoid", "SR1", "SR1.urdf")
+wrapper = os.path.join(WORK, "sr1", "SR1.body")
+write(wrapper, "model_file: " + os.path.relpath(sr1, os.path.dirname(wrapper)) + "\n")
+imported = os.path.join(WORK, "imported", "SR1.body")
+code, _, err = run("urdf2body", sr1, "-o", imported)
+expect(code in (0, 1) and os.path.exists(imported), f"urdf2body SR1.urdf: exit {code}\n{err[-2000:]}")
+
+infos = []
+for model in (wrapper, imported):
+    code, out, err = run("bodyinfo", "--format", "yaml", model)
+    if expect(code == 0, f"bodyinfo {model}: exit {code}\n{err[-2000:]}"):
+        info = yaml.safe_load(out)
+        info.pop("messages", None)  # the URDF's import warnings, which urdf2body printed instead
+        infos.append(info)
+if len(infos) == 2:
+    a, b = infos
+    expect(same_values(a, b), "bodyinfo of the wrapper differs from bodyinfo of urdf2body's SR1.body:\n"
+           + "\n".join(f"  {k}: {a.get(k)!r:.300} != {b.get(k)!r:.300}" for k in sorted(set(a) | set(b))
+                       if not same_values(a.get(k), b.get(k))))
+    print(f"bodyinfo: {a.get('num_links')} links, {a.get('num_joints')} joints, total mass {a.get('total_mass')} kg: "
+          f"every value equal, the largest relative difference {worst[0]:.1e}")
+
+for tool, ext in (("body2urdf", "urdf"), ("body2mjcf", "xml")):
+    outputs = []
+    for name, model in (("wrapper", wrapper), ("imported", imported)):
+        out = os.path.join(WORK, "exports", name, f"SR1.{ext}")  # the same stem: body2mjcf's meshdir
+        os.makedirs(os.path.dirname(out), exist_ok=True)
+        code, _, err = run(tool, model, "-o", out, "--allow-loss", "geometry,dynamics,joints,devices")
+        expect(code in (0, 1), f"{tool} {name}: exit {code}\n{err[-2000:]}")
+        outputs.append((code, export_text(out) if os.path.exists(out) else None))
+    expect(outputs[0][0] == outputs[1][0] and same_export(outputs[0][1], outputs[1][1]),
+           f"{tool}: the wrapper's export differs from urdf2body's SR1.body's")
+    print(f"{tool}: exit {outputs[0][0]} both, {len(NUMBER.findall(outputs[0][1] or ''))} numbers equal, "
+          f"the largest relative difference so far {worst[0]:.1e}")
+
+code, out, err = run("bodydiff", imported, wrapper)
+expect(code == 0 and not out, f"bodydiff urdf2body's SR1.body and the wrapper: exit {code}\n{out[-2000:]}{err[-2000:]}")
+for args in (["body2gltf", wrapper, "-o", os.path.join(WORK, "exports", "wrapper", "SR1.glb")],
+             ["bodysim", "check", wrapper], ["bodycheck", wrapper],
+             ["bodyview", wrapper, "-q", "-o", os.path.join(WORK, "exports", "wrapper", "SR1.html")]):
+    if not os.path.exists(os.path.join(BIN, args[0])):
+        continue  # bodysim and bodyview are optional
+    code, out, err = run(*args)
+    expect(code in (0, 1) and "load-wrapper" not in err,
+           f"{args[0]} on the wrapper: exit {code}\n{err[-2000:]}")
+
+# --- A finding inside the wrapped URDF is located there ------------------------------------
+urdf = os.path.join(WORK, "defect", "arm.urdf")
+write(urdf, """<?xml version="1.0"?>
+<robot name="arm">
+  <link name="base">
+    <inertial>
+      <mass value="1"/>
+      <inertia ixx="1" iyy="1" izz="3" ixy="0" ixz="0" iyz="0"/>
+    </inertial>
+  </link>
+</robot>
+""")
+defect_wrapper = os.path.join(WORK, "defect", "arm.body")
+write(defect_wrapper, "model_file: arm.urdf\n")
+code, out, err = run("bodycheck", "--color", "never", defect_wrapper)
+err = out + err
+expect(code == 1 and re.search(r"^\S*defect/arm\.urdf:6:7: error: .*\[inertia-triangle\]$", err, re.M),
+       f"bodycheck on a wrapper around a URDF with A + B < C: exit {code}, expected 1 and the finding at "
+       f"arm.urdf:6:7\n{err[-2000:]}")
+
+# --- A wrapper around a .body, with linkInfo ------------------------------------------------
+arm = os.path.join(EXAMPLES, "arm.body")
+body_wrapper = os.path.join(WORK, "body", "arm.body")
+write(body_wrapper, f"""model_file: {os.path.relpath(arm, os.path.dirname(body_wrapper))}
+linkInfo:
+  BASE: {{drive_stiffness: 100}}
+  BASSE: {{drive_damping: 1}}
+""")
+code, out, err = run("bodycheck", "--color", "never", body_wrapper)
+err = out + err
+expect(code == 0 and re.search(r"^\S*body/arm\.body:4:3: warning: .*\"BASSE\".*\[wrapper-link-info\]$", err, re.M)
+       and re.search(r"^\S*body/arm\.body:4:3: note: did you mean \"BASE\"\?$", err, re.M),
+       f"bodycheck on a wrapper around arm.body with linkInfo for a missing link: exit {code}\n{err[-2000:]}")
+code, out, err = run("bodydiff", arm, body_wrapper)
+expect(code == 0 and not out, f"bodydiff arm.body and its wrapper: exit {code}\n{out[-2000:]}{err[-2000:]}")
+
+for f in failures:
+    print("FAIL:", f)
+print(f"wrapper tools: {len(failures)} failures")
+sys.exit(1 if failures else 0)
