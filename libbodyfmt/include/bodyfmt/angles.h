@@ -2,7 +2,9 @@
 /// π, defined once for the whole project: C++17 has no std::numbers, and M_PI is a POSIX
 /// extension that strict compilers leave out.
 
-namespace bodyfmt {
+#include <bodyfmt/export.h>
+
+namespace BODYFMT_API bodyfmt {
 
 inline constexpr double kPi = 3.14159265358979323846;
 
