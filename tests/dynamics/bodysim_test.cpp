@@ -72,6 +72,22 @@ TEST_CASE("bodysim: check-tank passes every check on SimpleTank with --balance-i
   CHECK(contains(r.out, "33 of 33 checks passed, 0 failed, 0 skipped"));
 }
 
+TEST_CASE("bodysim: an asymmetric inertia is refused as bodycheck refuses it, or simulated symmetrised on request") {
+  const std::string model = std::string(BODYFMT_TEST_DATA_DIR) + "/dynamics/asymmetric_inertia.body";
+  Run r = bodysim("check -q '" + model + "'");
+  CHECK(r.status == 2);
+  CHECK(contains(r.all, "asymmetric_inertia.body:17:9: error: inertia of link \"BODY\" is not symmetric"));
+  CHECK(contains(r.all, "[inertia-asymmetric]"));
+  r = bodysim("check -q --balance-inertia '" + model + "'");
+  INFO(r.all);
+  CHECK(r.status == 0);
+  CHECK(contains(r.all, "asymmetric_inertia.body:17:9: warning: inertia of link \"BODY\" is not symmetric"));
+  CHECK(contains(r.all, "the mean of each off-diagonal pair"));
+  CHECK(contains(r.all, "[dynamics-inertia-balanced]"));
+  CHECK(!contains(r.all, "[inertia-asymmetric]"));
+  CHECK(!contains(r.out, "FAIL"));
+}
+
 TEST_CASE("bodysim: check-tank passes every check on examples/scouttank.body (exit 0)") {
   const Run r = bodysim("check-tank '" + kScoutTank + "'");
   INFO(r.all);
