@@ -46,7 +46,10 @@ class ValidatorFirst : public DiagnosticSink {
  public:
   ValidatorFirst(DiagnosticSink& inner, bool balance) : inner_(inner), balance_(balance) {}
   void report(Diagnostic d) override {
-    if (d.rule_id == "inertia-triangle" || d.rule_id == "inertia-not-positive-definite") return;
+    if (d.rule_id == "inertia-triangle" || d.rule_id == "inertia-not-positive-definite") {
+      held_.push_back(std::move(d));
+      return;
+    }
     if (balance_ && d.rule_id == "inertia-asymmetric") {
       report_rule(inner_, "dynamics-inertia-balanced", d.location,
                   d.message +
@@ -57,10 +60,19 @@ class ValidatorFirst : public DiagnosticSink {
     }
     inner_.report(std::move(d));
   }
+  /// When another error stops the run before Simulation::build, the inertia findings it would
+  /// have reported are bodycheck's: every finding is said before bodysim refuses, as bodycheck
+  /// says them on the file. (With --balance-inertia they are not errors of this run.)
+  void release_held() {
+    if (!balance_)
+      for (Diagnostic& d : held_) inner_.report(std::move(d));
+    held_.clear();
+  }
 
  private:
   DiagnosticSink& inner_;
   bool balance_;
+  std::vector<Diagnostic> held_;
 };
 
 std::string number(double v) { return fmt::format("{:.6g}", v); }
@@ -229,6 +241,7 @@ int main(int argc, char** argv) {
   {
     ValidatorFirst validator(sink, sim.balance_inertia);
     validate::check_model(*model, derived, {}, validator);
+    if (collected.error_count() > 0) validator.release_held();
   }
   if (collected.error_count() > 0)
     return finish(true, "the model has errors (bodycheck's rules); nothing was simulated");
