@@ -186,13 +186,30 @@ void conservation(Generic& g) {
   }
   const double e0 = sim->energy();
   const auto [h0, p0] = sim->central_momentum();
+  // The momenta are judged relative to the largest the model's kinetic energy could carry, not
+  // to what the random velocities happened to give: |H| ≤ √(2·E·I_max) about the centre of
+  // mass and |p| ≤ √(2·E·m). Relative to a small |H0| (random velocities that nearly cancel
+  // about the centre of mass) the integration error of a gram-scale model read as 1e-6 while its
+  // energy drifted 1e-10.
+  const Eigen::Vector3d c = sim->center_of_mass();
+  Eigen::Matrix3d central = Eigen::Matrix3d::Zero();
+  for (std::size_t k = 0; k < g.model.links.size(); ++k) {
+    const Eigen::Isometry3d X = sim->link_pose(static_cast<LinkIndex>(k));
+    const double m = g.derived.mass[k].mass;
+    const Eigen::Vector3d r = X * g.derived.mass[k].center_of_mass - c;
+    central += X.linear() * sim->link_inertias()[k] * X.linear().transpose() +
+               m * (r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose());
+  }
+  const double largest_inertia = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(central).eigenvalues().maxCoeff();
+  const double h_scale = std::max({h0.norm(), std::sqrt(2 * e0 * largest_inertia), 1e-300});
+  const double p_scale = std::max({p0.norm(), std::sqrt(2 * e0 * g.derived.total_mass), 1e-300});
   double worst_e = 0, worst_h = 0, worst_p = 0;
   for (int i = 1; i <= 20; ++i) {
     sim->advance_to(0.1 * i);
     worst_e = std::max(worst_e, std::abs(sim->energy() - e0) / e0);
     const auto [h, p] = sim->central_momentum();
-    worst_h = std::max(worst_h, (h - h0).norm() / std::max(h0.norm(), 1e-12));
-    worst_p = std::max(worst_p, (p - p0).norm() / std::max(p0.norm(), 1e-12));
+    worst_h = std::max(worst_h, (h - h0).norm() / h_scale);
+    worst_p = std::max(worst_p, (p - p0).norm() / p_scale);
   }
   g.add(make("G4 no gravity, 2 s: energy drift, relative to the initial energy", worst_e, 1e-6, "", "≤ 1e-6",
              worst_e <= 1e-6));
@@ -200,9 +217,12 @@ void conservation(Generic& g) {
     g.skip("G4 no gravity: momentum", "the root is fixed to the world, which exerts forces on the model");
     return;
   }
-  g.add(make("G4 no gravity, 2 s: angular momentum drift about the centre of mass, relative", worst_h, 1e-6, "",
-             "≤ 1e-6", worst_h <= 1e-6));
-  g.add(make("G4 no gravity, 2 s: linear momentum drift, relative", worst_p, 1e-6, "", "≤ 1e-6", worst_p <= 1e-6));
+  g.add(
+      make("G4 no gravity, 2 s: angular momentum drift about the centre of mass, relative to √(2 × energy × "
+           "largest central inertia)",
+           worst_h, 1e-6, "", "≤ 1e-6", worst_h <= 1e-6));
+  g.add(make("G4 no gravity, 2 s: linear momentum drift, relative to √(2 × energy × mass)", worst_p, 1e-6, "", "≤ 1e-6",
+             worst_p <= 1e-6));
 }
 
 /// G5: drop from 2 cm onto the floor (free roots).
@@ -245,6 +265,13 @@ void drop(Generic& g, const std::vector<ContactPoint>& contacts) {
     double gain = 0;
     bool finite = true;
     const Eigen::Vector3d start = sim->link_pose(0).translation();
+    // How far the root can travel by turning about a contact point that does not slip: the
+    // largest distance from the root origin to a contact point, times the angle turned.
+    double reach = 0;
+    for (const ContactPoint& p : sim->contact_points())
+      reach = std::max(reach, (sim->link_pose(p.link) * p.position_in_link - start).norm() + p.radius);
+    double turned = 0;  // ∫|ω| dt of the root, summed over the samples
+    Eigen::Matrix3d last_rotation = sim->link_pose(0).linear();
     const double duration = 3.0;
     const double settle = 1e-4 * mass * options.gravity * height;
     // The free drop ends once the model has rested for kRest (kinetic energy under the settle
@@ -262,6 +289,9 @@ void drop(Generic& g, const std::vector<ContactPoint>& contacts) {
           break;
         }
         gain = std::max(gain, sim->energy() - e0);
+        const Eigen::Matrix3d rotation = sim->link_pose(0).linear();
+        turned += Eigen::AngleAxisd(rotation * last_rotation.transpose()).angle();
+        last_rotation = rotation;
         if (locked) continue;
         if (sim->kinetic_energy() > settle) {
           rest_start = -1;
@@ -284,16 +314,30 @@ void drop(Generic& g, const std::vector<ContactPoint>& contacts) {
         finite ? "every position and velocity stayed finite"
                : "the state became NaN or infinite" + (failure.empty() ? std::string() : " (" + failure + ")")));
     if (!finite) continue;
+    // Energy never grows while passive, beyond integration error: 1e-4 of the drop energy.
+    // After release it only decreases, whatever face the model lands on and however it tumbles.
+    const double drop_energy = mass * options.gravity * drop;
     if (!locked) {
-      // Energy never grows while passive, beyond integration error: 1e-4 of the drop energy.
-      const double drop_energy = mass * options.gravity * drop;
       const std::string window = end < duration ? fmt::format("over {:.3g} s, at rest for the last {:g} s", end, kRest)
                                                 : fmt::format("over {:g} s", duration);
       results.push_back(make(fmt::format("{}: largest energy gain {}", label, window), gain, 1e-4 * drop_energy, "J",
                              "≤ 1e-4 × drop energy", gain <= 1e-4 * drop_energy));
       continue;
     }
+    results.push_back(make(fmt::format("{}: largest energy gain over {:g} s", label, duration), gain,
+                           1e-4 * drop_energy, "J", "≤ 1e-4 × drop energy", gain <= 1e-4 * drop_energy));
     const double ke = sim->kinetic_energy();
+    if (ke > settle) {
+      // A model that lands on a round face, or tips and rocks, may still roll after 3 s: that
+      // is physics, not a defect (its energy has only gone down, above). What holds at rest
+      // cannot be judged on it.
+      g.skip(fmt::format("{}: at rest after {:g} s", label, duration),
+             fmt::format("it does not come to rest within {:g} s: kinetic energy {:.3g} J, above the rest bound "
+                         "{:.3g} J (1e-4 × weight × height); it still rolls or rocks, so its penetration, floor "
+                         "force and drift at rest are not judged",
+                         duration, ke, settle));
+      continue;
+    }
     results.push_back(make(fmt::format("{}: kinetic energy at {:g} s", label, duration), ke, settle, "J",
                            "≤ 1e-4 × weight × height", ke <= settle));
     const double depth = sim->max_penetration();
@@ -302,9 +346,16 @@ void drop(Generic& g, const std::vector<ContactPoint>& contacts) {
     const double fz = sim->total_contact_force().z();
     results.push_back(make(label + ": floor force at rest equals the weight", fz, mass * options.gravity, "N", "±1 %",
                            std::abs(fz - mass * options.gravity) <= 0.01 * mass * options.gravity));
+    // A model that lands flat stays where it fell (1 cm of slip at the impact). One that tips,
+    // rolls or tumbles moves its root by turning about its contacts: no further than the angle
+    // it turned times the largest distance from the root to a contact point, plus that slip.
     const Eigen::Vector3d moved = sim->link_pose(0).translation() - start;
     const double drift = std::hypot(moved.x(), moved.y());
-    results.push_back(make(label + ": horizontal drift of the root", drift * 1e3, 10, "mm", "≤ 10 mm", drift <= 0.01));
+    const double allowed = 0.01 + turned * reach;
+    results.push_back(make(fmt::format("{}: horizontal drift of the root (turned {:.3g} rad in all, {:.3g} m from "
+                                       "the root to its farthest contact point)",
+                                       label, turned, reach),
+                           drift * 1e3, allowed * 1e3, "mm", "≤ 10 mm + turned × that distance", drift <= allowed));
   }
 }
 

@@ -265,11 +265,10 @@ TEST_CASE("drop cross-check: MuJoCo's mesh-plane contact skips the corner across
 }
 
 TEST_CASE(
-    "drop cross-check: a box that tips is held to MuJoCo's relaxation after its last impact, as a mesh it fails") {
-  // The 0.16 x 0.02 x 0.12 m box lands on an edge and tips onto its 20 mm face. MuJoCo's soft
-  // contact relaxes after every impact, and after the tip one end of the face sinks while the
-  // other rests, which turns the box: its settle ends 1e-3 rad across the face after the face's
-  // last point came down, not 0.5 mm after the first contact.
+    "drop cross-check: a box that tips is compared at rest, not by when its tip ends; as a mesh its rest creeps") {
+  // The 0.16 x 0.02 x 0.12 m box lands on an edge and tips onto its 20 mm face. When a tip ends
+  // is decided by the impacts, where the engines' contacts differ by design: the settle time is
+  // a SKIP with that reason, and the rest is compared (height on its face, tilt, no turning).
   const Loaded l = load(std::string(BODYFMT_TEST_DATA_DIR) + "/dynamics/narrow_mesh_box.body");
   auto passed_lines = [](const std::vector<CheckResult>& results) {
     std::map<std::string, bool> passed;
@@ -289,7 +288,7 @@ TEST_CASE(
       const std::string& line = entry.first;
       const bool passed = entry.second;
       CAPTURE(line);
-      CHECK(passed);
+      CHECK(passed == (line != "settle time"));
     }
     const DropMeasures& sb = report.simbody;
     CHECK(report.collision_meshes == 0);  // body2mjcf wrote a box
@@ -305,8 +304,13 @@ TEST_CASE(
     CHECK(report.mujoco.settle_time > 1.05 * (sb.first_contact + 0.091));
     const std::string text = describe(report);
     CHECK(text.find("its last impact is the last of the 4 points it rests on") != std::string::npos);
-    for (const CheckResult& r : results)
-      if (r.name.find("settle time") != std::string::npos) CHECK(r.name.find("tipped") != std::string::npos);
+    for (const CheckResult& r : results) {
+      if (r.name.find("settle time") != std::string::npos) {
+        CHECK(r.skipped);
+        CHECK(r.note.find("tipped over") != std::string::npos);
+      }
+      if (r.name.find("rest orientation") != std::string::npos) CHECK(r.name.find("yaw left out") != std::string::npos);
+    }
   }
   {
     // The same export with its collision as a mesh rocks on one corner at one end.
@@ -320,8 +324,11 @@ TEST_CASE(
     REQUIRE(results.size() == 4);
     CHECK(report.collision_meshes == 1);
     const std::map<std::string, bool> passed = passed_lines(results);
+    // Its rest turns by itself (MuJoCo's mesh contact stands one end on one changing corner).
     CHECK_FALSE(passed.at("rest orientation"));
-    CHECK_FALSE(passed.at("settle time"));
+    CHECK(report.mujoco.turn_rate > 1e-4);
+    for (const CheckResult& r : results)
+      if (r.name.find("settle time") != std::string::npos) CHECK(r.skipped);
   }
   {
     // A box that lands flat has one impact: its first contact, relaxing into the height band.

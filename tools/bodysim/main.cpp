@@ -39,16 +39,40 @@ using namespace bodyfmt;
 
 /// bodycheck's rules under bodysim's policy, except the inertia findings that Simulation::build
 /// reports itself with what it does about them (refused, or balanced with --balance-inertia).
+/// An asymmetric tensor is simulated symmetrised (Simulation and body2mjcf's writer take
+/// (I + Iᵀ)/2, the mean of each off-diagonal pair): with --balance-inertia that is a balance
+/// like the others, said at the tensor's line; without it, bodycheck's error.
 class ValidatorFirst : public DiagnosticSink {
  public:
-  explicit ValidatorFirst(DiagnosticSink& inner) : inner_(inner) {}
+  ValidatorFirst(DiagnosticSink& inner, bool balance) : inner_(inner), balance_(balance) {}
   void report(Diagnostic d) override {
-    if (d.rule_id == "inertia-triangle" || d.rule_id == "inertia-not-positive-definite") return;
+    if (d.rule_id == "inertia-triangle" || d.rule_id == "inertia-not-positive-definite") {
+      held_.push_back(std::move(d));
+      return;
+    }
+    if (balance_ && d.rule_id == "inertia-asymmetric") {
+      report_rule(inner_, "dynamics-inertia-balanced", d.location,
+                  d.message +
+                      "; simulated with --balance-inertia as the symmetrised tensor, the mean of each "
+                      "off-diagonal pair (Choreonoid uses the 9 numbers as given)",
+                  "write the 6-element form [Ixx, Ixy, Ixz, Iyy, Iyz, Izz] with the values you mean");
+      return;
+    }
     inner_.report(std::move(d));
+  }
+  /// When another error stops the run before Simulation::build, the inertia findings it would
+  /// have reported are bodycheck's: every finding is said before bodysim refuses, as bodycheck
+  /// says them on the file. (With --balance-inertia they are not errors of this run.)
+  void release_held() {
+    if (!balance_)
+      for (Diagnostic& d : held_) inner_.report(std::move(d));
+    held_.clear();
   }
 
  private:
   DiagnosticSink& inner_;
+  bool balance_;
+  std::vector<Diagnostic> held_;
 };
 
 std::string number(double v) { return fmt::format("{:.6g}", v); }
@@ -76,7 +100,8 @@ const CLI::Validator kPositive = tools::number_above_zero(false), kNonNegative =
 /// The options every subcommand takes besides the front's: the simulation's.
 void add_simulation_options(CLI::App& app, dynamics::SimOptions& sim, std::size_t& max_links) {
   app.add_flag("--balance-inertia", sim.balance_inertia,
-               "simulate links with an unphysical inertia with the nearest valid one (a warning per link)");
+               "simulate links with an unphysical inertia with the nearest valid one, an asymmetric one symmetrised (a "
+               "warning per link)");
   app.add_option("--accuracy", sim.accuracy, "Runge-Kutta-Merson accuracy (default 1e-5)")
       ->check(tools::finite_number_in(1e-12, 1e-1));
   app.add_option("--contact", sim.contact_model,
@@ -214,8 +239,9 @@ int main(int argc, char** argv) {
   // The validator first: what bodycheck calls an error (a reversed range, a moving massless
   // link, ...) is refused at its line before any engine sees it.
   {
-    ValidatorFirst validator(sink);
+    ValidatorFirst validator(sink, sim.balance_inertia);
     validate::check_model(*model, derived, {}, validator);
+    if (collected.error_count() > 0) validator.release_held();
   }
   if (collected.error_count() > 0)
     return finish(true, "the model has errors (bodycheck's rules); nothing was simulated");

@@ -340,6 +340,9 @@ struct MassContribution {
   Eigen::Vector3d center_of_mass = Eigen::Vector3d::Zero();
   Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
   bool from_link_keys = false;  ///< link-level mass/center_of_mass/inertia keys
+  /// The loader refused the inertia as written (load-inertia-size, a bad number): what stands
+  /// in its place is no one's tensor, and no rule judges it.
+  bool inertia_refused = false;
   SourceLocation source;
 };
 

@@ -105,8 +105,9 @@ struct PhysicalFinding {
 
 /// What the gate knows of each link besides its findings.
 struct LinkPhysics {
-  /// compute_derived could combine the link's mass properties (computable()); when not, it
-  /// reported derived-not-finite and the gate has no finding about the link's mass.
+  /// compute_derived could combine the link's mass properties (computable()) and the loader
+  /// took every inertia as written; when not, compute_derived reported derived-not-finite (or
+  /// the loader load-inertia-size) and the gate has no finding about the link's mass.
   bool computable = false;
   bool moving = false;           ///< is_moving()
   bool welded_to_world = false;  ///< not moving, and a root or fixed to a link welded to the world

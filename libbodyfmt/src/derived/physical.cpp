@@ -1,6 +1,7 @@
 #include <bodyfmt/physical.h>
 #include <bodyfmt/rules.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <utility>
@@ -116,8 +117,12 @@ PhysicalVerdict assess_physical(const Model& model, const Derived& derived, cons
           !lp.moving && (link.parent < 0 || verdict.links[static_cast<std::size_t>(link.parent)].welded_to_world);
       assess_symmetry(link, index, options.symmetry_tolerance, verdict.findings);
       const MassProperties& mp = derived.mass[i];
-      lp.computable = computable(mp);
-      if (!lp.computable) {  // compute_derived reported it (derived-not-finite)
+      // An inertia the loader refused (load-inertia-size) is judged by no rule: the tensor in its
+      // place was never written.
+      const bool refused = std::any_of(link.mass_contributions.begin(), link.mass_contributions.end(),
+                                       [](const MassContribution& c) { return c.inertia_refused; });
+      lp.computable = computable(mp) && !refused;
+      if (!lp.computable) {  // compute_derived reported it (derived-not-finite), or the loader did
         verdict.masses_usable = false;
         continue;
       }

@@ -245,7 +245,10 @@ void ElementReader::read_rigid_body(const yaml::NodeRef& node, const ElementFram
   Eigen::Matrix3d I = Eigen::Matrix3d::Zero();
   if (auto v = r.take({"inertia"})) {
     if (v->is_sequence()) {
-      if (auto x = read_inertia(ctx_, v)) I = *x;
+      if (auto x = read_inertia(ctx_, v))
+        I = *x;
+      else
+        c.inertia_refused = true;
     } else {
       ctx_.report("load-ignored-value", v, "a RigidBody inertia that is not a sequence is read as zero");
     }

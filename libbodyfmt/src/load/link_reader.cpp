@@ -159,7 +159,10 @@ void read_link_mass(LoadContext& ctx, MappingReader& r, Link& link, bool has_rig
   if (inertia) {
     link.sources.set(LinkSources::kInertia, inertia.use_site());
     if (inertia->is_sequence()) {
-      if (auto v = read_inertia(ctx, inertia)) c.inertia = *v;
+      if (auto v = read_inertia(ctx, inertia))
+        c.inertia = *v;
+      else
+        c.inertia_refused = true;
     } else {
       ctx.report("load-ignored-value", inertia, "a link-level inertia that is not a sequence is ignored by Choreonoid");
     }

@@ -122,6 +122,19 @@ TEST_CASE("validate: inertia-implausible") {
   CHECK(d->message.find("66.6667 times") != std::string::npos);  // 3 / (1/6 * 0.27)
 }
 
+TEST_CASE("validate: an inertia the loader refused is not judged (load-inertia-size alone)") {
+  // A 5-element link inertia and a 7-element RigidBody inertia: each is load-inertia-size at
+  // its value; the zero tensor left in their place is no inertia-tiny or inertia-implausible.
+  const auto result = bodyfmt::test::check_file(data("load-inertia-size.body"));
+  INFO("diagnostics:\n" << bodyfmt::test::describe(result.diagnostics));
+  int size = 0;
+  for (const Diagnostic& d : result.diagnostics) {
+    size += d.rule_id == "load-inertia-size" ? 1 : 0;
+    CHECK_MESSAGE(d.rule_id.rfind("inertia-", 0) != 0, "judged a refused inertia [" << d.rule_id << "]");
+  }
+  CHECK(size == 2);
+}
+
 // ---- Joints
 
 TEST_CASE("validate: joint-id-duplicate") { expect_finding("joint-id-duplicate.body", "joint-id-duplicate", {30, 15}); }

@@ -43,6 +43,9 @@ struct DropMeasures {
   /// last impact.
   int support_points = 0;
   double support_span = 0;
+  /// Its narrowest horizontal width (m): a tilt of the rest by 0.5 mm across it is within the
+  /// height band (the span when the support is a point or a line).
+  double support_width = 0;
   double support_time = 0;
   double support_speed = 0;
   /// Landed tilted from its rest (more than 1e-3 rad at first contact) and tipped onto its
