@@ -265,7 +265,7 @@ TEST_CASE("drop cross-check: MuJoCo's mesh-plane contact skips the corner across
 }
 
 TEST_CASE(
-    "drop cross-check: a box that tips is compared at rest, not by when its tip ends; as a mesh its rest creeps") {
+    "drop cross-check: a box that tips is compared at rest, not by when its tip ends, and as a mesh its rest creeps") {
   // The 0.16 x 0.02 x 0.12 m box lands on an edge and tips onto its 20 mm face. When a tip ends
   // is decided by the impacts, where the engines' contacts differ by design: the settle time is
   // a SKIP with that reason, and the rest is compared (height on its face, tilt, no turning).
