@@ -22,11 +22,11 @@ corpus itself is only read.
 import os
 import pathlib
 import re
-import shutil
-import stat
 import subprocess
 import sys
 import time
+
+from fix_geometry import writable_copy  # the same writable corpus copy as fix.geometry
 
 SAMPLE = ["Tank/SimpleTank.body", "Tank/Tank.body", "misc/ellipsoid1.body", "misc/crawler.body",
           "UniversalRobots/UR5.body"]
@@ -51,16 +51,6 @@ KNOWN_STIFF_CONTACT = {
 
 def run(*args, cwd=None, timeout=900):
     return subprocess.run(list(args), capture_output=True, text=True, cwd=cwd, timeout=timeout)
-
-
-def writable_copy(src, dst):
-    if os.path.exists(dst):
-        shutil.rmtree(dst)
-    shutil.copytree(src, dst)
-    for root, dirs, files in os.walk(dst):
-        for name in dirs + files:
-            path = os.path.join(root, name)
-            os.chmod(path, os.stat(path).st_mode | stat.S_IWUSR)
 
 
 def main():

@@ -246,6 +246,14 @@ Geometry read_resource_geometry(LoadContext& ctx, MappingReader& r) {
 
 }  // namespace
 
+int division_number_from(LoadContext& ctx, const yaml::NodeRef& at, long n, std::string_view key) {
+  if (n > kMaxDivisionNumber)
+    ctx.report("geometry-division-clamped", at,
+               std::string(key) + " " + std::to_string(n) + " is clamped to " + std::to_string(kMaxDivisionNumber),
+               "a sphere has about n^2/2 vertices; use a smaller " + std::string(key));
+  return n < 4 ? 20 : static_cast<int>(std::min<long>(n, kMaxDivisionNumber));
+}
+
 std::optional<Geometry> read_geometry(LoadContext& ctx, const yaml::NodeRef& geometry, int& division_number) {
   if (!geometry->is_mapping()) {
     ctx.report("load-type", geometry, "geometry must be a mapping");
@@ -258,13 +266,8 @@ std::optional<Geometry> read_geometry(LoadContext& ctx, const yaml::NodeRef& geo
     return std::nullopt;
   }
   if (auto division = r.take({"division_number", "divisionNumber"})) {
-    if (auto n = optional_int(ctx, division)) {
-      division_number = *n < 4 ? 20 : static_cast<int>(std::min<long>(*n, kMaxDivisionNumber));
-      if (*n > kMaxDivisionNumber)
-        ctx.report("geometry-division-clamped", division,
-                   "division_number " + std::to_string(*n) + " is clamped to " + std::to_string(kMaxDivisionNumber),
-                   "a sphere has about n^2/2 vertices; use a smaller division_number");
-    }
+    if (auto n = optional_int(ctx, division))
+      division_number = division_number_from(ctx, division, *n, "division_number");
   }
   r.take({"extra_division_number"});
   r.take({"extra_division_mode"});

@@ -1,6 +1,7 @@
 #include "load/wrapper_reader.h"
 
 #include "load/body_reader.h"
+#include "load/geometry.h"
 #include "load/mapping_reader.h"
 #include "load/resource_reader.h"
 #include "load/scalar.h"
@@ -140,12 +141,7 @@ class WrapperReader {
     if (const yaml::NodeRef n = g.take({"divisionNumber"})) {
       const std::optional<long> value = required_int(ctx_, n);
       if (!value) return false;  // Choreonoid refuses the file
-      // As a shape's own division_number (geometry.cpp): below 4 the default, clamped above.
-      division_number = *value < 4 ? 20 : static_cast<int>(std::min<long>(*value, kMaxDivisionNumber));
-      if (*value > kMaxDivisionNumber)
-        ctx_.report("geometry-division-clamped", n,
-                    "divisionNumber " + std::to_string(*value) + " is clamped to " + std::to_string(kMaxDivisionNumber),
-                    "a sphere has about n^2/2 vertices; use a smaller divisionNumber");
+      division_number = division_number_from(ctx_, n, *value, "divisionNumber");
     }
     g.report_unknown({"divisionNumber"});
     return true;
