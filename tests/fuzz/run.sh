@@ -16,11 +16,12 @@ CC=clang CXX=clang++ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithD
   -DBODYFMT_NPM_PREFIX="$PWD/build/npm"
 cmake --build "$build"
 # The package test links an outside project against the installed library, which would need
-# the sanitizer runtime flags too; the first build runs it.
+# the sanitizer runtime flags too; the first build runs it, and the style checks (label
+# sources_only), which run none of the project's code.
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 export LSAN_OPTIONS=suppressions=$PWD/tests/fuzz/lsan.supp
 export BODYFMT_TIME_SCALE=6  # sanitized tools are several times slower (tests/hostile/run_case.py)
-ctest --test-dir "$build" --output-on-failure -j2 -E '^package\.find_package$'
+ctest --test-dir "$build" --output-on-failure -j2 -E '^package\.find_package$' -LE '^sources_only$'
 
 # Seeds: every body and YAML file we have, and the small multi-file folders in tests/fuzz/seeds.
 seeds=$build/fuzz-seeds
@@ -30,7 +31,7 @@ while IFS= read -r -d '' f; do
   n=$((n + 1))
   cp "$f" "$seeds/yaml/$n"
   case "$f" in *.body) cp "$f" "$seeds/load/$n" ;; esac
-done < <(find examples tests/data ../shared/corpus/choreonoid \( -name '*.body' -o -name '*.yaml' \) -size -64k -print0 | sort -z)
+done < <(find examples tests/data ../shared/corpus/choreonoid -type f \( -name '*.body' -o -name '*.yaml' \) -size -64k -print0 | sort -z)
 cp tests/fuzz/seeds/* "$seeds/load/"
 # bodysim scenarios: the examples' and the tests'.
 mkdir -p "$seeds/scenario"
@@ -40,7 +41,7 @@ mkdir -p "$seeds/urdf_import"
 while IFS= read -r -d '' f; do
   n=$((n + 1))
   cp "$f" "$seeds/urdf_import/$n"
-done < <(find examples tests/data ../shared/corpus -name '*.urdf' -size -64k -print0 | sort -z)
+done < <(find examples tests/data ../shared/corpus -type f -name '*.urdf' -size -64k -print0 | sort -z)
 for f in examples/*.body; do
   "$build/body2urdf" "$f" -o "$seeds/urdf_import/$(basename "$f" .body).urdf" --devices-as-frames >/dev/null 2>&1 || true
 done
