@@ -1,6 +1,5 @@
 #include "urdf_writer.h"
 
-#include "ros_package.h"
 #include "xml_string_printer.h"
 
 #include <bodyfmt/converters/inertia_report.h>
@@ -13,6 +12,7 @@
 #include <bodyfmt/converters/transforms.h>
 #include <bodyfmt/converters/xml_writer.h>
 #include <bodyfmt/inertia.h>
+#include <bodyfmt/package_map.h>
 #include <bodyfmt/physical.h>
 #include <bodyfmt/rules.h>
 
@@ -100,7 +100,8 @@ class Writer : converters::XmlWriter {
     std::error_code ec;
     // Staged paths stay inside the package (OutputSet::allow_root), so this always has a value.
     return options_.package_uri +
-           path_in_package(options_.package_root, fs::absolute(output_.directory(), ec) / relative).value_or(relative);
+           bodyfmt::path_in_package(options_.package_root, fs::absolute(output_.directory(), ec) / relative)
+               .value_or(relative);
   }
   std::string material_name(const Material& material);
   void write_joint(std::size_t index, const std::string& joint_name);

@@ -1,6 +1,6 @@
 #include "urdf_reader.h"
 
-#include "package_paths.h"
+#include "mesh_lookup.h"
 #include "xml_positions.h"
 
 #include <bodyfmt/angles.h>
@@ -64,8 +64,8 @@ class Reader {
       : text_(text), file_(file), options_(options), sink_(sink), at_(text, file) {
     search_.package_paths = options.package_paths;
     search_.use_ros_package_path = options.use_ros_package_path;
-    search_.urdf_folder = fs::path(file).parent_path();
-    if (options.confine_meshes) urdf_tree_ = urdf_tree(search_.urdf_folder);
+    search_.referring_folder = fs::path(file).parent_path();
+    if (options.confine_meshes) urdf_tree_ = package_tree(search_.referring_folder);
     std::error_code ec;
     output_folder_ =
         fs::absolute(options.output_folder.empty() ? fs::path(".") : options.output_folder, ec).lexically_normal();
@@ -122,7 +122,7 @@ class Reader {
   const UrdfImportOptions& options_;
   DiagnosticSink& sink_;
   XmlPositions at_;
-  MeshSearch search_;
+  PackageSearch search_;
   fs::path urdf_tree_;  ///< where confined meshes may be (UrdfImportOptions::confine_meshes)
   fs::path output_folder_;
   std::map<std::string, Material> materials_;
@@ -356,7 +356,7 @@ std::string Reader::mesh_uri(const XMLElement* mesh, const std::string& filename
   }
   auto cached = mesh_cache_.find(filename);
   if (cached == mesh_cache_.end()) {
-    MeshLookup found = find_mesh(filename, search_);
+    PackageLookup found = find_mesh(filename, search_);
     std::string relative;
     if (!found.path.empty() && options_.confine_meshes && !inside_tree(found.path, urdf_tree_) &&
         (found.package_folder.empty() || !inside_tree(found.path, fs::weakly_canonical(found.package_folder)))) {

@@ -5,11 +5,11 @@
 
 #include "export_run.h"
 #include "front.h"
-#include "ros_package.h"
 #include "urdf_writer.h"
 
 #include <bodyfmt/converters/output_set.h>
 #include <bodyfmt/derived.h>
+#include <bodyfmt/package_map.h>
 
 #include <filesystem>
 
@@ -19,11 +19,10 @@ namespace fs = std::filesystem;
 
 /// "package://NAME" or "package://NAME/": NAME, else empty.
 std::string package_name(const std::string& uri) {
-  const std::string scheme = "package://";
-  if (uri.rfind(scheme, 0) != 0) return {};
-  std::string name = uri.substr(scheme.size());
+  if (!bodyfmt::is_package_uri(uri)) return {};
+  std::string name = uri.substr(std::string_view("package://").size());
   if (!name.empty() && name.back() == '/') name.pop_back();
-  return name.find('/') == std::string::npos ? name : std::string();
+  return bodyfmt::is_package_name(name) ? name : std::string();
 }
 
 }  // namespace
@@ -75,11 +74,11 @@ int main(int argc, char** argv) {
   std::error_code ec;
   const fs::path given_dir = output == "-" ? fs::path(".") : fs::path(output).parent_path();
   const fs::path out_dir = fs::absolute(given_dir.empty() ? fs::path(".") : given_dir, ec).lexically_normal();
-  std::optional<urdf::RosPackage> package;
+  std::optional<RosPackage> package;
   if (!options.package_uri.empty()) {
     const std::string name = package_name(options.package_uri);
     std::string why;
-    package = urdf::find_ros_package(out_dir, why);
+    package = find_ros_package(out_dir, why);
     if (!package) {
       front.print_error("--package-uri needs the URDF inside a ROS package: " + why);
       return tools::kExitFatal;
@@ -96,7 +95,7 @@ int main(int argc, char** argv) {
   // package that holds it, else every mesh copied beside it (as MJCF and glTF are written).
   if (!options.copy_meshes && !reference_meshes && !package) {
     std::string why;
-    package = urdf::find_ros_package(out_dir, why);
+    package = find_ros_package(out_dir, why);
     if (package && package_name("package://" + package->name).empty()) package.reset();
     if (package) {
       options.package_uri = "package://" + package->name + "/";
@@ -108,7 +107,7 @@ int main(int argc, char** argv) {
   if (!options.mesh_folder.empty()) {
     std::string why = tools::check_inside_output_folder(options.mesh_folder);
     if (!why.empty() && package && fs::path(options.mesh_folder).is_relative() &&
-        urdf::path_in_package(package->root, out_dir / options.mesh_folder))
+        path_in_package(package->root, out_dir / options.mesh_folder))
       why.clear();
     if (!why.empty()) {
       front.print_error("--mesh-folder " + options.mesh_folder + ": " + why +

@@ -152,6 +152,8 @@ void Front::add_options() {
   app_.add_option("--package-path", package_paths_, "a folder holding ROS packages for package:// URIs (repeatable)")
       ->allow_extra_args(false)
       ->group(loading);
+  app_.add_flag("--no-ros-package-path", no_ros_package_path_, "do not search ROS_PACKAGE_PATH for package:// URIs")
+      ->group(loading);
   app_.add_flag("--no-meshes", no_meshes_, "do not import external mesh files")->group(loading);
   app_.add_option("--max-yaml-nodes", load_options_.max_expanded_yaml_nodes,
                   "limit on YAML nodes after alias expansion")
@@ -227,6 +229,7 @@ std::optional<int> Front::parse(int argc, char** argv) {
 
 void Front::parsed() {
   load_options_.package_paths = package_paths_;
+  load_options_.use_ros_package_path = !no_ros_package_path_;
   load_options_.load_meshes = !no_meshes_;
   add_model_file_readers(load_options_);  // wrapper body files naming a URDF
 }

@@ -127,6 +127,7 @@ class Front {
   std::string stdin_filename_;
   LoadOptions load_options_;
   std::vector<std::string> package_paths_;
+  bool no_ros_package_path_ = false;
   bool no_meshes_ = false;
   std::vector<std::string> enable_, disable_;
   std::vector<std::string> severities_;  ///< --severity RULE=LEVEL, checked when parsed

@@ -11,6 +11,7 @@ void add_model_file_readers(LoadOptions& options) {
                                            DiagnosticSink& sink) {
     urdf_import::UrdfImportOptions import;
     import.package_paths = load.package_paths;
+    import.use_ros_package_path = load.use_ros_package_path;
     import.resolve_meshes = load.load_meshes;
     // Mesh URIs as a .body beside the URDF would write them; the loaded model's meshes are
     // read through their resolved paths.

@@ -113,12 +113,10 @@ int main(int argc, char** argv) {
   std::string output;
   CLI::App& app = front.app();
   app.add_option("-o,--output", output, "the .body file to write ('-': standard output)")->required();
-  bool no_ros_package_path = false;
   bool copy_meshes = false;
   app.add_flag("--copy-meshes", copy_meshes,
                "copy the mesh files into meshes/STEM/ beside the .body (STEM: the output's file stem) and refer to "
                "the copies");
-  app.add_flag("--no-ros-package-path", no_ros_package_path, "do not search ROS_PACKAGE_PATH for package:// meshes");
   double density = 0;
   app.add_option("--mass-from-geometry", density,
                  "give each link without <inertial> the mass properties of its collision shapes (visual where it has "
@@ -140,7 +138,7 @@ int main(int argc, char** argv) {
     if (auto text = read_text(*input, front.load_options().max_file_bytes, sink)) {
       urdf_import::UrdfImportOptions options;
       options.package_paths = front.load_options().package_paths;
-      options.use_ros_package_path = !no_ros_package_path;
+      options.use_ros_package_path = front.load_options().use_ros_package_path;
       options.resolve_meshes = front.load_options().load_meshes;
       options.confine_meshes = copy_meshes;
       const fs::path given = output == "-" ? fs::path() : fs::path(output).parent_path();

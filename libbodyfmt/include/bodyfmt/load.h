@@ -38,8 +38,11 @@ struct LoadOptions {
   std::uint32_t max_mesh_triangles = 1'000'000;
   /// Import external mesh files (Resource nodes) into Model::meshes.
   bool load_meshes = true;
-  /// Extra roots for `package://NAME/...` URIs, searched before ROS_PACKAGE_PATH.
+  /// Extra roots for `package://NAME/...` URIs, searched before ROS_PACKAGE_PATH
+  /// (bodyfmt/package_map.h: the search every reader shares).
   std::vector<std::string> package_paths;
+  /// Search the folders of $ROS_PACKAGE_PATH for package:// URIs (--no-ros-package-path).
+  bool use_ros_package_path = true;
   /// Texts that stand in for SubBody and YAML resource files on disk, by canonical path
   /// (std::filesystem::weakly_canonical): `bodycheck --fix` re-loads its edits from memory
   /// before it writes them.

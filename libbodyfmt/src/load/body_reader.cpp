@@ -72,6 +72,7 @@ const std::vector<std::string_view>& known_body_info_keys() { return kKnownInfoK
 BodyReader::BodyReader(const LoadOptions& options, DiagnosticSink& sink, LoadSession& session)
     : options_(options), sink_(sink), redirect_(sink), ctx_(redirect_), session_(session) {
   ctx_.package_paths = options.package_paths;
+  ctx_.use_ros_package_path = options.use_ros_package_path;
   ctx_.default_division_number = session.default_division_number;
 }
 

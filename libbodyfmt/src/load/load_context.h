@@ -28,8 +28,9 @@ struct LoadContext {
   /// Of a primitive without division_number: 20, or a wrapper's geometry.divisionNumber (§2.4).
   int default_division_number = 20;
   int errors = 0;
-  /// Roots searched for `package://NAME/...` before ROS_PACKAGE_PATH.
+  /// Roots searched for `package://NAME/...` before ROS_PACKAGE_PATH, and whether that is.
   std::vector<std::string> package_paths;
+  bool use_ros_package_path = true;
   /// Keys of diagnostics that are reported once per load (e.g. one per plugin node type).
   std::set<std::string> reported_once;
   /// (rule, file, line, column, message) of every diagnostic so far: text shared through

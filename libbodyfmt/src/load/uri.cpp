@@ -2,6 +2,8 @@
 
 #include "load/mapping_reader.h"
 
+#include <bodyfmt/package_map.h>
+
 #include <cstdlib>
 #include <filesystem>
 
@@ -20,28 +22,19 @@ std::string resolve_uri(LoadContext& ctx, const yaml::NodeRef& at, const std::st
       ctx.report("load-uri", at, "the \"" + scheme + "\" scheme in URI \"" + uri + "\" is not supported");
       return {};
     }
-    // package://NAME/rest through ROS_PACKAGE_PATH.
+    // The package map every reader shares (a URDF beside this file resolves it the same way).
+    PackageSearch search{ctx.package_paths, ctx.use_ros_package_path, fs::path(referring_file).parent_path()};
+    PackageLookup found = find_package_file(path, search);
+    if (!found.path.empty()) return found.path;
+    if (!found.problem.empty()) {
+      ctx.report("load-uri", at, "URI \"" + uri + "\": " + found.problem);
+      return {};
+    }
     std::string rest = path.substr(scheme_end + 3);
-    std::string package = rest.substr(0, rest.find('/'));
-    std::string inside = rest.find('/') == std::string::npos ? "" : rest.substr(rest.find('/') + 1);
-    for (const std::string& root : ctx.package_paths) {
-      fs::path candidate = fs::path(root) / package / inside;
-      if (fs::exists(candidate)) return candidate.lexically_normal().string();
-    }
-    if (const char* roots = std::getenv("ROS_PACKAGE_PATH")) {
-      std::string all = roots;
-      std::size_t start = 0;
-      while (start <= all.size()) {
-        std::size_t end = all.find(':', start);
-        std::string root = all.substr(start, end == std::string::npos ? std::string::npos : end - start);
-        fs::path candidate = fs::path(root) / package / inside;
-        if (!root.empty() && fs::exists(candidate)) return candidate.lexically_normal().string();
-        if (end == std::string::npos) break;
-        start = end + 1;
-      }
-    }
+    while (!rest.empty() && rest.front() == '/') rest.erase(0, 1);
+    const std::string package = rest.substr(0, rest.find('/'));
     ctx.report("load-uri", at, "package \"" + package + "\" of URI \"" + uri + "\" is not found",
-               "add its parent folder to ROS_PACKAGE_PATH or pass it as a package path");
+               "add its parent folder to ROS_PACKAGE_PATH or pass it with --package-path");
     return {};
   }
   if (path.rfind("${", 0) == 0) {

@@ -10,8 +10,8 @@
 namespace bodyfmt::detail {
 
 /// Resolves a resource URI written in `referring_file` to a local path; empty when it cannot.
-/// Relative paths, `file://`, `${HOME}` and `package://NAME/` (LoadContext::package_paths,
-/// then ROS_PACKAGE_PATH). Reports `load-uri` for unsupported schemes, unknown packages and
+/// Relative paths, `file://`, `${HOME}` and `package://NAME/` (bodyfmt/package_map.h, from
+/// the referring file's folder). Reports `load-uri` for unsupported schemes, unknown packages and
 /// undefined path variables.
 std::string resolve_uri(LoadContext& ctx, const yaml::NodeRef& at, const std::string& uri,
                         const std::string& referring_file);
