@@ -5,6 +5,7 @@
 #include <bodyfmt/converters/numbers.h>
 #include <bodyfmt/converters/transforms.h>
 #include <bodyfmt/derived.h>
+#include <bodyfmt/mesh.h>
 
 #include <fmt/format.h>
 #include <Eigen/Eigenvalues>
@@ -231,11 +232,8 @@ void Planner::mesh_piece(std::shared_ptr<const TriangleMesh> mesh, std::string k
   } else {
     // Shear or mirror: the linear part is baked into the vertices (a mirror flips the winding).
     auto baked = std::make_shared<TriangleMesh>(*mesh);
-    const Eigen::Matrix3d L = shape_.X_LS.linear();
-    for (auto& v : baked->vertices) v = L * v;
-    baked->normals.clear();
-    if (L.determinant() < 0)
-      for (auto& t : baked->triangles) std::swap(t[1], t[2]);
+    baked->normals.clear();  // the targets' mesh files carry face normals only
+    transform_mesh(*baked, Eigen::Matrix3d(shape_.X_LS.linear()));
     if (hull_needed) spans = spans_volume(*baked);
     piece.key = key + ":baked";
     piece.mesh = std::move(baked);

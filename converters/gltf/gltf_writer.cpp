@@ -7,6 +7,7 @@
 #include <bodyfmt/converters/loss.h>
 #include <bodyfmt/converters/staged_files.h>
 #include <bodyfmt/converters/transforms.h>
+#include <bodyfmt/mesh.h>
 #include <bodyfmt/read_file.h>
 #include <bodyfmt/rules.h>
 #include <bodyfmt/tessellate.h>
@@ -409,16 +410,8 @@ void Writer::write_shape(std::uint32_t parent, const Link& link, std::size_t s, 
   t.transform = X;
   if (!converters::decompose(X.linear())) {
     // A node must be translation, rotation and positive scale: shear and mirroring are baked
-    // into the vertices (normals by the inverse transpose, winding kept outward).
-    const Eigen::Matrix3d L = X.linear();
-    const Eigen::Matrix3d N = L.inverse().transpose();
-    const bool mirror = L.determinant() < 0;
-    for (Part& part : parts) {
-      for (auto& v : part.mesh.vertices) v = L * v;
-      for (auto& n : part.mesh.normals) n = (N * n).normalized();
-      if (mirror)
-        for (auto& tri : part.mesh.triangles) std::swap(tri[1], tri[2]);
-    }
+    // into the vertices (bodyfmt/mesh.h's transform_mesh: normals and winding follow).
+    for (Part& part : parts) transform_mesh(part.mesh, Eigen::Matrix3d(X.linear()));
     t.transform = Eigen::Affine3d(Eigen::Translation3d(X.translation()));
   }
   const std::uint32_t shape_node = node(parent, std::move(t));

@@ -67,7 +67,20 @@ BoundingBox bounding_box(const TriangleMesh& mesh, const Eigen::Affine3d& transf
 /// Signed volume by the divergence theorem; positive for a closed, outward-oriented mesh.
 double signed_volume(const TriangleMesh& mesh);
 
-/// Appends `other`, transformed, to `mesh`.
+/// What normals map with under the linear part `linear` of a transform: its inverse transpose,
+/// which keeps them perpendicular to the surface under non-uniform scale; where `linear` is
+/// singular (a zero scale), the cofactor matrix, whose columns still give the limiting
+/// directions instead of the infinities of an inverse.
+Eigen::Matrix3d normal_matrix(const Eigen::Matrix3d& linear);
+
+/// The one way a mesh is transformed: vertices by `transform`, normals by normal_matrix() and
+/// made unit (zero where a zero scale flattened them), and under a mirror (negative
+/// determinant) the winding swapped so that triangles still face outward.
+void transform_mesh(TriangleMesh& mesh, const Eigen::Affine3d& transform);
+/// The same by a linear part alone (shear or mirror baked into the vertices).
+void transform_mesh(TriangleMesh& mesh, const Eigen::Matrix3d& linear);
+
+/// Appends `other`, transformed as transform_mesh() does, to `mesh`.
 void append_mesh(TriangleMesh& mesh, const TriangleMesh& other,
                  const Eigen::Affine3d& transform = Eigen::Affine3d::Identity());
 

@@ -46,10 +46,56 @@ double signed_volume(const TriangleMesh& mesh) {
   return six_volume / 6.0;
 }
 
+namespace {
+
+/// Transforms the vertices, normals and triangles of `mesh` from the given indices on, by an
+/// Affine3d or by a linear part alone (a Matrix3d), which adds no translation (not even the
+/// zero that turns a -0 coordinate into 0).
+template <typename Transform>
+void transform_tail(TriangleMesh& mesh, const Transform& transform, const Eigen::Matrix3d& linear,
+                    std::size_t first_vertex, std::size_t first_normal, std::size_t first_triangle) {
+  for (std::size_t i = first_vertex; i < mesh.vertices.size(); ++i) mesh.vertices[i] = transform * mesh.vertices[i];
+  if (first_normal < mesh.normals.size()) {
+    const Eigen::Matrix3d normals = normal_matrix(linear);
+    for (std::size_t i = first_normal; i < mesh.normals.size(); ++i) {
+      const Eigen::Vector3d m = normals * mesh.normals[i];
+      const double norm = m.norm();
+      mesh.normals[i] = norm > 0 ? Eigen::Vector3d(m / norm) : Eigen::Vector3d::Zero();
+    }
+  }
+  // A mirroring transform (negative determinant, e.g. a negative `scale` component) turns
+  // counter-clockwise triangles clockwise; swapping two corners keeps them facing outward.
+  if (linear.determinant() < 0)
+    for (std::size_t i = first_triangle; i < mesh.triangles.size(); ++i)
+      std::swap(mesh.triangles[i][1], mesh.triangles[i][2]);
+}
+
+}  // namespace
+
+Eigen::Matrix3d normal_matrix(const Eigen::Matrix3d& linear) {
+  // The cofactor alone would flip normals under a mirror, hence the inverse transpose whenever
+  // it exists.
+  if (linear.determinant() != 0) return linear.inverse().transpose();
+  Eigen::Matrix3d cofactor;
+  cofactor.col(0) = linear.col(1).cross(linear.col(2));
+  cofactor.col(1) = linear.col(2).cross(linear.col(0));
+  cofactor.col(2) = linear.col(0).cross(linear.col(1));
+  return cofactor;
+}
+
+void transform_mesh(TriangleMesh& mesh, const Eigen::Affine3d& transform) {
+  transform_tail(mesh, transform, transform.linear(), 0, 0, 0);
+}
+
+void transform_mesh(TriangleMesh& mesh, const Eigen::Matrix3d& linear) {
+  transform_tail(mesh, linear, linear, 0, 0, 0);
+}
+
 void append_mesh(TriangleMesh& mesh, const TriangleMesh& other, const Eigen::Affine3d& transform) {
   const bool mesh_was_empty = mesh.vertices.empty();
-  const int offset = static_cast<int>(mesh.vertices.size());
-  const Eigen::Matrix3d linear = transform.linear();
+  const std::size_t first_vertex = mesh.vertices.size();
+  const std::size_t first_triangle = mesh.triangles.size();
+  const int offset = static_cast<int>(first_vertex);
 
   // Per-vertex attributes stay only if both sides have them (TriangleMesh requires them to be
   // either complete or absent); an empty target adopts whatever `other` has.
@@ -58,50 +104,19 @@ void append_mesh(TriangleMesh& mesh, const TriangleMesh& other, const Eigen::Aff
   const bool keep_tex_coords = (mesh_was_empty || mesh.tex_coords.size() == mesh.vertices.size()) &&
                                !other.tex_coords.empty() && other.tex_coords.size() == other.vertices.size();
 
-  mesh.vertices.reserve(mesh.vertices.size() + other.vertices.size());
-  for (const Eigen::Vector3d& v : other.vertices) mesh.vertices.push_back(transform * v);
-
-  if (keep_normals) {
-    // Normals are covectors: they map with the inverse transpose of the linear part, which
-    // keeps them perpendicular to the surface under non-uniform scale (spec §4.4 allows a
-    // `scale` in the transform stack). A singular linear part (zero scale) has no inverse;
-    // then the cofactor matrix (det * inverse transpose, columns a1 x a2, a2 x a0, a0 x a1)
-    // still gives the limiting directions. (The cofactor alone would flip normals under a
-    // mirror, hence the inverse transpose whenever it exists.)
-    const double det = linear.determinant();
-    Eigen::Matrix3d normal_matrix;
-    if (det != 0) {
-      normal_matrix = linear.inverse().transpose();
-    } else {
-      normal_matrix.col(0) = linear.col(1).cross(linear.col(2));
-      normal_matrix.col(1) = linear.col(2).cross(linear.col(0));
-      normal_matrix.col(2) = linear.col(0).cross(linear.col(1));
-    }
-    mesh.normals.reserve(mesh.vertices.size());
-    for (const Eigen::Vector3d& n : other.normals) {
-      Eigen::Vector3d m = normal_matrix * n;
-      const double norm = m.norm();
-      mesh.normals.push_back(norm > 0 ? Eigen::Vector3d(m / norm) : Eigen::Vector3d::Zero());
-    }
-  } else {
+  mesh.vertices.insert(mesh.vertices.end(), other.vertices.begin(), other.vertices.end());
+  if (keep_normals)
+    mesh.normals.insert(mesh.normals.end(), other.normals.begin(), other.normals.end());
+  else
     mesh.normals.clear();
-  }
-
-  if (keep_tex_coords) {
+  if (keep_tex_coords)
     mesh.tex_coords.insert(mesh.tex_coords.end(), other.tex_coords.begin(), other.tex_coords.end());
-  } else {
+  else
     mesh.tex_coords.clear();
-  }
-
-  // A mirroring transform (negative determinant, e.g. a negative `scale` component) turns
-  // counter-clockwise triangles clockwise; swapping two corners keeps them facing outward.
-  const bool mirrored = linear.determinant() < 0;
   mesh.triangles.reserve(mesh.triangles.size() + other.triangles.size());
-  for (const auto& t : other.triangles) {
-    std::array<int, 3> u{t[0] + offset, t[1] + offset, t[2] + offset};
-    if (mirrored) std::swap(u[1], u[2]);
-    mesh.triangles.push_back(u);
-  }
+  for (const auto& t : other.triangles) mesh.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  transform_tail(mesh, transform, transform.linear(), first_vertex, keep_normals ? first_vertex : mesh.normals.size(),
+                 first_triangle);
 }
 
 }  // namespace bodyfmt

@@ -1,5 +1,7 @@
 #include "mesh/scene_tree.h"
 
+#include <bodyfmt/mesh.h>
+
 #include <set>
 
 namespace bodyfmt::mesh {
@@ -19,24 +21,6 @@ const SceneNode* find_node_rec(const SceneNode& node, const std::string& name, c
   return nullptr;
 }
 
-void transform_part(MeshPart& part, const Eigen::Affine3d& transform) {
-  for (auto& v : part.mesh.vertices) v = transform * v;
-  if (!part.mesh.normals.empty()) {
-    // Normals transform by the inverse transpose so that non-uniform scale keeps them normal.
-    const Eigen::Matrix3d normal_matrix = transform.linear().inverse().transpose();
-    for (auto& n : part.mesh.normals) {
-      n = normal_matrix * n;
-      const double norm = n.norm();
-      if (norm > 0) n /= norm;
-    }
-  }
-  // A mirroring transform turns counter-clockwise triangles clockwise; flip them back so that
-  // "counter-clockwise seen from outside" (mesh.h) still holds.
-  if (transform.linear().determinant() < 0) {
-    for (auto& t : part.mesh.triangles) std::swap(t[1], t[2]);
-  }
-}
-
 }  // namespace
 
 const SceneNode* find_node(const SceneNode& root, const std::string& name, Eigen::Affine3d* ancestors_transform) {
@@ -49,7 +33,7 @@ static void flatten_contents(const SceneNode& node, const Eigen::Affine3d& here,
   for (const MeshPart& part : node.parts) {
     if (part.mesh.triangles.empty()) continue;
     MeshPart copy = part;
-    transform_part(copy, here);
+    transform_mesh(copy.mesh, here);
     out.push_back(std::move(copy));
   }
   for (const auto& child : node.children) {

@@ -259,3 +259,29 @@ TEST_CASE("vrml: primitive flags and invalid sizes") {
   CHECK(sink.diagnostics()[0].location.file == "test.wrl");
   CHECK(sink.diagnostics()[0].location.line == 2);
 }
+
+TEST_CASE("scene tree: a zero scale flattens a mesh with normals to finite normals") {
+  // The scene tree (VRML Transforms, assimp's nodes) transforms meshes as append_mesh does
+  // (bodyfmt::transform_mesh): its own copy took the inverse of a singular scale, and every
+  // normal came out NaN.
+  MeshPart part;
+  part.mesh.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  part.mesh.normals = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0.6, 0.8, 0}};
+  part.mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+  mesh::SceneNode node;
+  node.transform = Eigen::Affine3d(Eigen::Scaling(0.0, 1.0, 1.0));
+  node.parts.push_back(part);
+  std::vector<MeshPart> parts;
+  mesh::flatten(node, Eigen::Affine3d::Identity(), parts);
+  REQUIRE(parts.size() == 1);
+  const TriangleMesh& m = parts[0].mesh;
+  REQUIRE(m.normals.size() == m.vertices.size());
+  for (const Eigen::Vector3d& n : m.normals) {
+    CAPTURE(n.transpose());
+    CHECK(n.allFinite());
+    // The squashed axis is x: the surface left lies in the plane x = 0, whose normal is ±x (none
+    // where the squash left no direction).
+    CHECK((n.isZero() || std::abs(std::abs(n.x()) - 1) < 1e-12));
+  }
+  for (const Eigen::Vector3d& v : m.vertices) CHECK(v.x() == 0);
+}
