@@ -1,5 +1,7 @@
 #include "load/elements.h"
 
+#include <bodyfmt/body_keys.h>
+
 #include "load/appearance.h"
 #include "load/devices.h"
 #include "load/geometry.h"
@@ -43,13 +45,6 @@ const std::vector<std::string_view> kElementTypes = {"Skip",
                                                      "Conveyor",
                                                      "ZmpDevice",
                                                      "MarkerDevice"};
-
-const std::vector<std::string_view> kTransformKeys = {"type", "name", "translation", "rotation", "scale", "elements"};
-
-std::vector<std::string_view> with(std::vector<std::string_view> a, std::initializer_list<std::string_view> b) {
-  a.insert(a.end(), b.begin(), b.end());
-  return a;
-}
 
 bool is_scene_only_type(std::string_view t) {
   return t == "LineSet" || t == "DirectionalLight" || t == "PerspectiveCamera" || t == "OrthographicCamera" ||
@@ -166,7 +161,7 @@ void ElementReader::read_node(const yaml::NodeRef& node, const std::string& type
       }
     }
     read_elements(r.take({"elements"}), inner);
-    r.report_unknown(kTransformKeys);
+    r.report_unknown(body_key_names("element:Transform"));
     return;
   }
   if (type == "RigidBody") return read_rigid_body(node, frame);
@@ -224,8 +219,7 @@ void ElementReader::read_part(const yaml::NodeRef& node, ModelPart part, const E
   }
   if (auto shape = r.take({"shape"})) read_shape(shape, inner);
   read_elements(r.take({"elements"}), inner);
-  static const std::vector<std::string_view> kPartKeys = with(kTransformKeys, {"resource", "shape"});
-  r.report_unknown(kPartKeys);
+  r.report_unknown(body_key_names("element:Visual"));
 }
 
 void ElementReader::read_rigid_body(const yaml::NodeRef& node, const ElementFrame& frame) {
@@ -260,9 +254,7 @@ void ElementReader::read_rigid_body(const yaml::NodeRef& node, const ElementFram
   link().mass_contributions.push_back(c);
   ++rigid_bodies_;
   read_elements(r.take({"elements"}), inner);
-  static const std::vector<std::string_view> kRigidBodyKeys =
-      with(kTransformKeys, {"center_of_mass", "mass", "inertia"});
-  r.report_unknown(kRigidBodyKeys);
+  r.report_unknown(body_key_names("element:RigidBody"));
 }
 
 void ElementReader::read_shape(const yaml::NodeRef& node, const ElementFrame& frame) {
@@ -290,9 +282,7 @@ void ElementReader::read_shape(const yaml::NodeRef& node, const ElementFrame& fr
                 "move it under appearance");
   }
   r.take({"is_meta_scene"});
-  static const std::vector<std::string_view> kShapeKeys =
-      with(kTransformKeys, {"geometry", "appearance", "is_meta_scene"});
-  r.report_unknown(kShapeKeys);
+  r.report_unknown(body_key_names("element:Shape"));
   add_shape(std::move(shape), inner);
 }
 
@@ -346,7 +336,7 @@ void ElementReader::read_device(const yaml::NodeRef& node, const std::string& ty
     return;
   }
   bool keep = read_device_params(r, type, d);
-  r.report_unknown({"type", "name", "id", "on", "translation", "rotation", "elements"});
+  r.report_unknown(body_key_names("device"));
   if (keep) model_.devices.push_back(std::move(d));
   read_elements(elements, inner);
 }
