@@ -37,11 +37,15 @@ std::set<std::string> unread_keys(const std::string& text) {
   return found;
 }
 
-/// `key: value` lines for every key of `id` but its type, at `indent`.
+/// `key: value` lines for every key of `id` but its type (and those written by the caller),
+/// at `indent`.
 std::string keys_of(const std::string& id, const std::string& indent) {
+  const bodyfmt::BodyNode* node = bodyfmt::find_body_node(id);
+  REQUIRE_MESSAGE(node, id);
   std::string out;
-  for (const bodyfmt::BodyKey& key : bodyfmt::find_body_node(id)->keys)
-    if (key.name != "type" && key.name != "elements" && key.name != "fragment")
+  for (const bodyfmt::BodyKey& key : node->keys)
+    if (key.name != "type" && key.name != "elements" && key.name != "fragment" && key.name != "format" &&
+        key.name != "numJoints" && key.name != "name")
       out += indent + std::string(key.name) + ": 0\n";
   return out;
 }
@@ -70,8 +74,18 @@ TEST_CASE("lsp features: every key of the key table is one the loader reads") {
   CHECK(unread_keys(header + "links:\n  - name: a\n    elements:\n      - type: RigidBody\n" +
                     keys_of("element:RigidBody", "        "))
             .empty());
-  CHECK(unread_keys(header + "links:\n  - name: a\n    elements:\n      - type: ForceSensor\n" +
-                    keys_of("device", "        "))
+  for (const char* type :
+       {"ForceSensor", "RateGyroSensor", "AccelerationSensor", "IMU", "RangeSensor", "PointLight", "SpotLight"}) {
+    CAPTURE(type);
+    CHECK(unread_keys(header + "links:\n  - name: a\n    elements:\n      - type: " + type + "\n" +
+                      keys_of(std::string("device:") + type, "        "))
+              .empty());
+  }
+  CHECK(unread_keys(header + "links:\n  - name: a\n    elements:\n      - type: Camera\n        format: COLOR\n" +
+                    keys_of("device:Camera", "        "))
+            .empty());
+  CHECK(unread_keys(header + "links:\n  - name: a\n  - type: ContinuousTrack\n    name: t\n    parent: a\n" +
+                    "    numJoints: 3\n" + keys_of("link:ContinuousTrack", "    "))
             .empty());
   CHECK(unread_keys(header + "links:\n  - name: a\n    elements:\n      - type: Shape\n        appearance:\n" +
                     "          material:\n" + keys_of("material", "            "))

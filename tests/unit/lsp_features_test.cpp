@@ -330,6 +330,27 @@ TEST_CASE("lsp features: completion of enumerations, link names, anchors and fil
   fs::remove_all(dir);
 }
 
+TEST_CASE("lsp features: a device's own keys, values and angles") {
+  const std::string text =
+      "format: ChoreonoidBody\nformat_version: 2.0\nlinks:\n  - name: a\n    elements:\n"
+      "      - type: Camera\n        name: eye\n        field_of_view: 60\n        format: ";
+  // §10.2: COLOR makes a Camera, the four others a RangeCamera.
+  auto items = labels(complete(doc(text), point_of(text, "format: ", 8, 2)));
+  CHECK(items == std::vector<std::string>{"COLOR", "DEPTH", "COLOR_DEPTH", "POINT_CLOUD", "COLOR_POINT_CLOUD"});
+  const std::string keys =
+      "format: ChoreonoidBody\nlinks:\n  - name: a\n    elements:\n      - type: SpotLight\n"
+      "        beam_width: 30\n        \n";
+  items = labels(complete(doc(keys), point_of(keys, "        \n", 8)));
+  CHECK(has(items, "cut_off_angle"));
+  CHECK(has(items, "intensity"));
+  CHECK(!has(items, "beam_width"));
+  CHECK(!has(items, "width"));
+  // field_of_view is an angle: 60 degrees = pi/3 rad.
+  const auto h = hover(doc(text), point_of(text, "60"));
+  REQUIRE(h);
+  CHECK(h->markdown.find(fmt::format("60° = {:.10g} rad", kPi / 3)) != std::string::npos);
+}
+
 TEST_CASE("lsp features: definition of a parent, an alias and a uri") {
   const Document d = doc(kSmall);
   auto defs = definition(d, point_of(kSmall, "parent: base", 9));

@@ -32,7 +32,10 @@ struct BodyKey {
 
 /// The keys of one kind of node.
 struct BodyNode {
-  std::string_view id;     ///< "body", "link", "geometry:Box", "element:Shape", "device:Camera", ...
+  /// "body", "link", "geometry:Box", "element:Shape", "device:Camera", ... A "device:X" node
+  /// lists the common device keys and X's parameters; the loader checks the common ones
+  /// ("device") against the mapping, the parameters are read by type.
+  std::string_view id;
   std::string_view title;  ///< how docs/keys.md heads it
   std::vector<BodyKey> keys;
   /// The keys' names in table order: the loader's list of known keys for this node.

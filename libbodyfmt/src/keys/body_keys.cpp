@@ -341,11 +341,124 @@ Keys device_keys() {
           {"elements", "", "shapes attached in the device frame", "", "", {}, AngleRule::kNone}};
 }
 
+const BodyKey kOpticalFrame{
+    "optical_frame", "", "the sensor frame's convention (gl looks along -Z)", "", "gl", {"gl", "cv", "robotics"},
+    AngleRule::kNone};
+const BodyKey kOpticalFrameRotation{"optical_frame_rotation",
+                                    "",
+                                    "rotation applied after the optical frame's",
+                                    "angle (4th number)",
+                                    "identity",
+                                    {},
+                                    kAxisAngle};
+const BodyKey kMinDistance{"min_distance", "", "nearest distance measured", "m", "0.1", {}, AngleRule::kNone};
+const BodyKey kMaxDistance{"max_distance", "", "farthest distance measured", "m", "10", {}, AngleRule::kNone};
+const BodyKey kDetectionRate{"detection_rate", "", "share of the points detected", "", "1", {}, AngleRule::kNone};
+const BodyKey kErrorDeviation{"error_deviation", "", "standard deviation of the distance error", "m", "0", {},
+                              AngleRule::kNone};
+
+Keys camera_keys() {
+  return {
+      {"format",
+       "",
+       "what the camera gives: COLOR is a Camera, the others a RangeCamera (required)",
+       "",
+       "",
+       {"COLOR", "DEPTH", "COLOR_DEPTH", "POINT_CLOUD", "COLOR_POINT_CLOUD"},
+       AngleRule::kNone},
+      {"lens_type", "lensType", "the lens", "", "NORMAL", {"NORMAL", "FISHEYE", "DUAL_FISHEYE"}, AngleRule::kNone},
+      {"width", "", "image width", "pixels", "640", {}, AngleRule::kNone},
+      {"height", "", "image height", "pixels", "480", {}, AngleRule::kNone},
+      {"field_of_view", "fieldOfView", "field of view of the shorter image side", "angle", "45 degrees", {}, kAngle},
+      {"near_clip_distance", "nearClipDistance", "nearest distance seen", "m", "0.04", {}, AngleRule::kNone},
+      {"far_clip_distance", "farClipDistance", "farthest distance seen", "m", "200", {}, AngleRule::kNone},
+      {"frame_rate", "frameRate", "images per second", "Hz", "30", {}, AngleRule::kNone},
+      kOpticalFrame,
+      kMinDistance,
+      kMaxDistance,
+      kDetectionRate,
+      kErrorDeviation,
+      kOpticalFrameRotation};
+}
+
+Keys range_sensor_keys() {
+  return {{"yaw_range",
+           "yawRange,scanAngle",
+           "total horizontal scan angle, symmetric about 0",
+           "angle",
+           "120 degrees",
+           {},
+           kAngle},
+          {"min_yaw_angle", "", "first horizontal angle (with max_yaw_angle)", "angle", "", {}, kAngle},
+          {"max_yaw_angle", "", "last horizontal angle (with min_yaw_angle)", "angle", "", {}, kAngle},
+          {"yaw_step", "yawStep,scanStep", "horizontal angle between samples", "angle", "1 radian", {}, kAngle},
+          {"yaw_samples", "", "number of horizontal samples (instead of yaw_step)", "", "", {}, AngleRule::kNone},
+          {"pitch_range", "pitchRange", "total vertical scan angle", "angle", "0", {}, kAngle},
+          {"min_pitch_angle", "", "first vertical angle (with max_pitch_angle)", "angle", "", {}, kAngle},
+          {"max_pitch_angle", "", "last vertical angle (with min_pitch_angle)", "angle", "", {}, kAngle},
+          {"pitch_step", "pitchStep", "vertical angle between samples", "angle", "1 radian", {}, kAngle},
+          {"pitch_samples", "", "number of vertical samples (instead of pitch_step)", "", "", {}, AngleRule::kNone},
+          {"min_distance", "minDistance", "nearest distance measured", "m", "0.1", {}, AngleRule::kNone},
+          {"max_distance", "maxDistance", "farthest distance measured", "m", "10", {}, AngleRule::kNone},
+          {"scan_rate", "scanRate", "scans per second", "Hz", "10", {}, AngleRule::kNone},
+          {"frame_rate", "", "the same as scan_rate", "Hz", "10", {}, AngleRule::kNone},
+          kDetectionRate,
+          kErrorDeviation,
+          kOpticalFrame,
+          kOpticalFrameRotation};
+}
+
+Keys light_keys() {
+  return {{"color", "", "the light's colour [r, g, b]", "", "[1, 1, 1]", {}, AngleRule::kNone},
+          {"intensity", "", "the light's intensity", "", "1", {}, AngleRule::kNone},
+          {"attenuation", "", "[constant, linear, quadratic] attenuation", "", "[1, 0, 0]", {}, AngleRule::kNone}};
+}
+
+Keys spot_light_keys() {
+  return light_keys() +
+         Keys{
+             {"direction", "", "the direction of the beam in the device frame", "", "[0, 0, -1]", {}, AngleRule::kNone},
+             {"beam_width", "beamWidth", "the angle of full intensity", "angle", "90 degrees", {}, kAngle},
+             {"cut_off_angle",
+              "cutOffAngle",
+              "the angle beyond which there is no light",
+              "angle",
+              "45 degrees",
+              {},
+              kAngle},
+             {"cut_off_exponent", "cutOffExponent", "how fast the light falls off", "", "1", {}, AngleRule::kNone}};
+}
+
+const BodyKey kMaxAngularVelocity{"max_angular_velocity",
+                                  "maxAngularVelocity",
+                                  "largest angular velocity measured, per axis (read raw, not converted)",
+                                  "rad/s",
+                                  "unlimited",
+                                  {},
+                                  AngleRule::kNone};
+const BodyKey kMaxAcceleration{
+    "max_acceleration", "maxAcceleration", "largest acceleration measured, per axis", "m/s^2", "unlimited", {},
+    AngleRule::kNone};
+
+Keys continuous_track_keys() {
+  return link_keys() +
+         Keys{{"numJoints", "", "number of track links (at least 3)", "", "", {}, AngleRule::kNone},
+              {"joint_offset", "jointOffset", "offset from one track link to the next", "m", "", {}, AngleRule::kNone},
+              {"initialJointAngles",
+               "",
+               "initial angles of the track joints (numJoints - 1)",
+               "angle",
+               "0",
+               {},
+               kAngle}};
+}
+
 std::vector<BodyNode> make_nodes() {
   std::vector<BodyNode> nodes = {
       {"body", "Top level (§2)", header_keys(), {}},
       {"link", "Link (§6)", link_keys(), {}},
       {"link:SubBody", "SubBody node in links (§11.2)", subbody_keys(), {}},
+      {"link:ContinuousTrack", "ContinuousTrack node in links (§11.1)", continuous_track_keys(), {}},
       {"extra_joint", "ExtraJoint, an item of extra_joints (§12)", extra_joint_keys(), {}},
       {"element:Transform", "Transform, Group and Node elements (§8.1, §8.2)", transform_keys(), {}},
       {"element:Visual",
@@ -370,6 +483,33 @@ std::vector<BodyNode> make_nodes() {
        {kType, kName, kResourceUri, kNode, kFragment, kMetadata, kTranslation, kRotation, kScale, kCreaseAngle},
        {}},
       {"device", "Device, common keys (§10.1)", device_keys(), {}},
+      {"device:Camera",
+       "Camera device (also CameraDevice, VisionSensor, RangeCamera) (§10.2)",
+       device_keys() + camera_keys(),
+       {}},
+      {"device:RangeSensor", "RangeSensor device (§10.2)", device_keys() + range_sensor_keys(), {}},
+      {"device:PointLight", "PointLight device (§10.2)", device_keys() + light_keys(), {}},
+      {"device:SpotLight", "SpotLight device (§10.2)", device_keys() + spot_light_keys(), {}},
+      {"device:ForceSensor",
+       "ForceSensor device (§10.2)",
+       device_keys() +
+           Keys{{"max_force", "maxForce", "largest force measured, per axis", "N", "unlimited", {}, AngleRule::kNone},
+                {"max_torque",
+                 "maxTorque",
+                 "largest torque measured, per axis",
+                 "N m",
+                 "unlimited",
+                 {},
+                 AngleRule::kNone}},
+       {}},
+      {"device:RateGyroSensor", "RateGyroSensor device (§10.2)", device_keys() + Keys{kMaxAngularVelocity}, {}},
+      {"device:AccelerationSensor", "AccelerationSensor device (§10.2)", device_keys() + Keys{kMaxAcceleration}, {}},
+      {"device:IMU",
+       "IMU device (§10.2)",
+       device_keys() +
+           Keys{{"max_angular_velocity", "", kMaxAngularVelocity.meaning, "rad/s", "unlimited", {}, AngleRule::kNone},
+                {"max_acceleration", "", kMaxAcceleration.meaning, "m/s^2", "unlimited", {}, AngleRule::kNone}},
+       {}},
       {"appearance",
        "appearance of a Shape (§8.7)",
        {{"material", "", "the surface's colours", "", "", {}, AngleRule::kNone},

@@ -30,7 +30,7 @@ struct Context {
 /// Every scalar that names a link other than by its own `name`: the key it is under.
 bool names_a_link(const Outline& o, int mapping, const OutlineEntry& entry) {
   const std::string kind = node_kind(o, mapping);
-  if (entry.key == "parent") return kind == "link" || kind == "link:SubBody";
+  if (entry.key == "parent") return is_link_kind(kind);
   if (entry.key == "root_link" || entry.key == "rootLink") return kind == "body";
   if (entry.key == "link1_name" || entry.key == "link2_name" || entry.key == "link1Name" || entry.key == "link2Name")
     return kind == "extra_joint";
@@ -43,8 +43,7 @@ std::string link_name_at(const Context& c, std::size_t offset, int& node) {
   node = -1;
   if (at.value < 0 || !at.holder || c.outline.node(at.value).kind != OutlineNode::kScalar) return {};
   const std::string kind = node_kind(c.outline, at.holder_mapping);
-  const bool is_name =
-      at.holder->key == "name" && (kind == "link" || kind == "link:SubBody") && at.holder->value == at.value;
+  const bool is_name = at.holder->key == "name" && is_link_kind(kind) && at.holder->value == at.value;
   if (!is_name && !names_a_link(c.outline, at.holder_mapping, *at.holder)) return {};
   node = at.value;
   return c.outline.node(at.value).scalar;

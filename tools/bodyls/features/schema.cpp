@@ -7,7 +7,9 @@ namespace bodyfmt::lsp {
 namespace {
 
 std::string link_kind(const Outline& o, int node) {
-  return o.scalar_of(node, "type") == "SubBody" ? "link:SubBody" : "link";
+  const std::string type = o.scalar_of(node, "type");
+  if (type == "SubBody" || type == "ContinuousTrack") return "link:" + type;
+  return "link";
 }
 
 /// The kind of a node reached from its parent mapping's entry `key`, the parent being `parent_kind`.
@@ -24,7 +26,8 @@ std::string kind_under_key(const Outline& o, int node, std::string_view key, con
     return type.empty() ? "elements" : element_kind(type);
   }
   if (parent_kind == "body" && key == "links") return "links";
-  if (parent_kind == "links") return key == "SubBody" ? "link:SubBody" : link_kind(o, node);
+  if (parent_kind == "links")
+    return key == "SubBody" || key == "ContinuousTrack" ? "link:" + std::string(key) : link_kind(o, node);
   if (parent_kind == "element:Shape" && key == "geometry") {
     const std::string type = o.scalar_of(node, "type");
     return table_node("geometry:" + type) ? "geometry:" + type : "geometry";
@@ -69,7 +72,13 @@ std::string element_kind(std::string_view type) {
   if (type == "Visual" || type == "Collision") return "element:Visual";
   if (type == "Resource") return "element:Resource";
   const auto& devices = device_type_names();
-  if (std::find(devices.begin(), devices.end(), type) != devices.end()) return "device";
+  if (std::find(devices.begin(), devices.end(), type) == devices.end()) return {};
+  // Camera's other spellings read the same keys (body-format-spec §10.2).
+  const std::string_view camera[] = {"CameraDevice", "VisionSensor", "RangeCamera"};
+  if (std::find(std::begin(camera), std::end(camera), type) != std::end(camera)) return "device:Camera";
+  const std::string specific = "device:" + std::string(type);
+  if (table_node(specific)) return specific;
+  return "device";
   return {};
 }
 

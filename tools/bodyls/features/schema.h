@@ -18,6 +18,11 @@ namespace bodyfmt::lsp {
 /// format knows.
 std::string node_kind(const Outline& outline, int node);
 
+/// A link, SubBody or ContinuousTrack node of `links`.
+inline bool is_link_kind(std::string_view kind) { return kind == "link" || kind.rfind("link:", 0) == 0; }
+/// A device of any type.
+inline bool is_device_kind(std::string_view kind) { return kind == "device" || kind.rfind("device:", 0) == 0; }
+
 /// The element kind a `type` value selects ("element:Shape", "device", ...); empty if none.
 std::string element_kind(std::string_view type);
 

@@ -42,7 +42,7 @@ struct Builder {
     if (node < 0 || o.node(node).kind != OutlineNode::kMapping) return;
     const std::string kind = element_kind(type);
     Symbol s;
-    s.kind = kind == "device" ? SymbolKind::kDevice : SymbolKind::kElement;
+    s.kind = is_device_kind(kind) ? SymbolKind::kDevice : SymbolKind::kElement;
     s.detail = type.empty() ? "element without a type" : type;
     const OutlineEntry* name = o.find(node, "name");
     s.name = o.scalar_of(node, "name");
