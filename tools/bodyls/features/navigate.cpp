@@ -7,6 +7,7 @@
 #include "outline.h"
 #include "schema.h"
 
+#include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <optional>
@@ -27,12 +28,11 @@ struct Context {
   }
 };
 
-/// Every scalar that names a link other than by its own `name`: the key it is under.
-bool names_a_link(const Outline& o, int mapping, const OutlineEntry& entry) {
-  const std::string kind = node_kind(o, mapping);
-  if (entry.key == "parent") return is_link_kind(kind);
-  if (entry.key == "root_link" || entry.key == "rootLink") return kind == "body";
-  if (entry.key == "link1_name" || entry.key == "link2_name" || entry.key == "link1Name" || entry.key == "link2Name")
+/// Whether key `key` of a node of kind `kind` names a link (other than a link's own `name`).
+bool names_a_link(const std::string& kind, const std::string& key) {
+  if (key == "parent") return is_link_kind(kind);
+  if (key == "root_link" || key == "rootLink") return kind == "body";
+  if (key == "link1_name" || key == "link2_name" || key == "link1Name" || key == "link2Name")
     return kind == "extra_joint";
   return false;
 }
@@ -44,7 +44,7 @@ std::string link_name_at(const Context& c, std::size_t offset, int& node) {
   if (at.value < 0 || !at.holder || c.outline.node(at.value).kind != OutlineNode::kScalar) return {};
   const std::string kind = node_kind(c.outline, at.holder_mapping);
   const bool is_name = at.holder->key == "name" && is_link_kind(kind) && at.holder->value == at.value;
-  if (!is_name && !names_a_link(c.outline, at.holder_mapping, *at.holder)) return {};
+  if (!is_name && !names_a_link(kind, at.holder->key)) return {};
   node = at.value;
   return c.outline.node(at.value).scalar;
 }
@@ -52,14 +52,17 @@ std::string link_name_at(const Context& c, std::size_t offset, int& node) {
 /// The scalars that name link `name` (not its own name), in file order.
 std::vector<int> naming_scalars(const Outline& o, const std::string& name) {
   std::vector<int> found;
-  for (std::size_t i = 0; i < o.nodes().size(); ++i) {
-    const OutlineNode& n = o.node(static_cast<int>(i));
-    if (n.kind != OutlineNode::kScalar || n.scalar != name || n.parent < 0) continue;
-    const int parent = n.parent;
-    if (o.node(parent).kind != OutlineNode::kMapping) continue;
-    const OutlineEntry* e = o.entry_of(static_cast<int>(i));
-    if (e && names_a_link(o, parent, *e)) found.push_back(static_cast<int>(i));
+  for (std::size_t m = 0; m < o.nodes().size(); ++m) {
+    const OutlineNode& map = o.node(static_cast<int>(m));
+    if (map.kind != OutlineNode::kMapping || map.parent == -2) continue;
+    std::optional<std::string> kind;  // worked out once a mapping, and only when it is needed
+    for (const OutlineEntry& e : map.entries) {
+      if (e.value < 0 || o.node(e.value).kind != OutlineNode::kScalar || o.node(e.value).scalar != name) continue;
+      if (!kind) kind = node_kind(o, static_cast<int>(m));
+      if (names_a_link(*kind, e.key)) found.push_back(e.value);
+    }
   }
+  std::sort(found.begin(), found.end(), [&](int a, int b) { return o.node(a).begin < o.node(b).begin; });
   return found;
 }
 

@@ -186,7 +186,7 @@ class OutlineParser {
     OutlineNode props;
     const std::size_t props_begin = pos_;
     properties(props);
-    if (at_line_end() && !props.anchor.empty()) {
+    if (at_line_end() && !props.anchor.empty() && depth <= kMaxDepth) {
       // `key: &a` then the node on the next lines.
       skip_to_line_end();
       const int inner = parse_block(parent, block_indent, depth + 1);
