@@ -51,7 +51,9 @@ const BodyKey* find_body_key(const BodyNode& node, std::string_view name);
 /// The names of the node's keys (BodyNode::names); an empty list for an unknown id.
 const std::vector<std::string_view>& body_key_names(std::string_view id);
 
-/// Values that select a node kind: element types, geometry types, device types.
+/// Values that select a node kind: the element types (those the loader reads, the scene-only
+/// ones it accepts, and the core devices: its did-you-mean candidates), the geometry types, and
+/// the core device types (a node of one of these is a device).
 const std::vector<std::string_view>& element_type_names();
 const std::vector<std::string_view>& geometry_type_names();
 const std::vector<std::string_view>& device_type_names();

@@ -680,12 +680,37 @@ const std::vector<std::string_view>& body_key_names(std::string_view id) {
 }
 
 const std::vector<std::string_view>& element_type_names() {
-  static const std::vector<std::string_view> names = {
-      "Shape",        "Transform",  "Group",        "RigidBody",   "Visual",         "Collision",
-      "Resource",     "Node",       "Skip",         "ForceSensor", "RateGyroSensor", "AccelerationSensor",
-      "IMU",          "Camera",     "CameraDevice", "RangeSensor", "PointLight",     "SpotLight",
-      "DigitalIO",    "Holder",     "Attachment",   "Conveyor",    "ZmpDevice",      "MarkerDevice",
-      "VisionSensor", "RangeCamera"};
+  // The loader's order: its did-you-mean for an unknown type takes the first closest.
+  static const std::vector<std::string_view> names = {"Skip",
+                                                      "Group",
+                                                      "Transform",
+                                                      "RigidBody",
+                                                      "Visual",
+                                                      "Collision",
+                                                      "Resource",
+                                                      "Shape",
+                                                      "LineSet",
+                                                      "DirectionalLight",
+                                                      "PerspectiveCamera",
+                                                      "OrthographicCamera",
+                                                      "Fog",
+                                                      "Text",
+                                                      "Node",
+                                                      "ForceSensor",
+                                                      "RateGyroSensor",
+                                                      "AccelerationSensor",
+                                                      "IMU",
+                                                      "Camera",
+                                                      "CameraDevice",
+                                                      "RangeSensor",
+                                                      "PointLight",
+                                                      "SpotLight",
+                                                      "DigitalIO",
+                                                      "Holder",
+                                                      "Attachment",
+                                                      "Conveyor",
+                                                      "ZmpDevice",
+                                                      "MarkerDevice"};
   return names;
 }
 
@@ -697,7 +722,10 @@ const std::vector<std::string_view>& geometry_type_names() {
 }
 
 const std::vector<std::string_view>& device_type_names() {
-  static const std::vector<std::string_view> names(element_type_names().begin() + 9, element_type_names().end());
+  static const std::vector<std::string_view> names = {
+      "ForceSensor", "RateGyroSensor", "AccelerationSensor", "IMU",          "Camera",     "CameraDevice",
+      "RangeSensor", "PointLight",     "SpotLight",          "DigitalIO",    "Holder",     "Attachment",
+      "Conveyor",    "ZmpDevice",      "MarkerDevice",       "VisionSensor", "RangeCamera"};
   return names;
 }
 

@@ -15,37 +15,6 @@
 namespace bodyfmt::detail {
 namespace {
 
-const std::vector<std::string_view> kElementTypes = {"Skip",
-                                                     "Group",
-                                                     "Transform",
-                                                     "RigidBody",
-                                                     "Visual",
-                                                     "Collision",
-                                                     "Resource",
-                                                     "Shape",
-                                                     "LineSet",
-                                                     "DirectionalLight",
-                                                     "PerspectiveCamera",
-                                                     "OrthographicCamera",
-                                                     "Fog",
-                                                     "Text",
-                                                     "Node",
-                                                     "ForceSensor",
-                                                     "RateGyroSensor",
-                                                     "AccelerationSensor",
-                                                     "IMU",
-                                                     "Camera",
-                                                     "CameraDevice",
-                                                     "RangeSensor",
-                                                     "PointLight",
-                                                     "SpotLight",
-                                                     "DigitalIO",
-                                                     "Holder",
-                                                     "Attachment",
-                                                     "Conveyor",
-                                                     "ZmpDevice",
-                                                     "MarkerDevice"};
-
 bool is_scene_only_type(std::string_view t) {
   return t == "LineSet" || t == "DirectionalLight" || t == "PerspectiveCamera" || t == "OrthographicCamera" ||
          t == "Fog" || t == "Text" || t == "Node";
@@ -187,7 +156,7 @@ void ElementReader::read_node(const yaml::NodeRef& node, const std::string& type
   MappingReader r(ctx_, node, type);
   yaml::NodeRef optional = r.take({"is_optional", "isOptional"});
   bool is_optional = optional && text::parse_bool_word(optional->scalar()).value_or(false);
-  std::string_view guess = text::suggest(type, kElementTypes);
+  std::string_view guess = text::suggest(type, element_type_names());
   const yaml::MapEntry* type_entry = node->find("type");
   yaml::NodeRef at = type_entry ? type_entry->value : node;
   ctx_.report(is_optional ? "load-optional-node-skipped" : "load-unknown-node-type", at,

@@ -281,10 +281,7 @@ std::optional<Geometry> read_geometry(LoadContext& ctx, const yaml::NodeRef& geo
   if (t == "IndexedFaceSet") return read_indexed_face_set(ctx, r);
   if (t == "TriangleMesh") return read_triangle_mesh(ctx, r);
   if (t == "Resource") return read_resource_geometry(ctx, r);
-  static const std::vector<std::string_view> kTypes = {"Box",          "Sphere",    "Cylinder",      "Cone",
-                                                       "Capsule",      "Extrusion", "ElevationGrid", "IndexedFaceSet",
-                                                       "TriangleMesh", "Resource"};
-  std::string_view guess = text::suggest(t, kTypes);
+  std::string_view guess = text::suggest(t, geometry_type_names());
   ctx.report("geometry-unknown-type", type, "unknown geometry \"" + std::string(t) + "\"",
              guess.empty() ? std::string() : "did you mean " + std::string(guess) + "?");
   return std::nullopt;
