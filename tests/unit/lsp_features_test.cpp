@@ -515,3 +515,42 @@ TEST_CASE("lsp features: every feature is total on corpus models cut and spliced
   CHECK(calls == 960);
   CHECK(bad == 0);
 }
+
+TEST_CASE("lsp features: SimpleTank's symbols and angles, with elements in all three forms") {
+  const std::string path = kCorpus + "Tank/SimpleTank.body";
+  const Document d = doc(read(path), path);
+  const auto symbols = document_symbols(d);
+  REQUIRE(symbols.size() == 1);
+  CHECK(symbols[0].name == "SimpleTank");
+  REQUIRE(symbols[0].children.size() == 1);
+  const Symbol& chassis = symbols[0].children[0];
+  CHECK(chassis.name == "CHASSIS");
+  std::vector<std::string> names;
+  for (const Symbol& s : chassis.children) names.push_back(s.name);
+  CHECK(names == std::vector<std::string>{"Shape", "TURRET_Y", "TRACK_L", "TRACK_R"});
+  REQUIRE(chassis.children[1].children.size() == 2);
+  const Symbol& turret_p = chassis.children[1].children[1];
+  CHECK(turret_p.name == "TURRET_P");
+  names.clear();
+  for (const Symbol& s : turret_p.children) names.push_back(s.name + "/" + s.detail);
+  CHECK(names ==
+        std::vector<std::string>{"RigidBody/RigidBody", "Transform/Transform", "Light/SpotLight", "Camera/Camera"});
+  REQUIRE(turret_p.children.size() == 4);
+  CHECK(turret_p.children[2].kind == SymbolKind::kDevice);
+  // The gun: a Transform holding a RigidBody (a mapping of types) holding a Shape.
+  REQUIRE(turret_p.children[1].children.size() == 1);
+  CHECK(turret_p.children[1].children[0].name == "RigidBody");
+  REQUIRE(turret_p.children[1].children[0].children.size() == 1);
+  CHECK(turret_p.children[1].children[0].children[0].name == "Shape");
+
+  // A list of axis-angles: the 4th of each is in degrees (format 2.0); SpotLight's beam_width too.
+  auto h = hover(d, point_of(d.text, "-90 ] ]", 0));
+  REQUIRE(h);
+  CHECK(h->markdown.find(fmt::format("-90° = {:.10g} rad", -kPi / 2)) != std::string::npos);
+  h = hover(d, point_of(d.text, "beam_width: 36", 12));
+  REQUIRE(h);
+  CHECK(h->markdown.find(fmt::format("36° = {:.10g} rad", 36 * kPi / 180)) != std::string::npos);
+  h = hover(d, point_of(d.text, "width: 320"));
+  REQUIRE(h);
+  CHECK(h->markdown.find("default: 640") != std::string::npos);  // §10.2
+}
