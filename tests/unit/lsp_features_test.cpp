@@ -554,3 +554,26 @@ TEST_CASE("lsp features: SimpleTank's symbols and angles, with elements in all t
   REQUIRE(h);
   CHECK(h->markdown.find("default: 640") != std::string::npos);  // §10.2
 }
+
+TEST_CASE("lsp features: root_link and an extra joint's link names complete and hover as links") {
+  std::string text =
+      "format: ChoreonoidBody\nformat_version: 2.0\nroot_link: \nlinks:\n  - name: base\n  - name: arm\n"
+      "    parent: base\n";
+  auto items = labels(complete(doc(text), point_of(text, "root_link: ", 11)));
+  CHECK(items == std::vector<std::string>{"base", "arm"});
+  text = kSmall + "  - name: finger\n    parent: hand\n";
+  text.replace(text.find("link1_name: hand"), 16, "link1_name: ");
+  items = labels(complete(doc(text), point_of(text, "link1_name: ", 12)));
+  CHECK(items == std::vector<std::string>{"base", "arm", "hand", "finger"});
+
+  const std::string path = kCorpus + "SR1/SR1.body";
+  bodyfmt::CollectingSink sink;
+  const auto model = bodyfmt::load_body(path, {}, sink);
+  REQUIRE(model);
+  Document d = doc(read(path), path);
+  d.model = &*model;
+  const auto h = hover(d, point_of(d.text, "rootLink: WAIST", 11));
+  REQUIRE(h);
+  CHECK(h->markdown.find("with its subtree 130.8 kg") != std::string::npos);       // Choreonoid's total mass
+  CHECK(h->markdown.find("from the last text that loaded") != std::string::npos);  // not model_is_current
+}

@@ -122,8 +122,8 @@ void value_items(const Document& document, const Outline& o, int scalar, const s
   const OutlineEntry* holder = holder_of(o, scalar, mapping);
   if (!holder) return;
   const std::string kind = node_kind(o, mapping);
-  if (holder->key == "parent" && is_link_kind(kind)) {
-    const std::string own = o.scalar_of(mapping, "name");
+  if (names_a_link(kind, holder->key)) {
+    const std::string own = holder->key == "parent" ? o.scalar_of(mapping, "name") : std::string();
     for (const LinkItem& link : link_items(o)) {
       if (link.name_text.empty() || link.name_text == own || link.name_text.rfind(kPlaceholder, 0) == 0) continue;
       out.push_back(item(link.name_text, link.name_text,

@@ -91,7 +91,7 @@ std::optional<Hover> hover(const Document& document, TextPoint point) {
   const OutlineNode& value = outline.node(at.value);
   const TextRange range = index.range(value.begin, value.end);
   const std::string kind = node_kind(outline, at.holder_mapping);
-  if (is_link_kind(kind) && (at.holder->key == "name" || at.holder->key == "parent") &&
+  if (((is_link_kind(kind) && at.holder->key == "name") || names_a_link(kind, at.holder->key)) &&
       value.kind == OutlineNode::kScalar) {
     if (auto md = link_markdown(document, value.scalar)) return Hover{*md, range};
     return std::nullopt;

@@ -28,15 +28,6 @@ struct Context {
   }
 };
 
-/// Whether key `key` of a node of kind `kind` names a link (other than a link's own `name`).
-bool names_a_link(const std::string& kind, const std::string& key) {
-  if (key == "parent") return is_link_kind(kind);
-  if (key == "root_link" || key == "rootLink") return kind == "body";
-  if (key == "link1_name" || key == "link2_name" || key == "link1Name" || key == "link2Name")
-    return kind == "extra_joint";
-  return false;
-}
-
 /// The name of the link the cursor is on (its `name` or a value naming it), with the node.
 std::string link_name_at(const Context& c, std::size_t offset, int& node) {
   const AtCursor at = locate(c.outline, offset);

@@ -84,6 +84,14 @@ std::string element_kind(std::string_view type) {
 
 const BodyNode* table_node(std::string_view kind) { return find_body_node(kind); }
 
+bool names_a_link(std::string_view kind, std::string_view key) {
+  if (key == "parent") return is_link_kind(kind);
+  if (key == "root_link" || key == "rootLink") return kind == "body";
+  if (key == "link1_name" || key == "link2_name" || key == "link1Name" || key == "link2Name")
+    return kind == "extra_joint";
+  return false;
+}
+
 std::string node_kind(const Outline& outline, int node) { return node_kind_at(outline, node, 0); }
 
 AngleMode angle_mode(const Outline& o) {

@@ -23,6 +23,10 @@ inline bool is_link_kind(std::string_view kind) { return kind == "link" || kind.
 /// A device of any type.
 inline bool is_device_kind(std::string_view kind) { return kind == "device" || kind.rfind("device:", 0) == 0; }
 
+/// Whether key `key` of a node of kind `kind` names a link, other than a link's own `name`:
+/// a link's parent, the root_link, an extra joint's link1_name and link2_name.
+bool names_a_link(std::string_view kind, std::string_view key);
+
 /// The element kind a `type` value selects ("element:Shape", "device", ...); empty if none.
 std::string element_kind(std::string_view type);
 
