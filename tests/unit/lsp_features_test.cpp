@@ -577,3 +577,24 @@ TEST_CASE("lsp features: root_link and an extra joint's link names complete and 
   CHECK(h->markdown.find("with its subtree 130.8 kg") != std::string::npos);       // Choreonoid's total mass
   CHECK(h->markdown.find("from the last text that loaded") != std::string::npos);  // not model_is_current
 }
+
+TEST_CASE("lsp features: a link's world frame is at the initial pose, joints at their initial displacement") {
+  // base at z = 1; arm turns about z with joint_angle 90 (degrees, format 2.0); hand sits 1 m
+  // along arm's x: at the initial pose it is at (0, 1, 1), turned 90 degrees about z.
+  const std::string text =
+      "format: ChoreonoidBody\nformat_version: 2.0\nlinks:\n  - name: base\n"
+      "    translation: [ 0, 0, 1 ]\n    joint_type: free\n  - name: arm\n    parent: base\n"
+      "    joint_type: revolute\n    joint_axis: Z\n    joint_angle: 90\n  - name: hand\n"
+      "    parent: arm\n    translation: [ 1, 0, 0 ]\n";
+  bodyfmt::CollectingSink sink;
+  const auto model = bodyfmt::load_body_string(text, "/tmp/pose.body", {}, sink);
+  REQUIRE(model);
+  Document d = doc(text);
+  d.model = &*model;
+  d.model_is_current = true;
+  const auto h = hover(d, point_of(text, "name: hand", 7));
+  REQUIRE(h);
+  INFO(h->markdown);
+  CHECK(h->markdown.find("position [0, 1, 1] m, rotation [0, 0, 1, 90°]") != std::string::npos);
+  CHECK(h->markdown.find("mass 1 kg") != std::string::npos);  // no mass data: Choreonoid's 1 kg (§6.4)
+}

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <vector>
 
 namespace bodyfmt::lsp {
@@ -30,11 +31,20 @@ std::optional<std::string> link_markdown(const Document& document, std::string_v
     for (LinkIndex child : l.children)
       if (child >= 0 && child < static_cast<LinkIndex>(model->links.size())) stack.push_back(child);
   }
-  const std::vector<Eigen::Isometry3d> frames = compute_world_frames(*model);
+  // The initial pose: the root where the file puts it, each joint at its initial displacement
+  // (joint_angle, joint_displacement), as Choreonoid poses a body it has just loaded.
+  std::vector<double> q(model->links.size(), 0.0);
+  for (std::size_t i = 0; i < model->links.size(); ++i) q[i] = model->links[i].initial_displacement;
+  const std::vector<Eigen::Isometry3d> frames = compute_world_frames(*model, q);
   const Eigen::Isometry3d& X = frames[static_cast<std::size_t>(index)];
   const Eigen::AngleAxisd rotation(X.linear());
-  const Eigen::Vector3d& p = X.translation();
-  const Eigen::Vector3d& a = rotation.axis();
+  // What is left of a zero by rounding (cos 90 degrees = 6e-17), and -0, print as 0.
+  const auto clean = [](Eigen::Vector3d v) {
+    for (double& x : v) x = std::abs(x) < 1e-12 ? 0.0 : x;
+    return v;
+  };
+  const Eigen::Vector3d p = clean(X.translation());
+  const Eigen::Vector3d a = clean(rotation.axis());
   std::string md = fmt::format("**link {}** — joint {}", link.name, joint_type_name(link.joint_type));
   if (link.parent >= 0) md += fmt::format(", parent {}", model->links[static_cast<std::size_t>(link.parent)].name);
   md += fmt::format(
