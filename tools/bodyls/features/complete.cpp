@@ -56,7 +56,6 @@ std::vector<std::string_view> type_values(const Outline& o, int mapping) {
   if (holder->key == "geometry") return geometry_type_names();
   if (holder->key == "elements" || node_kind(o, holder_mapping) == "elements") return element_type_names();
   if (holder->key == "links" && holder_mapping == o.root()) return {"Link", "SubBody", "ContinuousTrack", "Skip"};
-  if (holder->key == "shape" || holder->key == "resource") return {};
   return {};
 }
 

@@ -13,8 +13,7 @@ std::string link_kind(const Outline& o, int node) {
 }
 
 /// The kind of a node reached from its parent mapping's entry `key`, the parent being `parent_kind`.
-std::string kind_under_key(const Outline& o, int node, std::string_view key, const std::string& parent_kind,
-                           int parent) {
+std::string kind_under_key(const Outline& o, int node, std::string_view key, const std::string& parent_kind) {
   const bool mapping = o.node(node).kind == OutlineNode::kMapping;
   if (!mapping) return {};
   if (parent_kind == "elements") {
@@ -37,7 +36,6 @@ std::string kind_under_key(const Outline& o, int node, std::string_view key, con
   if ((parent_kind == "element:Resource" || parent_kind == "geometry:Resource") && key == "metadata") return "metadata";
   if (parent_kind == "element:Visual" && key == "shape") return "element:Shape";
   if (parent_kind == "element:Visual" && key == "resource") return "element:Resource";
-  (void)parent;
   return {};
 }
 
@@ -60,7 +58,7 @@ std::string node_kind_at(const Outline& o, int node, int depth) {
   if (p.kind != OutlineNode::kMapping) return {};
   const OutlineEntry* entry = o.entry_of(node);
   if (!entry) return {};
-  return kind_under_key(o, node, entry->key, node_kind_at(o, parent, depth + 1), parent);
+  return kind_under_key(o, node, entry->key, node_kind_at(o, parent, depth + 1));
 }
 
 }  // namespace
