@@ -26,7 +26,7 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/libbodyfmt/include/bodyfmt
 # RPATH; they find the assimp module in the library folder (src/mesh/assimp_module.cpp).
 set(BODYFMT_TOOL_DIRS tools)
 # Developer utilities that build the docs; not installed.
-set(BODYFMT_INTERNAL_TOOLS rules_doc)
+set(BODYFMT_INTERNAL_TOOLS rules_doc keys_doc)
 get_property(_bodyfmt_subdirs DIRECTORY ${PROJECT_SOURCE_DIR} PROPERTY SUBDIRECTORIES)
 foreach(_dir IN LISTS BODYFMT_TOOL_DIRS)
   if(NOT "${PROJECT_SOURCE_DIR}/${_dir}" IN_LIST _bodyfmt_subdirs)

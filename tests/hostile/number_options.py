@@ -27,7 +27,8 @@ def main():
     source, bin_dir = sys.argv[1], sys.argv[2]
     tools = sorted(d for d in os.listdir(os.path.join(source, "tools"))
                    if os.path.isfile(os.path.join(source, "tools", d, "main.cpp"))
-                   and os.access(os.path.join(bin_dir, d), os.X_OK) and d != "rules_doc")  # rules_doc: no options
+                   and os.access(os.path.join(bin_dir, d), os.X_OK)
+                   and d not in ("rules_doc", "keys_doc"))  # the doc printers: no options
     failures, tested = [], 0
     with tempfile.TemporaryDirectory() as work:
         model = os.path.join(work, "m.body")
@@ -47,7 +48,7 @@ def main():
         for command in commands:
             options = NUMERIC.findall(help_text(command))
             name = " ".join(os.path.basename(command[0]) if i == 0 else a for i, a in enumerate(command))
-            if not options and not name.startswith("rules_doc"):
+            if not options and not name.startswith(("rules_doc", "keys_doc")):
                 failures.append(f"{name}: no numeric option in --help (every tool has the front's limits)")
             # The required options of the tools that have them, so that the number is the only fault.
             required = {"run": ["--scenario", model, "--csv", os.path.join(work, "out.csv")]}.get(command[-1], [])

@@ -60,6 +60,7 @@ def main():
         shutil.copy(old, new)  # differs from HEAD
         git(work, "add", "new.body")
         runs = {
+            "keys_doc": [["keys_doc"]],
             "bodyinfo": [["bodyinfo", old], ["bodyinfo", "--format", "yaml", old]],
             "bodycheck": [["bodycheck", old], ["bodycheck", "--format", "json", old],
                           ["bodycheck", "--format", "sarif", old], ["bodycheck", "--list-rules"]],
@@ -82,7 +83,7 @@ def main():
             if tool not in runs:
                 failures.append(f"{tool}: no command in stdout_full.py")
                 continue
-            commands = runs[tool] + ([[tool, "--help"]] if tool != "rules_doc" else [])
+            commands = runs[tool] + ([[tool, "--help"]] if tool not in ("rules_doc", "keys_doc") else [])
             for argv in commands:
                 count += 1
                 with open("/dev/full", "w") as full:

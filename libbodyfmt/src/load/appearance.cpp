@@ -1,5 +1,7 @@
 #include "load/appearance.h"
 
+#include <bodyfmt/body_keys.h>
+
 #include "load/mapping_reader.h"
 #include "load/scalar.h"
 #include "load/uri.h"
@@ -72,8 +74,7 @@ Appearance read_appearance(LoadContext& ctx, const yaml::NodeRef& appearance) {
           fraction(v, "transparency", *t);
         }
       }
-      mr.report_unknown(
-          {"ambient", "diffuse", "emissive", "specular", "specular_exponent", "shininess", "transparency"});
+      mr.report_unknown(body_key_names("material"));
       result.material = material;
     }
   }
@@ -100,7 +101,7 @@ Appearance read_appearance(LoadContext& ctx, const yaml::NodeRef& appearance) {
         assign_if(texture.repeat_s, take_optional_bool(tr, {"repeat_s", "repeatS"}));
         assign_if(texture.repeat_t, take_optional_bool(tr, {"repeat_t", "repeatT"}));
       }
-      tr.report_unknown({"uri", "repeat", "repeat_s", "repeat_t"});
+      tr.report_unknown(body_key_names("texture"));
       result.texture = texture;
     } else {
       ctx.report("load-type", t, "texture must be a mapping");
@@ -109,7 +110,7 @@ Appearance read_appearance(LoadContext& ctx, const yaml::NodeRef& appearance) {
   if (yaml::NodeRef transform = r.take({"texture_transform", "textureTransform"}); transform && transform->is_mapping())
     if (const yaml::MapEntry* rotation = transform->find("rotation"))
       ctx.note_angle(transform.child(rotation->value));  // a scalar angle (§8.7)
-  r.report_unknown({"material", "texture", "texture_transform"});
+  r.report_unknown(body_key_names("appearance"));
   return result;
 }
 

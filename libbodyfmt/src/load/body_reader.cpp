@@ -1,5 +1,7 @@
 #include "load/body_reader.h"
 
+#include <bodyfmt/body_keys.h>
+
 #include "load/link_reader.h"
 #include "load/mapping_reader.h"
 #include "load/resource_reader.h"
@@ -47,10 +49,6 @@ const std::vector<std::string_view> kKnownInfoKeys = {"standard_pose",
                                                       "lipSyncShapes",
                                                       "linearInterpolationJoints",
                                                       "apply_camera_effect"};
-
-const std::vector<std::string_view> kHeaderKeys = {"format",       "format_version", "angle_unit",
-                                                   "name",         "root_link",      "links",
-                                                   "extra_joints", "body_handlers",  "model_file"};
 
 /// Asks for transparent huge pages in the 2 MiB-aligned part of `bytes` at `data`, an array
 /// that is about to be written front to back once: a page fault per 2 MiB instead of one per
@@ -237,7 +235,7 @@ std::optional<Model> BodyReader::read_once(std::string_view text, const std::str
   if (!header_read) return std::nullopt;
 
   MappingReader r(ctx_, root, "body");
-  for (std::string_view key : kHeaderKeys) r.ignore(key);
+  for (std::string_view key : body_key_names("body")) r.ignore(key);
   for (std::string_view key : kKnownInfoKeys) r.ignore(key);
   for (const char* key : {"formatVersion", "angleUnit", "rootLink", "extraJoints", "modelFile"}) r.ignore(key);
 
@@ -257,7 +255,7 @@ std::optional<Model> BodyReader::read_once(std::string_view text, const std::str
   // take() warns about the camelCase spellings, like the other header keys (§14).
   if (!build_tree(model, entries, r.take({"root_link", "rootLink"}))) return std::nullopt;
   if (yaml::NodeRef extra = r.take({"extra_joints", "extraJoints"})) read_extra_joints(extra, model);
-  r.report_unknown(kHeaderKeys);
+  r.report_unknown(body_key_names("body"));
   report_upgrade(model);
   if (top_level && options_.load_meshes) import_meshes(model);
   return model;
@@ -698,8 +696,7 @@ void BodyReader::read_extra_joints(const yaml::NodeRef& extra_joints, Model& mod
         ctx_.report("load-ignored-key", v, std::string("Choreonoid does not read \"") + ignored + "\"",
                     std::string("use translation_in_link") + ignored[4]);
     }
-    r.report_unknown({"link1_name", "link2_name", "joint_type", "axis", "translation_in_link1", "translation_in_link2",
-                      "rotation_in_link1", "rotation_in_link2"});
+    r.report_unknown(body_key_names("extra_joint"));
     if (ok) model.extra_joints.push_back(joint);
   }
 }

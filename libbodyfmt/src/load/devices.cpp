@@ -1,5 +1,7 @@
 #include "load/devices.h"
 
+#include <bodyfmt/body_keys.h>
+
 #include "load/scalar.h"
 #include "load/values.h"
 
@@ -8,11 +10,6 @@
 
 namespace bodyfmt::detail {
 namespace {
-
-constexpr std::array<std::string_view, 17> kCoreDevices = {
-    "ForceSensor", "RateGyroSensor", "AccelerationSensor", "IMU",          "Camera",     "CameraDevice",
-    "RangeSensor", "PointLight",     "SpotLight",          "DigitalIO",    "Holder",     "Attachment",
-    "Conveyor",    "ZmpDevice",      "MarkerDevice",       "VisionSensor", "RangeCamera"};
 
 constexpr std::array<std::string_view, 14> kPluginNodes = {"RotorDevice",
                                                            "FireDevice",
@@ -138,7 +135,8 @@ void note_first_angle(MappingReader& r, KeyNames names, bool rotation) {
 }
 
 bool is_core_device_type(std::string_view type) {
-  return std::find(kCoreDevices.begin(), kCoreDevices.end(), type) != kCoreDevices.end();
+  const std::vector<std::string_view>& devices = device_type_names();
+  return std::find(devices.begin(), devices.end(), type) != devices.end();
 }
 
 bool is_plugin_node_type(std::string_view type) {

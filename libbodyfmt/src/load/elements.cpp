@@ -1,5 +1,7 @@
 #include "load/elements.h"
 
+#include <bodyfmt/body_keys.h>
+
 #include "load/appearance.h"
 #include "load/devices.h"
 #include "load/geometry.h"
@@ -12,44 +14,6 @@
 
 namespace bodyfmt::detail {
 namespace {
-
-const std::vector<std::string_view> kElementTypes = {"Skip",
-                                                     "Group",
-                                                     "Transform",
-                                                     "RigidBody",
-                                                     "Visual",
-                                                     "Collision",
-                                                     "Resource",
-                                                     "Shape",
-                                                     "LineSet",
-                                                     "DirectionalLight",
-                                                     "PerspectiveCamera",
-                                                     "OrthographicCamera",
-                                                     "Fog",
-                                                     "Text",
-                                                     "Node",
-                                                     "ForceSensor",
-                                                     "RateGyroSensor",
-                                                     "AccelerationSensor",
-                                                     "IMU",
-                                                     "Camera",
-                                                     "CameraDevice",
-                                                     "RangeSensor",
-                                                     "PointLight",
-                                                     "SpotLight",
-                                                     "DigitalIO",
-                                                     "Holder",
-                                                     "Attachment",
-                                                     "Conveyor",
-                                                     "ZmpDevice",
-                                                     "MarkerDevice"};
-
-const std::vector<std::string_view> kTransformKeys = {"type", "name", "translation", "rotation", "scale", "elements"};
-
-std::vector<std::string_view> with(std::vector<std::string_view> a, std::initializer_list<std::string_view> b) {
-  a.insert(a.end(), b.begin(), b.end());
-  return a;
-}
 
 bool is_scene_only_type(std::string_view t) {
   return t == "LineSet" || t == "DirectionalLight" || t == "PerspectiveCamera" || t == "OrthographicCamera" ||
@@ -166,7 +130,7 @@ void ElementReader::read_node(const yaml::NodeRef& node, const std::string& type
       }
     }
     read_elements(r.take({"elements"}), inner);
-    r.report_unknown(kTransformKeys);
+    r.report_unknown(body_key_names("element:Transform"));
     return;
   }
   if (type == "RigidBody") return read_rigid_body(node, frame);
@@ -192,7 +156,7 @@ void ElementReader::read_node(const yaml::NodeRef& node, const std::string& type
   MappingReader r(ctx_, node, type);
   yaml::NodeRef optional = r.take({"is_optional", "isOptional"});
   bool is_optional = optional && text::parse_bool_word(optional->scalar()).value_or(false);
-  std::string_view guess = text::suggest(type, kElementTypes);
+  std::string_view guess = text::suggest(type, element_type_names());
   const yaml::MapEntry* type_entry = node->find("type");
   yaml::NodeRef at = type_entry ? type_entry->value : node;
   ctx_.report(is_optional ? "load-optional-node-skipped" : "load-unknown-node-type", at,
@@ -224,8 +188,7 @@ void ElementReader::read_part(const yaml::NodeRef& node, ModelPart part, const E
   }
   if (auto shape = r.take({"shape"})) read_shape(shape, inner);
   read_elements(r.take({"elements"}), inner);
-  static const std::vector<std::string_view> kPartKeys = with(kTransformKeys, {"resource", "shape"});
-  r.report_unknown(kPartKeys);
+  r.report_unknown(body_key_names("element:Visual"));
 }
 
 void ElementReader::read_rigid_body(const yaml::NodeRef& node, const ElementFrame& frame) {
@@ -260,9 +223,7 @@ void ElementReader::read_rigid_body(const yaml::NodeRef& node, const ElementFram
   link().mass_contributions.push_back(c);
   ++rigid_bodies_;
   read_elements(r.take({"elements"}), inner);
-  static const std::vector<std::string_view> kRigidBodyKeys =
-      with(kTransformKeys, {"center_of_mass", "mass", "inertia"});
-  r.report_unknown(kRigidBodyKeys);
+  r.report_unknown(body_key_names("element:RigidBody"));
 }
 
 void ElementReader::read_shape(const yaml::NodeRef& node, const ElementFrame& frame) {
@@ -290,9 +251,7 @@ void ElementReader::read_shape(const yaml::NodeRef& node, const ElementFrame& fr
                 "move it under appearance");
   }
   r.take({"is_meta_scene"});
-  static const std::vector<std::string_view> kShapeKeys =
-      with(kTransformKeys, {"geometry", "appearance", "is_meta_scene"});
-  r.report_unknown(kShapeKeys);
+  r.report_unknown(body_key_names("element:Shape"));
   add_shape(std::move(shape), inner);
 }
 
@@ -346,7 +305,7 @@ void ElementReader::read_device(const yaml::NodeRef& node, const std::string& ty
     return;
   }
   bool keep = read_device_params(r, type, d);
-  r.report_unknown({"type", "name", "id", "on", "translation", "rotation", "elements"});
+  r.report_unknown(body_key_names("device"));
   if (keep) model_.devices.push_back(std::move(d));
   read_elements(elements, inner);
 }

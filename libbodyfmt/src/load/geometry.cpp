@@ -1,5 +1,7 @@
 #include "load/geometry.h"
 
+#include <bodyfmt/body_keys.h>
+
 #include <bodyfmt/tessellate.h>
 
 #include "load/mapping_reader.h"
@@ -56,7 +58,7 @@ Geometry read_box(LoadContext& ctx, MappingReader& r) {
   if (yaml::NodeRef size = r.take({"size"})) assign_if(box.size, read_optional_vec3(ctx, size));
   if ((box.size.array() < 0).any())
     ctx.report("geometry-invalid-size", r.node()->find("size")->value, "a box cannot have a negative size");
-  r.report_unknown({"size", "type", "division_number", "extra_division_mode"});
+  r.report_unknown(body_key_names("geometry:Box"));
   return box;
 }
 
@@ -64,7 +66,7 @@ Geometry read_sphere(LoadContext& ctx, MappingReader& r) {
   Sphere s;
   assign_if(s.radius, take_optional_double(r, {"radius"}));
   check_positive(ctx, r, "radius", s.radius);
-  r.report_unknown({"radius", "type", "division_number"});
+  r.report_unknown(body_key_names("geometry:Sphere"));
   return s;
 }
 
@@ -76,7 +78,7 @@ Geometry read_cylinder(LoadContext& ctx, MappingReader& r) {
   assign_if(c.bottom, take_optional_bool(r, {"bottom"}));
   check_positive(ctx, r, "radius", c.radius);
   check_positive(ctx, r, "height", c.height);
-  r.report_unknown({"radius", "height", "top", "bottom", "type", "division_number"});
+  r.report_unknown(body_key_names("geometry:Cylinder"));
   return c;
 }
 
@@ -87,7 +89,7 @@ Geometry read_cone(LoadContext& ctx, MappingReader& r) {
   assign_if(c.bottom, take_optional_bool(r, {"bottom"}));
   check_positive(ctx, r, "radius", c.radius);
   check_positive(ctx, r, "height", c.height);
-  r.report_unknown({"radius", "height", "bottom", "type", "division_number"});
+  r.report_unknown(body_key_names("geometry:Cone"));
   return c;
 }
 
@@ -98,7 +100,7 @@ Geometry read_capsule(LoadContext& ctx, MappingReader& r) {
   check_positive(ctx, r, "radius", c.radius);
   if (c.height < 0)  // height 0 is a sphere, which Choreonoid allows
     ctx.report("geometry-invalid-size", r.node()->find("height")->value, "capsule height must not be negative");
-  r.report_unknown({"radius", "height", "type", "division_number"});
+  r.report_unknown(body_key_names("geometry:Capsule"));
   return c;
 }
 
@@ -138,8 +140,7 @@ Geometry read_extrusion(LoadContext& ctx, MappingReader& r) {
   };
   check_count(e.orientation.size(), "orientation");
   check_count(e.scale.size(), "scale");
-  r.report_unknown(
-      {"cross_section", "spine", "orientation", "scale", "crease_angle", "beginCap", "end_cap", "solid", "type"});
+  r.report_unknown(body_key_names("geometry:Extrusion"));
   return e;
 }
 
@@ -162,8 +163,7 @@ Geometry read_elevation_grid(LoadContext& ctx, MappingReader& r) {
     ctx.report("geometry-degenerate", r.node(),
                "an ElevationGrid needs x_dimension * z_dimension = " + std::to_string(g.x_dimension * g.z_dimension) +
                    " heights, found " + std::to_string(g.height.size()));
-  r.report_unknown({"x_dimension", "z_dimension", "x_spacing", "z_spacing", "height", "ccw", "crease_angle",
-                    "tex_coord", "solid", "type"});
+  r.report_unknown(body_key_names("geometry:ElevationGrid"));
   return g;
 }
 
@@ -186,8 +186,7 @@ MeshGeometry read_mesh_keys(LoadContext& ctx, MappingReader& r) {
       break;
     }
   }
-  r.report_unknown({"vertices", "faces", "tex_coords", "tex_coord_indices", "crease_angle", "normals", "normal_indices",
-                    "solid", "remove_redundant_vertices", "type"});
+  r.report_unknown(body_key_names("geometry:IndexedFaceSet"));  // TriangleMesh: the same keys
   return m;
 }
 
@@ -240,7 +239,7 @@ Geometry read_resource_geometry(LoadContext& ctx, MappingReader& r) {
   if (auto metadata = r.take({"metadata"})) read_mesh_metadata(ctx, metadata, mesh);
   if (auto crease = take_optional_angle(r, {"crease_angle", "creaseAngle"})) mesh.crease_angle = *crease;
   r.take({"remove_redundant_vertices", "removeRedundantVertices"});
-  r.report_unknown({"uri", "node", "fragment", "metadata", "crease_angle", "remove_redundant_vertices", "type"});
+  r.report_unknown(body_key_names("geometry:Resource"));
   return mesh;
 }
 
@@ -282,10 +281,7 @@ std::optional<Geometry> read_geometry(LoadContext& ctx, const yaml::NodeRef& geo
   if (t == "IndexedFaceSet") return read_indexed_face_set(ctx, r);
   if (t == "TriangleMesh") return read_triangle_mesh(ctx, r);
   if (t == "Resource") return read_resource_geometry(ctx, r);
-  static const std::vector<std::string_view> kTypes = {"Box",          "Sphere",    "Cylinder",      "Cone",
-                                                       "Capsule",      "Extrusion", "ElevationGrid", "IndexedFaceSet",
-                                                       "TriangleMesh", "Resource"};
-  std::string_view guess = text::suggest(t, kTypes);
+  std::string_view guess = text::suggest(t, geometry_type_names());
   ctx.report("geometry-unknown-type", type, "unknown geometry \"" + std::string(t) + "\"",
              guess.empty() ? std::string() : "did you mean " + std::string(guess) + "?");
   return std::nullopt;

@@ -1,37 +1,13 @@
 #include "load/link_reader.h"
 
+#include <bodyfmt/body_keys.h>
+
 #include "load/mapping_reader.h"
 #include "load/scalar.h"
 #include "load/values.h"
 
 namespace bodyfmt::detail {
 namespace {
-
-const std::vector<std::string_view> kLinkKeys = {"type",
-                                                 "name",
-                                                 "parent",
-                                                 "joint_name",
-                                                 "translation",
-                                                 "rotation",
-                                                 "joint_type",
-                                                 "joint_axis",
-                                                 "joint_id",
-                                                 "actuation_mode",
-                                                 "joint_angle",
-                                                 "joint_displacement",
-                                                 "joint_range",
-                                                 "max_joint_velocity",
-                                                 "joint_velocity_range",
-                                                 "max_joint_effort",
-                                                 "joint_axis_inertia",
-                                                 "rotor_inertia",
-                                                 "gear_ratio",
-                                                 "center_of_mass",
-                                                 "mass",
-                                                 "inertia",
-                                                 "material",
-                                                 "elements",
-                                                 "import"};
 
 std::optional<JointType> parse_joint_type(std::string_view s) {
   if (s == "fixed") return JointType::kFixed;
@@ -218,7 +194,7 @@ LinkEntry read_link(LoadContext& ctx, const yaml::NodeRef& node, Model& model, R
                "link \"" + link().name + "\" has no mass data; Choreonoid uses 1 kg with identity inertia",
                "add mass, center_of_mass and inertia");
   }
-  r.report_unknown(kLinkKeys);
+  r.report_unknown(body_key_names("link"));
   return entry;
 }
 

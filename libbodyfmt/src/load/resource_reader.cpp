@@ -1,5 +1,7 @@
 #include "load/resource_reader.h"
 
+#include <bodyfmt/body_keys.h>
+
 #include <bodyfmt/read_file.h>
 #include "load/body_reader.h"
 #include "load/geometry.h"
@@ -62,8 +64,7 @@ class Resources final : public ResourceReader {
         if (auto v = read_vec3(ctx_, s)) X.linear() = X.linear() * v->asDiagonal();
     inner = reader.push_frame(frame, X);
     r.take({"crease_angle", "creaseAngle"});
-    r.report_unknown(
-        {"type", "name", "uri", "node", "fragment", "metadata", "translation", "rotation", "scale", "crease_angle"});
+    r.report_unknown(body_key_names("element:Resource"));
     if (!uri) {
       ctx_.report("load-missing-key", node, "key \"uri\" is not found in a Resource node");
       return;
@@ -231,9 +232,7 @@ class Resources final : public ResourceReader {
       model_.extra_joints.push_back(joint);
     }
     apply_subbody_overrides(ctx_, r, model_, base, this);
-    r.report_unknown({"type", "uri", "prefix", "suffix", "device_prefix", "joint_id_offset", "parent", "name",
-                      "translation", "rotation", "joint_type", "joint_axis", "joint_id", "joint_range",
-                      "max_joint_velocity", "material", "elements"});
+    r.report_unknown(body_key_names("link:SubBody"));
   }
 
   void read_continuous_track(const yaml::NodeRef& node, std::vector<LinkEntry>& entries) {

@@ -1,5 +1,7 @@
 #include "load/uri.h"
 
+#include <bodyfmt/body_keys.h>
+
 #include "load/mapping_reader.h"
 
 #include <bodyfmt/package_map.h>
@@ -87,7 +89,7 @@ void read_mesh_metadata(LoadContext& ctx, const yaml::NodeRef& metadata, MeshRes
     else if (axis->scalar() != "Z")
       ctx.report("load-ignored-value", axis, "upper_axis must be Y or Z");
   }
-  r.report_unknown({"length_unit", "upper_axis"});
+  r.report_unknown(body_key_names("metadata"));
 }
 
 std::string file_identity(const std::string& path) {

@@ -1,0 +1,17 @@
+#pragma once
+// What the model knows about a link, for hover: its mass, its subtree's combined mass, its
+// joint type and its world frame at the initial pose (libbodyfmt's mass and pose code).
+
+#include "language_features.h"
+
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace bodyfmt::lsp {
+
+/// Markdown about link `name` of the document's model; nullopt when no model is loaded or
+/// it has no such link.
+std::optional<std::string> link_markdown(const Document& document, std::string_view name);
+
+}  // namespace bodyfmt::lsp
