@@ -25,6 +25,8 @@
 (setq bodyls-program (bodyls-test--get 'server))
 (setq make-backup-files nil create-lockfiles nil auto-save-default nil)
 (setq eglot-sync-connect t eglot-autoshutdown nil)
+;; Whole messages per read: 130 diagnostics are about 60 kB of JSON (4 kB reads by default).
+(setq read-process-output-max (* 1024 1024))
 
 ;; One server for every model: the whole plan is one project.
 (let ((root (file-name-as-directory (expand-file-name (bodyls-test--get 'root_dir)))))
