@@ -17,6 +17,7 @@ a column counted in bytes, code points or UTF-16 units differs.
 Severities compare as LSP's: bodycheck's fatal and error are 1, warning 2, note 3 (or 4).
 Prints the editor's wall time and the median time from opening a model to its diagnostics.
 """
+import concurrent.futures
 import glob
 import json
 import os
@@ -135,15 +136,19 @@ def main():
         print(f"FAIL: no models under {root}")
         return 1
 
-    expected = {}
-    plan_models = []
-    failures = []
-    for path in models:
+    def expectations(path):
         with open(path, encoding="utf-8") as f:
             text = f.read()
         edited = (text if text.endswith("\n") or not text else text + "\n") + EDIT_LINE + "\n"
-        opened = expected_keys(bodycheck_findings(bodycheck, path))
-        after_edit = expected_keys(bodycheck_findings(bodycheck, path, edited))
+        return path, text, edited, expected_keys(bodycheck_findings(bodycheck, path)), \
+            expected_keys(bodycheck_findings(bodycheck, path, edited))
+
+    expected = {}
+    plan_models = []
+    failures = []
+    with concurrent.futures.ThreadPoolExecutor(2) as pool:  # CI's two cores
+        found = list(pool.map(expectations, models))
+    for path, text, edited, opened, after_edit in found:
         if not set(after_edit) - set(opened):
             failures.append(f"{path}: the edit adds no finding for bodycheck: the edit checks nothing")
         expected[path] = {"text": text, "edited": edited, "opened": opened, "edited_keys": after_edit}
