@@ -5,17 +5,19 @@
 ;;   (load "/path/to/bodyfmt/editors/emacs/bodyls.el")
 ;;
 ;; *.body files then open in `body-mode' (YAML-like: `#' comments, keys highlighted, two-space
-;; indents), and eglot starts bodyls, the Body-format language server, for them.  Set
+;; indents), and eglot starts bodyls, the Body-format language server, for them; C-c C-v
+;; (`bodyls-open-viewer') opens the model in bodyview beside the editor.  Set
 ;; `bodyls-program' when bodyls is not on `exec-path'.  Needs eglot (built into Emacs 29; Debian's
 ;; elpa-eglot for Emacs 28).
 
 ;;; Code:
 
-(unless (require 'eglot nil t)
-  ;; An eglot installed as a package (ELPA, Debian's elpa-eglot) is on the load path only once
-  ;; the package system is initialised, which `emacs --batch' and some init files never do.
-  (package-initialize)
-  (require 'eglot))
+(eval-and-compile
+  (unless (require 'eglot nil t)
+    ;; An eglot installed as a package (ELPA, Debian's elpa-eglot) is on the load path only
+    ;; once the package system is initialised, which `emacs --batch' and some init files never do.
+    (package-initialize)
+    (require 'eglot)))
 
 (defgroup bodyls nil
   "Choreonoid Body files with the bodyls language server."
@@ -59,6 +61,22 @@
 
 (add-to-list 'eglot-server-programs
              `(body-mode . ,(lambda (&optional _interactive) (list bodyls-program))))
+
+(defun bodyls-open-viewer ()
+  "Open the current model in bodyview beside the editor.
+bodyls serves the model's page with `bodyview --serve' (it reloads
+on save) and answers with its address, which is opened with
+`browse-url' and returned."
+  (interactive)
+  (let* ((server (or (eglot-current-server) (user-error "bodyls is not running for this buffer")))
+         (result (eglot-execute-command server "bodyls.openViewer"
+                                        (vector (eglot--path-to-uri (buffer-file-name)))))
+         (url (plist-get result :url)))
+    (when (and url (called-interactively-p 'interactive))
+      (browse-url url))
+    url))
+
+(define-key body-mode-map (kbd "C-c C-v") #'bodyls-open-viewer)
 
 (defun bodyls--maybe-start ()
   (when bodyls-start-eglot (eglot-ensure)))

@@ -15,6 +15,17 @@ function activate(context) {
     },
   });
   context.subscriptions.push(client);
+  // bodyls serves the model with bodyview --serve and asks the editor to show the page.
+  context.subscriptions.push(
+    vscode.commands.registerCommand("bodyls.view", () => {
+      const editor = vscode.window.activeTextEditor;
+      if (!editor || editor.document.languageId !== "body") return undefined;
+      return client.sendRequest("workspace/executeCommand", {
+        command: "bodyls.openViewer",
+        arguments: [editor.document.uri.toString()],
+      });
+    })
+  );
   return client.start();
 }
 

@@ -1,5 +1,6 @@
 -- Choreonoid Body files in Neovim's built-in LSP client: *.body files get the filetype `body`
--- (YAML syntax, two-space indents) and bodyls, the Body-format language server.
+-- (YAML syntax, two-space indents), bodyls, the Body-format language server, and :BodyView,
+-- which opens the model in bodyview beside the editor.
 --
 --   vim.opt.runtimepath:append("/path/to/bodyfmt/editors/nvim"); require("bodyls").setup()
 --
@@ -54,6 +55,23 @@ function M.start(bufnr)
   return id
 end
 
+-- Has bodyls open the buffer's model in bodyview (its --serve page, which reloads on save); the
+-- server answers with the page's URL and asks the editor to show it.
+function M.open_viewer(bufnr, on_url)
+  bufnr = (bufnr == nil or bufnr == 0) and vim.api.nvim_get_current_buf() or bufnr
+  local params = { command = "bodyls.openViewer", arguments = { vim.uri_from_bufnr(bufnr) } }
+  vim.lsp.buf_request(bufnr, "workspace/executeCommand", params, function(err, result)
+    if err then
+      vim.notify("bodyls: " .. err.message, vim.log.levels.ERROR)
+    elseif result and result.url then
+      vim.notify("bodyview: " .. result.url)
+    end
+    if on_url then
+      on_url(result and result.url, err)
+    end
+  end)
+end
+
 function M.setup(opts)
   M.config = vim.tbl_extend("force", M.config, opts or {})
   local group = vim.api.nvim_create_augroup("bodyls", { clear = true })
@@ -74,6 +92,9 @@ function M.setup(opts)
       bo.expandtab = true
       bo.shiftwidth = 2
       bo.softtabstop = 2
+      vim.api.nvim_buf_create_user_command(args.buf, "BodyView", function()
+        M.open_viewer(args.buf)
+      end, { desc = "Open this model in bodyview" })
       M.start(args.buf)
     end,
   })

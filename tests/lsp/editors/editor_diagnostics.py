@@ -15,6 +15,8 @@ its own, from the text. EDIT_LINE puts non-ASCII text and a surrogate pair befor
 a column counted in bytes, code points or UTF-16 units differs.
 
 Severities compare as LSP's: bodycheck's fatal and error are 1, warning 2, note 3 (or 4).
+Then the set-up's viewer command (:BodyView, C-c C-v) opens the first model in bodyview: its
+page must be served.
 Prints the editor's wall time and the median time from opening a model to its diagnostics.
 """
 import concurrent.futures
@@ -108,6 +110,25 @@ def differences(what, got, expected):
     return out
 
 
+def viewer_failures(viewer):
+    """:BodyView (Neovim) or C-c C-v (Emacs) has bodyls open the model in bodyview: the server
+    answers with the page's URL, asks the editor to show it (window/showDocument, or a message
+    naming it; eglot's command opens the URL it answers itself), and the page is there."""
+    if not viewer:
+        return ["BodyView: no result"]
+    url = viewer.get("url")
+    if not url:
+        return [f"BodyView: no URL ({viewer.get('error')})"]
+    failures = []
+    if viewer.get("shown") != url and url not in (viewer.get("message") or ""):
+        failures.append(f"BodyView: the editor was not asked to show {url} (shown {viewer.get('shown')!r}, "
+                        f"message {viewer.get('message')!r})")
+    page = viewer.get("page") or ""
+    if not page.startswith(("HTTP/1.0 200", "HTTP/1.1 200")) or "<!doctype html>" not in page.lower():
+        failures.append(f"BodyView: GET {url} did not answer the page: {page[:200]!r}")
+    return failures
+
+
 def run_editor(editor, program, plan_path, result_path, work, here):
     env = dict(os.environ, BODYLS_PLAN=plan_path, BODYLS_RESULT=result_path, HOME=work, XDG_CONFIG_HOME=work,
                XDG_DATA_HOME=work, XDG_STATE_HOME=work, XDG_CACHE_HOME=work)
@@ -156,6 +177,7 @@ def main():
 
     plan = {"server": os.path.abspath(server), "editors_dir": os.path.abspath(editors_dir), "root_dir": root,
             "timeout_ms": int(10000 * SCALE), "edit_line": EDIT_LINE, "models": plan_models}
+    plan["viewer"] = models[0]
     plan_path = os.path.join(work, f"{editor}_plan.json")
     result_path = os.path.join(work, f"{editor}_result.json")
     with open(plan_path, "w", encoding="utf-8") as f:
@@ -190,6 +212,8 @@ def main():
             shown, raw = editor_keys(entry[step], {path: text})
             failures += differences(f"{name} {step} ({editor})", shown, keys)
             failures += differences(f"{name} {step} (server's positions from UTF-16)", raw, keys)
+
+    failures += viewer_failures(result.get("viewer"))
 
     for f in failures:
         print("FAIL: " + f)

@@ -42,8 +42,12 @@
 (defvar bodyls-test--versioned nil "Whether the server has named a document version.")
 (defvar bodyls-test--notes nil)
 
+(defvar bodyls-test--message nil "The server's last window/showMessage.")
+
 (advice-add 'eglot-handle-notification :after
             (lambda (_server method &rest params)
+              (when (eq method 'window/showMessage)
+                (setq bodyls-test--message (plist-get params :message)))
               (when (eq method 'textDocument/publishDiagnostics)
                 (let ((seen (gethash (plist-get params :uri) bodyls-test--published)))
                   (when (plist-get params :version) (setq bodyls-test--versioned t))
@@ -170,16 +174,34 @@ keeps them), and the server's own numbers."
     (kill-buffer)
     (nreverse entry)))
 
+(defun bodyls-test--viewer (path)
+  "C-c C-v (`bodyls-open-viewer') on PATH: the URL bodyls answers with and the first bytes of
+the page there."
+  (find-file path)
+  (run-hooks 'post-command-hook)
+  (let* ((url (bodyls-open-viewer))
+         (url-proxy-services nil)
+         (page (and url (with-current-buffer (url-retrieve-synchronously url t t (/ (bodyls-test--get 'timeout_ms) 1000))
+                          (buffer-substring-no-properties (point-min) (min (point-max) 400))))))
+    (accept-process-output nil 0.1)  ; the message the server sends beside its answer
+    `((url . ,url) (message . ,bodyls-test--message) (page . ,page))))
+
+(defvar bodyls-test--viewer nil)
+
 (let ((result nil))
   (condition-case failure
-      (dolist (model (bodyls-test--get 'models))
-        (push (bodyls-test--model model) result))
+      (progn
+        (dolist (model (bodyls-test--get 'models))
+          (push (bodyls-test--model model) result))
+        (when (bodyls-test--get 'viewer)
+          (setq bodyls-test--viewer (bodyls-test--viewer (bodyls-test--get 'viewer)))))
     (error (setq result (cons `((error . ,(error-message-string failure))) result))))
   (let ((error-entry (cl-find-if (lambda (e) (alist-get 'error e)) result)))
     (with-temp-file (getenv "BODYLS_RESULT")
       (insert (json-encode
                `((models . ,(vconcat (nreverse (cl-remove-if (lambda (e) (alist-get 'error e)) result))))
                  (notes . ,(vconcat (reverse bodyls-test--notes)))
+                 (viewer . ,bodyls-test--viewer)
                  (error . ,(and error-entry (alist-get 'error error-entry)))))))))
 
 (kill-emacs 0)

@@ -5,8 +5,9 @@
 --
 --   BODYLS_PLAN=plan.json BODYLS_RESULT=out.json nvim --headless -u NONE -i NONE -n -c "luafile nvim_session.lua"
 --
--- The plan: {server, editors_dir, root_dir, timeout_ms, edit_line, models: [{path, opened, edited}]},
--- `opened` and `edited` the number of bodycheck's findings by file, before and after the edit.
+-- The plan: {server, editors_dir, root_dir, timeout_ms, edit_line, models: [{path, opened, edited}],
+-- viewer}, `opened` and `edited` the number of bodycheck's findings by file, before and after the
+-- edit; `viewer` a model to open in bodyview with :BodyView at the end.
 local plan = vim.fn.json_decode(table.concat(vim.fn.readfile(os.getenv("BODYLS_PLAN")), "\n"))
 local result = { models = {}, notes = {} }
 
@@ -144,6 +145,64 @@ local function run_model(model)
   vim.cmd("bwipeout!")
 end
 
+-- The first bytes of the answer to GET / at `url` (an http://127.0.0.1:PORT/ address).
+local function http_get(url)
+  local host, port = url:match("^http://([%d%.]+):(%d+)/")
+  if not host then
+    return "not a loopback URL"
+  end
+  local chunks, finished = {}, false
+  local tcp = vim.loop.new_tcp()
+  tcp:connect(host, tonumber(port), function(err)
+    if err then
+      table.insert(chunks, "connect: " .. err)
+      finished = true
+      return
+    end
+    tcp:write("GET / HTTP/1.0\r\nHost: " .. host .. ":" .. port .. "\r\n\r\n")
+    tcp:read_start(function(read_err, chunk)
+      if read_err or not chunk then
+        tcp:close()
+        finished = true
+      else
+        table.insert(chunks, chunk)
+      end
+    end)
+  end)
+  vim.wait(plan.timeout_ms, function()
+    return finished
+  end, 5)
+  return table.concat(chunks):sub(1, 400)
+end
+
+-- :BodyView on a model: the server's answer, what it asked the editor to show, and the page.
+local function check_viewer(path)
+  local entry = {}
+  result.viewer = entry
+  vim.lsp.handlers["window/showDocument"] = function(_, params)
+    entry.shown = params.uri
+    return { success = true }
+  end
+  local show_message = vim.lsp.handlers["window/showMessage"]
+  vim.lsp.handlers["window/showMessage"] = function(err, params, ctx, config)
+    entry.message = params.message
+    return show_message(err, params, ctx, config)
+  end
+  vim.cmd("edit " .. vim.fn.fnameescape(path))
+  local done = false
+  require("bodyls").open_viewer(0, function(url, err)
+    entry.url = url
+    entry.error = err and err.message
+    done = true
+  end)
+  vim.wait(plan.timeout_ms, function()
+    return done and (entry.error or entry.shown or entry.message)
+  end, 5)
+  if entry.url then
+    entry.page = http_get(entry.url)
+  end
+end
+
 local ok, failure = pcall(function()
   vim.o.swapfile = false
   vim.o.hidden = true
@@ -159,6 +218,9 @@ local ok, failure = pcall(function()
   })
   for _, model in ipairs(plan.models) do
     run_model(model)
+  end
+  if plan.viewer then
+    check_viewer(plan.viewer)
   end
 end)
 if not ok then

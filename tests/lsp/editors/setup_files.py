@@ -39,6 +39,9 @@ def main():
               "vscode/package.json: no language `body` for .body files")
         check("onLanguage:body" in package.get("activationEvents", []),
               "vscode/package.json: not activated on the language body")
+        commands = package.get("contributes", {}).get("commands", [])
+        check(any(c.get("command") == "bodyls.view" for c in commands),
+              "vscode/package.json: the command bodyls.view is not contributed")
         check(os.path.isfile(os.path.join(editors, "vscode", package.get("main", ""))),
               f"vscode/package.json: main {package.get('main')!r} is no file")
         setting = package.get("contributes", {}).get("configuration", {}).get("properties", {}).get("bodyls.path", {})
@@ -59,6 +62,8 @@ def main():
         source = read("vscode", "extension.js")
         check('require("vscode-languageclient/node")' in source and 'language: "body"' in source,
               "vscode/extension.js: does not start vscode-languageclient for the language body")
+        check('registerCommand("bodyls.view"' in source and '"bodyls.openViewer"' in source,
+              "vscode/extension.js: no command bodyls.view asking bodyls.openViewer")
     except OSError as e:
         failures.append(str(e))
 
