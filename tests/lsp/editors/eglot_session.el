@@ -25,6 +25,8 @@
 (setq bodyls-program (bodyls-test--get 'server))
 (setq make-backup-files nil create-lockfiles nil auto-save-default nil)
 (setq eglot-sync-connect t eglot-autoshutdown nil)
+;; No events buffer: eglot pretty-prints every message into it (a second per large model here).
+(setq eglot-events-buffer-size 0)
 ;; Whole messages per read: 130 diagnostics are about 60 kB of JSON (4 kB reads by default).
 (setq read-process-output-max (* 1024 1024))
 
@@ -101,12 +103,16 @@ diagnostics are is editor_diagnostics.py's to judge; a step that does not settle
   "What flymake shows: the visited buffer's diagnostics (line and byte column of their start as
 eglot placed them) and the list-only ones of files not visited (line and UTF-16 column, as eglot
 keeps them), and the server's own numbers."
-  (let (shown raw)
-    (dolist (d (flymake-diagnostics))
+  (let (shown raw (line 1) (from (point-min)))
+    ;; In buffer order, counting lines from the previous one: line-number-at-pos counts from the
+    ;; start each time.
+    (dolist (d (sort (flymake-diagnostics) (lambda (a b) (< (flymake-diagnostic-beg a) (flymake-diagnostic-beg b)))))
       (save-excursion
         (goto-char (flymake-diagnostic-beg d))
+        (setq line (+ line (count-lines from (line-beginning-position)))
+              from (line-beginning-position))
         (push `((file . ,(buffer-file-name))
-                (line . ,(line-number-at-pos))
+                (line . ,line)
                 (column . ,(1+ (length (encode-coding-string
                                         (buffer-substring-no-properties (line-beginning-position) (point))
                                         'utf-8))))
