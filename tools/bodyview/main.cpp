@@ -67,7 +67,8 @@ int main(int argc, char** argv) {
   }
   // Without a page nobody sees the findings but here: they are printed in full.
   if (written)
-    bodyview::report_page_findings(front, r.diagnostics, verbose, output == "-" ? "on standard output" : output);
+    bodyview::report_page_findings(front, r.diagnostics, verbose,
+                                   output == "-" ? "written to standard output" : output);
   else
     front.print(r.diagnostics);
   front.print(commit.diagnostics());
