@@ -140,7 +140,7 @@ code, out, err = run("bodydiff", imported, wrapper)
 expect(code == 0 and not out, f"bodydiff urdf2body's SR1.body and the wrapper: exit {code}\n{out[-2000:]}{err[-2000:]}")
 for args in (["body2gltf", wrapper, "-o", os.path.join(WORK, "exports", "wrapper", "SR1.glb")],
              ["bodysim", "check", wrapper], ["bodycheck", wrapper],
-             ["bodyview", wrapper, "-q", "-o", os.path.join(WORK, "exports", "wrapper", "SR1.html")]):
+             ["bodyview", wrapper, "-q", "--verbose", "-o", os.path.join(WORK, "exports", "wrapper", "SR1.html")]):
     if not os.path.exists(os.path.join(BIN, args[0])):
         continue  # bodysim and bodyview are optional
     code, out, err = run(*args)

@@ -7,6 +7,7 @@
 #include "front.h"
 #include "page.h"
 #include "render.h"
+#include "report.h"
 #include "serve.h"
 
 #include <bodyfmt/converters/output_set.h>
@@ -20,6 +21,7 @@ int main(int argc, char** argv) {
   tools::Front front("bodyview", "Show a Choreonoid .body model in a browser: one self-contained HTML file", {});
   std::string output;
   bool serve = false;
+  bool verbose = false;
   int port = 0;
   CLI::App& app = front.app();
   auto* o = app.add_option("-o,--output", output,
@@ -29,6 +31,9 @@ int main(int argc, char** argv) {
                          "changes (until interrupted)");
   app.add_option("--port", port, "the port for --serve (default: any free one)")->check(CLI::Range(0, 65535))->needs(s);
   s->excludes(o);
+  app.add_flag("--verbose", verbose,
+               "print every finding (default: one summary line, as the page lists them; findings are printed "
+               "in full when no page is written)");
   if (auto code = front.parse(argc, argv)) return *code;
   // Without -o the page goes to the current folder, named after the model, as a download
   // would: the model's own folder may be read-only or shared (a package, a corpus), and a
@@ -49,19 +54,25 @@ int main(int argc, char** argv) {
   const std::string& path = front.inputs().front();
   auto policy = front.policy_for(path);
   if (!policy) return tools::kExitFatal;
-  if (serve) return bodyview::serve(front, *policy, path, assets, port);
+  if (serve) return bodyview::serve(front, *policy, path, assets, port, verbose);
 
   bodyview::Rendered r = bodyview::render(front, *policy, path, assets, "");
   bool written = false;
+  CollectingSink commit;
   if (r.page && r.model) {
     converters::OutputSet out(output);
     converters::protect_inputs(out, *r.model);
     out.set_main(std::move(*r.page));
-    CollectingSink commit;
     written = out.commit(commit);
-    for (const Diagnostic& d : commit.diagnostics()) r.diagnostics.push_back(d);
   }
-  front.print(r.diagnostics);
+  // Without a page nobody sees the findings but here: they are printed in full.
+  if (written)
+    bodyview::report_page_findings(front, r.diagnostics, verbose,
+                                   output == "-" ? "written to standard output" : output);
+  else
+    front.print(r.diagnostics);
+  front.print(commit.diagnostics());
+  for (const Diagnostic& d : commit.diagnostics()) r.diagnostics.push_back(d);
   if (!written) front.print_error(output + " was not written");
   if (written && output != "-") std::cerr << "bodyview: wrote " << output << " (open it in a browser)\n";
   return tools::exit_code(r.diagnostics, policy->exit, !written);

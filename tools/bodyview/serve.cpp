@@ -1,6 +1,7 @@
 #include "serve.h"
 
 #include "render.h"
+#include "report.h"
 
 #include <bodyfmt/text.h>
 
@@ -105,7 +106,7 @@ void close_connection(Connection& c) {
 }  // namespace
 
 int serve(tools::Front& front, const tools::Front::FilePolicy& policy, const std::string& path,
-          const std::filesystem::path& assets, int port) {
+          const std::filesystem::path& assets, int port, bool verbose) {
   const int listener = ::socket(AF_INET, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
   int yes = 1;
   ::setsockopt(listener, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
@@ -144,7 +145,12 @@ int serve(tools::Front& front, const tools::Front::FilePolicy& policy, const std
     for (const Diagnostic& d : r.diagnostics)
       if (d.severity == Severity::kFatal || d.severity == Severity::kError)
         error_text += format_text_diagnostic(d, front.sources(), plain);
-    front.print(r.diagnostics);
+    // A load that keeps the last good page shows its errors over it, but a failed first load
+    // leaves no page: those are printed in full.
+    if (r.page)
+      report_page_findings(front, r.diagnostics, verbose, "http://127.0.0.1:" + port_text + "/");
+    else
+      front.print(r.diagnostics);
     if (r.page) {
       page = std::make_shared<const std::string>(std::move(*r.page));
       ++generation;

@@ -13,8 +13,8 @@ namespace bodyfmt::bodyview {
 
 /// Serves until interrupted (SIGINT/SIGTERM: exit 0). `port` 0 picks a free one; the URL is
 /// printed to standard output. Returns 2 when the socket cannot be opened or the first load is
-/// fatal.
+/// fatal. A page's findings are printed as one summary line unless `verbose`.
 int serve(tools::Front& front, const tools::Front::FilePolicy& policy, const std::string& path,
-          const std::filesystem::path& assets, int port);
+          const std::filesystem::path& assets, int port, bool verbose);
 
 }  // namespace bodyfmt::bodyview

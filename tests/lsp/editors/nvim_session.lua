@@ -1,0 +1,230 @@
+-- One headless Neovim session through editors/nvim (the set-up users load): opens each model of
+-- the plan in turn, waits for bodyls's diagnostics, makes the plan's edit, waits, undoes it,
+-- waits, and writes what Neovim holds after each step as JSON. The comparison with bodycheck is
+-- editor_diagnostics.py's.
+--
+--   BODYLS_PLAN=plan.json BODYLS_RESULT=out.json nvim --headless -u NONE -i NONE -n -c "luafile nvim_session.lua"
+--
+-- The plan: {server, editors_dir, root_dir, timeout_ms, edit_line, models: [{path, opened, edited}],
+-- viewer}, `opened` and `edited` the number of bodycheck's findings by file, before and after the
+-- edit; `viewer` a model to open in bodyview with :BodyView at the end.
+local plan = vim.fn.json_decode(table.concat(vim.fn.readfile(os.getenv("BODYLS_PLAN")), "\n"))
+local result = { models = {}, notes = {} }
+
+local function write_result()
+  vim.fn.writefile({ vim.fn.json_encode(result) }, os.getenv("BODYLS_RESULT"))
+end
+
+-- Every publishDiagnostics by URI: how many so far, the last one's version and what the server
+-- sent (the positions before Neovim converts them, for the independent check). Kept across
+-- models: a diagnostic the server leaves behind on a closed model's files stays in the editor.
+local published = {}
+local versioned = false -- whether the server has named a document version
+local default_handler = vim.lsp.handlers["textDocument/publishDiagnostics"]
+vim.lsp.handlers["textDocument/publishDiagnostics"] = function(err, params, ctx, config)
+  default_handler(err, params, ctx, config)
+  local seen = published[params.uri] or { count = 0 }
+  seen.count = seen.count + 1
+  seen.version = params.version
+  seen.raw = params.diagnostics
+  published[params.uri] = seen
+  versioned = versioned or params.version ~= nil
+end
+
+local server_exited = false
+local function server_gone()
+  return server_exited
+end
+
+local function count(uri)
+  return published[uri] and published[uri].count or 0
+end
+
+-- Waits for the document's diagnostics after `before` publishes of them (for `version` when the
+-- server names versions: the buffer's, as Neovim sent it), then for every file to hold as many diagnostics as bodycheck finds
+-- there (`counts`: by file name): a publish for an included file may come after the document's,
+-- and one clearing the previous model's files may come late. What the diagnostics are is
+-- editor_diagnostics.py's to judge; a step that does not settle is left to it too.
+local function wait_for(buf, uri, before, counts, step)
+  local expected = {}
+  for file, n in pairs(counts) do
+    expected[vim.uri_from_fname(file)] = n
+  end
+  local function settled()
+    local seen = published[uri]
+    if not (seen and seen.count > before and (not versioned or seen.version == vim.lsp.util.buf_versions[buf])) then
+      return false
+    end
+    for u, s in pairs(published) do
+      if #(s.raw or {}) ~= (expected[u] or 0) then
+        return false
+      end
+    end
+    for u, n in pairs(expected) do
+      if n > 0 and not published[u] then
+        return false
+      end
+    end
+    return true
+  end
+  vim.wait(plan.timeout_ms, function()
+    return settled() or server_gone()
+  end, 2)
+  if server_gone() then
+    error(step .. ": the server is not running (it exited or never started)")
+  end
+  if not settled() then
+    result.unsettled = (result.unsettled or 0) + 1
+    table.insert(result.notes, string.format("%s: diagnostics for %s did not settle within %d ms", step, uri, plan.timeout_ms))
+    if result.unsettled >= 3 then
+      error("three steps did not settle: stopping")
+    end
+  end
+end
+
+-- What Neovim shows: every diagnostic of every buffer (an included file's are on its own buffer),
+-- its position in bytes as Neovim converted it, and the server's own numbers beside it.
+local function snapshot()
+  local out = {}
+  for _, b in ipairs(vim.api.nvim_list_bufs()) do
+    for _, d in ipairs(vim.diagnostic.get(b)) do
+      local lsp = d.user_data and d.user_data.lsp or {}
+      table.insert(out, {
+        file = vim.api.nvim_buf_get_name(b),
+        line = d.lnum + 1,
+        column = d.col + 1,
+        severity = d.severity,
+        code = d.code or lsp.code,
+      })
+    end
+  end
+  local raw = {}
+  for uri, seen in pairs(published) do
+    for _, d in ipairs(seen.raw or {}) do
+      table.insert(raw, {
+        file = vim.uri_to_fname(uri),
+        line = d.range.start.line,
+        character = d.range.start.character,
+        severity = d.severity,
+        code = d.code,
+      })
+    end
+  end
+  return { diagnostics = out, raw = raw }
+end
+
+local function run_model(model)
+  local entry = { path = model.path }
+  table.insert(result.models, entry)
+  local started = vim.loop.hrtime()
+  vim.cmd("edit " .. vim.fn.fnameescape(model.path))
+  local buf = vim.api.nvim_get_current_buf()
+  if vim.bo[buf].filetype ~= "body" then
+    error(model.path .. ": filetype " .. vim.bo[buf].filetype .. ", not body")
+  end
+  local uri = vim.uri_from_bufnr(buf)
+  wait_for(buf, uri, count(uri), model.opened, model.path .. ": open")
+  entry.opened = snapshot()
+  entry.open_ms = (vim.loop.hrtime() - started) / 1e6
+
+  local lines = vim.api.nvim_buf_line_count(buf)
+  local before = count(uri)
+  started = vim.loop.hrtime()
+  vim.api.nvim_buf_set_lines(buf, lines, lines, false, { plan.edit_line })
+  wait_for(buf, uri, before, model.edited, model.path .. ": edit")
+  entry.edited = snapshot()
+  entry.edit_ms = (vim.loop.hrtime() - started) / 1e6
+
+  before = count(uri)
+  vim.cmd("silent undo")
+  if vim.api.nvim_buf_line_count(buf) ~= lines then
+    error(model.path .. ": undo left " .. vim.api.nvim_buf_line_count(buf) .. " lines, not " .. lines)
+  end
+  wait_for(buf, uri, before, model.opened, model.path .. ": undo")
+  entry.undone = snapshot()
+  vim.cmd("bwipeout!")
+end
+
+-- The first bytes of the answer to GET / at `url` (an http://127.0.0.1:PORT/ address).
+local function http_get(url)
+  local host, port = url:match("^http://([%d%.]+):(%d+)/")
+  if not host then
+    return "not a loopback URL"
+  end
+  local chunks, finished = {}, false
+  local tcp = vim.loop.new_tcp()
+  tcp:connect(host, tonumber(port), function(err)
+    if err then
+      table.insert(chunks, "connect: " .. err)
+      finished = true
+      return
+    end
+    tcp:write("GET / HTTP/1.0\r\nHost: " .. host .. ":" .. port .. "\r\n\r\n")
+    tcp:read_start(function(read_err, chunk)
+      if read_err or not chunk then
+        tcp:close()
+        finished = true
+      else
+        table.insert(chunks, chunk)
+      end
+    end)
+  end)
+  vim.wait(plan.timeout_ms, function()
+    return finished
+  end, 5)
+  return table.concat(chunks):sub(1, 400)
+end
+
+-- :BodyView on a model: the server's answer, what it asked the editor to show, and the page.
+local function check_viewer(path)
+  local entry = {}
+  result.viewer = entry
+  vim.lsp.handlers["window/showDocument"] = function(_, params)
+    entry.shown = params.uri
+    return { success = true }
+  end
+  local show_message = vim.lsp.handlers["window/showMessage"]
+  vim.lsp.handlers["window/showMessage"] = function(err, params, ctx, config)
+    entry.message = params.message
+    return show_message(err, params, ctx, config)
+  end
+  vim.cmd("edit " .. vim.fn.fnameescape(path))
+  local done = false
+  require("bodyls").open_viewer(0, function(url, err)
+    entry.url = url
+    entry.error = err and err.message
+    done = true
+  end)
+  vim.wait(plan.timeout_ms, function()
+    return done and (entry.error or entry.shown or entry.message)
+  end, 5)
+  if entry.url then
+    entry.page = http_get(entry.url)
+  end
+end
+
+local ok, failure = pcall(function()
+  vim.o.swapfile = false
+  vim.o.hidden = true
+  vim.opt.runtimepath:append(plan.editors_dir .. "/nvim")
+  -- Edits are sent at once: the server's own debounce is what a check waits for.
+  require("bodyls").setup({
+    cmd = { plan.server },
+    root_dir = plan.root_dir,
+    flags = { debounce_text_changes = 0 },
+    on_exit = function()
+      server_exited = true
+    end,
+  })
+  for _, model in ipairs(plan.models) do
+    run_model(model)
+  end
+  if plan.viewer then
+    check_viewer(plan.viewer)
+  end
+end)
+if not ok then
+  result.error = tostring(failure)
+end
+write_result()
+vim.cmd("qall!")
