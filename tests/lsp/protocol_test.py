@@ -381,6 +381,102 @@ def included_file_findings():
         c.kill()
 
 
+# ---- code actions ----------------------------------------------------------------------------
+
+UPGRADE_KIND = "quickfix.bodyfmt.upgrade"
+
+
+def fix_edits(findings, safety, texts):
+    """bodycheck's fix-its of one safety class as (uri, start, end, new text), converted here."""
+    out = set()
+    for f in findings:
+        for x in f["fixes"]:
+            if x["safety"] != safety:
+                continue
+            data = texts.setdefault(x["file"], open(x["file"], "rb").read())
+
+            def pos(offset):
+                before = data[:offset]
+                line = before.count(b"\n")
+                start = before.rfind(b"\n") + 1
+                return (line, utf16_column(data[start:], offset - start + 1))
+            out.add((uri_of(x["file"]), pos(x["offset"]), pos(x["offset"] + x["length"]), x["replacement"]))
+    return out
+
+
+def action_edits(actions):
+    out = set()
+    for a in actions:
+        for uri, edits in a.get("edit", {}).get("changes", {}).items():
+            for e in edits:
+                r = e["range"]
+                out.add((uri, (r["start"]["line"], r["start"]["character"]), (r["end"]["line"], r["end"]["character"]),
+                         e["newText"]))
+    return out
+
+
+def whole(text):
+    return {"start": {"line": 0, "character": 0}, "end": {"line": text.count("\n") + 1, "character": 0}}
+
+
+@case
+def code_actions_safety_classes():
+    path = corpus_models()[0]  # SR1: format 1.0 with legacy keys
+    with open(path, encoding="utf-8") as f:
+        text = f.read()
+    uri = uri_of(path)
+    findings = bodycheck_json(path)
+    safe, upgrade = fix_edits(findings, "safe", {}), fix_edits(findings, "upgrade", {})
+    assert safe and upgrade, "the test needs safe and upgrade fix-its in %s" % path
+    c = client()
+    try:
+        c.initialize()
+        c.open(uri, text)
+        c.diagnostics(uri, 1)
+        ask = {"textDocument": {"uri": uri}, "range": whole(text), "context": {"diagnostics": []}}
+        actions = c.request("textDocument/codeAction", ask)["result"]
+        assert all(a["kind"] == "quickfix" for a in actions), actions
+        assert action_edits(actions) == safe, "\n got %s\nwant %s" % (sorted(action_edits(actions))[:4], sorted(safe)[:4])
+        ask["context"]["only"] = ["quickfix"]
+        assert action_edits(c.request("textDocument/codeAction", ask)["result"]) == safe
+        ask["context"]["only"] = [UPGRADE_KIND]
+        actions = c.request("textDocument/codeAction", ask)["result"]
+        assert [a["kind"] for a in actions] == [UPGRADE_KIND], actions
+        assert action_edits(actions) == upgrade
+        # One line: only the fix-its of the findings there (formatVersion on line 2).
+        ask = {"textDocument": {"uri": uri}, "context": {"diagnostics": []},
+               "range": {"start": {"line": 1, "character": 3}, "end": {"line": 1, "character": 3}}}
+        actions = c.request("textDocument/codeAction", ask)["result"]
+        assert action_edits(actions) == {e for e in safe if e[1][0] == 1}, actions
+    finally:
+        c.kill()
+
+
+@case
+def code_actions_unsafe_never_applied():
+    folder = work_dir("code_actions_unsafe")
+    path = os.path.join(folder, "small.body")
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(SMALL)
+    uri = uri_of(path)
+    assert fix_edits(bodycheck_json(path), "unsafe", {}), "the test needs an unsafe fix-it"
+    ask = {"textDocument": {"uri": uri}, "range": whole(SMALL), "context": {"diagnostics": []}}
+    for disabled_support in (False, True):
+        c = client()
+        try:
+            c.initialize({"textDocument": {"codeAction": {"disabledSupport": disabled_support}}})
+            c.open(uri, SMALL)
+            c.diagnostics(uri, 1)
+            actions = c.request("textDocument/codeAction", ask)["result"]
+            assert not action_edits(actions), actions
+            if disabled_support:
+                assert actions and all("disabled" in a and "edit" not in a for a in actions), actions
+            else:
+                assert actions == [], actions
+        finally:
+            c.kill()
+
+
 if __name__ == "__main__":
     CASES[sys.argv[5]]()
     print("ok")
