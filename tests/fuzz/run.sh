@@ -45,13 +45,16 @@ done < <(find examples tests/data ../shared/corpus -type f -name '*.urdf' -size 
 for f in examples/*.body; do
   "$build/body2urdf" "$f" -o "$seeds/urdf_import/$(basename "$f" .body).urdf" --devices-as-frames >/dev/null 2>&1 || true
 done
-for target in yaml load urdf urdf_import mjcf gltf text_outputs fix scenario; do
+# bodyls's sessions pick their models from the examples and the corpus themselves (no seeds).
+mkdir -p "$seeds/lsp"
+for target in yaml load urdf urdf_import mjcf gltf text_outputs fix scenario lsp; do
   [ -x "$build/tests/fuzz/fuzz_$target" ] || continue  # fuzz_scenario needs Simbody
   corpus=$build/fuzz-corpus/$target
   mkdir -p "$corpus"
   seed_dir=$seeds/load
   [ "$target" = yaml ] && seed_dir=$seeds/yaml
   [ "$target" = scenario ] && seed_dir=$seeds/scenario
+  [ "$target" = lsp ] && seed_dir=$seeds/lsp
   dict=tests/fuzz/body.dict
   [ "$target" = urdf_import ] && seed_dir=$seeds/urdf_import && dict=tests/fuzz/urdf.dict
   echo "fuzz_$target: ${seconds} s"

@@ -13,21 +13,11 @@ const char* const kMethods[] = {"textDocument/hover",         "textDocument/comp
                                 "textDocument/references",    "textDocument/prepareRename", "textDocument/rename",
                                 "textDocument/documentSymbol"};
 
-TextPoint to_point(const TextLines& lines, Utf16Position position) {
-  const int line = std::clamp(position.line, 0, std::max(lines.line_count() - 1, 0));
-  if (position.line >= lines.line_count()) return {line + 1, static_cast<int>(lines.line(line).size()) + 1};
-  const std::size_t offset = lines.offset_of(position);
-  return {line + 1, static_cast<int>(offset - lines.line_start(line)) + 1};
-}
-
 json range_json(FileTexts& texts, const std::string& file, const TextRange& range) {
-  const TextLines* lines = texts.lines(file);
-  if (!lines) {
-    return to_json(
-        Utf16Range{{range.begin.line - 1, range.begin.column - 1}, {range.end.line - 1, range.end.column - 1}});
-  }
-  return to_json(Utf16Range{lines->position_of(lines->offset_of_column(range.begin.line, range.begin.column)),
-                            lines->position_of(lines->offset_of_column(range.end.line, range.end.column))});
+  if (const TextLines* lines = texts.lines(file)) return to_json(utf16_range_of(*lines, range));
+  // Unreadable: the byte columns stand for the characters.
+  return to_json(
+      Utf16Range{{range.begin.line - 1, range.begin.column - 1}, {range.end.line - 1, range.end.column - 1}});
 }
 
 int completion_kind(CompletionKind kind) {
@@ -75,6 +65,18 @@ json edits_json(FileTexts& texts, const std::vector<TextEdit>& edits) {
 
 }  // namespace
 
+TextPoint text_point_of(const TextLines& lines, Utf16Position position) {
+  const int last = std::max(lines.line_count() - 1, 0);
+  if (position.line > last) return {last + 1, static_cast<int>(lines.line(last).size()) + 1};
+  const int line = std::max(position.line, 0);
+  return {line + 1, static_cast<int>(lines.offset_of({line, position.character}) - lines.line_start(line)) + 1};
+}
+
+Utf16Range utf16_range_of(const TextLines& lines, const TextRange& range) {
+  return {lines.position_of(lines.offset_of_column(range.begin.line, range.begin.column)),
+          lines.position_of(lines.offset_of_column(range.end.line, range.end.column))};
+}
+
 bool is_feature_method(const std::string& method) {
   return std::find(std::begin(kMethods), std::end(kMethods), method) != std::end(kMethods);
 }
@@ -94,7 +96,7 @@ std::optional<json> answer_feature(const std::string& method, const json& params
     for (const Symbol& s : document_symbols(doc)) out.push_back(symbol_json(texts, document.path, s));
     return out;
   }
-  const TextPoint at = to_point(lines, position_from_json(params.at("position")));
+  const TextPoint at = text_point_of(lines, position_from_json(params.at("position")));
   if (method == "textDocument/hover") {
     const std::optional<Hover> h = hover(doc, at);
     if (!h) return json(nullptr);
