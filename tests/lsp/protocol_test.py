@@ -381,6 +381,34 @@ def included_file_findings():
         c.kill()
 
 
+@case
+def stale_check_not_published():
+    # A check long enough (a chain of 8,000 links) that an edit arrives while it runs: its
+    # findings are of a superseded text and must never be published.
+    folder = work_dir("stale_check_not_published")
+    path = os.path.join(folder, "chain.body")
+    rows = ["format: ChoreonoidBody\nformat_version: 2.0\nname: C\nroot_link: L0\nlinks:\n",
+            "  - { name: L0, joint_type: free, mass: 1, inertia: [1,0,0,0,1,0,0,0,1] }\n"]
+    rows += ["  - { name: L%d, parent: L%d, translation: [0, 0, 0.1], joint_type: revolute, joint_axis: Z, "
+             "joint_id: %d, mass: 1, inertia: [1,0,0,0,1,0,0,0,1] }\n" % (i, i - 1, i - 1) for i in range(1, 8000)]
+    text = "".join(rows)
+    uri = uri_of(path)
+    c = client(["--debounce-ms", "0"])
+    try:
+        c.initialize()
+        c.open(uri, text)
+        c.diagnostics(uri, 1, timeout=60)
+        end = {"line": 6, "character": 0}
+        c.change(uri, 2, [{"range": {"start": end, "end": end}, "text": "# two\n"}])
+        time.sleep(0.02)  # the check of version 2 has started
+        c.change(uri, 3, [{"range": {"start": end, "end": end}, "text": "# three\n"}])
+        c.diagnostics(uri, 3, timeout=60)
+        late = [m["params"].get("version") for m in c.backlog if m.get("method") == "textDocument/publishDiagnostics"]
+        assert 2 not in late, "published the check of version 2 after version 3 had come: %s" % late
+    finally:
+        c.kill()
+
+
 # ---- code actions ----------------------------------------------------------------------------
 
 UPGRADE_KIND = "quickfix.bodyfmt.upgrade"
@@ -475,6 +503,83 @@ def code_actions_unsafe_never_applied():
                 assert actions == [], actions
         finally:
             c.kill()
+
+
+# ---- watching and the viewer ------------------------------------------------------------------
+
+SUB_BAD = ("format: ChoreonoidBody\nformat_version: 2.0\nname: S\nroot_link: S0\nlinks:\n"
+           "  - { name: S0, joint_type: fixed, mass: -1, inertia: [1,0,0,0,1,0,0,0,1] }\n")
+MAIN_WITH_SUB = ("format: ChoreonoidBody\nformat_version: 2.0\nname: M\nroot_link: BASE\nlinks:\n"
+                 "  - name: BASE\n    joint_type: free\n    mass: 1\n    inertia: [1,0,0,0,1,0,0,0,1]\n"
+                 "  - type: SubBody\n    uri: sub.body\n    parent: BASE\n")
+
+
+def watched_session(folder_name, capabilities):
+    folder = work_dir(folder_name)
+    main, sub = os.path.join(folder, "main.body"), os.path.join(folder, "sub.body")
+    with open(sub, "w") as f:
+        f.write(SUB_BAD)
+    with open(main, "w") as f:
+        f.write(MAIN_WITH_SUB)
+    c = client()
+    c.initialize(capabilities)
+    c.open(uri_of(main), MAIN_WITH_SUB)
+    assert c.diagnostics(uri_of(sub)), "the test needs a finding in sub.body"
+    time.sleep(0.05)  # a new modification time, even on coarse clocks
+    with open(sub, "w") as f:
+        f.write(SUB_BAD.replace("mass: -1", "mass: 1"))
+    return c, main, sub
+
+
+@case
+def watched_files_recheck():
+    c, main, sub = watched_session("watched_files_recheck",
+                                   {"workspace": {"didChangeWatchedFiles": {"dynamicRegistration": True}}})
+    try:
+        register = c.wait(lambda m: m.get("method") == "client/registerCapability")
+        reg = register["params"]["registrations"][0]
+        assert reg["method"] == "workspace/didChangeWatchedFiles", reg
+        c.send({"jsonrpc": "2.0", "id": register["id"], "result": None})
+        c.notify("workspace/didChangeWatchedFiles", {"changes": [{"uri": uri_of(sub), "type": 2}]})
+        assert c.diagnostics(uri_of(sub), timeout=10) == [], "sub.body's finding stayed after it was fixed"
+    finally:
+        c.kill()
+
+
+@case
+def polled_files_recheck():
+    c, main, sub = watched_session("polled_files_recheck", {})
+    try:
+        # No didChangeWatchedFiles from this client: the server's own look at the files (1 s).
+        assert c.diagnostics(uri_of(sub), timeout=10) == [], "sub.body's finding stayed after it was fixed"
+        assert not any(m.get("method") == "client/registerCapability" for m in c.backlog)
+    finally:
+        c.kill()
+
+
+@case
+def open_viewer():
+    import urllib.request
+    path = corpus_models()[0]
+    c = client()
+    try:
+        c.initialize({"window": {"showDocument": {"support": True}}})
+        rid = c.request_async("workspace/executeCommand", {"command": "bodyls.openViewer", "arguments": [uri_of(path)]})
+        show = c.wait(lambda m: m.get("method") == "window/showDocument", timeout=60)
+        url = show["params"]["uri"]
+        assert show["params"]["external"] is True and url.startswith("http://127.0.0.1:"), show
+        c.send({"jsonrpc": "2.0", "id": show["id"], "result": {"success": True}})
+        assert c.wait(lambda m: m.get("id") == rid)["result"]["url"] == url
+        page = urllib.request.urlopen(url, timeout=30).read()
+        assert b"<html" in page.lower(), page[:200]
+        assert c.finish() == 0
+        try:  # the viewer ends with the server
+            urllib.request.urlopen(url, timeout=5)
+            raise AssertionError("the viewer still serves after bodyls exited")
+        except OSError:
+            pass
+    finally:
+        c.kill()
 
 
 if __name__ == "__main__":

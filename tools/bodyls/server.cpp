@@ -7,7 +7,9 @@
 #include "model_check.h"
 #include "text_positions.h"
 #include "uri.h"
+#include "viewer_launcher.h"
 
+#include <bodyfmt/file_cache.h>
 #include <bodyfmt/read_file.h>
 #include <bodyfmt/rules.h>
 
@@ -98,8 +100,12 @@ struct Server::Impl {
   std::set<std::string> cancelled;  // ids (dumped) of requests cancelled before they were handled
   Clock::time_point next_poll = Clock::now();
   std::thread worker;
+  /// Meshes and included files as last read, while unchanged: a keystroke re-reads only the buffer.
+  std::shared_ptr<FileCache> file_cache = std::make_shared<FileCache>();
+  ViewerLauncher viewers;
 
-  Impl(tools::Front& f, ServerOptions o, Send s) : front(f), options(std::move(o)), send_raw(std::move(s)) {}
+  Impl(tools::Front& f, ServerOptions o, Send s)
+      : front(f), options(std::move(o)), send_raw(std::move(s)), viewers(options.bodyview_path) {}
 
   void send(const json& message) {
     const std::string body = dump(message);
@@ -365,6 +371,7 @@ struct Server::Impl {
     if (auto policy = front.policy_for(s.path)) {
       LoadOptions load = front.load_options();
       load.file_texts = s.other_texts;
+      load.file_cache = file_cache;
       result = tools::check_model_input(load, input, policy->options, {true, true});
     } else {
       result.diagnostics.push_back(make_diagnostic(
@@ -488,7 +495,26 @@ struct Server::Impl {
 json Server::Impl::execute_command(const json& params) {
   const std::string command = params.at("command");
   if (command != "bodyls.openViewer") throw std::invalid_argument("no command " + command);
-  throw std::invalid_argument("bodyls.openViewer: not available yet");
+  // arguments: [the document's URI]
+  const json arguments = params.value("arguments", json::array());
+  if (!arguments.is_array() || arguments.empty() || !arguments[0].is_string())
+    throw json::type_error::create(302, "bodyls.openViewer takes the document's URI", &arguments);
+  const std::string uri = arguments[0];
+  const std::optional<std::string> path = path_from_uri(uri);
+  if (!path) throw std::invalid_argument("bodyls.openViewer: not a file: " + uri);
+  std::string why;
+  const std::optional<std::string> url = viewers.url_for(*path, why);
+  if (!url) throw std::invalid_argument("bodyls.openViewer: " + why);
+  bool show = false;
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    show = client_show_document;
+  }
+  if (show)
+    request("window/showDocument", {{"uri", *url}, {"external", true}});
+  else
+    notify("window/showMessage", {{"type", 3}, {"message", "bodyview serves " + *path + " at " + *url}});
+  return json{{"url", *url}};
 }
 
 Server::Server(tools::Front& front, ServerOptions options, Send send)

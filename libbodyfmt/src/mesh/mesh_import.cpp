@@ -1,7 +1,9 @@
 // MeshCache and import_mesh(): file checks, format dispatch by extension, one parse per file,
 // and one asset per (file, node, metadata) (body-format-spec §9.2, §9.4).
 #include <bodyfmt/mesh_import.h>
+
 #include <bodyfmt/rules.h>
+#include "io/file_cache_impl.h"
 
 #include <bodyfmt/read_file.h>
 #include "mesh/assimp_module.h"
@@ -64,6 +66,7 @@ struct MeshCache::Impl {
   std::set<AssetKey> failed_assets;
   std::vector<std::string> inline_stack;  // VRML files being parsed, for Inline cycles
   int parsed = 0;
+  std::shared_ptr<FileCache> file_cache;  // across loads (LoadOptions::file_cache), may be null
   std::uintmax_t max_file_bytes = MeshImportOptions{}.max_file_bytes;  // of the import being read
   std::uint32_t max_triangles = MeshImportOptions{}.max_triangles;
 
@@ -74,8 +77,38 @@ struct MeshCache::Impl {
       report(sink, "mesh-inline-cycle", where, "VRML Inline \"" + path + "\" includes itself");
       return nullptr;
     }
-    mesh::SceneTree tree = parse_file(path, sink, where);
+    mesh::SceneTree tree = file_cache ? parse_through_cache(path, sink, where) : parse_file(path, sink, where);
     files[path].tree = tree;
+    return tree;
+  }
+
+  /// parse_file, or the tree an earlier load parsed from the unchanged file, its findings
+  /// said again at this load's `where`.
+  mesh::SceneTree parse_through_cache(const std::string& path, DiagnosticSink& sink, const SourceLocation& where) {
+    FileCache::Impl& cache = file_cache->impl();
+    const std::optional<FileCache::Impl::Stamp> stamp = FileCache::Impl::stamp_of(path);
+    if (stamp) {
+      std::unique_lock<std::mutex> lock(cache.mutex);
+      auto it = cache.meshes.find(path);
+      if (it != cache.meshes.end() && it->second.stamp == *stamp && it->second.max_file_bytes == max_file_bytes &&
+          it->second.max_triangles == max_triangles) {
+        const FileCache::Impl::Mesh entry = it->second;
+        lock.unlock();
+        for (Diagnostic d : entry.reported) {
+          if (d.location == entry.where) d.location = where;
+          sink.report(std::move(d));
+        }
+        return entry.tree;
+      }
+    }
+    CollectingSink reported;
+    mesh::SceneTree tree = parse_file(path, reported, where);
+    for (const Diagnostic& d : reported.diagnostics()) sink.report(d);
+    std::lock_guard<std::mutex> lock(cache.mutex);
+    ++cache.files_read;
+    if (stamp)
+      cache.meshes[path] =
+          FileCache::Impl::Mesh{*stamp, max_file_bytes, max_triangles, tree, std::move(reported.diagnostics()), where};
     return tree;
   }
 
@@ -127,6 +160,8 @@ MeshCache::MeshCache() : impl_(std::make_unique<Impl>()) {}
 MeshCache::~MeshCache() = default;
 
 int MeshCache::files_parsed() const { return impl_->parsed; }
+
+void MeshCache::use_file_cache(std::shared_ptr<FileCache> cache) { impl_->file_cache = std::move(cache); }
 
 std::shared_ptr<const MeshAsset> MeshCache::get(const std::string& path, const MeshImportOptions& options,
                                                 DiagnosticSink& sink, const SourceLocation& where) {
