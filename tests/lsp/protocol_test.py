@@ -309,7 +309,8 @@ def corpus_equals_bodycheck():
     c = client()
     try:
         c.initialize()
-        for path in models:
+        # GR001 again at the end: its meshes come from the session's cache then.
+        for path in models + models[1:2]:
             with open(path, "rb") as f:
                 text = f.read()
             findings = bodycheck_json(path)
