@@ -3,15 +3,18 @@
 // modification time and size it was read at.
 #include <bodyfmt/diagnostic.h>
 #include <bodyfmt/file_cache.h>
+#include <bodyfmt/model.h>
 
 #include "mesh/scene_tree.h"
 
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace bodyfmt {
@@ -38,9 +41,18 @@ struct FileCache::Impl {
     SourceLocation where;              ///< the `uri:` it was reported at
   };
 
+  /// The parts of one (file, node, metadata) of a parsed file: null when the node is not in it.
+  struct Asset {
+    Stamp stamp;
+    std::shared_ptr<const MeshAsset> asset;
+  };
+  /// (file, node, length scale, Y up, detached nodes), as MeshCache keys its assets.
+  using AssetKey = std::tuple<std::string, std::string, double, bool, std::vector<std::string>>;
+
   std::mutex mutex;
   std::map<std::string, Text> texts;
   std::map<std::string, Mesh> meshes;
+  std::map<AssetKey, Asset> assets;
   int files_read = 0;
 
   /// The text of an included file, from the cache when unchanged.

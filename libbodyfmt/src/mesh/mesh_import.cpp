@@ -82,6 +82,31 @@ struct MeshCache::Impl {
     return tree;
   }
 
+  /// The parts of `key`'s node of `tree` (null when the node is not in it), taken from the file
+  /// cache when an earlier load extracted them from the unchanged file.
+  std::shared_ptr<const MeshAsset> extract(const mesh::SceneNode& tree, const AssetKey& key) {
+    std::optional<FileCache::Impl::Stamp> stamp;
+    if (file_cache) {
+      stamp = FileCache::Impl::stamp_of(std::get<0>(key));
+      std::lock_guard<std::mutex> lock(file_cache->impl().mutex);
+      auto& cached = file_cache->impl().assets;
+      if (auto it = cached.find(key); stamp && it != cached.end() && it->second.stamp == *stamp)
+        return it->second.asset;
+    }
+    auto asset = std::make_shared<MeshAsset>();
+    asset->path = std::get<0>(key);
+    asset->node = std::get<1>(key);
+    std::shared_ptr<const MeshAsset> result = asset;
+    if (!mesh::extract_parts(tree, std::get<1>(key), std::get<2>(key), std::get<3>(key), asset->parts, std::get<4>(key),
+                             &asset->scene_bounds))
+      result = nullptr;
+    if (stamp) {
+      std::lock_guard<std::mutex> lock(file_cache->impl().mutex);
+      file_cache->impl().assets[key] = FileCache::Impl::Asset{*stamp, result};
+    }
+    return result;
+  }
+
   /// parse_file, or the tree an earlier load parsed from the unchanged file, its findings
   /// said again at this load's `where`.
   mesh::SceneTree parse_through_cache(const std::string& path, DiagnosticSink& sink, const SourceLocation& where) {
@@ -181,11 +206,8 @@ std::shared_ptr<const MeshAsset> MeshCache::get(const std::string& path, const M
     impl_->failed_assets.insert(key);
     return nullptr;
   }
-  auto asset = std::make_shared<MeshAsset>();
-  asset->path = normal;
-  asset->node = options.node;
-  if (!mesh::extract_parts(*tree, options.node, options.length_scale, options.y_up, asset->parts, detached,
-                           &asset->scene_bounds)) {
+  std::shared_ptr<const MeshAsset> asset = impl_->extract(*tree, key);
+  if (!asset) {
     report(sink, "mesh-node-not-found", where, "node \"" + options.node + "\" is not found in \"" + normal + "\"",
            "the name must be a VRML DEF name or a node name of the mesh file (first match in depth-first order)");
     impl_->failed_assets.insert(key);
