@@ -102,7 +102,8 @@ json code_actions_for(const std::string& uri, const std::string& path, const std
     if (!upgrade_fixes.empty() && upgrade) {
       json edit = workspace_edit(upgrade_fixes, texts);
       if (edit.is_null()) continue;
-      actions.push_back({{"title", "Upgrade to format 2.0 (" + std::to_string(upgrade_fixes.size()) + " edits)"},
+      actions.push_back({{"title", "Upgrade to format 2.0 (" + std::to_string(upgrade_fixes.size()) +
+                                       (upgrade_fixes.size() == 1 ? " edit)" : " edits)")},
                          {"kind", kUpgradeActionKind},
                          {"diagnostics", json::array({diagnostic})},
                          {"edit", std::move(edit)}});
