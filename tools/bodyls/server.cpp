@@ -577,6 +577,8 @@ int run_server(int argc, char** argv) {
                      "The language server for Choreonoid .body files (LSP over standard input and output); the "
                      "options are bodycheck's",
                      {true, false});
+  // The editor sends the files: no positional paths (the front's are bodycheck's).
+  front.app().remove_option(front.app().get_option("paths"));
   ServerOptions options;
   bool stdio = false;
   front.app().add_flag("--stdio", stdio, "talk over standard input and output (the default; editors pass it)");
@@ -584,10 +586,6 @@ int run_server(int argc, char** argv) {
       .add_option("--debounce-ms", options.debounce_ms, "milliseconds from an edit to its check (default 50)")
       ->check(CLI::Range(0, 10000));
   if (auto code = front.parse(argc, argv)) return *code;
-  if (!front.inputs().empty()) {
-    front.print_error("bodyls takes no files: the editor sends them");
-    return tools::kExitFatal;
-  }
   const auto write_all = [](const std::string& body) {
     const std::string framed = frame(body);
     for (std::size_t done = 0; done < framed.size();) {
