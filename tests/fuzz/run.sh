@@ -45,16 +45,22 @@ done < <(find examples tests/data ../shared/corpus -type f -name '*.urdf' -size 
 for f in examples/*.body; do
   "$build/body2urdf" "$f" -o "$seeds/urdf_import/$(basename "$f" .body).urdf" --devices-as-frames >/dev/null 2>&1 || true
 done
-for target in yaml load urdf urdf_import mjcf gltf text_outputs fix scenario; do
+# bodyls's sessions pick their models from the examples and the corpus themselves (no seeds).
+mkdir -p "$seeds/lsp"
+for target in yaml load urdf urdf_import mjcf gltf text_outputs fix scenario lsp; do
   [ -x "$build/tests/fuzz/fuzz_$target" ] || continue  # fuzz_scenario needs Simbody
   corpus=$build/fuzz-corpus/$target
   mkdir -p "$corpus"
   seed_dir=$seeds/load
   [ "$target" = yaml ] && seed_dir=$seeds/yaml
   [ "$target" = scenario ] && seed_dir=$seeds/scenario
+  extra=()
+  # A session's edits come from its input: full-length inputs from the start (libFuzzer's
+  # default grows them from 4 bytes, a session of one edit).
+  [ "$target" = lsp ] && seed_dir=$seeds/lsp && extra=(-len_control=0)
   dict=tests/fuzz/body.dict
   [ "$target" = urdf_import ] && seed_dir=$seeds/urdf_import && dict=tests/fuzz/urdf.dict
   echo "fuzz_$target: ${seconds} s"
   "$build/tests/fuzz/fuzz_$target" -max_total_time="$seconds" -rss_limit_mb=4096 -timeout=20 -max_len=65536 \
-    -dict="$dict" -print_final_stats=1 "$corpus" "$seed_dir" 2>&1 | tail -n 12
+    -dict="$dict" -print_final_stats=1 "${extra[@]}" "$corpus" "$seed_dir" 2>&1 | tail -n 12
 done

@@ -5,12 +5,11 @@
 #include "compact_findings.h"
 #include "fix_run.h"
 #include "front.h"
+#include "model_check.h"
 #include "output_guard.h"
 #include "text_view.h"
 
-#include <bodyfmt/derived.h>
 #include <bodyfmt/rules.h>
-#include <bodyfmt/validate.h>
 #include <cstdio>
 
 #include <fmt/format.h>
@@ -87,31 +86,14 @@ bool git_models(std::vector<std::string>& files) {
 }
 
 JobResult check_file(tools::Front& front, const Job& job, bool to_file) {
+  tools::ModelCheck checked =
+      tools::check_model_input(front.load_options(), job.input, job.policy.options, {to_file, false});
   JobResult result;
-  // Compact while the model is alive: a generated model can have a finding per link.
-  tools::CompactFindings collected;
-  DiagnosticPolicy policy(collected, job.policy.options);
-  try {
-    auto model = front.load(job.input, policy);
-    result.loaded = model.has_value();
-    if (model && to_file) {
-      std::vector<InputFile> files = input_files(*model);
-      result.inputs.insert(result.inputs.end(), files.begin(), files.end());
-    }
-    if (model) {
-      Derived derived = compute_derived(*model, policy);
-      validate::check_model(*model, derived, {}, policy);
-      // Only bodycheck runs every rule, so only it can tell that a suppression is unused.
-      if (job.input.path != "-") policy.report_suppression_problems(job.input.name);
-    }
-  } catch (const std::exception& e) {
-    policy.report(make_diagnostic("internal-error", SourceLocation{job.input.name, 0, 0},
-                                  std::string("unexpected failure: ") + e.what()));
-    result.loaded = false;
-  }
-  result.diagnostics = collected.take();
-  result.suppressed = policy.suppressed_count();
-  result.disabled = policy.disabled_count();
+  result.diagnostics = std::move(checked.diagnostics);
+  result.inputs = std::move(checked.inputs);
+  result.loaded = checked.loaded;
+  result.suppressed = checked.suppressed;
+  result.disabled = checked.disabled;
   return result;
 }
 
@@ -224,10 +206,6 @@ std::vector<JobResult> run_jobs(tools::Front& front, const std::vector<Job>& job
   return results;
 }
 
-bool same_diagnostic(const Diagnostic& a, const Diagnostic& b) {
-  return a.location == b.location && a.rule_id == b.rule_id && a.message == b.message && a.severity == b.severity;
-}
-
 /// One spelling per file: a file reached under several paths (`a/../b/x.body` on the command
 /// line, `b/x.body` as another model's SubBody) is shown under the first spelling met, so its
 /// findings are reported once.
@@ -286,10 +264,7 @@ Report make_report(const std::vector<Job>& jobs, std::vector<JobResult>& results
     }
     r.diagnostics = std::vector<Diagnostic>();
   }
-  sort_diagnostics(report.diagnostics);
-  // A file included by several checked files (SubBody) reports the same finding each time.
-  report.diagnostics.erase(std::unique(report.diagnostics.begin(), report.diagnostics.end(), same_diagnostic),
-                           report.diagnostics.end());
+  tools::sort_unique_findings(report.diagnostics);
   return report;
 }
 

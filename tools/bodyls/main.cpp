@@ -1,4 +1,4 @@
-// bodyls: the language server for Choreonoid Body files.
+// bodyls: the language server for Choreonoid Body files (README "bodyls").
 #include "server.h"
 
-int main() { return bodyfmt::lsp::run_server(); }
+int main(int argc, char** argv) { return bodyfmt::lsp::run_server(argc, argv); }

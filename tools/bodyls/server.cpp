@@ -1,12 +1,625 @@
 #include "server.h"
 
-#include <cstdio>
+#include "code_actions.h"
+#include "feature_requests.h"
+#include "framing.h"
+#include "lsp_convert.h"
+#include "model_check.h"
+#include "text_positions.h"
+#include "uri.h"
+#include "viewer_launcher.h"
+
+#include <bodyfmt/file_cache.h>
+#include <bodyfmt/read_file.h>
+#include <bodyfmt/rules.h>
+
+#include <nlohmann/json.hpp>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <condition_variable>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <mutex>
+#include <set>
+#include <thread>
+
+#ifndef BODYFMT_VERSION
+#define BODYFMT_VERSION "unknown"
+#endif
 
 namespace bodyfmt::lsp {
 
-int run_server() {
-  std::fputs("bodyls: not implemented yet\n", stderr);
-  return 2;
+using json = nlohmann::json;
+using Clock = std::chrono::steady_clock;
+namespace fs = std::filesystem;
+
+namespace {
+
+// JSON-RPC and LSP error codes.
+constexpr int kParseError = -32700;
+constexpr int kInvalidRequest = -32600;
+constexpr int kMethodNotFound = -32601;
+constexpr int kInvalidParams = -32602;
+constexpr int kInternalError = -32603;
+constexpr int kServerNotInitialized = -32002;
+constexpr int kRequestCancelled = -32800;
+constexpr int kRequestFailed = -32803;
+
+std::string dump(const json& j) { return j.dump(-1, ' ', false, json::error_handler_t::replace); }
+
+std::string canonical(const std::string& path) {
+  std::error_code ec;
+  const fs::path made = fs::weakly_canonical(path, ec);
+  return ec ? path : made.string();
+}
+
+}  // namespace
+
+struct Server::Impl {
+  struct Document {
+    std::string uri;
+    std::string path;  ///< the name the loader gives the buffer (its file's path)
+    int version = 0;
+    std::string text;
+    bool pending = false;
+    Clock::time_point due;
+    // The last check published.
+    int checked_version = -1;
+    std::vector<Diagnostic> findings;
+    std::shared_ptr<const Model> model;  ///< of the last text that loaded
+    int model_version = -1;
+    std::vector<std::string> dependencies;  ///< canonical paths of the files the model was read from
+    std::map<std::string, fs::file_time_type> dependency_times;
+    std::set<std::string> published_uris;
+  };
+
+  tools::Front& front;
+  ServerOptions options;
+  Send send_raw;
+
+  mutable std::mutex mutex;  // documents, contributions and the state below
+  std::condition_variable wake;
+  std::mutex send_mutex;
+  std::map<std::string, Document> documents;  // by URI
+  /// Diagnostics published on a URI, by the document whose check found them.
+  std::map<std::string, std::map<std::string, json>> contributions;
+  bool initialized = false;
+  bool shutdown = false;
+  bool exited = false;
+  bool stopping = false;
+  int exit_code = 1;
+  bool client_watches = false;
+  bool client_disabled_actions = false;
+  bool client_show_document = false;
+  int next_request_id = 1;
+  std::set<std::string> cancelled;  // ids (dumped) of requests cancelled before they were handled
+  Clock::time_point next_poll = Clock::now();
+  std::thread worker;
+  /// Meshes and included files as last read, while unchanged: a keystroke re-reads only the buffer.
+  std::shared_ptr<FileCache> file_cache = std::make_shared<FileCache>();
+  ViewerLauncher viewers;
+
+  Impl(tools::Front& f, ServerOptions o, Send s)
+      : front(f), options(std::move(o)), send_raw(std::move(s)), viewers(options.bodyview_path) {}
+
+  void send(const json& message) {
+    const std::string body = dump(message);
+    std::lock_guard<std::mutex> lock(send_mutex);
+    send_raw(body);
+  }
+  void respond(const json& id, json result) {
+    send(json{{"jsonrpc", "2.0"}, {"id", id}, {"result", std::move(result)}});
+  }
+  void respond_error(const json& id, int code, const std::string& message) {
+    send(json{{"jsonrpc", "2.0"}, {"id", id}, {"error", {{"code", code}, {"message", message}}}});
+  }
+  void notify(const std::string& method, json params) {
+    send(json{{"jsonrpc", "2.0"}, {"method", method}, {"params", std::move(params)}});
+  }
+  void request(const std::string& method, json params) {
+    json id = "bodyls-" + std::to_string(next_request_id++);
+    send(json{{"jsonrpc", "2.0"}, {"id", id}, {"method", method}, {"params", std::move(params)}});
+  }
+
+  // ---- messages -------------------------------------------------------------------------
+
+  void handle(const std::string& body) {
+    json message = json::parse(body, nullptr, false);
+    if (message.is_discarded()) return respond_error(nullptr, kParseError, "the message is not JSON");
+    if (!message.is_object()) return respond_error(nullptr, kInvalidRequest, "a message is a JSON object");
+    const auto id_it = message.find("id");
+    const bool has_id = id_it != message.end();
+    json id = has_id ? *id_it : json();
+    if (has_id && !id.is_number_integer() && !id.is_string())
+      return respond_error(nullptr, kInvalidRequest, "an id is an integer or a string");
+    const auto method_it = message.find("method");
+    if (method_it == message.end()) return;  // a response to one of our requests: nothing waits for it
+    if (!method_it->is_string()) return respond_error(has_id ? id : json(), kInvalidRequest, "method is not a string");
+    const std::string method = *method_it;
+    const json params = message.value("params", json::object());
+    if (method == "exit") {
+      std::lock_guard<std::mutex> lock(mutex);
+      exited = true;
+      exit_code = shutdown ? 0 : 1;
+      stopping = true;
+      wake.notify_all();
+      return;
+    }
+    if (has_id) {
+      if (cancelled.erase(dump(id)) > 0) return respond_error(id, kRequestCancelled, "cancelled");
+      if (!initialized && method != "initialize")
+        return respond_error(id, kServerNotInitialized, "the server is not initialized yet");
+      if (shutdown) return respond_error(id, kInvalidRequest, "the server is shut down");
+      try {
+        std::optional<json> result = handle_request(method, params, id);
+        if (!result) return respond_error(id, kMethodNotFound, "no method " + method);
+        respond(id, std::move(*result));
+      } catch (const std::invalid_argument& e) {
+        respond_error(id, kRequestFailed, e.what());
+      } catch (const json::exception& e) {
+        respond_error(id, kInvalidParams, std::string("invalid params: ") + e.what());
+      } catch (const std::exception& e) {
+        respond_error(id, kInternalError, e.what());
+      }
+      return;
+    }
+    if (!initialized || shutdown) return;  // notifications are dropped then (LSP "initialize")
+    try {
+      handle_notification(method, params);
+    } catch (const std::exception& e) {
+      std::cerr << "bodyls: " << method << ": " << e.what() << '\n';
+    }
+  }
+
+  std::optional<json> handle_request(const std::string& method, const json& params, const json& id) {
+    (void)id;
+    if (method == "initialize") {
+      if (initialized) throw std::runtime_error("initialize was already called");
+      return initialize(params);
+    }
+    if (method == "shutdown") {
+      std::lock_guard<std::mutex> lock(mutex);
+      shutdown = true;
+      return json(nullptr);
+    }
+    if (method == "textDocument/codeAction") return code_actions(params);
+    if (method == "workspace/executeCommand") return execute_command(params);
+    if (is_feature_method(method)) return feature_request(method, params);
+    return std::nullopt;
+  }
+
+  void handle_notification(const std::string& method, const json& params) {
+    if (method == "initialized") return on_initialized();
+    if (method == "textDocument/didOpen") return did_open(params.at("textDocument"));
+    if (method == "textDocument/didChange") return did_change(params);
+    if (method == "textDocument/didClose") return did_close(params.at("textDocument").at("uri"));
+    if (method == "textDocument/didSave") return did_save(params.at("textDocument").at("uri"));
+    if (method == "workspace/didChangeWatchedFiles") return files_changed(params.at("changes"));
+    // Unknown notifications (and $/ ones) are ignored, as the protocol says.
+  }
+
+  json initialize(const json& params) {
+    const json capabilities = params.value("capabilities", json::object());
+    const auto flag = [&](std::initializer_list<const char*> path) {
+      const json* at = &capabilities;
+      for (const char* key : path) {
+        if (!at->is_object() || !at->contains(key)) return false;
+        at = &(*at)[key];
+      }
+      return at->is_boolean() && at->get<bool>();
+    };
+    const json init = params.value("initializationOptions", json::object());
+    std::lock_guard<std::mutex> lock(mutex);
+    client_watches = flag({"workspace", "didChangeWatchedFiles", "dynamicRegistration"});
+    client_disabled_actions = flag({"textDocument", "codeAction", "disabledSupport"});
+    client_show_document = flag({"window", "showDocument", "support"});
+    if (init.is_object() && init.contains("debounceMs") && init["debounceMs"].is_number_integer())
+      options.debounce_ms = std::clamp(init["debounceMs"].get<int>(), 0, 10000);
+    initialized = true;
+    json sync = {{"openClose", true}, {"change", 2}, {"save", {{"includeText", false}}}};
+    json capabilities_out = {
+        {"positionEncoding", "utf-16"},
+        {"textDocumentSync", sync},
+        {"codeActionProvider", {{"codeActionKinds", {"quickfix", kUpgradeActionKind}}}},
+        {"hoverProvider", true},
+        {"completionProvider", {{"triggerCharacters", {":", " ", "*", "/"}}}},
+        {"definitionProvider", true},
+        {"referencesProvider", true},
+        {"renameProvider", {{"prepareProvider", true}}},
+        {"documentSymbolProvider", true},
+        {"executeCommandProvider", {{"commands", {"bodyls.openViewer"}}}},
+    };
+    return json{{"capabilities", capabilities_out}, {"serverInfo", {{"name", "bodyls"}, {"version", BODYFMT_VERSION}}}};
+  }
+
+  void on_initialized() {
+    if (!client_watches) return;
+    // Every file: a model's meshes and included files may have any name and extension.
+    json watchers = json::array({json{{"globPattern", "**/*"}}});
+    request("client/registerCapability",
+            {{"registrations", json::array({json{{"id", "bodyls-watch"},
+                                                 {"method", "workspace/didChangeWatchedFiles"},
+                                                 {"registerOptions", {{"watchers", watchers}}}}})}});
+  }
+
+  // ---- documents ------------------------------------------------------------------------
+
+  void schedule(Document& d, Clock::time_point due) {
+    d.pending = true;
+    d.due = due;
+    wake.notify_all();
+  }
+  Clock::time_point debounced() const { return Clock::now() + std::chrono::milliseconds(options.debounce_ms); }
+
+  /// Documents whose model was read from `path` (canonical) get a new check.
+  void schedule_dependents(const std::string& path, const std::string& except_uri) {
+    for (auto& [uri, d] : documents) {
+      if (uri == except_uri) continue;
+      if (std::find(d.dependencies.begin(), d.dependencies.end(), path) != d.dependencies.end())
+        schedule(d, debounced());
+    }
+  }
+
+  void did_open(const json& item) {
+    const std::string uri = item.at("uri");
+    std::lock_guard<std::mutex> lock(mutex);
+    Document& d = documents[uri];
+    d = Document{};
+    d.uri = uri;
+    d.path = path_from_uri(uri).value_or(uri);
+    d.version = item.value("version", 0);
+    d.text = item.at("text").get<std::string>();
+    schedule(d, Clock::now());  // the first check without a debounce
+    schedule_dependents(canonical(d.path), uri);
+  }
+
+  void did_change(const json& params) {
+    const json& item = params.at("textDocument");
+    const std::string uri = item.at("uri");
+    std::lock_guard<std::mutex> lock(mutex);
+    auto it = documents.find(uri);
+    if (it == documents.end()) return;
+    Document& d = it->second;
+    for (const json& change : params.at("contentChanges")) {
+      const std::string& text = change.at("text").get_ref<const std::string&>();
+      if (change.contains("range")) {
+        apply_change(d.text, range_from_json(change["range"]), text);
+      } else {
+        d.text = text;
+      }
+    }
+    d.version = item.value("version", d.version + 1);
+    schedule(d, debounced());
+    schedule_dependents(canonical(d.path), uri);
+  }
+
+  void did_close(const std::string& uri) {
+    std::lock_guard<std::mutex> lock(mutex);
+    auto it = documents.find(uri);
+    if (it == documents.end()) return;
+    const std::string path = canonical(it->second.path);
+    const std::set<std::string> uris = it->second.published_uris;
+    documents.erase(it);
+    for (const std::string& u : uris) {
+      contributions[u].erase(uri);
+      publish_union(u, std::nullopt);
+    }
+    schedule_dependents(path, uri);
+  }
+
+  void did_save(const std::string& uri) {
+    std::lock_guard<std::mutex> lock(mutex);
+    auto it = documents.find(uri);
+    if (it != documents.end()) schedule_dependents(canonical(it->second.path), uri);
+  }
+
+  void files_changed(const json& changes) {
+    std::lock_guard<std::mutex> lock(mutex);
+    for (const json& change : changes) {
+      const auto path = path_from_uri(change.at("uri"));
+      if (path) schedule_dependents(canonical(*path), "");
+    }
+  }
+
+  /// The server's own watch, for clients without didChangeWatchedFiles: every poll_ms, the
+  /// modification times of each document's dependency files.
+  void poll_dependencies() {
+    for (auto& [uri, d] : documents) {
+      bool changed = false;
+      for (auto& [path, time] : d.dependency_times) {
+        std::error_code ec;
+        const fs::file_time_type now = fs::last_write_time(path, ec);
+        if (now != time) changed = true, time = now;
+      }
+      if (changed) schedule(d, Clock::now());
+    }
+  }
+
+  // ---- checks -----------------------------------------------------------------------------
+
+  struct Snapshot {
+    std::string uri, path, text;
+    int version = 0;
+    std::map<std::string, std::string> other_texts;  // canonical path -> buffer
+  };
+
+  /// Takes the next due document (the lock held); nullopt when none is due by `now`.
+  std::optional<Snapshot> take_due(Clock::time_point now, bool ignore_due) {
+    Document* next = nullptr;
+    for (auto& [uri, d] : documents)
+      if (d.pending && (ignore_due || d.due <= now) && (!next || d.due < next->due)) next = &d;
+    if (!next) return std::nullopt;
+    next->pending = false;
+    Snapshot s{next->uri, next->path, next->text, next->version, {}};
+    for (const auto& [uri, d] : documents)
+      if (&d != next && d.path != d.uri) s.other_texts[canonical(d.path)] = d.text;
+    return s;
+  }
+
+  void check_and_publish(const Snapshot& s) {
+    tools::ModelInput input;
+    input.path = s.path;
+    input.name = s.path;
+    input.text = s.text;
+    input.read_by_front = true;
+    tools::ModelCheck result;
+    if (auto policy = front.policy_for(s.path)) {
+      LoadOptions load = front.load_options();
+      load.file_texts = s.other_texts;
+      load.file_cache = file_cache;
+      result = tools::check_model_input(load, input, policy->options, {true, true});
+    } else {
+      result.diagnostics.push_back(make_diagnostic(
+          "config-invalid", SourceLocation{s.path, 1, 1},
+          "the .bodycheck.yaml that applies to this file is malformed (bodycheck prints its errors); not checked"));
+    }
+    tools::sort_unique_findings(result.diagnostics);
+    std::vector<std::string> dependencies;
+    for (const InputFile& f : result.inputs) dependencies.push_back(canonical(f.path));
+
+    std::lock_guard<std::mutex> lock(mutex);
+    auto it = documents.find(s.uri);
+    // A newer edit (or a close) supersedes this check: its findings are never published.
+    if (it == documents.end() || it->second.version != s.version || it->second.text != s.text) return;
+    Document& d = it->second;
+    d.checked_version = s.version;
+    if (result.model) d.model = result.model, d.model_version = s.version;
+    if (result.loaded) {
+      d.dependencies = dependencies;
+      d.dependency_times.clear();
+      for (const std::string& path : dependencies) {
+        std::error_code ec;
+        if (path != canonical(d.path)) d.dependency_times[path] = fs::last_write_time(path, ec);
+      }
+    }
+    std::map<std::string, json> by_uri = diagnostics_by_uri(result.diagnostics, d.path, d.uri, s.text, s.other_texts);
+    d.findings = std::move(result.diagnostics);
+    std::set<std::string> uris = d.published_uris;
+    for (const auto& [uri, list] : by_uri) uris.insert(uri);
+    uris.insert(d.uri);
+    d.published_uris.clear();
+    for (const std::string& uri : uris) {
+      auto found = by_uri.find(uri);
+      if (found != by_uri.end()) {
+        contributions[uri][d.uri] = found->second;
+        d.published_uris.insert(uri);
+      } else {
+        contributions[uri].erase(d.uri);
+      }
+      publish_union(uri, uri == d.uri ? std::optional<int>(s.version) : std::nullopt);
+    }
+  }
+
+  void publish_union(const std::string& uri, std::optional<int> version) {
+    json all = json::array();
+    std::set<std::string> seen;  // a file included by two open models reports a finding once
+    for (const auto& [from, list] : contributions[uri])
+      for (const json& d : list)
+        if (seen.insert(dump(d)).second) all.push_back(d);
+    if (contributions[uri].empty()) contributions.erase(uri);
+    json params = {{"uri", uri}, {"diagnostics", all}};
+    if (version) params["version"] = *version;
+    notify("textDocument/publishDiagnostics", params);
+  }
+
+  void run_pending_checks() {
+    for (;;) {
+      std::optional<Snapshot> s;
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        s = take_due(Clock::now(), true);
+      }
+      if (!s) return;
+      check_and_publish(*s);
+    }
+  }
+
+  void worker_loop() {
+    std::unique_lock<std::mutex> lock(mutex);
+    while (!stopping) {
+      const Clock::time_point now = Clock::now();
+      if (!client_watches && now >= next_poll) {
+        poll_dependencies();
+        next_poll = now + std::chrono::milliseconds(options.poll_ms);
+      }
+      if (std::optional<Snapshot> s = take_due(now, false)) {
+        lock.unlock();
+        check_and_publish(*s);
+        lock.lock();
+        continue;
+      }
+      Clock::time_point until = client_watches ? now + std::chrono::hours(1) : next_poll;
+      for (const auto& [uri, d] : documents)
+        if (d.pending) until = std::min(until, d.due);
+      wake.wait_until(lock, until);
+    }
+  }
+
+  // ---- code actions, features, commands --------------------------------------------------
+
+  json code_actions(const json& params) {
+    const std::string uri = params.at("textDocument").at("uri");
+    CodeActionQuery query;
+    query.range = range_from_json(params.at("range"));
+    const json context = params.value("context", json::object());
+    if (context.contains("only")) query.only = context["only"].get<std::vector<std::string>>();
+    std::lock_guard<std::mutex> lock(mutex);
+    query.disabled_support = client_disabled_actions;
+    auto it = documents.find(uri);
+    // Fix-its are byte offsets in the text checked: none for a text not checked yet.
+    if (it == documents.end() || it->second.checked_version != it->second.version) return json::array();
+    const Document& d = it->second;
+    return code_actions_for(d.uri, d.path, d.text, d.findings, query);
+  }
+
+  std::optional<json> feature_request(const std::string& method, const json& params) {
+    FeatureDocument document;
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      auto it = documents.find(params.at("textDocument").at("uri").get<std::string>());
+      if (it == documents.end()) throw std::invalid_argument("the document is not open");
+      const Document& d = it->second;
+      document = FeatureDocument{d.uri, d.path, d.text, d.model, d.model && d.model_version == d.version};
+    }
+    return answer_feature(method, params, document);
+  }
+
+  json execute_command(const json& params);
+};
+
+json Server::Impl::execute_command(const json& params) {
+  const std::string command = params.at("command");
+  if (command != "bodyls.openViewer") throw std::invalid_argument("no command " + command);
+  // arguments: [the document's URI]
+  const json arguments = params.value("arguments", json::array());
+  if (!arguments.is_array() || arguments.empty() || !arguments[0].is_string())
+    throw json::type_error::create(302, "bodyls.openViewer takes the document's URI", &arguments);
+  const std::string uri = arguments[0];
+  const std::optional<std::string> path = path_from_uri(uri);
+  if (!path) throw std::invalid_argument("bodyls.openViewer: not a file: " + uri);
+  std::string why;
+  const std::optional<std::string> url = viewers.url_for(*path, why);
+  if (!url) throw std::invalid_argument("bodyls.openViewer: " + why);
+  bool show = false;
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    show = client_show_document;
+  }
+  if (show)
+    request("window/showDocument", {{"uri", *url}, {"external", true}});
+  else
+    notify("window/showMessage", {{"type", 3}, {"message", "bodyview serves " + *path + " at " + *url}});
+  return json{{"url", *url}};
+}
+
+Server::Server(tools::Front& front, ServerOptions options, Send send)
+    : impl_(std::make_unique<Impl>(front, std::move(options), std::move(send))) {
+  if (impl_->options.threaded) impl_->worker = std::thread([this] { impl_->worker_loop(); });
+}
+
+Server::~Server() {
+  {
+    std::lock_guard<std::mutex> lock(impl_->mutex);
+    impl_->stopping = true;
+    impl_->wake.notify_all();
+  }
+  if (impl_->worker.joinable()) impl_->worker.join();
+}
+
+void Server::handle_batch(const std::vector<std::string>& bodies) {
+  // Cancellations first: a request cancelled in the same read is answered as cancelled.
+  for (const std::string& body : bodies) {
+    const json message = json::parse(body, nullptr, false);
+    if (message.is_object() && message.value("method", json()) == "$/cancelRequest" && message.contains("params") &&
+        message["params"].is_object() && message["params"].contains("id")) {
+      const json& id = message["params"]["id"];
+      bool earlier = false;  // only a request before the cancellation in this batch
+      for (const std::string& other : bodies) {
+        if (&other == &body) break;
+        const json m = json::parse(other, nullptr, false);
+        earlier = earlier || (m.is_object() && m.contains("id") && m["id"] == id && m.contains("method"));
+      }
+      if (earlier) impl_->cancelled.insert(dump(id));
+    }
+  }
+  for (const std::string& body : bodies) {
+    if (exited()) return;
+    impl_->handle(body);
+  }
+  impl_->cancelled.clear();
+}
+
+void Server::handle(const std::string& body) { handle_batch({body}); }
+
+void Server::bad_frame(const std::string& why) {
+  impl_->respond_error(nullptr, kParseError, "bad message frame: " + why);
+}
+
+void Server::run_pending_checks() { impl_->run_pending_checks(); }
+
+bool Server::exited() const {
+  std::lock_guard<std::mutex> lock(impl_->mutex);
+  return impl_->exited;
+}
+
+int Server::exit_code() const {
+  std::lock_guard<std::mutex> lock(impl_->mutex);
+  return impl_->exit_code;
+}
+
+int run_server(int argc, char** argv) {
+  tools::Front front("bodyls",
+                     "The language server for Choreonoid .body files (LSP over standard input and output); the "
+                     "options are bodycheck's",
+                     {true, false});
+  // The editor sends the files: no positional paths (the front's are bodycheck's).
+  front.app().remove_option(front.app().get_option("paths"));
+  ServerOptions options;
+  bool stdio = false;
+  front.app().add_flag("--stdio", stdio, "talk over standard input and output (the default; editors pass it)");
+  front.app()
+      .add_option("--debounce-ms", options.debounce_ms, "milliseconds from an edit to its check (default 50)")
+      ->check(CLI::Range(0, 10000));
+  if (auto code = front.parse(argc, argv)) return *code;
+  const auto write_all = [](const std::string& body) {
+    const std::string framed = frame(body);
+    for (std::size_t done = 0; done < framed.size();) {
+      const ssize_t n = ::write(STDOUT_FILENO, framed.data() + done, framed.size() - done);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) return;  // the client is gone; reading stdin ends too
+      done += static_cast<std::size_t>(n);
+    }
+  };
+  Server server(front, options, write_all);
+  MessageReader reader;
+  std::vector<char> buffer(1 << 16);
+  while (!server.exited()) {
+    const ssize_t n = ::read(STDIN_FILENO, buffer.data(), buffer.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    reader.feed(buffer.data(), static_cast<std::size_t>(n));
+    std::vector<std::string> bodies;
+    for (;;) {
+      std::string body, error;
+      const MessageReader::Status status = reader.next(body, error);
+      if (status == MessageReader::Status::kNeedMore) break;
+      if (status == MessageReader::Status::kBadFrame) {
+        server.handle_batch(bodies);
+        bodies.clear();
+        server.bad_frame(error);
+        continue;
+      }
+      bodies.push_back(std::move(body));
+    }
+    server.handle_batch(bodies);
+  }
+  // The end of input without `exit` ends the session as an `exit` without `shutdown` would.
+  return server.exited() ? server.exit_code() : 1;
 }
 
 }  // namespace bodyfmt::lsp

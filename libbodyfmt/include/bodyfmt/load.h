@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,6 +17,7 @@
 namespace BODYFMT_API bodyfmt {
 
 struct LoadOptions;
+class FileCache;
 
 /// Reads a model file of another format that a wrapper body file names in `model_file`
 /// (body-format-spec §2.4): `text` is the file's content, read under the options' limits;
@@ -57,6 +59,9 @@ struct LoadOptions {
   /// an extension without a reader gets a located `load-wrapper` error. The bodyfmt tools
   /// install the URDF importer here.
   std::map<std::string, ModelFileReader> model_file_readers;
+  /// Included files and parsed meshes kept across loads while their modification time and
+  /// size stay the same (bodyfmt/file_cache.h); null: every load reads them.
+  std::shared_ptr<FileCache> file_cache;
 };
 
 /// Loads a .body file. Reports every problem it can find to `sink` and returns the model

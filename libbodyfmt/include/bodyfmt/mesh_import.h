@@ -60,6 +60,8 @@ std::optional<MeshAsset> import_mesh(const std::string& path, const MeshImportOp
 ///
 /// Failures are cached too: a file that cannot be read is reported on the first request
 /// only, and a missing node once per (file, node).
+class FileCache;
+
 class MeshCache {
  public:
   MeshCache();
@@ -73,6 +75,9 @@ class MeshCache {
 
   /// How many files were actually parsed (including inlined VRML files and failures).
   int files_parsed() const;
+
+  /// Takes parsed files from `cache` (and keeps them there) while they are unchanged on disk.
+  void use_file_cache(std::shared_ptr<FileCache> cache);
 
  private:
   struct Impl;

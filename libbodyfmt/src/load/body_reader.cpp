@@ -262,6 +262,7 @@ std::optional<Model> BodyReader::read_once(std::string_view text, const std::str
 }
 
 void BodyReader::import_meshes(Model& model) {
+  session_.meshes.use_file_cache(options_.file_cache);
   // One asset per (file, node, metadata) in the model; the session's cache parses each file once.
   std::map<std::tuple<std::string, std::string, double, bool>, MeshIndex> indices;
   // Choreonoid detaches every node a body selects from a file out of that file's shared

@@ -3,6 +3,7 @@
 #include <bodyfmt/body_keys.h>
 
 #include <bodyfmt/read_file.h>
+#include "io/file_cache_impl.h"
 #include "load/body_reader.h"
 #include "load/geometry.h"
 #include "load/link_reader.h"
@@ -26,6 +27,7 @@ std::optional<std::string> read_included_file(const std::string& path, const Loa
     const std::string canonical = std::filesystem::weakly_canonical(path, ec).string();
     if (auto it = options.file_texts.find(ec ? path : canonical); it != options.file_texts.end()) return it->second;
   }
+  if (options.file_cache) return options.file_cache->impl().read_text(path, options.max_file_bytes, why);
   return read_regular_file(path, options.max_file_bytes, why);
 }
 

@@ -1,7 +1,9 @@
 // MeshCache and import_mesh(): file checks, format dispatch by extension, one parse per file,
 // and one asset per (file, node, metadata) (body-format-spec §9.2, §9.4).
 #include <bodyfmt/mesh_import.h>
+
 #include <bodyfmt/rules.h>
+#include "io/file_cache_impl.h"
 
 #include <bodyfmt/read_file.h>
 #include "mesh/assimp_module.h"
@@ -64,6 +66,7 @@ struct MeshCache::Impl {
   std::set<AssetKey> failed_assets;
   std::vector<std::string> inline_stack;  // VRML files being parsed, for Inline cycles
   int parsed = 0;
+  std::shared_ptr<FileCache> file_cache;  // across loads (LoadOptions::file_cache), may be null
   std::uintmax_t max_file_bytes = MeshImportOptions{}.max_file_bytes;  // of the import being read
   std::uint32_t max_triangles = MeshImportOptions{}.max_triangles;
 
@@ -74,8 +77,63 @@ struct MeshCache::Impl {
       report(sink, "mesh-inline-cycle", where, "VRML Inline \"" + path + "\" includes itself");
       return nullptr;
     }
-    mesh::SceneTree tree = parse_file(path, sink, where);
+    mesh::SceneTree tree = file_cache ? parse_through_cache(path, sink, where) : parse_file(path, sink, where);
     files[path].tree = tree;
+    return tree;
+  }
+
+  /// The parts of `key`'s node of `tree` (null when the node is not in it), taken from the file
+  /// cache when an earlier load extracted them from the unchanged file.
+  std::shared_ptr<const MeshAsset> extract(const mesh::SceneNode& tree, const AssetKey& key) {
+    std::optional<FileCache::Impl::Stamp> stamp;
+    if (file_cache) {
+      stamp = FileCache::Impl::stamp_of(std::get<0>(key));
+      std::lock_guard<std::mutex> lock(file_cache->impl().mutex);
+      auto& cached = file_cache->impl().assets;
+      if (auto it = cached.find(key); stamp && it != cached.end() && it->second.stamp == *stamp)
+        return it->second.asset;
+    }
+    auto asset = std::make_shared<MeshAsset>();
+    asset->path = std::get<0>(key);
+    asset->node = std::get<1>(key);
+    std::shared_ptr<const MeshAsset> result = asset;
+    if (!mesh::extract_parts(tree, std::get<1>(key), std::get<2>(key), std::get<3>(key), asset->parts, std::get<4>(key),
+                             &asset->scene_bounds))
+      result = nullptr;
+    if (stamp) {
+      std::lock_guard<std::mutex> lock(file_cache->impl().mutex);
+      file_cache->impl().assets[key] = FileCache::Impl::Asset{*stamp, result};
+    }
+    return result;
+  }
+
+  /// parse_file, or the tree an earlier load parsed from the unchanged file, its findings
+  /// said again at this load's `where`.
+  mesh::SceneTree parse_through_cache(const std::string& path, DiagnosticSink& sink, const SourceLocation& where) {
+    FileCache::Impl& cache = file_cache->impl();
+    const std::optional<FileCache::Impl::Stamp> stamp = FileCache::Impl::stamp_of(path);
+    if (stamp) {
+      std::unique_lock<std::mutex> lock(cache.mutex);
+      auto it = cache.meshes.find(path);
+      if (it != cache.meshes.end() && it->second.stamp == *stamp && it->second.max_file_bytes == max_file_bytes &&
+          it->second.max_triangles == max_triangles) {
+        const FileCache::Impl::Mesh entry = it->second;
+        lock.unlock();
+        for (Diagnostic d : entry.reported) {
+          if (d.location == entry.where) d.location = where;
+          sink.report(std::move(d));
+        }
+        return entry.tree;
+      }
+    }
+    CollectingSink reported;
+    mesh::SceneTree tree = parse_file(path, reported, where);
+    for (const Diagnostic& d : reported.diagnostics()) sink.report(d);
+    std::lock_guard<std::mutex> lock(cache.mutex);
+    ++cache.files_read;
+    if (stamp)
+      cache.meshes[path] =
+          FileCache::Impl::Mesh{*stamp, max_file_bytes, max_triangles, tree, std::move(reported.diagnostics()), where};
     return tree;
   }
 
@@ -128,6 +186,8 @@ MeshCache::~MeshCache() = default;
 
 int MeshCache::files_parsed() const { return impl_->parsed; }
 
+void MeshCache::use_file_cache(std::shared_ptr<FileCache> cache) { impl_->file_cache = std::move(cache); }
+
 std::shared_ptr<const MeshAsset> MeshCache::get(const std::string& path, const MeshImportOptions& options,
                                                 DiagnosticSink& sink, const SourceLocation& where) {
   const std::string normal = std::filesystem::path(path).lexically_normal().string();
@@ -146,11 +206,8 @@ std::shared_ptr<const MeshAsset> MeshCache::get(const std::string& path, const M
     impl_->failed_assets.insert(key);
     return nullptr;
   }
-  auto asset = std::make_shared<MeshAsset>();
-  asset->path = normal;
-  asset->node = options.node;
-  if (!mesh::extract_parts(*tree, options.node, options.length_scale, options.y_up, asset->parts, detached,
-                           &asset->scene_bounds)) {
+  std::shared_ptr<const MeshAsset> asset = impl_->extract(*tree, key);
+  if (!asset) {
     report(sink, "mesh-node-not-found", where, "node \"" + options.node + "\" is not found in \"" + normal + "\"",
            "the name must be a VRML DEF name or a node name of the mesh file (first match in depth-first order)");
     impl_->failed_assets.insert(key);

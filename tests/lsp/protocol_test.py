@@ -1,0 +1,588 @@
+#!/usr/bin/env python3
+"""bodyls protocol tests: one case per ctest entry (tests/lsp/CMakeLists.txt).
+
+    protocol_test.py BODYLS BODYCHECK SHARED_DIR WORK_DIR CASE
+
+Each case drives build/bodyls as an editor does and checks the replies against the protocol
+and against bodycheck's own output (expected values never come from bodyls)."""
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from lsp_client import Client, uri_of, utf16_column  # noqa: E402
+
+BODYLS, BODYCHECK, SHARED, WORK = sys.argv[1:5]
+CASES = {}
+
+# A model with one finding at a column after a surrogate pair and a two-byte character.
+EMOJI = "\U0001F600\u00f6"
+SMALL = ("format: ChoreonoidBody\nformat_version: 2.0\nangle_unit: degree\nname: T\nroot_link: \"%s\"\n"
+         "links:\n  - { name: \"%s\", joint_typo: fixed, mass: 1, inertia: [1,0,0,0,1,0,0,0,1] }\n") % (EMOJI, EMOJI)
+
+
+def case(f):
+    CASES[f.__name__] = f
+    return f
+
+
+def client(args=(), **kw):
+    return Client(BODYLS, args, **kw)
+
+
+def work_dir(name):
+    path = os.path.join(WORK, name)
+    shutil.rmtree(path, ignore_errors=True)
+    os.makedirs(path)
+    return path
+
+
+def expect_error(reply, code):
+    assert "error" in reply, "expected error %d, got %s" % (code, reply)
+    assert reply["error"]["code"] == code, "expected error %d, got %s" % (code, reply)
+
+
+def bodycheck_json(path, text=None):
+    """bodycheck's findings on `path` (or on `text` named `path`, through standard input)."""
+    args = [BODYCHECK, "--format", "json"]
+    args += ["-", "--stdin-filename", path] if text is not None else [path]
+    out = subprocess.run(args, input=text.encode() if text is not None else None, capture_output=True, check=False)
+    assert out.returncode in (0, 1, 2) and out.stdout, out.stderr.decode()
+    return json.loads(out.stdout)["diagnostics"]
+
+
+def expected_lsp(findings, texts):
+    """bodycheck's findings as (uri, line, character, severity, code, message), converted here."""
+    severity = {"fatal": 1, "error": 1, "warning": 2, "note": 3}
+    out = set()
+    for f in findings:
+        path = f["file"]
+        if path not in texts:
+            with open(path, "rb") as fh:
+                texts[path] = fh.read()
+        line, char = 0, 0
+        if f["line"] > 0:
+            lines = texts[path].split(b"\n")
+            text = lines[f["line"] - 1] if f["line"] - 1 < len(lines) else b""
+            line, char = f["line"] - 1, utf16_column(text.rstrip(b"\r"), f["column"])
+        out.add((uri_of(path), line, char, severity[f["severity"]], f["rule"], f["message"]))
+    return out
+
+
+def published(c, uris_and_versions, timeout=30):
+    """The last diagnostics of each URI once every (uri, version) was published."""
+    got = set()
+    for uri, version in uris_and_versions:
+        for d in c.diagnostics(uri, version, timeout):
+            s = d["range"]["start"]
+            got.add((uri, s["line"], s["character"], d["severity"], d["code"], d["message"]))
+    return got
+
+
+# ---- lifecycle -------------------------------------------------------------------------------
+
+@case
+def lifecycle():
+    c = client()
+    try:
+        reply = c.initialize()
+        caps = reply["result"]["capabilities"]
+        assert caps["textDocumentSync"]["change"] == 2, caps
+        assert reply["result"]["serverInfo"]["name"] == "bodyls"
+        assert c.request("shutdown")["result"] is None
+        c.notify("exit")
+        assert c.proc.wait(timeout=10) == 0
+    finally:
+        c.kill()
+
+
+@case
+def exit_without_shutdown():
+    c = client()
+    try:
+        c.initialize()
+        c.notify("exit")
+        assert c.proc.wait(timeout=10) == 1
+    finally:
+        c.kill()
+
+
+@case
+def before_initialize():
+    c = client()
+    try:
+        c.notify("textDocument/didOpen", {"textDocument": {"uri": "file:///x.body", "languageId": "body",
+                                                           "version": 1, "text": "x"}})
+        expect_error(c.request("textDocument/hover", {"textDocument": {"uri": "file:///x.body"},
+                                                      "position": {"line": 0, "character": 0}}), -32002)
+        c.initialize()
+        # The notification before initialize was dropped: no diagnostics for it, and the
+        # server answers on.
+        assert c.request("shutdown")["result"] is None
+        assert not any(m.get("method") == "textDocument/publishDiagnostics" for m in c.backlog), c.backlog
+    finally:
+        c.kill()
+
+
+@case
+def after_shutdown():
+    c = client()
+    try:
+        c.initialize()
+        c.request("shutdown")
+        expect_error(c.request("textDocument/hover", {}), -32600)
+        c.notify("exit")
+        assert c.proc.wait(timeout=10) == 0
+    finally:
+        c.kill()
+
+
+@case
+def unknown_method():
+    c = client()
+    try:
+        c.initialize()
+        expect_error(c.request("bodyls/noSuchThing", {}), -32601)
+        c.notify("bodyls/noSuchNotification", {})
+        c.notify("$/setTrace", {"value": "off"})
+        reply = c.request("shutdown")  # the notifications got no answer; this one comes next
+        assert reply["result"] is None and not c.backlog, c.backlog
+    finally:
+        c.kill()
+
+
+@case
+def malformed_json():
+    c = client()
+    try:
+        c.initialize()
+        for body in (b"{not json", b"[1, 2", b"\"\xff\xfe\"", b"{\"id\": 1, \"method\": \"shutdown\""):
+            c.write_raw(b"Content-Length: %d\r\n\r\n" % len(body) + body)
+            reply = c.wait(lambda m: "error" in m)
+            expect_error(reply, -32700)
+            assert reply["id"] is None
+        c.send([1, 2])  # valid JSON, not a request
+        expect_error(c.wait(lambda m: "error" in m), -32600)
+        c.send({"jsonrpc": "2.0", "id": {"a": 1}, "method": "shutdown"})
+        expect_error(c.wait(lambda m: "error" in m), -32600)
+        assert c.finish() == 0
+    finally:
+        c.kill()
+
+
+@case
+def bad_framing():
+    c = client()
+    try:
+        c.initialize()
+        # No Content-Length, a length that is not a number, a header line without ':'.
+        for junk in (b"Content-Type: x\r\n\r\n{}", b"Content-Length: ten\r\n\r\n{}", b"garbage\r\n\r\n"):
+            c.write_raw(junk)
+            expect_error(c.wait(lambda m: "error" in m), -32700)
+        # A length over the limit: its bytes are skipped, and the session goes on.
+        c.write_raw(b"Content-Length: 99999999999999\r\n\r\n")
+        expect_error(c.wait(lambda m: "error" in m), -32700)
+        c.proc.stdin.close()  # the end of input inside that message: the server ends, never hangs
+        assert c.proc.wait(timeout=10) == 1
+    finally:
+        c.kill()
+    c = client()
+    try:
+        c.initialize()
+        c.write_raw(b"Content-Length: 100\r\n\r\n{\"jsonrpc\"")  # cut short
+        c.proc.stdin.close()
+        assert c.proc.wait(timeout=10) == 1
+    finally:
+        c.kill()
+
+
+@case
+def cancel_request():
+    c = client()
+    try:
+        c.initialize()
+        hover = {"jsonrpc": "2.0", "id": 77, "method": "textDocument/hover",
+                 "params": {"textDocument": {"uri": "file:///none.body"}, "position": {"line": 0, "character": 0}}}
+        cancel = {"jsonrpc": "2.0", "method": "$/cancelRequest", "params": {"id": 77}}
+        c.write_raw(c.frame(hover) + c.frame(cancel))  # one write: read in one batch
+        expect_error(c.wait(lambda m: m.get("id") == 77), -32800)
+        assert c.finish() == 0
+    finally:
+        c.kill()
+
+
+# ---- documents and diagnostics ----------------------------------------------------------------
+
+@case
+def utf16_positions():
+    folder = work_dir("utf16_positions")
+    path = os.path.join(folder, "small.body")
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(SMALL)
+    c = client()
+    try:
+        c.initialize()
+        c.open(uri_of(path), SMALL)
+        got = published(c, [(uri_of(path), 1)])
+        want = expected_lsp(bodycheck_json(path), {})
+        assert got == want, "\n got %s\nwant %s" % (sorted(got), sorted(want))
+        typo = [g for g in got if g[4] == "load-unknown-model-key"]
+        assert typo and typo[0][2] == 19, typo  # 13 ASCII, 2 units of U+1F600, 1 of U+00F6, 3 ASCII
+    finally:
+        c.kill()
+
+
+@case
+def incremental_sync():
+    folder = work_dir("incremental_sync")
+    path = os.path.join(folder, "small.body")
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(SMALL)
+    uri = uri_of(path)
+    c = client()
+    try:
+        c.initialize()
+        c.open(uri, SMALL)
+        c.diagnostics(uri, 1)
+        # Replace "joint_typo" (UTF-16 columns 19..29 of line 6) by "joint_type", then insert a
+        # surrogate pair into the comment-free start of line 3, then delete it again.
+        c.change(uri, 2, [{"range": {"start": {"line": 6, "character": 19}, "end": {"line": 6, "character": 29}},
+                           "text": "joint_type"}])
+        c.change(uri, 3, [{"range": {"start": {"line": 3, "character": 6}, "end": {"line": 3, "character": 6}},
+                           "text": "\U0001F680"},
+                          {"range": {"start": {"line": 3, "character": 6}, "end": {"line": 3, "character": 8}},
+                           "text": ""}])
+        text = SMALL.replace("joint_typo", "joint_type")
+        # A position inside the surrogate pair of line 6 means its start: nothing is cut.
+        c.change(uri, 4, [{"range": {"start": {"line": 4, "character": 13}, "end": {"line": 4, "character": 13}},
+                           "text": "X"}])
+        text = text.replace("root_link: \"" + EMOJI, "root_link: \"X" + EMOJI)
+        got = published(c, [(uri, 4)])
+        want = expected_lsp(bodycheck_json(path, text), {path: text.encode()})
+        assert got == want, "\n got %s\nwant %s" % (sorted(got), sorted(want))
+        assert not any(g[4] == "load-unknown-model-key" for g in got), got
+    finally:
+        c.kill()
+
+
+@case
+def newer_edit_supersedes():
+    folder = work_dir("newer_edit_supersedes")
+    path = os.path.join(folder, "small.body")
+    uri = uri_of(path)
+    c = client(["--debounce-ms", "200"])
+    try:
+        c.initialize()
+        c.open(uri, SMALL)
+        c.diagnostics(uri, 1)
+        frames = b""
+        for v in range(2, 22):  # 20 edits in one write, each appending a comment line
+            frames += c.frame({"jsonrpc": "2.0", "method": "textDocument/didChange",
+                               "params": {"textDocument": {"uri": uri, "version": v},
+                                          "contentChanges": [{"range": {"start": {"line": 7, "character": 0},
+                                                                        "end": {"line": 7, "character": 0}},
+                                                              "text": "# %d\n" % v}]}})
+        c.write_raw(frames)
+        c.diagnostics(uri, 21)
+        time.sleep(0.3)
+        c.request("shutdown")
+        stale = [m for m in c.backlog if m.get("method") == "textDocument/publishDiagnostics"]
+        assert not stale, "published for superseded versions: %s" % [m["params"].get("version") for m in stale]
+    finally:
+        c.kill()
+
+
+def corpus_models():
+    root = os.path.join(SHARED, "corpus", "choreonoid")
+    names = ["SR1/SR1.body", "GR001/GR001.body", "PA10/PA10.body", "Tank/Tank.body", "JACO2/JACO2.body"]
+    return [os.path.join(root, n) for n in names if os.path.exists(os.path.join(root, n))]
+
+
+@case
+def corpus_equals_bodycheck():
+    models = corpus_models()
+    assert models, "no corpus models under " + SHARED
+    c = client()
+    try:
+        c.initialize()
+        # GR001 again at the end: its meshes come from the session's cache then.
+        for path in models + models[1:2]:
+            with open(path, "rb") as f:
+                text = f.read()
+            findings = bodycheck_json(path)
+            want = expected_lsp(findings, {path: text})
+            uris = sorted({w[0] for w in want} | {uri_of(path)})
+            c.open(uri_of(path), text.decode("utf-8", errors="replace"))
+            got = published(c, [(u, 1 if u == uri_of(path) else None) for u in uris])
+            assert got == want, "%s:\n only bodyls %s\n only bodycheck %s" % (path, sorted(got - want)[:5],
+                                                                                sorted(want - got)[:5])
+            c.notify("textDocument/didClose", {"textDocument": {"uri": uri_of(path)}})
+            for u in uris:
+                assert c.diagnostics(u) == [], "closing %s left diagnostics on %s" % (path, u)
+    finally:
+        c.kill()
+
+
+@case
+def edited_buffer_equals_bodycheck():
+    path = corpus_models()[0]  # SR1
+    with open(path, encoding="utf-8") as f:
+        text = f.read()
+    uri = uri_of(path)
+    c = client()
+    try:
+        c.initialize()
+        c.open(uri, text)
+        c.diagnostics(uri, 1)
+        lines = text.split("\n")
+        # Edits that add and remove findings: a negative mass, a misspelt key, a duplicate key.
+        for version, (old, new) in enumerate([("mass: 27.0", "mass: -27.0"), ("joint_type: free", "joint_typ: free"),
+                                              ("joint_id: 26", "joint_id: 26\n    joint_id: 1"),
+                                              ("joint_typ: free", "joint_type: free")], start=2):
+            line = next(i for i, l in enumerate(lines) if old in l)
+            col = lines[line].index(old)
+            c.change(uri, version, [{"range": {"start": {"line": line, "character": col},
+                                               "end": {"line": line, "character": col + len(old)}}, "text": new}])
+            lines = "\n".join(lines).replace(old, new, 1).split("\n")
+            edited = "\n".join(lines)
+            got = published(c, [(uri, version)])
+            want = expected_lsp(bodycheck_json(path, edited), {path: edited.encode()})
+            assert got == want, "edit %d:\n only bodyls %s\n only bodycheck %s" % (version, sorted(got - want)[:5],
+                                                                                     sorted(want - got)[:5])
+    finally:
+        c.kill()
+
+
+@case
+def included_file_findings():
+    folder = work_dir("included_file_findings")
+    main = os.path.join(folder, "main.body")
+    sub = os.path.join(folder, "sub.body")
+    with open(sub, "w") as f:
+        f.write("format: ChoreonoidBody\nformat_version: 2.0\nname: S\nroot_link: S0\nlinks:\n"
+                "  - { name: S0, joint_type: fixed, mass: -1, inertia: [1,0,0,0,1,0,0,0,1] }\n")
+    text = ("format: ChoreonoidBody\nformat_version: 2.0\nname: M\nroot_link: BASE\nlinks:\n"
+            "  - name: BASE\n    joint_type: free\n    mass: 1\n    inertia: [1,0,0,0,1,0,0,0,1]\n"
+            "  - type: SubBody\n    uri: sub.body\n    parent: BASE\n")
+    with open(main, "w") as f:
+        f.write(text)
+    c = client()
+    try:
+        c.initialize()
+        c.open(uri_of(main), text)
+        want = expected_lsp(bodycheck_json(main), {})
+        assert any(w[0] == uri_of(sub) for w in want), "the test needs a finding in sub.body: %s" % want
+        got = published(c, [(uri_of(main), 1), (uri_of(sub), None)])
+        assert got == want, "\n got %s\nwant %s" % (sorted(got), sorted(want))
+    finally:
+        c.kill()
+
+
+@case
+def stale_check_not_published():
+    # A check long enough (a chain of 8,000 links) that an edit arrives while it runs: its
+    # findings are of a superseded text and must never be published.
+    folder = work_dir("stale_check_not_published")
+    path = os.path.join(folder, "chain.body")
+    rows = ["format: ChoreonoidBody\nformat_version: 2.0\nname: C\nroot_link: L0\nlinks:\n",
+            "  - { name: L0, joint_type: free, mass: 1, inertia: [1,0,0,0,1,0,0,0,1] }\n"]
+    rows += ["  - { name: L%d, parent: L%d, translation: [0, 0, 0.1], joint_type: revolute, joint_axis: Z, "
+             "joint_id: %d, mass: 1, inertia: [1,0,0,0,1,0,0,0,1] }\n" % (i, i - 1, i - 1) for i in range(1, 8000)]
+    text = "".join(rows)
+    uri = uri_of(path)
+    c = client(["--debounce-ms", "0"])
+    try:
+        c.initialize()
+        c.open(uri, text)
+        c.diagnostics(uri, 1, timeout=60)
+        end = {"line": 6, "character": 0}
+        c.change(uri, 2, [{"range": {"start": end, "end": end}, "text": "# two\n"}])
+        time.sleep(0.02)  # the check of version 2 has started
+        c.change(uri, 3, [{"range": {"start": end, "end": end}, "text": "# three\n"}])
+        c.diagnostics(uri, 3, timeout=60)
+        late = [m["params"].get("version") for m in c.backlog if m.get("method") == "textDocument/publishDiagnostics"]
+        assert 2 not in late, "published the check of version 2 after version 3 had come: %s" % late
+    finally:
+        c.kill()
+
+
+# ---- code actions ----------------------------------------------------------------------------
+
+UPGRADE_KIND = "quickfix.bodyfmt.upgrade"
+
+
+def fix_edits(findings, safety, texts):
+    """bodycheck's fix-its of one safety class as (uri, start, end, new text), converted here."""
+    out = set()
+    for f in findings:
+        for x in f["fixes"]:
+            if x["safety"] != safety:
+                continue
+            data = texts.setdefault(x["file"], open(x["file"], "rb").read())
+
+            def pos(offset):
+                before = data[:offset]
+                line = before.count(b"\n")
+                start = before.rfind(b"\n") + 1
+                return (line, utf16_column(data[start:], offset - start + 1))
+            out.add((uri_of(x["file"]), pos(x["offset"]), pos(x["offset"] + x["length"]), x["replacement"]))
+    return out
+
+
+def action_edits(actions):
+    out = set()
+    for a in actions:
+        for uri, edits in a.get("edit", {}).get("changes", {}).items():
+            for e in edits:
+                r = e["range"]
+                out.add((uri, (r["start"]["line"], r["start"]["character"]), (r["end"]["line"], r["end"]["character"]),
+                         e["newText"]))
+    return out
+
+
+def whole(text):
+    return {"start": {"line": 0, "character": 0}, "end": {"line": text.count("\n") + 1, "character": 0}}
+
+
+@case
+def code_actions_safety_classes():
+    path = corpus_models()[0]  # SR1: format 1.0 with legacy keys
+    with open(path, encoding="utf-8") as f:
+        text = f.read()
+    uri = uri_of(path)
+    findings = bodycheck_json(path)
+    safe, upgrade = fix_edits(findings, "safe", {}), fix_edits(findings, "upgrade", {})
+    assert safe and upgrade, "the test needs safe and upgrade fix-its in %s" % path
+    c = client()
+    try:
+        c.initialize()
+        c.open(uri, text)
+        c.diagnostics(uri, 1)
+        ask = {"textDocument": {"uri": uri}, "range": whole(text), "context": {"diagnostics": []}}
+        actions = c.request("textDocument/codeAction", ask)["result"]
+        assert all(a["kind"] == "quickfix" for a in actions), actions
+        assert action_edits(actions) == safe, "\n got %s\nwant %s" % (sorted(action_edits(actions))[:4], sorted(safe)[:4])
+        ask["context"]["only"] = ["quickfix"]
+        assert action_edits(c.request("textDocument/codeAction", ask)["result"]) == safe
+        ask["context"]["only"] = [UPGRADE_KIND]
+        actions = c.request("textDocument/codeAction", ask)["result"]
+        assert [a["kind"] for a in actions] == [UPGRADE_KIND], actions
+        assert action_edits(actions) == upgrade
+        # One line: only the fix-its of the findings there (formatVersion on line 2).
+        ask = {"textDocument": {"uri": uri}, "context": {"diagnostics": []},
+               "range": {"start": {"line": 1, "character": 3}, "end": {"line": 1, "character": 3}}}
+        actions = c.request("textDocument/codeAction", ask)["result"]
+        assert action_edits(actions) == {e for e in safe if e[1][0] == 1}, actions
+    finally:
+        c.kill()
+
+
+@case
+def code_actions_unsafe_never_applied():
+    folder = work_dir("code_actions_unsafe")
+    path = os.path.join(folder, "small.body")
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(SMALL)
+    uri = uri_of(path)
+    assert fix_edits(bodycheck_json(path), "unsafe", {}), "the test needs an unsafe fix-it"
+    ask = {"textDocument": {"uri": uri}, "range": whole(SMALL), "context": {"diagnostics": []}}
+    for disabled_support in (False, True):
+        c = client()
+        try:
+            c.initialize({"textDocument": {"codeAction": {"disabledSupport": disabled_support}}})
+            c.open(uri, SMALL)
+            c.diagnostics(uri, 1)
+            actions = c.request("textDocument/codeAction", ask)["result"]
+            assert not action_edits(actions), actions
+            if disabled_support:
+                assert actions and all("disabled" in a and "edit" not in a for a in actions), actions
+            else:
+                assert actions == [], actions
+        finally:
+            c.kill()
+
+
+# ---- watching and the viewer ------------------------------------------------------------------
+
+SUB_BAD = ("format: ChoreonoidBody\nformat_version: 2.0\nname: S\nroot_link: S0\nlinks:\n"
+           "  - { name: S0, joint_type: fixed, mass: -1, inertia: [1,0,0,0,1,0,0,0,1] }\n")
+MAIN_WITH_SUB = ("format: ChoreonoidBody\nformat_version: 2.0\nname: M\nroot_link: BASE\nlinks:\n"
+                 "  - name: BASE\n    joint_type: free\n    mass: 1\n    inertia: [1,0,0,0,1,0,0,0,1]\n"
+                 "  - type: SubBody\n    uri: sub.body\n    parent: BASE\n")
+
+
+def watched_session(folder_name, capabilities):
+    folder = work_dir(folder_name)
+    main, sub = os.path.join(folder, "main.body"), os.path.join(folder, "sub.body")
+    with open(sub, "w") as f:
+        f.write(SUB_BAD)
+    with open(main, "w") as f:
+        f.write(MAIN_WITH_SUB)
+    c = client()
+    c.initialize(capabilities)
+    c.open(uri_of(main), MAIN_WITH_SUB)
+    assert c.diagnostics(uri_of(sub)), "the test needs a finding in sub.body"
+    time.sleep(0.05)  # a new modification time, even on coarse clocks
+    with open(sub, "w") as f:
+        f.write(SUB_BAD.replace("mass: -1", "mass: 1"))
+    return c, main, sub
+
+
+@case
+def watched_files_recheck():
+    c, main, sub = watched_session("watched_files_recheck",
+                                   {"workspace": {"didChangeWatchedFiles": {"dynamicRegistration": True}}})
+    try:
+        register = c.wait(lambda m: m.get("method") == "client/registerCapability")
+        reg = register["params"]["registrations"][0]
+        assert reg["method"] == "workspace/didChangeWatchedFiles", reg
+        c.send({"jsonrpc": "2.0", "id": register["id"], "result": None})
+        c.notify("workspace/didChangeWatchedFiles", {"changes": [{"uri": uri_of(sub), "type": 2}]})
+        assert c.diagnostics(uri_of(sub), timeout=10) == [], "sub.body's finding stayed after it was fixed"
+    finally:
+        c.kill()
+
+
+@case
+def polled_files_recheck():
+    c, main, sub = watched_session("polled_files_recheck", {})
+    try:
+        # No didChangeWatchedFiles from this client: the server's own look at the files (1 s).
+        assert c.diagnostics(uri_of(sub), timeout=10) == [], "sub.body's finding stayed after it was fixed"
+        assert not any(m.get("method") == "client/registerCapability" for m in c.backlog)
+    finally:
+        c.kill()
+
+
+@case
+def open_viewer():
+    import urllib.request
+    path = corpus_models()[0]
+    c = client()
+    try:
+        c.initialize({"window": {"showDocument": {"support": True}}})
+        rid = c.request_async("workspace/executeCommand", {"command": "bodyls.openViewer", "arguments": [uri_of(path)]})
+        show = c.wait(lambda m: m.get("method") == "window/showDocument", timeout=60)
+        url = show["params"]["uri"]
+        assert show["params"]["external"] is True and url.startswith("http://127.0.0.1:"), show
+        c.send({"jsonrpc": "2.0", "id": show["id"], "result": {"success": True}})
+        assert c.wait(lambda m: m.get("id") == rid)["result"]["url"] == url
+        page = urllib.request.urlopen(url, timeout=30).read()
+        assert b"<html" in page.lower(), page[:200]
+        assert c.finish() == 0
+        try:  # the viewer ends with the server
+            urllib.request.urlopen(url, timeout=5)
+            raise AssertionError("the viewer still serves after bodyls exited")
+        except OSError:
+            pass
+    finally:
+        c.kill()
+
+
+if __name__ == "__main__":
+    CASES[sys.argv[5]]()
+    print("ok")

@@ -1,0 +1,30 @@
+#pragma once
+/// textDocument/codeAction: the fix-its of the findings in a range as quick fixes, with
+/// `bodycheck --fix`'s safety classes. Safe fix-its are offered as `quickfix` edits; the
+/// format 1.0 -> 2.0 upgrade (all of its edits together, as `--fix --upgrade` applies them)
+/// only when the client asks for kUpgradeActionKind (or "quickfix.bodyfmt") in
+/// `context.only`; an unsafe fix-it is never an edit: it is shown disabled, with the reason,
+/// to clients that support disabled actions, and left out for the others.
+
+#include <bodyfmt/diagnostic.h>
+
+#include <nlohmann/json.hpp>
+
+#include "text_positions.h"
+
+#include <string>
+#include <vector>
+
+namespace bodyfmt::lsp {
+
+struct CodeActionQuery {
+  Utf16Range range;
+  std::vector<std::string> only;  ///< context.only (empty: every kind)
+  bool disabled_support = false;  ///< the client shows disabled actions
+};
+
+/// The actions for the findings of the checked `text` of the document `path` at `uri`.
+nlohmann::json code_actions_for(const std::string& uri, const std::string& path, const std::string& text,
+                                const std::vector<Diagnostic>& findings, const CodeActionQuery& query);
+
+}  // namespace bodyfmt::lsp
