@@ -10,6 +10,7 @@ standard output. Tools with several outputs run each: bodydiff's pair, --textcon
 with -o -; --help of each. A tool without a command here fails the test, so a new one cannot
 be missed.
 """
+import json
 import os
 import shutil
 import subprocess
@@ -74,7 +75,11 @@ def main():
             "urdf2body": [["urdf2body", urdf, "-o", "-"]],
             "bodyview": [["bodyview", old, "-o", "-"]],
             "rules_doc": [["rules_doc"]],
+            "bodyls": [["bodyls"]],  # an editor's initialize on standard input: the reply cannot be written
         }
+        initialize = json.dumps({"jsonrpc": "2.0", "id": 1, "method": "initialize",
+                                 "params": {"processId": None, "rootUri": None, "capabilities": {}}})
+        stdin_of = {"bodyls": f"Content-Length: {len(initialize)}\r\n\r\n{initialize}"}
         tools = sorted(d for d in os.listdir(os.path.join(source, "tools"))
                        if os.path.isfile(os.path.join(source, "tools", d, "main.cpp"))
                        and os.access(os.path.join(bin_dir, d), os.X_OK))
@@ -88,7 +93,8 @@ def main():
                 count += 1
                 with open("/dev/full", "w") as full:
                     run = subprocess.run([os.path.join(bin_dir, argv[0]), *argv[1:]], stdout=full,
-                                         stderr=subprocess.PIPE, text=True, cwd=work, timeout=300)
+                                         stderr=subprocess.PIPE, text=True, cwd=work, timeout=300,
+                                         input=stdin_of.get(argv[0], "") if len(argv) == 1 else "")
                 what = " ".join(argv).replace(work + "/", "")
                 if run.returncode != 2 or "standard output" not in run.stderr:
                     failures.append(f"{what} > /dev/full: exit {run.returncode}, expected 2 and a message\n"

@@ -296,6 +296,127 @@ def newer_edit_supersedes():
         c.kill()
 
 
+@case
+def debounce_holds_bursts_only():
+    # With a 3 s debounce: an edit after a longer pause is published long before the debounce
+    # would end, and the second of two edits sent together waits for it (the check of the first,
+    # if it ran, is superseded and never published).
+    folder = work_dir("debounce_holds_bursts_only")
+    path = os.path.join(folder, "small.body")
+    uri = uri_of(path)
+    debounce = 3.0
+    c = client(["--debounce-ms", str(int(debounce * 1000))])
+    try:
+        c.initialize()
+        c.open(uri, SMALL)
+        c.diagnostics(uri, 1)
+        time.sleep(debounce + 0.2)
+        end = {"line": 7, "character": 0}
+        start = time.monotonic()
+        c.change(uri, 2, [{"range": {"start": end, "end": end}, "text": "# after a pause\n"}])
+        c.diagnostics(uri, 2, timeout=30)
+        after_pause = time.monotonic() - start
+        assert after_pause < debounce / 2, "an edit after a pause waited %.2f s for its check" % after_pause
+        start = time.monotonic()
+        c.change(uri, 3, [{"range": {"start": end, "end": end}, "text": "# a\n"}])
+        c.change(uri, 4, [{"range": {"start": end, "end": end}, "text": "# b\n"}])
+        c.diagnostics(uri, 4, timeout=30)
+        burst = time.monotonic() - start
+        assert burst >= debounce * 0.9, "the last edit of a burst was checked after %.2f s, before the debounce" % burst
+        late = [m["params"].get("version") for m in c.backlog if m.get("method") == "textDocument/publishDiagnostics"]
+        assert 3 not in late, "published the superseded version 3: %s" % late
+    finally:
+        c.kill()
+
+
+# ---- language features through the protocol --------------------------------------------------
+
+# Two links after a line of non-ASCII text, so that every position sent and received is tested in
+# UTF-16 units; the expected positions are computed here from the text.
+FEATURES = ("format: ChoreonoidBody\nformat_version: 2.0\nangle_unit: degree\nname: F\n"
+            "# " + EMOJI + " Arm " + EMOJI + "\n"
+            "links:\n"
+            "  - { name: " + EMOJI + "BASE, joint_type: free, mass: 2.5, inertia: [1,0,0,0,1,0,0,0,1] }\n"
+            "  - { name: ARM, parent: " + EMOJI + "BASE, joint_type: revolute, joint_axis: Z, joint_id: 0, "
+            "joint_range: [ -90, 90 ], mass: 1.5, inertia: [1,0,0,0,1,0,0,0,1] }\n")
+
+
+def position_of(text, needle, nth=0, offset=0):
+    """The LSP position (UTF-16) of the nth occurrence of `needle` in `text`, plus `offset` characters."""
+    at = -1
+    for _ in range(nth + 1):
+        at = text.index(needle, at + 1)
+    line = text.count("\n", 0, at)
+    start = text.rfind("\n", 0, at) + 1
+    return {"line": line, "character": len(text[start:at].encode("utf-16-le")) // 2 + offset}
+
+
+def span_of(text, needle, nth=0):
+    begin = position_of(text, needle, nth)
+    return {"start": begin, "end": {"line": begin["line"],
+                                    "character": begin["character"] + len(needle.encode("utf-16-le")) // 2}}
+
+
+@case
+def language_features():
+    folder = work_dir("language_features")
+    path = os.path.join(folder, "features.body")
+    uri = uri_of(path)
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(FEATURES)
+    doc = {"textDocument": {"uri": uri}}
+    base = EMOJI + "BASE"
+    c = client()
+    try:
+        c.initialize()
+        c.open(uri, FEATURES)
+        c.diagnostics(uri, 1)
+        # Hover: the link's mass on its name; an angle in degrees and radians.
+        hover = c.request("textDocument/hover", dict(doc, position=position_of(FEATURES, base, 0, 1)))["result"]
+        assert hover and "2.5" in hover["contents"]["value"] and "4 kg" in hover["contents"]["value"], hover
+        assert hover["range"] == span_of(FEATURES, base, 0), hover["range"]
+        angle = c.request("textDocument/hover", dict(doc, position=position_of(FEATURES, "-90", 0, 1)))["result"]
+        assert angle and "1.5707963" in angle["contents"]["value"], angle
+        key = c.request("textDocument/hover", dict(doc, position=position_of(FEATURES, "joint_range", 0, 2)))["result"]
+        assert key and "joint_range" in key["contents"]["value"], key
+        # Definition and references of the link the parent value names.
+        parent = position_of(FEATURES, base, 1, 2)
+        definition = c.request("textDocument/definition", dict(doc, position=parent))["result"]
+        definition = definition if isinstance(definition, list) else [definition]
+        assert [d["range"] for d in definition] == [span_of(FEATURES, base, 0)], definition
+        refs = c.request("textDocument/references",
+                         dict(doc, position=parent, context={"includeDeclaration": True}))["result"]
+        assert sorted((r["range"]["start"]["line"], r["range"]["start"]["character"]) for r in refs) == sorted(
+            (s["start"]["line"], s["start"]["character"]) for s in (span_of(FEATURES, base, 0), span_of(FEATURES, base, 1))), refs
+        # Rename: the name and the parent value, as UTF-16 ranges of this text.
+        edit = c.request("textDocument/rename", dict(doc, position=parent, newName="TORSO"))["result"]
+        ranges = sorted((e["range"]["start"]["line"], e["range"]["start"]["character"], e["range"]["end"]["character"],
+                         e["newText"]) for e in edit["changes"][uri])
+        want = sorted((s["start"]["line"], s["start"]["character"], s["end"]["character"], "TORSO")
+                      for s in (span_of(FEATURES, base, 0), span_of(FEATURES, base, 1)))
+        assert ranges == want, (ranges, want)
+        # Completion after "parent: " offers the links; document symbols nest ARM under the base.
+        end = {"line": 8, "character": 0}
+        typed = "  - { name: HAND, parent: "
+        c.change(uri, 2, [{"range": {"start": end, "end": end}, "text": typed}])
+        items = c.request("textDocument/completion", dict(doc, position={"line": 8, "character": len(typed)}))["result"]
+        labels = {i["label"] for i in (items["items"] if isinstance(items, dict) else items)}
+        assert {base, "ARM"} <= labels, labels
+        c.change(uri, 3, [{"range": {"start": end, "end": {"line": 8, "character": len(typed)}}, "text": ""}])
+        symbols = c.request("textDocument/documentSymbol", doc)["result"]
+        names = []
+
+        def walk(items, depth):
+            for s in items:
+                names.append((depth, s["name"]))
+                walk(s.get("children", []), depth + 1)
+        walk(symbols, 0)
+        depth = dict((n, d) for d, n in names)
+        assert base in depth and "ARM" in depth and depth["ARM"] == depth[base] + 1, names
+    finally:
+        c.kill()
+
+
 def corpus_models():
     root = os.path.join(SHARED, "corpus", "choreonoid")
     names = ["SR1/SR1.body", "GR001/GR001.body", "PA10/PA10.body", "Tank/Tank.body", "JACO2/JACO2.body"]

@@ -18,9 +18,11 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <chrono>
 #include <condition_variable>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <map>
@@ -68,6 +70,7 @@ struct Server::Impl {
     std::string text;
     bool pending = false;
     Clock::time_point due;
+    Clock::time_point last_edit;  ///< of the text (open or change), for the debounce
     // The last check published.
     int checked_version = -1;
     std::vector<Diagnostic> findings;
@@ -274,7 +277,8 @@ struct Server::Impl {
     d.path = path_from_uri(uri).value_or(uri);
     d.version = item.value("version", 0);
     d.text = item.at("text").get<std::string>();
-    schedule(d, Clock::now());  // the first check without a debounce
+    d.last_edit = Clock::now();
+    schedule(d, d.last_edit);  // the first check without a debounce
     schedule_dependents(canonical(d.path), uri);
   }
 
@@ -294,7 +298,14 @@ struct Server::Impl {
       }
     }
     d.version = item.value("version", d.version + 1);
-    schedule(d, debounced());
+    // The debounce holds back only a burst (a key held down, a paste in pieces, a client's
+    // batch): the first edit after a pause of more than debounce_ms is checked at once, so that
+    // an edit's findings take the check's time and no more; edits within debounce_ms of the
+    // previous one wait until debounce_ms after the last. Either way a newer edit supersedes.
+    const Clock::time_point now = Clock::now();
+    const bool in_burst = now - d.last_edit < std::chrono::milliseconds(options.debounce_ms);
+    d.last_edit = now;
+    schedule(d, in_burst ? debounced() : now);
     schedule_dependents(canonical(d.path), uri);
   }
 
@@ -583,22 +594,31 @@ int run_server(int argc, char** argv) {
   bool stdio = false;
   front.app().add_flag("--stdio", stdio, "talk over standard input and output (the default; editors pass it)");
   front.app()
-      .add_option("--debounce-ms", options.debounce_ms, "milliseconds from an edit to its check (default 50)")
+      .add_option("--debounce-ms", options.debounce_ms,
+                  "a burst of edits less than this many milliseconds apart is checked this long after its last "
+                  "(default 50; an edit after a longer pause is checked at once)")
       ->check(CLI::Range(0, 10000));
   if (auto code = front.parse(argc, argv)) return *code;
-  const auto write_all = [](const std::string& body) {
+  // A failed write (the client is gone, a full disk) ends the session with exit 2 and says why
+  // once, as every tool does when standard output fails; called from the worker thread too.
+  std::atomic<int> write_error{0};
+  const auto write_all = [&write_error](const std::string& body) {
+    if (write_error.load()) return;
     const std::string framed = frame(body);
     for (std::size_t done = 0; done < framed.size();) {
       const ssize_t n = ::write(STDOUT_FILENO, framed.data() + done, framed.size() - done);
       if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) return;  // the client is gone; reading stdin ends too
+      if (n <= 0) {
+        write_error.store(n < 0 ? errno : EIO);
+        return;
+      }
       done += static_cast<std::size_t>(n);
     }
   };
   Server server(front, options, write_all);
   MessageReader reader;
   std::vector<char> buffer(1 << 16);
-  while (!server.exited()) {
+  while (!server.exited() && !write_error.load()) {
     const ssize_t n = ::read(STDIN_FILENO, buffer.data(), buffer.size());
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) break;
@@ -617,6 +637,10 @@ int run_server(int argc, char** argv) {
       bodies.push_back(std::move(body));
     }
     server.handle_batch(bodies);
+  }
+  if (const int error = write_error.load()) {
+    front.print_error(std::string("cannot write to standard output: ") + std::strerror(error));
+    return tools::kExitFatal;
   }
   // The end of input without `exit` ends the session as an `exit` without `shutdown` would.
   return server.exited() ? server.exit_code() : 1;

@@ -15,7 +15,9 @@
 namespace bodyfmt::lsp {
 
 struct ServerOptions {
-  int debounce_ms = 50;  ///< from the last edit to its check (initializationOptions.debounceMs)
+  /// From the last edit of a burst (edits less than this apart) to its check; the first edit
+  /// after a longer pause is checked at once (initializationOptions.debounceMs).
+  int debounce_ms = 50;
   bool threaded = true;
   int poll_ms = 1000;         ///< the server's own watch of dependency files, when the client has none
   std::string bodyview_path;  ///< bodyview for bodyls.openViewer (empty: beside this program)
