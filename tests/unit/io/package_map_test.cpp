@@ -14,18 +14,24 @@
 #include <optional>
 #include <string>
 
+#include <unistd.h>
+
 namespace bodyfmt::test {
 namespace {
 
 namespace fs = std::filesystem;
 
 struct Tree {
-  fs::path root = fs::temp_directory_path() / "bodyfmt_package_map";
-  fs::path robot = root / "ws/src/robot_folder";  // package robot_description: folder and name differ
-  fs::path referring = robot / "models";          // where the .body and the URDF are
+  // One folder per test case and process: ctest runs the cases side by side.
+  fs::path root;
+  fs::path robot;      // package robot_description: folder and name differ
+  fs::path referring;  // where the .body and the URDF are
 
-  Tree() {
+  explicit Tree(const std::string& name)
+      : root(fs::temp_directory_path() / ("bodyfmt_package_map_" + name + "_" + std::to_string(::getpid()))) {
     fs::remove_all(root);
+    robot = root / "ws/src/robot_folder";
+    referring = robot / "models";
     make(root / "ws/src/robot_folder/package.xml", "<package>\n  <name> robot_description </name>\n</package>\n");
     make(robot / "meshes/b.stl");
     make(root / "ws/src/pkg_a/package.xml", "<package><name>pkg_a</name></package>");
@@ -88,7 +94,7 @@ Resolved resolve(const Tree& tree, const std::string& uri, bool use_ros_package_
 }
 
 TEST_CASE("package map: a .body file and a URDF resolve every package:// URI to the same file") {
-  Tree tree;
+  Tree tree("readers");
   const std::string ros_before = std::getenv("ROS_PACKAGE_PATH") ? std::getenv("ROS_PACKAGE_PATH") : "";
   ::setenv("ROS_PACKAGE_PATH", ("/nonexistent:" + (tree.root / "ros").string()).c_str(), 1);
   const struct {
@@ -127,7 +133,7 @@ TEST_CASE("package map: a .body file and a URDF resolve every package:// URI to 
 }
 
 TEST_CASE("package map: the ROS package a file is written into, and paths inside it") {
-  Tree tree;
+  Tree tree("writer");
   std::string why;
   const std::optional<RosPackage> package = find_ros_package(tree.referring, why);
   REQUIRE(package);
