@@ -70,7 +70,6 @@ struct Server::Impl {
     std::string text;
     bool pending = false;
     Clock::time_point due;
-    Clock::time_point last_edit;  ///< of the text (open or change), for the debounce
     // The last check published.
     int checked_version = -1;
     std::vector<Diagnostic> findings;
@@ -277,8 +276,7 @@ struct Server::Impl {
     d.path = path_from_uri(uri).value_or(uri);
     d.version = item.value("version", 0);
     d.text = item.at("text").get<std::string>();
-    d.last_edit = Clock::now();
-    schedule(d, d.last_edit);  // the first check without a debounce
+    schedule(d, Clock::now());  // the first check without a debounce
     schedule_dependents(canonical(d.path), uri);
   }
 
@@ -289,6 +287,12 @@ struct Server::Impl {
     auto it = documents.find(uri);
     if (it == documents.end()) return;
     Document& d = it->second;
+    // The debounce holds back only edits that come faster than their checks (a key held down, a
+    // paste in pieces, a client's batch, typing in a model whose check takes longer than a
+    // keystroke): an edit made while the last text's findings are published is checked at
+    // once, so that its findings take the check's time and no more; one made while a check is
+    // pending or running waits until debounce_ms after it. Either way a newer edit supersedes.
+    const bool idle = !d.pending && d.checked_version == d.version;
     for (const json& change : params.at("contentChanges")) {
       const std::string& text = change.at("text").get_ref<const std::string&>();
       if (change.contains("range")) {
@@ -298,14 +302,7 @@ struct Server::Impl {
       }
     }
     d.version = item.value("version", d.version + 1);
-    // The debounce holds back only a burst (a key held down, a paste in pieces, a client's
-    // batch): the first edit after a pause of more than debounce_ms is checked at once, so that
-    // an edit's findings take the check's time and no more; edits within debounce_ms of the
-    // previous one wait until debounce_ms after the last. Either way a newer edit supersedes.
-    const Clock::time_point now = Clock::now();
-    const bool in_burst = now - d.last_edit < std::chrono::milliseconds(options.debounce_ms);
-    d.last_edit = now;
-    schedule(d, in_burst ? debounced() : now);
+    schedule(d, idle ? Clock::now() : debounced());
     schedule_dependents(canonical(d.path), uri);
   }
 
@@ -595,8 +592,8 @@ int run_server(int argc, char** argv) {
   front.app().add_flag("--stdio", stdio, "talk over standard input and output (the default; editors pass it)");
   front.app()
       .add_option("--debounce-ms", options.debounce_ms,
-                  "a burst of edits less than this many milliseconds apart is checked this long after its last "
-                  "(default 50; an edit after a longer pause is checked at once)")
+                  "an edit made while a check is pending or running is checked this long after it (default 50); "
+                  "an edit made while the findings are up to date is checked at once")
       ->check(CLI::Range(0, 10000));
   if (auto code = front.parse(argc, argv)) return *code;
   // A failed write (the client is gone, a full disk) ends the session with exit 2 and says why

@@ -15,8 +15,8 @@
 namespace bodyfmt::lsp {
 
 struct ServerOptions {
-  /// From the last edit of a burst (edits less than this apart) to its check; the first edit
-  /// after a longer pause is checked at once (initializationOptions.debounceMs).
+  /// From an edit made while a check is pending or running to its check; an edit made while
+  /// the findings are up to date is checked at once (initializationOptions.debounceMs).
   int debounce_ms = 50;
   bool threaded = true;
   int poll_ms = 1000;         ///< the server's own watch of dependency files, when the client has none
