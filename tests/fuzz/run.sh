@@ -56,12 +56,14 @@ for target in yaml load urdf urdf_import mjcf gltf text_outputs fix scenario lsp
   [ "$target" = yaml ] && seed_dir=$seeds/yaml
   [ "$target" = scenario ] && seed_dir=$seeds/scenario
   extra=()
+  timeout=20
   # A session's edits come from its input: full-length inputs from the start (libFuzzer's
-  # default grows them from 4 bytes, a session of one edit).
-  [ "$target" = lsp ] && seed_dir=$seeds/lsp && extra=(-len_control=0)
+  # default grows them from 4 bytes, a session of one edit). A session checks its model after
+  # many of its edits, so one input may take longer than one load.
+  [ "$target" = lsp ] && seed_dir=$seeds/lsp && extra=(-len_control=0) && timeout=120
   dict=tests/fuzz/body.dict
   [ "$target" = urdf_import ] && seed_dir=$seeds/urdf_import && dict=tests/fuzz/urdf.dict
   echo "fuzz_$target: ${seconds} s"
-  "$build/tests/fuzz/fuzz_$target" -max_total_time="$seconds" -rss_limit_mb=4096 -timeout=20 -max_len=65536 \
+  "$build/tests/fuzz/fuzz_$target" -max_total_time="$seconds" -rss_limit_mb=4096 -timeout="$timeout" -max_len=65536 \
     -dict="$dict" -print_final_stats=1 "${extra[@]}" "$corpus" "$seed_dir" 2>&1 | tail -n 12
 done
