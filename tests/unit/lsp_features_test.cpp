@@ -420,6 +420,54 @@ TEST_CASE("lsp features: references and rename of a link") {
   CHECK((*edits)[0].new_text == "\"arm: left\"");
 }
 
+TEST_CASE("lsp features: rename of a quoted link name replaces the name with its quotes") {
+  // Block and flow, double and single quotes: the edit covers the whole quoted scalar, so the
+  // renamed file loads with the new name wherever the old one was.
+  const std::string text = R"(format: ChoreonoidBody
+format_version: 2.0
+name: q
+links:
+  - name: "base"
+    joint_type: free
+    mass: 1
+  - { name: 'arm', parent: "base", joint_type: fixed, mass: 1 }
+  - name: hand
+    parent: 'arm'
+    joint_type: fixed
+    mass: 1
+)";
+  const Document d = doc(text);
+  const auto offset = [&](const std::string& t, TextPoint p) {
+    std::size_t o = 0;
+    for (int line = 1; line < p.line; ++line) o = t.find('\n', o) + 1;
+    return o + static_cast<std::size_t>(p.column - 1);
+  };
+  for (const auto& [at, old_name] : {std::pair<TextPoint, std::string>{point_of(text, "name: \"base\"", 8), "base"},
+                                     {point_of(text, "'arm', parent", 2), "arm"}}) {
+    CAPTURE(old_name);
+    std::string why;
+    const auto edits = rename_link(d, at, "renamed", why);
+    REQUIRE(edits);
+    std::vector<TextEdit> sorted = *edits;
+    std::sort(sorted.begin(), sorted.end(), [&](const TextEdit& a, const TextEdit& b) {
+      return offset(text, a.where.range.begin) > offset(text, b.where.range.begin);
+    });
+    std::string renamed = text;
+    for (const TextEdit& e : sorted) {
+      const std::size_t begin = offset(text, e.where.range.begin), end = offset(text, e.where.range.end);
+      renamed.replace(begin, end - begin, e.new_text);
+    }
+    CAPTURE(renamed);
+    bodyfmt::CollectingSink sink;
+    const auto model = bodyfmt::load_body_string(renamed, "/tmp/renamed.body", {}, sink);
+    REQUIRE(model);
+    CHECK(sink.error_count() == 0);
+    CHECK(model->find_link(old_name) < 0);
+    CHECK(model->find_link("renamed") >= 0);
+    CHECK(model->links.size() == 3);
+  }
+}
+
 TEST_CASE("lsp features: document symbols are the link tree with elements and devices under their links") {
   const Document d = doc(kSmall);
   const auto symbols = document_symbols(d);

@@ -230,7 +230,9 @@ class OutlineParser {
     return result;
   }
 
-  int parse_plain_line(int parent) {
+  /// A scalar node at pos_; a quoted one is complete (it ends after its closing quote, or at the
+  /// line's end while unclosed), a plain one's end is left to the caller's context.
+  OutlineNode scalar_node(int parent) const {
     OutlineNode node;
     node.kind = OutlineNode::kScalar;
     node.parent = parent;
@@ -242,7 +244,13 @@ class OutlineParser {
       i = std::min(i, t_.size());
       node.end = at(i) == q ? i + 1 : i;
       node.quoted = true;
-    } else {
+    }
+    return node;
+  }
+
+  int parse_plain_line(int parent) {
+    OutlineNode node = scalar_node(parent);
+    if (!node.quoted) {
       std::size_t i = pos_;
       while (i < t_.size() && !is_break(t_[i]) && !(t_[i] == '#' && i > pos_ && is_space(t_[i - 1]))) ++i;
       while (i > pos_ && is_space(t_[i - 1])) --i;
@@ -400,18 +408,8 @@ class OutlineParser {
   }
 
   int parse_flow_scalar(int parent) {
-    OutlineNode node;
-    node.kind = OutlineNode::kScalar;
-    node.parent = parent;
-    node.begin = pos_;
-    const char q = at(pos_);
-    if (q == '"' || q == '\'') {
-      std::size_t i = pos_ + 1;
-      while (i < t_.size() && t_[i] != q && !is_break(t_[i])) i += (q == '"' && t_[i] == '\\') ? 2 : 1;
-      i = std::min(i, t_.size());
-      node.end = at(i) == q ? i + 1 : i;
-      node.quoted = true;
-    } else {
+    OutlineNode node = scalar_node(parent);
+    if (!node.quoted) {
       std::size_t i = pos_;
       while (i < t_.size() && !is_break(t_[i]) && t_[i] != ',' && t_[i] != ']' && t_[i] != '}' && t_[i] != '[' &&
              t_[i] != '{' && !(t_[i] == ':' && (is_space(at(i + 1)) || at(i + 1) == ',' || at(i + 1) == '}')) &&
