@@ -442,8 +442,11 @@ links:
     for (int line = 1; line < p.line; ++line) o = t.find('\n', o) + 1;
     return o + static_cast<std::size_t>(p.column - 1);
   };
-  for (const auto& [at, old_name] : {std::pair<TextPoint, std::string>{point_of(text, "name: \"base\"", 8), "base"},
-                                     {point_of(text, "'arm', parent", 2), "arm"}}) {
+  for (const auto& rename_case : {std::pair<TextPoint, std::string>{point_of(text, "name: \"base\"", 8), "base"},
+                                  {point_of(text, "'arm', parent", 2), "arm"}}) {
+    // Not a structured binding: clang 14 cannot capture one in CAPTURE's lambda.
+    const TextPoint at = rename_case.first;
+    const std::string& old_name = rename_case.second;
     CAPTURE(old_name);
     std::string why;
     const auto edits = rename_link(d, at, "renamed", why);
