@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # Exports every .body model under INPUT_DIR with the exporters in BIN_DIR (body2urdf, body2mjcf,
 # body2gltf) into OUT_DIR, once per option set that changes what is written, and records each
-# run's exit code and diagnostics. Two runs of this script, with the exporters of two commits,
+# run's exit code and diagnostics; with the other tools where BIN_DIR has them, also what they
+# print for each model (bodyinfo as text and YAML, bodycheck as JSON, bodydiff's canonical text
+# and its report against the next model in name order, bodyview's page) and urdf2body's import
+# of every .urdf under INPUT_DIR. Two runs of this script, with the exporters of two commits,
 # are compared with `diff -r` (compare.sh does both) to show that a refactor left every byte of
 # the output as it was.
 #
@@ -18,6 +21,22 @@ done
 mkdir -p "$out"
 : > "$out/exit_codes.txt"
 printf '<package format="3"><name>corpus</name></package>\n' > "$out/package.xml"
+
+# inspect VARIANT REL TOOL ARGS...: one run of a tool that prints, its standard output and
+# diagnostics under OUT_DIR/VARIANT/REL.
+inspect() {
+  local variant=$1 rel=$2 tool=$3
+  shift 3
+  [ -x "$bin/$tool" ] || return 0
+  local target="$out/$variant/$rel"
+  mkdir -p "$(dirname "$target")"
+  set +e
+  "$bin/$tool" "$@" > "$target.out" 2> "$target.stderr"
+  local code=$?
+  set -e
+  sed -i "s|$out/||g" "$target.out" "$target.stderr"
+  echo "$variant $rel $code" >> "$out/exit_codes.txt"
+}
 
 # export VARIANT REL EXTENSION TOOL ARGS...: one run, its output under OUT_DIR/VARIANT/REL.
 export_one() {
@@ -45,4 +64,21 @@ while IFS= read -r -d '' model; do
   export_one mjcf-balanced "$rel" xml body2mjcf --balance-inertia
   export_one gltf "$rel" gltf body2gltf
   export_one glb-both "$rel" glb body2gltf --both
+  inspect bodyinfo "$rel" bodyinfo "$model"
+  inspect bodyinfo-yaml "$rel" bodyinfo --format yaml "$model"
+  inspect bodycheck-json "$rel" bodycheck --format json "$model"
+  inspect bodydiff-textconv "$rel" bodydiff --textconv "$model"
+  [ -n "${previous:-}" ] && inspect bodydiff-next "$rel" bodydiff --format json "$previous" "$model"
+  previous=$model
+  if [ -x "$bin/bodyview" ]; then
+    # The page embeds three.js (about 1 MB): its digest is kept, not the page.
+    inspect bodyview "$rel" bodyview -q "$model" -o "$out/page.html"
+    sha256sum < "$out/page.html" > "$out/bodyview/$rel.sha256" 2>/dev/null || true
+    rm -f "$out/page.html"
+  fi
 done < <(find "$input" -name '*.body' -print0 | sort -z)
+
+while IFS= read -r -d '' urdf; do
+  rel=${urdf#"$input"/}
+  export_one urdf2body "$rel" body urdf2body
+done < <(find "$input" -name '*.urdf' -print0 | sort -z)
