@@ -1,7 +1,7 @@
 #pragma once
 /// The model formats every tool reads through a wrapper body file's `model_file`
 /// (body-format-spec §2.4) besides the .body formats libbodyfmt reads itself: .urdf, through
-/// the URDF importer (importers/urdf), located in the URDF.
+/// the URDF reader (converters/urdf), located in the URDF.
 
 #include <bodyfmt/load.h>
 

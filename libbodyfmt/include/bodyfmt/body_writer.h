@@ -33,7 +33,7 @@ struct BodyWriteOptions {
 /// The .body text of `model`. What the writer does not write yet (devices, extra joints,
 /// body handlers, initial displacements of free joints, Extrusion, ElevationGrid,
 /// IndexedFaceSet and TriangleMesh geometry, textures, contact materials and actuation modes)
-/// is reported as `export-loss` (category as in converters/common/loss.h) at its source.
+/// is reported as `export-loss` (category as in converters/core: loss.h) at its source.
 std::string write_body(const Model& model, const BodyWriteOptions& options, DiagnosticSink& sink);
 
 /// A double in its shortest round-trip decimal form ({fmt}'s "{}"), never "-0".

@@ -98,7 +98,7 @@ struct Diagnostic {
   std::optional<SourceLocation> via;  ///< alias use site when the value came through *anchor
   std::string fix_hint;
   /// A finer kind within the rule, where the rule has kinds (an export loss's: "tracks",
-  /// "devices", ...; see converters/common/loss.h); empty otherwise.
+  /// "devices", ...; see converters/core: loss.h); empty otherwise.
   std::string category;
   /// Edits that fix the finding, when the rule knows them exactly (empty otherwise).
   std::vector<FixIt> fixes;

@@ -286,7 +286,7 @@ std::vector<RuleInfo> make_table() {
        "a material colour component or transparency is outside 0..1; Choreonoid keeps it and its renderer clamps it",
        "exporters must write the clamped value (MuJoCo refuses a colour of 4e68), and the author likely mistyped it",
        ""},
-      // Importers (importers/, each format's SUPPORT.md)
+      // Importers (converters/FORMAT, each reader's IMPORT.md)
       {"import-syntax", F, "the input is not well-formed XML, or its document element is not <robot>",
        "nothing can be imported from it", ""},
       {"import-structure", E,

@@ -590,7 +590,7 @@ void Reader::read_joint(const JointInfo& joint, Link& link, bool collapsed_world
     const XMLElement* limit = e->FirstChildElement("limit");
     if (limit) {
       link.sources.set(LinkSources::kJointRange, at_.at(limit));
-      // body2urdf writes 1e30 where Choreonoid has no limit (converters/common/numbers.h).
+      // body2urdf writes 1e30 where Choreonoid has no limit (converters/core: numbers.h).
       auto bounded = [](double v) { return std::abs(v) >= converters::kUnlimitedStandIn ? kUnlimited : v; };
       // A revolute bound is written in degrees: one that overflows there cannot be written.
       // (A lower bound at or below -1e30 and an upper one at or above 1e30 mean no limit.)

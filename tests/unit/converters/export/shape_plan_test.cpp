@@ -1,4 +1,4 @@
-// converters/common: the shape plan every XML writer spells out. For each geometry kind and
+// converters/export: the shape plan every XML writer spells out. For each geometry kind and
 // each set of target capabilities: primitive or mesh, the sizes and the placement after the
 // +Y -> +Z turn (checked against points of the Body shape computed here), the losses and
 // where they are reported.

@@ -1,6 +1,6 @@
 #pragma once
 /// Reading a URDF into a bodyfmt Model (the urdf2body importer). What maps and what is
-/// reported lost is listed in importers/urdf/SUPPORT.md.
+/// reported lost is listed in converters/urdf/IMPORT.md.
 ///
 /// Every diagnostic points at the URDF line and column of the element or attribute
 /// responsible (columns are found in the text; see xml_positions.h). Located errors:
@@ -9,7 +9,7 @@
 /// required element or attribute), `import-value` (a number or vector that does not read, an
 /// unknown joint type, a zero axis), `import-mass` (a negative mass or inertia diagonal),
 /// `import-mesh` (a mesh that cannot be found: the URI and every place searched). Constructs a
-/// .body cannot hold are reported as `export-loss` with their kind (converters/common/loss.h),
+/// .body cannot hold are reported as `export-loss` with their kind (converters/core: loss.h),
 /// so that `--strict` and `--allow-loss` treat them as the exporters' losses.
 #include <bodyfmt/diagnostic.h>
 #include <bodyfmt/model.h>

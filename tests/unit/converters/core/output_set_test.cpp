@@ -1,4 +1,4 @@
-// converters/common: atomic output, names, numbers, mesh bytes.
+// converters/core and export: atomic output, names, numbers, mesh bytes.
 #include <bodyfmt/converters/loss.h>
 #include <bodyfmt/converters/mesh_writer.h>
 #include <bodyfmt/converters/names.h>
