@@ -23,7 +23,7 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/libbodyfmt/include/bodyfmt
 
 # Tools: every executable defined in these folders (so new tools are installed without
 # touching this file). The tools link libbodyfmt statically (bodyfmt::static), so they need no
-# RPATH; they find the assimp module in the library folder (src/mesh/assimp_module.cpp).
+# RPATH; they find the assimp module in the library folder (src/mesh_import/assimp_module.cpp).
 set(BODYFMT_TOOL_DIRS tools)
 # Developer utilities that build the docs; not installed.
 set(BODYFMT_INTERNAL_TOOLS rules_doc keys_doc)

@@ -70,7 +70,7 @@ endif()
 run("run" "${consumer_build}/package_consumer" "${SOURCE_DIR}/examples/simpletank.body")
 
 # The installed tools link libbodyfmt statically and look for the assimp module in the library
-# folder, before the module's build folder (libbodyfmt/src/mesh/assimp_module.cpp). bodyinfo must
+# folder, before the module's build folder (libbodyfmt/src/mesh_import/assimp_module.cpp). bodyinfo must
 # import the OBJ of square_mesh.body (its visual box is the rectangle's corners, [0, 0, 0] ..
 # [2, 1, 0]) with the installed module: the dynamic loader's log names the file it mapped.
 execute_process(COMMAND "${CMAKE_COMMAND}" -E env LD_DEBUG=files

@@ -20,7 +20,7 @@ class FileCache {
   /// Files read or parsed through the cache (a hit reads nothing).
   int files_read() const;
 
-  struct Impl;  ///< the loader's side (libbodyfmt/src/io/file_cache_impl.h)
+  struct Impl;  ///< the loader's side (libbodyfmt/src/mesh_import/file_cache_impl.h)
   Impl& impl() const { return *impl_; }
 
  private:

@@ -3,7 +3,7 @@
 /// triangle meshes in the resource frame.
 ///
 /// Formats by extension, case-insensitive: `.wrl` (VRML97, our own reader: see
-/// src/mesh/VRML_READER.md), and through assimp `.stl`, `.obj`, `.dae`, `.gltf`, `.glb`.
+/// src/mesh_import/VRML_READER.md), and through assimp `.stl`, `.obj`, `.dae`, `.gltf`, `.glb`.
 
 #include <bodyfmt/diagnostic.h>
 #include <bodyfmt/export.h>

@@ -3,7 +3,6 @@
 #include <bodyfmt/body_keys.h>
 
 #include <bodyfmt/read_file.h>
-#include "io/file_cache_impl.h"
 #include "load/body_reader.h"
 #include "load/geometry.h"
 #include "load/link_reader.h"
@@ -11,6 +10,7 @@
 #include "load/scalar.h"
 #include "load/uri.h"
 #include "load/values.h"
+#include "mesh_import/file_cache_impl.h"
 
 #include <algorithm>
 #include <cctype>

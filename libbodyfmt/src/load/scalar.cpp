@@ -18,11 +18,6 @@ bool is_scalar(LoadContext& ctx, const yaml::NodeRef& ref, const char* what) {
   return false;
 }
 
-bool only_trailing_space(const char* p) {
-  while (*p == ' ' || *p == '\t' || *p == '\r' || *p == '\n') ++p;
-  return *p == '\0';
-}
-
 /// YAML 1.1's own spellings of NaN and infinity (.nan, .inf, -.Inf, ...): floats to a YAML
 /// reader, text to Choreonoid's strtod.
 bool is_yaml_special_float(std::string_view text) {
@@ -43,31 +38,6 @@ bool report_if_not_finite(LoadContext& ctx, const yaml::NodeRef& ref, double val
 }
 
 }  // namespace
-
-std::optional<double> parse_plain_decimal(std::string_view text) {
-  // from_chars reads the decimal forms strtod reads, without the sign '+', leading blanks,
-  // hexadecimal, inf and nan; only a text that starts like a decimal number and is read whole
-  // and in range is taken, so it means what strtod makes of it: both round correctly.
-  const char* p = text.data();
-  const char* const end = p + text.size();
-  const char* digits = p != end && *p == '-' ? p + 1 : p;
-  if (digits != end && *digits == '.') ++digits;
-  if (digits == end || *digits < '0' || *digits > '9') return std::nullopt;
-  double value = 0;
-  const auto [stop, error] = std::from_chars(p, end, value);
-  if (error != std::errc() || stop != end) return std::nullopt;
-  return value;
-}
-
-std::optional<double> parse_double_exact(std::string_view text) {
-  if (auto value = parse_plain_decimal(text)) return value;
-  if (text.empty()) return std::nullopt;
-  const char* begin = text.data();
-  char* end = nullptr;
-  double value = std::strtod(begin, &end);
-  if (end == begin || !only_trailing_space(end)) return std::nullopt;
-  return value;
-}
 
 std::optional<double> required_double(LoadContext& ctx, const yaml::NodeRef& ref) {
   if (!is_scalar(ctx, ref, "a number")) return std::nullopt;

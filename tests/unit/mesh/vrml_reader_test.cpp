@@ -2,8 +2,8 @@
 #include <bodyfmt/mesh_import.h>
 #include <doctest/doctest.h>
 
-#include "mesh/scene_tree.h"
-#include "mesh/vrml_reader.h"
+#include "mesh_import/scene_tree.h"
+#include "mesh_import/vrml_reader.h"
 #include "mesh_test_support.h"
 
 #include <bodyfmt/tessellate.h>

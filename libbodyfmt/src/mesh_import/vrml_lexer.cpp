@@ -1,4 +1,4 @@
-#include "mesh/vrml_lexer.h"
+#include "mesh_import/vrml_lexer.h"
 
 namespace bodyfmt::mesh {
 

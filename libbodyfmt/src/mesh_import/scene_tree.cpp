@@ -1,4 +1,4 @@
-#include "mesh/scene_tree.h"
+#include "mesh_import/scene_tree.h"
 
 #include <bodyfmt/mesh.h>
 

@@ -1,4 +1,4 @@
-#include "mesh/assimp_reader.h"
+#include "mesh_import/assimp_reader.h"
 
 #include <assimp/material.h>
 #include <assimp/postprocess.h>

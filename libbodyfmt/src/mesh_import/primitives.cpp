@@ -1,4 +1,4 @@
-#include "mesh/primitives.h"
+#include "mesh_import/primitives.h"
 
 #include <bodyfmt/model.h>
 #include <bodyfmt/tessellate.h>

@@ -3,12 +3,12 @@
 #include <bodyfmt/mesh_import.h>
 
 #include <bodyfmt/rules.h>
-#include "io/file_cache_impl.h"
+#include "mesh_import/file_cache_impl.h"
 
 #include <bodyfmt/read_file.h>
-#include "mesh/assimp_module.h"
-#include "mesh/scene_tree.h"
-#include "mesh/vrml_reader.h"
+#include "mesh_import/assimp_module.h"
+#include "mesh_import/scene_tree.h"
+#include "mesh_import/vrml_reader.h"
 
 #include <algorithm>
 #include <cctype>

@@ -10,7 +10,7 @@
 /// that loaded libbodyfmt.so into them would bring a second copy of the library. The few library
 /// functions it needs are passed in by the host (AssimpHost).
 
-#include "mesh/scene_tree.h"
+#include "mesh_import/scene_tree.h"
 
 #include <bodyfmt/diagnostic.h>
 

@@ -5,7 +5,7 @@
 #include <bodyfmt/file_cache.h>
 #include <bodyfmt/model.h>
 
-#include "mesh/scene_tree.h"
+#include "mesh_import/scene_tree.h"
 
 #include <cstdint>
 #include <filesystem>

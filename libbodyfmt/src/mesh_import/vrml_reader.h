@@ -3,7 +3,7 @@
 /// parser over VrmlLexer for the node subset Choreonoid's body models use, producing the
 /// format-neutral SceneNode tree.
 
-#include "mesh/scene_tree.h"
+#include "mesh_import/scene_tree.h"
 
 #include <bodyfmt/diagnostic.h>
 

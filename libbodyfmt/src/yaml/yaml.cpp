@@ -5,7 +5,7 @@
 #include <bodyfmt/yaml.h>
 
 #include <bodyfmt/read_file.h>
-#include "load/scalar.h"
+#include "text/number_text.h"
 #include "text/text_util.h"
 #include "yaml/yaml_node.h"
 

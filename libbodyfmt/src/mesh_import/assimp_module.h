@@ -4,7 +4,7 @@
 /// minizip, zlib) cost every process about 3.4 ms at start-up (an empty program linked with
 /// -lassimp: 4.8 ms against 1.4 ms), even those that never import an STL, OBJ, COLLADA or glTF.
 
-#include "mesh/scene_tree.h"
+#include "mesh_import/scene_tree.h"
 
 #include <bodyfmt/diagnostic.h>
 

@@ -1,8 +1,8 @@
-#include "mesh/assimp_module.h"
+#include "mesh_import/assimp_module.h"
 
 #include <bodyfmt/rules.h>
-#include "mesh/assimp_reader.h"  // the entry point's declaration, for its type
-#include "mesh/vrml_reader.h"    // resolve_relative, passed to the module
+#include "mesh_import/assimp_reader.h"  // the entry point's declaration, for its type
+#include "mesh_import/vrml_reader.h"    // resolve_relative, passed to the module
 
 #include <dlfcn.h>
 

@@ -1,7 +1,7 @@
-#include "mesh/vrml_reader.h"
+#include "mesh_import/vrml_reader.h"
 
-#include "mesh/primitives.h"
-#include "mesh/vrml_lexer.h"
+#include "mesh_import/primitives.h"
+#include "mesh_import/vrml_lexer.h"
 
 #include <bodyfmt/rules.h>
 

@@ -1,4 +1,4 @@
-#include "io/file_cache_impl.h"
+#include "mesh_import/file_cache_impl.h"
 
 #include <bodyfmt/read_file.h>
 
