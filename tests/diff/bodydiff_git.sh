@@ -1,5 +1,5 @@
 #!/bin/bash
-# bodydiff in git (README "bodydiff in git"): as the external diff driver (diff.body.command)
+# bodydiff in git (docs/tools/bodydiff.md, "bodydiff in git"): as the external diff driver (diff.body.command)
 # and as textconv (diff.body.textconv), in a scratch repository.
 # usage: bodydiff_git.sh BODYDIFF MODEL WORK_DIR   (MODEL: a .body file without external files)
 set -u
@@ -11,11 +11,11 @@ git init -q . && echo '*.body diff=body' > .gitattributes
 cp "$model" robot.body && git add .gitattributes robot.body && git commit -qm init || exit 2
 failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
-# The two set-ups word for word as README.md gives them, bodydiff pointed at the build.
-readme=$(dirname "$(realpath "$0")")/../../README.md
+# The two set-ups word for word as bodydiff's manual gives them, bodydiff pointed at the build.
+readme=$(dirname "$(realpath "$0")")/../../docs/tools/bodydiff.md
 readme_config() { sed -n "s/^git config diff.body.$1 \"bodydiff \(.*\)\"\$/\1/p" "$readme"; }
 command_args=$(readme_config command) textconv_args=$(readme_config textconv)
-[ -n "$command_args" ] && [ -n "$textconv_args" ] || { echo "README.md gives no git config diff.body lines"; exit 2; }
+[ -n "$command_args" ] && [ -n "$textconv_args" ] || { echo "docs/tools/bodydiff.md gives no git config diff.body lines"; exit 2; }
 driver() { git -c diff.body.command="'$bodydiff' $command_args" diff "$@"; }
 textconv() { git -c diff.body.textconv="'$bodydiff' $textconv_args" diff "$@"; }
 
@@ -85,7 +85,7 @@ out=$(cd "$outside" && "$bodydiff" --staged m.body 2>&1); code=$?
 [ $code = 2 ] && echo "$out" | grep -q "not a git repository" || fail "--staged outside a repository: exit $code: $out"
 rm -rf "$outside" untracked
 
-# 4d. A file whose name begins with '-' (issue 34): through both README set-ups, git diff works.
+# 4d. A file whose name begins with '-' (issue 34): through both set-ups of the manual, git diff works.
 cp "$model" ./-q.body && git add -- -q.body && git commit -qm dash
 sed -i 's/^    mass: 6.0$/    mass: 7.25/' ./-q.body
 out=$(driver -- -q.body 2>&1); code=$?

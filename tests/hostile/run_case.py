@@ -21,7 +21,7 @@ raises the CPU seconds each tool may take (the 100,000-link models, whose export
 scene of 400,000 nodes). bodydiff runs too, its expectations derived from bodycheck's
 (bodydiff_runs). On the cases kept in the repository, bodyview's page keeps the model's text
 inside its data <script> (page_runs), and, on a case bodycheck can load, git diff works through
-both set-ups README.md gives, with the case's own file name (git_driver_runs).
+both set-ups docs/tools/bodydiff.md gives, with the case's own file name (git_driver_runs).
 """
 import json
 import os
@@ -107,7 +107,7 @@ def bodydiff_runs(bin_dir, model, expectations, cpu_limit):
 
 
 FORBIDDEN_IN_DATA = ["<", ">", "&", "\u2028", "\u2029"]
-README = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "README.md")
+BODYDIFF_MANUAL = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "docs", "tools", "bodydiff.md")
 SMALL = 1 << 20  # the page and git checks run on the cases kept in the repository, not the generated giants
 
 
@@ -139,13 +139,13 @@ def page_runs(bin_dir, model, out, cpu_limit, expect):
 
 
 def git_driver_runs(bin_dir, model, out):
-    """The git diff set-ups of README.md, word for word, on the case staged under its own name
+    """The git diff set-ups of bodydiff's manual (docs/tools/bodydiff.md), word for word, on the case staged under its own name
     as a new file: git diff --cached exits 0 through both, whatever the name."""
     failures = []
-    lines = open(README, encoding="utf-8").read().splitlines()
+    lines = open(BODYDIFF_MANUAL, encoding="utf-8").read().splitlines()
     configs = dict(re.findall(r'^git config (diff\.body\.\w+) "bodydiff (.*)"$', "\n".join(lines), re.M))
     if set(configs) != {"diff.body.textconv", "diff.body.command"}:
-        return [f"README.md gives no git diff set-up: {configs}"]
+        return [f"docs/tools/bodydiff.md gives no git diff set-up: {configs}"]
     repo = os.path.join(out, "repo")
     name = os.path.basename(model)
     env = dict(os.environ, GIT_CONFIG_NOSYSTEM="1", HOME=out, GIT_AUTHOR_NAME="t", GIT_AUTHOR_EMAIL="t@example.com",
@@ -164,7 +164,7 @@ def git_driver_runs(bin_dir, model, out):
     for key, args in sorted(configs.items()):
         run = git("-c", f"{key}='{bodydiff}' {args}", "diff", "--cached")
         if run.returncode != 0:
-            failures.append(f"git diff with {key} as README.md gives it: exit {run.returncode}\n"
+            failures.append(f"git diff with {key} as docs/tools/bodydiff.md gives it: exit {run.returncode}\n"
                             f"{run.stderr.decode('utf-8', 'replace')[-1000:]}")
     return failures
 

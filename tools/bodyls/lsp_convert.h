@@ -17,7 +17,7 @@
 
 namespace bodyfmt::lsp {
 
-/// The code action kind that asks for the format 1.0 -> 2.0 upgrade (README "bodyls").
+/// The code action kind that asks for the format 1.0 -> 2.0 upgrade (docs/tools/bodyls.md).
 inline constexpr const char* kUpgradeActionKind = "quickfix.bodyfmt.upgrade";
 
 Utf16Position position_from_json(const nlohmann::json& position);

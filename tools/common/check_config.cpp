@@ -1,4 +1,4 @@
-// `.bodycheck.yaml`: the per-tree policy settings of every tool (README "Configuration").
+// `.bodycheck.yaml`: the per-tree policy settings of every tool (docs/tools/bodycheck.md, "Configuration").
 //
 //   disable: [inertia-com-outside, units-*]   # rule ids or family prefixes
 //   enable: [units-degree-looks-radian]       # wins over disable

@@ -24,7 +24,7 @@
 
 namespace bodyfmt::tools {
 
-/// The exit-code contract of every tool (README "Exit codes").
+/// The exit-code contract of every tool (docs/tools/README.md, "Exit codes").
 enum ExitCode : int {
   kExitClean = 0,     ///< nothing at or above the fail level
   kExitFindings = 1,  ///< findings at or above the fail level
