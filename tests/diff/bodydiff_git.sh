@@ -78,6 +78,14 @@ rev_error "--git-rev of ../ outside the repository" "outside repository" \
 rev_error "--git-rev of a mistyped file" "does not exist in 'HEAD'" "$bodydiff" --git-rev HEAD robto.body
 rev_error "--git-rev of an untracked folder" "a folder" "$bodydiff" --git-rev HEAD untracked
 rev_error "--staged of a mistyped file" "neither on disk nor in the index" "$bodydiff" --staged robto.body
+# A blob larger than the file-size limit is refused as a file on disk would be, and git's output
+# is not read past it (issue 35: the git reader was unbounded).
+rev_error "--git-rev of a blob over --max-file-size" "robot.body at HEAD is larger than the limit of 100 bytes" \
+  "$bodydiff" --max-file-size 100 --git-rev HEAD robot.body
+cp robot.body big.body && git add big.body  # new in the index: only the index's blob is read
+rev_error "--staged of a blob over --max-file-size" "big.body in the index is larger than the limit of 100 bytes" \
+  "$bodydiff" --max-file-size 100 --staged big.body
+git rm -q --cached big.body && rm big.body
 out=$(cd sub && "$bodydiff" --git-rev HEAD~1 ../robot.body); code=$?
 [ $code = 1 ] && echo "$out" | grep -q "mass: 6 -> 8.5" || fail "--git-rev of ../robot.body from sub: exit $code: $out"
 outside=$(mktemp -d) && cp "$model" "$outside/m.body"

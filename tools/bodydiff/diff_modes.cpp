@@ -106,7 +106,7 @@ int diff_against_git(const DiffRun& run, const std::vector<std::string>& args, s
     }
     GitFile old_file;
     old_file.absent = true;  // before the first commit, every staged model is new
-    if (!git_rev.empty()) old_file = git_show(git_rev, path);
+    if (!git_rev.empty()) old_file = git_show(git_rev, path, run.front.load_options().max_file_bytes);
     if (!old_file.text && !old_file.absent) {
       fail(old_file.why);
       continue;
@@ -125,7 +125,7 @@ int diff_against_git(const DiffRun& run, const std::vector<std::string>& args, s
     if (staged) {
       // The index's text, loaded under the work-tree path so that its meshes and included
       // files resolve there; a file not in the index is deleted.
-      const GitFile staged_file = git_show("", path);
+      const GitFile staged_file = git_show("", path, run.front.load_options().max_file_bytes);
       if (!staged_file.text && !staged_file.absent) {
         fail(staged_file.why);
         continue;

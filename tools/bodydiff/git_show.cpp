@@ -4,7 +4,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <fmt/format.h>
+
 #include <cerrno>
+#include <csignal>
 #include <cstring>
 #include <vector>
 
@@ -13,9 +16,14 @@ extern char** environ;
 namespace bodyfmt::tools {
 namespace {
 
+// What of git's standard error is kept: its messages are a line or two.
+constexpr std::size_t kMaxErrorBytes = 64 * 1024;
+
 // Runs git with `args` (no shell: a revision or path is never interpreted), returns its exit
-// status and collects stdout and stderr.
-int run_git(const std::vector<std::string>& args, std::string& out, std::string& err) {
+// status and collects stdout (up to `max_out` bytes and one more, which tells that there was
+// more: git is then stopped) and stderr.
+int run_git(const std::vector<std::string>& args, std::string& out, std::string& err,
+            std::uintmax_t max_out = 1 << 20) {
   int out_pipe[2], err_pipe[2];
   if (pipe(out_pipe) != 0) return -1;
   if (pipe(err_pipe) != 0) {
@@ -47,21 +55,29 @@ int run_git(const std::vector<std::string>& args, std::string& out, std::string&
   // git's stderr is short; reading stdout to the end first cannot block on a full stderr pipe
   // for the messages git writes.
   char buffer[65536];
+  bool stopped = false;
   for (ssize_t n; (n = read(out_pipe[0], buffer, sizeof buffer)) != 0;) {
     if (n < 0 && errno == EINTR) continue;
     if (n < 0) break;
     out.append(buffer, static_cast<std::size_t>(n));
+    if (out.size() > max_out) {
+      out.resize(static_cast<std::size_t>(max_out) + 1);
+      kill(pid, SIGTERM);
+      stopped = true;
+      break;
+    }
   }
   for (ssize_t n; (n = read(err_pipe[0], buffer, sizeof buffer)) != 0;) {
     if (n < 0 && errno == EINTR) continue;
     if (n < 0) break;
-    err.append(buffer, static_cast<std::size_t>(n));
+    if (err.size() < kMaxErrorBytes) err.append(buffer, static_cast<std::size_t>(n));
   }
   close(out_pipe[0]);
   close(err_pipe[0]);
   int status = 0;
   while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
+  if (stopped) return -2;
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
@@ -69,11 +85,18 @@ std::string first_line(const std::string& text) { return text.substr(0, text.fin
 
 }  // namespace
 
-GitFile git_show(const std::string& revision, const std::string& path) {
+GitFile git_show(const std::string& revision, const std::string& path, std::uintmax_t max_bytes) {
   GitFile file;
   std::string out, err;
-  if (run_git({"cat-file", "blob", revision + ":./" + path}, out, err) == 0) {
+  const int status = run_git({"cat-file", "blob", revision + ":./" + path}, out, err, max_bytes);
+  if (status == 0) {
     file.text = std::move(out);
+    return file;
+  }
+  if (status == -2) {
+    // the words of the bounded file reader (bodyfmt/read_file.h), for a blob
+    file.why = fmt::format("{} {} is larger than the limit of {} bytes (--max-file-size)", path,
+                           revision.empty() ? "in the index" : "at " + revision, max_bytes);
     return file;
   }
   file.why = err.empty() ? "git cat-file failed on " + revision + ":./" + path : first_line(err);

@@ -1,6 +1,7 @@
 #pragma once
 // Reading a file's text at a git revision (`bodydiff --git-rev`), through the git program.
 
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -16,8 +17,9 @@ struct GitFile {
 /// The text of `path` (relative to the working folder) at `revision` ("": git's index), read
 /// with `git cat-file blob REVISION:./PATH`. Only git's own "does not exist in 'REV'" and
 /// "exists on disk, but not in 'REV'" (or "... the index") make the file absent; any other
-/// failure (a path outside the repository, a folder, no repository) is an error in `why`.
-GitFile git_show(const std::string& revision, const std::string& path);
+/// failure (a path outside the repository, a folder, no repository) is an error in `why`, and
+/// so is a blob larger than `max_bytes` (the loader's file-size limit): reading stops there.
+GitFile git_show(const std::string& revision, const std::string& path, std::uintmax_t max_bytes);
 
 /// True when `revision` names a commit in the repository of the working folder.
 bool git_commit_exists(const std::string& revision, std::string& why);
