@@ -33,7 +33,8 @@ struct ModelChange {
 
 struct ModelDiffOptions {
   /// Numbers are equal when |a - b| <= tolerance * max(1, |a|, |b|): relative above 1,
-  /// absolute below.
+  /// absolute below. Ids and counts (a joint_id, a device's id, a camera's width, a shape's
+  /// division_number) name something rather than measure it: they compare exactly.
   double tolerance = 1e-9;
   /// Report derived effects (total mass and centre of mass, world frames at the zero pose).
   bool derived = true;

@@ -2,7 +2,8 @@
 
 #include <bodyfmt/angles.h>
 
-#include "diff/model_fields.h"
+#include "fields/field_collector.h"
+#include "fields/field_text.h"
 
 #include <fmt/format.h>
 
@@ -24,7 +25,7 @@ ModelChange change(ChangeKind kind, std::string link, const Field* a, const Fiel
   c.kind = kind;
   c.link = std::move(link);
   c.field = (a ? a : b)->key;
-  c.derived = (a ? a : b)->derived;
+  c.derived = (a ? a : b)->derived();
   if (a) c.old_value = detail::field_value(*a), c.old_source = a->source;
   if (b) c.new_value = detail::field_value(*b), c.new_source = b->source;
   return c;
@@ -69,7 +70,7 @@ void diff_fields(const std::vector<Field>& old_fields, const std::vector<Field>&
     if (!b.element.empty() && b.key == b.element + " geometry")
       if (auto it = old_by_key.find(b.key); it != old_by_key.end() && it->second->text != b.text)
         retyped[b.element] = true;
-  auto hidden = [&](const Field& f) { return f.geometry_detail && retyped.count(f.element); };
+  auto hidden = [&](const Field& f) { return f.geometry_detail() && retyped.count(f.element); };
   for (const Field& b : new_fields) {
     seen[b.key] = true;
     if (hidden(b)) continue;

@@ -140,8 +140,8 @@ TEST_CASE("bodycheck --fix: an edit that would change another use of shared text
   CHECK(run.status == 0);  // what is left are notes: the upgrade not made, the info key
   CHECK(contains(run.output,
                  "shared_range_v1.body:6:16: note: the format upgrade is left as it is: the edited text is shared "
-                 "with another use (an anchor, alias or merge), which the edit would change too (links[2] "
-                 "\"B\".joint_range_lower: -1 != -57.29577951308232) [fix-left-out]"));
+                 "with another use (an anchor, alias or merge), which the edit would change too (link "
+                 "\"B\" joint_range: [-1, 1] != [-57.29577951308232, 57.29577951308232]) [fix-left-out]"));
   CHECK(contains(run.output, "shared_range_v1.body: fixed ("));
   CHECK(!contains(run.output, "a bug in a fix-it"));
   const std::string range_after = read(dir / "shared_range_v1.body");
