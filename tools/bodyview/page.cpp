@@ -4,6 +4,7 @@
 #include <bodyfmt/geometry_mass.h>
 #include <bodyfmt/inertia.h>
 #include <bodyfmt/pose.h>
+#include <bodyfmt/read_file.h>
 #include <bodyfmt/text.h>
 
 #include <fmt/format.h>
@@ -13,9 +14,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <fstream>
 #include <map>
-#include <sstream>
 
 #ifndef BODYVIEW_ASSETS_FROM_BINDIR
 #define BODYVIEW_ASSETS_FROM_BINDIR "../share/bodyfmt/bodyview"
@@ -157,12 +156,13 @@ std::string findings_json(const PageInput& input) {
   return out + "]";
 }
 
-std::optional<std::string> read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
+// The viewer's files and three.js's modules: a few MB together (three.module.js is the largest,
+// about 1.2 MB), read through the one bounded reader so that a replaced asset folder cannot
+// hand the page a device or an endless file.
+constexpr std::uintmax_t kMaxAssetBytes = 64u << 20;
+
+std::optional<std::string> read_text(const fs::path& path, std::string& why) {
+  return read_regular_file(path.string(), kMaxAssetBytes, why);
 }
 
 std::string base64(std::string_view bytes) {
@@ -264,18 +264,20 @@ std::string page_data_json(const PageInput& input) {
 }
 
 std::optional<std::string> build_page(const fs::path& assets, const PageInput& input, std::string& error) {
-  auto page = read_text(assets / "viewer.html");
-  auto script = read_text(assets / "viewer.js");
-  auto style = read_text(assets / "viewer.css");
-  if (!page || !script || !style) {
-    error = "cannot read the viewer files in " + assets.string();
-    return std::nullopt;
+  std::string why;
+  std::optional<std::string> page, script, style;
+  for (auto [file, text] : {std::pair{"viewer.html", &page}, {"viewer.js", &script}, {"viewer.css", &style}}) {
+    *text = read_text(assets / file, why);
+    if (!*text) {
+      error = "cannot read the viewer's " + std::string(file) + " in " + assets.string() + ": " + why;
+      return std::nullopt;
+    }
   }
   std::string modules;
   for (const char* name : kModules) {
-    auto text = read_text(assets / "three" / name);
+    auto text = read_text(assets / "three" / name, why);
     if (!text) {
-      error = "cannot read three.js's " + std::string(name) + " in " + (assets / "three").string();
+      error = "cannot read three.js's " + std::string(name) + " in " + (assets / "three").string() + ": " + why;
       return std::nullopt;
     }
     modules += "<script type=\"text/plain\" class=\"bv-module\" data-name=\"" + std::string(name) + "\">" +
