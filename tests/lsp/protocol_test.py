@@ -317,8 +317,13 @@ def debounce_holds_bursts_only():
         after_pause = time.monotonic() - start
         assert after_pause < debounce / 2, "an edit with the findings up to date waited %.2f s" % after_pause
         start = time.monotonic()
-        c.change(uri, 3, [{"range": {"start": end, "end": end}, "text": "# a\n"}])
-        c.change(uri, 4, [{"range": {"start": end, "end": end}, "text": "# b\n"}])
+        # One write: sent one after the other, the server could check version 3 (made with the
+        # findings up to date) and publish it before version 4 arrived, on a loaded machine.
+        edits = [{"jsonrpc": "2.0", "method": "textDocument/didChange",
+                  "params": {"textDocument": {"uri": uri, "version": version},
+                             "contentChanges": [{"range": {"start": end, "end": end}, "text": text}]}}
+                 for version, text in ((3, "# a\n"), (4, "# b\n"))]
+        c.write_raw(b"".join(c.frame(e) for e in edits))
         c.diagnostics(uri, 4, timeout=30)
         burst = time.monotonic() - start
         assert burst >= debounce * 0.9, "the last edit of a burst was checked after %.2f s, before the debounce" % burst
