@@ -7,7 +7,9 @@
 
 #include <doctest/doctest.h>
 
+#include <cctype>
 #include <string>
+#include <string_view>
 
 using bodyfmt::lsp::MessageReader;
 using bodyfmt::lsp::TextLines;
@@ -98,6 +100,20 @@ TEST_CASE("lsp file URIs") {
   CHECK_FALSE(bodyfmt::lsp::path_from_uri("file://server/share/x.body"));
   CHECK_FALSE(bodyfmt::lsp::path_from_uri("file:///a%00b"));
   CHECK(bodyfmt::lsp::uri_from_path("/a b/c\xC3\xB6#.body") == "file:///a%20b/c%C3%B6%23.body");
+  // Every byte but NUL in a file name comes back through the server's own decoder, and the URI
+  // holds only unreserved characters, '/' and %XX (the encoding bodyls shares with SARIF).
+  for (int byte = 1; byte < 256; ++byte) {
+    const std::string path = std::string("/d/a") + static_cast<char>(byte) + "z.body";
+    const std::string uri = bodyfmt::lsp::uri_from_path(path);
+    CAPTURE(byte);
+    CHECK(bodyfmt::lsp::path_from_uri(uri) == std::optional<std::string>(path));
+    for (std::size_t i = std::string("file://").size(); i < uri.size(); ++i) {
+      const char c = uri[i];
+      const bool allowed =
+          std::isalnum(static_cast<unsigned char>(c)) || std::string_view("-._~/%").find(c) != std::string_view::npos;
+      CHECK(allowed);
+    }
+  }
   CHECK(bodyfmt::lsp::path_from_uri(bodyfmt::lsp::uri_from_path("/x y/%z.body")) ==
         std::optional<std::string>("/x y/%z.body"));
 }

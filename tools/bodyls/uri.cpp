@@ -1,5 +1,7 @@
 #include "uri.h"
 
+#include <bodyfmt/text.h>
+
 #include <filesystem>
 
 namespace bodyfmt::lsp {
@@ -44,21 +46,7 @@ std::string uri_from_path(const std::string& path) {
     const std::filesystem::path made = std::filesystem::absolute(path, ec);
     if (!ec) absolute = made.lexically_normal().string();
   }
-  static const char* const kHex = "0123456789ABCDEF";
-  std::string uri = "file://";
-  for (const char ch : absolute) {
-    const auto c = static_cast<unsigned char>(ch);
-    const bool plain = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '/' ||
-                       c == '-' || c == '.' || c == '_' || c == '~';
-    if (plain) {
-      uri += ch;
-    } else {
-      uri += '%';
-      uri += kHex[c >> 4];
-      uri += kHex[c & 15];
-    }
-  }
-  return uri;
+  return "file://" + text::uri_path_encode(absolute);
 }
 
 }  // namespace bodyfmt::lsp

@@ -1,6 +1,7 @@
 #pragma once
-/// Quoting text for the formats the tools write: JSON strings, YAML scalars and XML 1.0 text. One copy for
-/// the reports (JSON, SARIF), the writers (URDF, MJCF, glTF) and any later tool.
+/// Quoting text for the formats the tools write: JSON strings, YAML scalars, XML 1.0 text and
+/// paths in URIs. One copy for the reports (JSON, SARIF), the writers (URDF, MJCF, glTF), the
+/// language server and any later tool.
 
 #include <bodyfmt/export.h>
 
@@ -32,6 +33,11 @@ std::string xml_escape(std::string_view text);
 /// Text that is safe inside an XML comment: "--" and a trailing "-" are broken up with a
 /// space, and characters XML 1.0 forbids are replaced by '?'.
 std::string xml_comment_text(std::string_view text);
+
+/// `path` for the path part of a `file:` URI: every byte but RFC 3986's unreserved characters
+/// and `/` percent-encoded (upper-case hex), so a name with spaces, `%`, `#` or non-ASCII
+/// letters reads back as itself.
+std::string uri_path_encode(std::string_view path);
 
 /// The length of the valid UTF-8 sequence that starts at s[i] (1 for ASCII) with its code point
 /// in `code_point`; 0 when it is malformed (truncated, overlong, a surrogate, above U+10FFFF).

@@ -41,24 +41,6 @@ std::string sentence(std::string text) {
   return text;
 }
 
-/// Percent-encodes everything but RFC 3986 unreserved characters and `/`.
-std::string uri_encode(std::string_view path) {
-  static const char kHex[] = "0123456789ABCDEF";
-  std::string out;
-  for (char ch : path) {
-    const unsigned char c = static_cast<unsigned char>(ch);
-    if ((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' || c == '.' ||
-        c == '_' || c == '~' || c == '/') {
-      out += ch;
-    } else {
-      out += '%';
-      out += kHex[c >> 4];
-      out += kHex[c & 0xF];
-    }
-  }
-  return out;
-}
-
 /// `structure-no-parent` -> `StructureNoParent`, the rule's friendly name (SARIF2012).
 std::string pascal_case(std::string_view id) {
   std::string out;
@@ -88,7 +70,7 @@ class UriMaker {
     base_ = base.lexically_normal();
     std::string generic = base_.generic_string();
     if (generic.empty() || generic.back() != '/') generic += '/';
-    base_uri_ = "file://" + uri_encode(generic);
+    base_uri_ = "file://" + text::uri_path_encode(generic);
   }
 
   const std::string& base_uri() const { return base_uri_; }
@@ -99,8 +81,8 @@ class UriMaker {
     fs::path abs = fs::absolute(fs::path(file), ec).lexically_normal();
     fs::path rel = abs.lexically_relative(base_);
     const std::string rel_text = rel.generic_string();
-    if (!rel.empty() && rel_text != "." && rel_text.rfind("..", 0) != 0) return {uri_encode(rel_text), true};
-    return {"file://" + uri_encode(abs.generic_string()), false};
+    if (!rel.empty() && rel_text != "." && rel_text.rfind("..", 0) != 0) return {text::uri_path_encode(rel_text), true};
+    return {"file://" + text::uri_path_encode(abs.generic_string()), false};
   }
 
  private:
