@@ -4,9 +4,11 @@
 #  - a symbol of an internal namespace is exported: bodyfmt::detail (the loader), bodyfmt::yaml
 #    (the YAML tree), bodyfmt::mesh (the mesh readers), an anonymous namespace, or a
 #    bodyfmt::text function other than the public quoting and UTF-8 ones (bodyfmt/text.h);
-#  - a function of the public API is missing (the library was built without BODYFMT_API);
-#  - a public header opens a namespace without BODYFMT_API, so that what it declares would be
-#    hidden from other projects.
+#  - a bodyfmt:: name is exported that no public header declares (a function of src/ left
+#    visible: the library was built without hidden visibility, or a source file exports it);
+#  - a function of the public API is missing (the library was built without the export pragmas);
+#  - a public header opens a namespace outside its export pragmas (bodyfmt/export.h), so that
+#    what it declares would be hidden from other projects.
 # Usage: check_exports.sh LIBBODYFMT_SO PUBLIC_INCLUDE_DIR
 set -u
 library=$1
@@ -28,6 +30,19 @@ if [ -n "$internal$text_private" ]; then
   status=1
 fi
 
+# The first name after bodyfmt:: (or bodyfmt::text::) of every exported symbol, looked up as a
+# word in the public headers.
+undeclared=$(sed -E 's/^(vtable|typeinfo|typeinfo name|VTT) for //' <<<"$symbols" | grep -E '^bodyfmt::' |
+             sed -E 's/\[abi:cxx11\]//g; s/^bodyfmt::(text::)?//; s/^(operator[^(]*|[A-Za-z_0-9]+).*/\1/' | sort -u |
+             while read -r name; do
+               grep -qwF -- "$name" "$include_dir"/bodyfmt/*.h || echo "bodyfmt::$name"
+             done)
+if [ -n "$undeclared" ]; then
+  echo "FAIL: $library exports $(grep -c . <<<"$undeclared") names no public header declares, e.g.:"
+  head -10 <<<"$undeclared"
+  status=1
+fi
+
 # Names as nm -C prints them; a function returning std::string carries the [abi:cxx11] tag.
 for wanted in bodyfmt::load_body bodyfmt::compute_derived bodyfmt::format_diagnostic bodyfmt::report_rule \
               bodyfmt::tessellate bodyfmt::FileName::str bodyfmt::read_yaml_file bodyfmt::parse_yaml_text \
@@ -41,9 +56,10 @@ done
 
 for header in "$include_dir"/bodyfmt/*.h; do
   # (Namespaces nested in such a block, e.g. bodyfmt::text, are inside it.)
-  bad=$(grep -nE '^namespace ([^ ]+ )?bodyfmt' "$header" | grep -v 'BODYFMT_API')
+  bad=$(awk '/^#pragma GCC visibility push\(default\)/ { inside = 1 } /^#pragma GCC visibility pop/ { inside = 0 }
+             /^namespace ([^ ]+ )?bodyfmt/ && !inside { print FNR ": " $0 }' "$header")
   if [ -n "$bad" ]; then
-    echo "FAIL: $header opens a namespace without BODYFMT_API (its declarations would not be exported):"
+    echo "FAIL: $header opens a namespace outside '#pragma GCC visibility push(default)' (its declarations would not be exported):"
     echo "$bad"
     status=1
   fi

@@ -21,6 +21,8 @@ std::size_t byte_of_column(const std::string& text, std::size_t n) {
 
 }  // namespace
 
+std::string number(double value) { return fmt::format("{:.6g}", value); }
+
 std::string wrap(const std::string& text, std::size_t indent) {
   std::string out, rest = text;
   const std::string pad(indent, ' ');

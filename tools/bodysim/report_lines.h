@@ -17,6 +17,9 @@ constexpr std::size_t kReportColumns = 100;
 /// stays whole), each after the first indented by `indent` spaces; every line ends with '\n'.
 std::string wrap(const std::string& text, std::size_t indent);
 
+/// `value` to 6 significant digits, as the report prints a quantity.
+std::string number(double value);
+
 /// `value` and `other` to 6 significant digits, or more (up to 10) while the two would print
 /// the same but differ: a comparison that fails for a difference in the 7th digit shows it.
 std::pair<std::string, std::string> distinct_numbers(double value, double other);

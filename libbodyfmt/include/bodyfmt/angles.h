@@ -4,8 +4,10 @@
 
 #include <bodyfmt/export.h>
 
-namespace BODYFMT_API bodyfmt {
+#pragma GCC visibility push(default)
+namespace bodyfmt {
 
 inline constexpr double kPi = 3.14159265358979323846;
 
 }  // namespace bodyfmt
+#pragma GCC visibility pop

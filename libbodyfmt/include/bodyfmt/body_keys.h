@@ -10,7 +10,8 @@
 #include <string_view>
 #include <vector>
 
-namespace BODYFMT_API bodyfmt {
+#pragma GCC visibility push(default)
+namespace bodyfmt {
 
 /// How the loader reads a number under the key (body-format-spec §3).
 enum class AngleRule {
@@ -64,3 +65,4 @@ std::string describe_body_key(const BodyKey& key);
 std::string body_keys_markdown();
 
 }  // namespace bodyfmt
+#pragma GCC visibility pop

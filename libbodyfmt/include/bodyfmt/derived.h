@@ -8,7 +8,8 @@
 
 #include <vector>
 
-namespace BODYFMT_API bodyfmt {
+#pragma GCC visibility push(default)
+namespace bodyfmt {
 
 /// Combines a link's rigid-body contributions (body-format-spec §6.4): total mass, centre
 /// of mass in the link frame, inertia about the centre of mass in link axes. A link with no
@@ -82,3 +83,4 @@ struct Derived {
 Derived compute_derived(const Model& model, DiagnosticSink& sink);
 
 }  // namespace bodyfmt
+#pragma GCC visibility pop

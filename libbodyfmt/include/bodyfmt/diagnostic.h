@@ -14,7 +14,8 @@
 #include <string_view>
 #include <vector>
 
-namespace BODYFMT_API bodyfmt {
+#pragma GCC visibility push(default)
+namespace bodyfmt {
 
 enum class Severity { kNote, kWarning, kError, kFatal };
 
@@ -146,3 +147,4 @@ std::string format_diagnostic(const Diagnostic& diagnostic);
 void sort_diagnostics(std::vector<Diagnostic>& diagnostics);
 
 }  // namespace bodyfmt
+#pragma GCC visibility pop

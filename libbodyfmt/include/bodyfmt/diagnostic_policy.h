@@ -22,7 +22,8 @@
 #include <string_view>
 #include <vector>
 
-namespace BODYFMT_API bodyfmt {
+#pragma GCC visibility push(default)
+namespace bodyfmt {
 
 /// Per-rule switches. A rule pattern is a rule id or a family prefix ending in `*`
 /// (`units-*`). A rule is off when a disable pattern matches it and no enable pattern does:
@@ -120,3 +121,4 @@ class DiagnosticPolicy : public DiagnosticSink {
 };
 
 }  // namespace bodyfmt
+#pragma GCC visibility pop

@@ -8,7 +8,8 @@
 
 #include <memory>
 
-namespace BODYFMT_API bodyfmt {
+#pragma GCC visibility push(default)
+namespace bodyfmt {
 
 class FileCache {
  public:
@@ -28,3 +29,4 @@ class FileCache {
 };
 
 }  // namespace bodyfmt
+#pragma GCC visibility pop

@@ -12,7 +12,8 @@
 #include <string_view>
 #include <vector>
 
-namespace BODYFMT_API bodyfmt {
+#pragma GCC visibility push(default)
+namespace bodyfmt {
 
 /// `text` with `fixes` (all of one file) applied. Identical edits (text shared through an
 /// alias, reported once per use) are applied once. Returns nullopt with `why` set when an edit
@@ -33,3 +34,4 @@ std::string unified_diff(std::string_view before, std::string_view after, const 
 std::optional<std::string> model_difference(const Model& a, const Model& b, double relative_tolerance = 1e-12);
 
 }  // namespace bodyfmt
+#pragma GCC visibility pop

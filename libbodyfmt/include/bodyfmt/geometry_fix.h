@@ -11,7 +11,8 @@
 #include <string_view>
 #include <vector>
 
-namespace BODYFMT_API bodyfmt {
+#pragma GCC visibility push(default)
+namespace bodyfmt {
 
 /// Fix-its that write `keys` (a centre of mass and an inertia about it) over the link-level
 /// `center_of_mass` and `inertia` of `link`, read from `text`, the file those keys are written
@@ -33,3 +34,4 @@ MassProperties written_mass_keys(const MassProperties& keys);
 std::vector<bool> links_for_geometry_fix(const Model& model, const std::vector<Diagnostic>& findings);
 
 }  // namespace bodyfmt
+#pragma GCC visibility pop

@@ -11,7 +11,8 @@
 #include <optional>
 #include <vector>
 
-namespace BODYFMT_API bodyfmt {
+#pragma GCC visibility push(default)
+namespace bodyfmt {
 
 /// Whether the combination of a link's shapes is a solid: a triangle mesh bounds a volume only
 /// when every edge is shared by triangles that run it in opposite directions as often as in the
@@ -85,3 +86,4 @@ struct GeometryAtWrittenMass {
 std::optional<GeometryAtWrittenMass> geometry_at_written_mass(const Link& link, const LinkGeometryMass& geometry);
 
 }  // namespace bodyfmt
+#pragma GCC visibility pop

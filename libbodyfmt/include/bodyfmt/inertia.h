@@ -9,7 +9,8 @@
 
 #include <optional>
 
-namespace BODYFMT_API bodyfmt {
+#pragma GCC visibility push(default)
+namespace bodyfmt {
 
 /// (I + Iᵀ) / 2. Choreonoid keeps the 9 numbers as given; every consumer that needs a tensor
 /// (URDF, MJCF, Simbody) needs a symmetric one.
@@ -46,3 +47,4 @@ InertiaValidity inertia_validity(const PrincipalInertia& principal);
 std::optional<Eigen::Matrix3d> balance_inertia(const Eigen::Matrix3d& inertia);
 
 }  // namespace bodyfmt
+#pragma GCC visibility pop

@@ -6,7 +6,8 @@
 #include <string>
 #include <vector>
 
-namespace BODYFMT_API bodyfmt {
+#pragma GCC visibility push(default)
+namespace bodyfmt {
 
 struct InputFile {
   std::string path;
@@ -25,3 +26,4 @@ std::vector<InputFile> input_files(const Model& model);
 void note_standard_input_read();
 
 }  // namespace bodyfmt
+#pragma GCC visibility pop

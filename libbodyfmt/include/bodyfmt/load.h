@@ -14,7 +14,8 @@
 #include <string>
 #include <vector>
 
-namespace BODYFMT_API bodyfmt {
+#pragma GCC visibility push(default)
+namespace bodyfmt {
 
 struct LoadOptions;
 class FileCache;
@@ -75,3 +76,4 @@ std::optional<Model> load_body_string(const std::string& text, const std::string
                                       DiagnosticSink& sink);
 
 }  // namespace bodyfmt
+#pragma GCC visibility pop

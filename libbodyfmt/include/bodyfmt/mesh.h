@@ -11,7 +11,8 @@
 #include <string>
 #include <vector>
 
-namespace BODYFMT_API bodyfmt {
+#pragma GCC visibility push(default)
+namespace bodyfmt {
 
 /// Surface material in VRML97 terms, as Choreonoid reads it (body-format-spec §8.7).
 struct Material {
@@ -85,3 +86,4 @@ void append_mesh(TriangleMesh& mesh, const TriangleMesh& other,
                  const Eigen::Affine3d& transform = Eigen::Affine3d::Identity());
 
 }  // namespace bodyfmt
+#pragma GCC visibility pop

@@ -17,7 +17,8 @@
 #include <tuple>
 #include <vector>
 
-namespace BODYFMT_API bodyfmt {
+#pragma GCC visibility push(default)
+namespace bodyfmt {
 
 struct MeshImportOptions {
   /// `node` / `fragment`: the first scene node of this name in depth-first order (VRML DEF
@@ -85,3 +86,4 @@ class MeshCache {
 };
 
 }  // namespace bodyfmt
+#pragma GCC visibility pop

@@ -24,7 +24,8 @@
 #include <variant>
 #include <vector>
 
-namespace BODYFMT_API bodyfmt {
+#pragma GCC visibility push(default)
+namespace bodyfmt {
 
 using LinkIndex = int;  ///< index into Model::links; -1 = none
 using MeshIndex = int;  ///< index into Model::meshes; -1 = not loaded
@@ -604,3 +605,4 @@ struct Model {
 };
 
 }  // namespace bodyfmt
+#pragma GCC visibility pop

@@ -14,7 +14,8 @@
 #include <string>
 #include <vector>
 
-namespace BODYFMT_API bodyfmt {
+#pragma GCC visibility push(default)
+namespace bodyfmt {
 
 enum class ChangeKind { kAdded, kRemoved, kChanged };
 
@@ -54,3 +55,4 @@ std::vector<ModelChange> diff_models(const Model& old_model, const Model& new_mo
 std::string canonical_text(const Model& model);
 
 }  // namespace bodyfmt
+#pragma GCC visibility pop

@@ -10,7 +10,8 @@
 #include <string_view>
 #include <vector>
 
-namespace BODYFMT_API bodyfmt {
+#pragma GCC visibility push(default)
+namespace bodyfmt {
 
 /// Where package://NAME/PATH is looked for.
 struct PackageSearch {
@@ -67,3 +68,4 @@ std::filesystem::path package_tree(const std::filesystem::path& folder);
 bool inside_tree(const std::string& file, const std::filesystem::path& tree);
 
 }  // namespace bodyfmt
+#pragma GCC visibility pop

@@ -36,7 +36,8 @@
 #include <string_view>
 #include <vector>
 
-namespace BODYFMT_API bodyfmt {
+#pragma GCC visibility push(default)
+namespace bodyfmt {
 
 /// MuJoCo's mjMINVAL (double build): the smallest mass and principal moment mjCModel accepts
 /// for a moving body, unless a body welded to it carries both.
@@ -154,3 +155,4 @@ void report_physical_as(DiagnosticSink& sink, std::string_view rule_id, const Ph
                         std::string message, std::string fix_hint = {});
 
 }  // namespace bodyfmt
+#pragma GCC visibility pop

@@ -13,7 +13,8 @@
 #include <utility>
 #include <vector>
 
-namespace BODYFMT_API bodyfmt {
+#pragma GCC visibility push(default)
+namespace bodyfmt {
 
 /// The name a joint is set by: the link's joint name, else the link name (as Choreonoid).
 std::string_view joint_name_of(const Link& link);
@@ -42,3 +43,4 @@ std::pair<std::vector<JointPosition>, std::vector<std::string>> parse_joint_posi
 std::vector<Eigen::Isometry3d> forward_kinematics(const Model& model, const std::vector<JointPosition>& positions);
 
 }  // namespace bodyfmt
+#pragma GCC visibility pop

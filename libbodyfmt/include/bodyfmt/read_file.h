@@ -10,7 +10,8 @@
 #include <string>
 #include <string_view>
 
-namespace BODYFMT_API bodyfmt {
+#pragma GCC visibility push(default)
+namespace bodyfmt {
 
 /// A file's bytes in a buffer that nothing writes before the read does: a std::string of the
 /// file's size would be zero-filled first, 24 MB for a 100,000-link model.
@@ -39,3 +40,4 @@ using bodyfmt::readable_regular_file;
 }  // namespace detail
 
 }  // namespace bodyfmt
+#pragma GCC visibility pop

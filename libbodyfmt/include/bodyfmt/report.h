@@ -14,7 +14,8 @@
 #include <string_view>
 #include <vector>
 
-namespace BODYFMT_API bodyfmt {
+#pragma GCC visibility push(default)
+namespace bodyfmt {
 
 /// What a run checked and found.
 struct Report {
@@ -89,3 +90,4 @@ std::string format_json_report(const Report& report, const ToolInfo& tool);
 std::string format_sarif_report(const Report& report, const ToolInfo& tool, const std::string& base_dir = {});
 
 }  // namespace bodyfmt
+#pragma GCC visibility pop

@@ -10,7 +10,8 @@
 #include <string_view>
 #include <vector>
 
-namespace BODYFMT_API bodyfmt {
+#pragma GCC visibility push(default)
+namespace bodyfmt {
 
 struct RuleInfo {
   std::string_view id;         ///< kebab-case with a family prefix, e.g. "inertia-triangle"
@@ -40,3 +41,4 @@ void report_rule(DiagnosticSink& sink, std::string_view rule_id, SourceLocation 
                  std::string fix_hint = {});
 
 }  // namespace bodyfmt
+#pragma GCC visibility pop

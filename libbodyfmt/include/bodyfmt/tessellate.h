@@ -20,7 +20,8 @@
 #include <array>
 #include <vector>
 
-namespace BODYFMT_API bodyfmt {
+#pragma GCC visibility push(default)
+namespace bodyfmt {
 
 /// How an Extrusion's cross-sections are placed where Choreonoid's MeshGenerator does not
 /// build a rotation. A spine whose points are all collinear is turned by Choreonoid with the
@@ -118,3 +119,4 @@ bool triangulate_polygon(const std::vector<Eigen::Vector3d>& vertices, const std
                          std::vector<std::array<int, 3>>& triangles, bool* over_budget = nullptr);
 
 }  // namespace bodyfmt
+#pragma GCC visibility pop

@@ -8,7 +8,8 @@
 #include <string>
 #include <string_view>
 
-namespace BODYFMT_API bodyfmt {
+#pragma GCC visibility push(default)
+namespace bodyfmt {
 namespace text {
 
 /// JSON text for `s` between quotes: `"` `\` and control characters escaped, UTF-8 kept,
@@ -52,3 +53,4 @@ bool is_xml_text(std::string_view text);
 
 }  // namespace text
 }  // namespace bodyfmt
+#pragma GCC visibility pop

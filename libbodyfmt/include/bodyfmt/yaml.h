@@ -24,7 +24,8 @@
 #include <string_view>
 #include <vector>
 
-namespace BODYFMT_API bodyfmt {
+#pragma GCC visibility push(default)
+namespace bodyfmt {
 
 /// The limits a YAML input is read within; the defaults are the model loader's (LoadOptions).
 struct YamlLimits {
@@ -152,3 +153,4 @@ std::vector<YamlEntry> unknown_keys(const YamlNode& mapping, const std::vector<s
 std::string_view did_you_mean(std::string_view word, const std::vector<std::string_view>& candidates);
 
 }  // namespace bodyfmt
+#pragma GCC visibility pop

@@ -333,6 +333,11 @@ TEST_CASE("urdf2body: exit codes, standard output, --strict and --allow-loss, lo
   // The URDF is an input: never written over.
   CHECK(run_command(tool + " mimic.urdf -o mimic.urdf", dir.string()).status == 2);
   CHECK(read(dir / "mimic.urdf").find("<robot") == 0);
+  // --best-effort lets the strict loss be written: the refused write is the reason, not --strict.
+  CommandResult refused = run_command(tool + " mimic.urdf -o mimic.urdf --strict --best-effort", dir.string());
+  CHECK(refused.status == 2);
+  CHECK(refused.output.find("[export-write]") != std::string::npos);
+  CHECK(refused.output.find("--strict makes every loss an error") == std::string::npos);
   fs::remove_all(dir);
 }
 
