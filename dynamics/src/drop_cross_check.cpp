@@ -156,11 +156,9 @@ struct Sample {
   int touching = 0;
 };
 
-/// A contact point of the model, rigid in the root's frame while the joints are locked.
-struct SupportPoint {
-  Eigen::Vector3d in_root;
-  double radius;
-};
+/// The model's contact points in the root's frame (rigid there while the joints are locked):
+/// each one's link is the root.
+using SupportPoint = ContactPoint;
 
 /// The largest distance between two of `points` seen from above, and the support's narrowest
 /// width (the smallest, over the convex hull's edges, of the farthest corner from the edge's
@@ -216,7 +214,7 @@ DropMeasures drop(Make make, const Eigen::Isometry3d& start, const std::vector<S
   // (-1: not yet) and how fast it came down then.
   std::vector<double> previous_z, descent(points.size(), 0.0), landed(points.size(), -1.0),
       landing_speed(points.size(), 0.0);
-  for (const SupportPoint& p : points) previous_z.push_back((start * p.in_root).z());
+  for (const SupportPoint& p : points) previous_z.push_back(p.touching(start).z());
   for (int i = 1; i <= n; ++i) {
     engine->advance_to(i * kSample);
     const Eigen::Isometry3d X = engine->root_pose();
@@ -225,8 +223,8 @@ DropMeasures drop(Make make, const Eigen::Isometry3d& start, const std::vector<S
         {i * kSample, X.translation().z(), X.linear(), engine->floor_force(), late ? engine->contacts() : 0});
     Sample& s = samples.back();
     for (std::size_t k = 0; k < points.size(); ++k) {
-      const double z = (X * points[k].in_root).z();
-      const bool touches = z - points[k].radius < 0;
+      const double z = points[k].touching(X).z();
+      const bool touches = z < 0;
       s.touching += touches ? 1 : 0;
       const double falling = (previous_z[k] - z) / kSample;
       if (touches && landed[k] < 0) {
@@ -280,8 +278,11 @@ DropMeasures drop(Make make, const Eigen::Isometry3d& start, const std::vector<S
     // onto that support since.
     std::vector<Eigen::Vector2d> footprint;
     for (std::size_t k = 0; k < points.size(); ++k) {
-      const Eigen::Vector3d x = end.R * points[k].in_root + Eigen::Vector3d(0, 0, end.z);  // heights and spans
-      if (x.z() - points[k].radius >= 0 || landed[k] < 0) continue;
+      Eigen::Isometry3d at_end = Eigen::Isometry3d::Identity();  // heights and spans
+      at_end.linear() = end.R;
+      at_end.translation().z() = end.z;
+      const Eigen::Vector3d x = points[k].touching(at_end);
+      if (x.z() >= 0 || landed[k] < 0) continue;
       footprint.emplace_back(x.x(), x.y());
       if (landed[k] > r.support_time) {
         r.support_time = landed[k];
@@ -361,7 +362,7 @@ std::vector<CheckResult> run_drop_cross_check(const Model& model, const Derived&
   // with the joints at their initial positions (derived.X_WL has them at zero).
   double lowest = std::numeric_limits<double>::infinity();
   for (const ContactPoint& p : probe->contact_points())
-    lowest = std::min(lowest, (probe->link_pose(p.link) * p.position_in_link).z() - p.radius);
+    lowest = std::min(lowest, p.touching(probe->link_pose(p.link)).z());
   Eigen::Isometry3d start = as_isometry(model.root().X_PL);
   start.translation().z() += kDrop - lowest;
 
@@ -397,8 +398,15 @@ std::vector<CheckResult> run_drop_cross_check(const Model& model, const Derived&
   // stands, and when it came to stand there.
   std::vector<SupportPoint> points;
   const Eigen::Isometry3d root_inverse = probe->link_pose(0).inverse();
-  for (const ContactPoint& p : probe->contact_points())
-    points.push_back({root_inverse * (probe->link_pose(p.link) * p.position_in_link), p.radius});
+  for (const ContactPoint& p : probe->contact_points()) {
+    const Eigen::Isometry3d X_RL = root_inverse * probe->link_pose(p.link);
+    SupportPoint in_root = p;
+    in_root.link = 0;
+    in_root.position_in_link = X_RL * p.position_in_link;
+    in_root.rim_axis = X_RL.linear() * p.rim_axis;
+    in_root.rim_start = X_RL.linear() * p.rim_start;
+    points.push_back(in_root);
+  }
   try {
     measured.simbody =
         drop([&] { return std::make_unique<SimbodyEngine>(Simulation::build(model, derived, locked, quiet), start); },
@@ -441,9 +449,8 @@ std::vector<CheckResult> run_drop_cross_check(const Model& model, const Derived&
   const double extent = [&] {
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     for (const SupportPoint& p : points) {
-      const double z = (start * p.in_root).z();
-      lo = std::min(lo, z - p.radius);
-      hi = std::max(hi, z + p.radius);
+      lo = std::min(lo, p.touching(start).z());
+      hi = std::max(hi, p.top(start).z());
     }
     return std::max(hi - lo, 1e-3);
   }();
@@ -468,7 +475,7 @@ std::vector<CheckResult> run_drop_cross_check(const Model& model, const Derived&
   // (Simbody's contact points, rigid while the joints are locked): the face it rests on.
   auto face_height = [&](const Eigen::Matrix3d& R) {
     double h = -std::numeric_limits<double>::infinity();
-    for (const SupportPoint& p : points) h = std::max(h, p.radius - (R * p.in_root).z());
+    for (const SupportPoint& p : points) h = std::max(h, -p.offset(R).z());
     return h;
   };
   // Which way is up in the model's own axes: the face it rests on and its tilt there, without

@@ -250,10 +250,10 @@ void drop(Generic& g, const std::vector<ContactPoint>& contacts) {
     // The built system's pose: the file's, with the joints at their initial displacements
     // (derived.X_WL has them at zero, which would drop a bent model from the wrong height).
     for (const ContactPoint& p : sim->contact_points()) {
-      const Eigen::Vector3d x = sim->link_pose(p.link) * p.position_in_link;
-      lowest = std::min(lowest, x.z() - p.radius);
-      box.add(x - Eigen::Vector3d(0, 0, p.radius));
-      box.add(x + Eigen::Vector3d(0, 0, p.radius));
+      const Eigen::Isometry3d X = sim->link_pose(p.link);
+      lowest = std::min(lowest, p.touching(X).z());
+      box.add(p.touching(X));
+      box.add(p.top(X));
     }
     const double drop = 0.02;
     Eigen::Isometry3d X = as_isometry(model.root().X_PL);
@@ -579,7 +579,7 @@ void surface_velocity(Generic& g, const std::vector<ContactPoint>& contacts) {
     double top = -std::numeric_limits<double>::infinity(), others = -std::numeric_limits<double>::infinity();
     LinkIndex highest = -1;
     for (const ContactPoint& p : contacts) {
-      const double z = (X[p.link] * p.position_in_link).z() + p.radius;
+      const double z = p.top(X[p.link]).z();
       if (p.link == track)
         top = std::max(top, z);
       else if (z > others) {
@@ -647,8 +647,7 @@ void determinism(Generic& g, const std::vector<ContactPoint>& contacts) {
     if (is_free_root(g.model)) {
       // 2 cm above the floor in the held pose, not the zero pose.
       double lowest = std::numeric_limits<double>::infinity();
-      for (const ContactPoint& p : contacts)
-        lowest = std::min(lowest, (sim->link_pose(p.link) * p.position_in_link).z() - p.radius);
+      for (const ContactPoint& p : contacts) lowest = std::min(lowest, p.touching(sim->link_pose(p.link)).z());
       Eigen::Isometry3d X = as_isometry(g.model.root().X_PL);
       if (std::isfinite(lowest)) X.translation().z() += 0.02 - lowest;
       sim->set_root_pose(X);

@@ -116,8 +116,9 @@ struct Simulation::Impl {
     const SimTK::MobilizedBody& b = body(p.link);
     const SimTK::Vec3 centre = vec3(p.position_in_link);
     if (p.radius == 0) return {centre, -b.findStationLocationInGround(s, centre)[2]};
-    // A sphere touches at its lowest point, a different material point as it rolls.
-    const SimTK::Vec3 x = b.findStationLocationInGround(s, centre) - SimTK::Vec3(0, 0, p.radius);
+    // A sphere or a rim touches at its lowest point, a different material point as it rolls.
+    const SimTK::Transform& X = b.getBodyTransform(s);
+    const SimTK::Vec3 x = X.p() + vec3(p.offset(to_eigen(X.R())));
     return {b.findStationAtGroundPoint(s, x), -x[2]};
   }
 
@@ -143,8 +144,7 @@ struct Simulation::Impl {
       for (std::size_t i = run.begin; i < run.end; ++i) {
         const ContactPoint& p = points[i];
         // The touching point, from the link origin (world axes); a sphere touches at its lowest.
-        Eigen::Vector3d lever = R * p.position_in_link;
-        lever.z() -= p.radius;
+        const Eigen::Vector3d lever = p.radius == 0 ? Eigen::Vector3d(R * p.position_in_link) : p.offset(R);
         const double depth = -(origin.z() + lever.z());
         if (!(depth > 0)) continue;
         const Eigen::Vector3d v = velocity + omega.cross(lever);
@@ -583,7 +583,8 @@ std::string Simulation::stiffest_part(SourceLocation& where) const {
     for (const ContactPoint& p : m.points) {
       if (p.link != static_cast<LinkIndex>(i)) continue;
       ++count;
-      const double r = (p.position_in_link - m.centres[i]).norm();
+      // Where it touches with the link unturned: a rim point at its place on the rim.
+      const double r = (p.offset(Eigen::Matrix3d::Identity()) - m.centres[i]).norm();
       lever_squared += r * r;
       farthest = std::max(farthest, r);
     }
