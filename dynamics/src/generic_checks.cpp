@@ -451,8 +451,8 @@ void joint_ranges(Generic& g) {
       }
     }
     const bool degrees = kind == JointType::kRevolute;
-    g.add(make(fmt::format("{} ({} joints, stops at most as stiff as the subtree inertia × ({:g} rad/s)²; {})", label,
-                           pushed.size(), kStopFrequency, where),
+    g.add(make(fmt::format("{} ({} joints, stops between the subtree inertia × ({:g} rad/s)² and × ({:g} rad/s)²; {})",
+                           label, pushed.size(), kGenericStopFloorFrequency, kStopFrequency, where),
                worst, 1, degrees ? "°" : "mm", degrees ? "≤ 1°" : "≤ 1 mm", worst <= 1));
   }
 }
@@ -699,8 +699,12 @@ std::vector<CheckResult> run_generic_checks(const Model& model, const Derived& d
   // link (GR001's 5 g head, I = 6.7e-7 kg·m²) rings at 1.2e5 rad/s and held the explicit
   // integrator to 40 µs steps wherever a joint leant on its stop: all of G6's push, and G5's
   // free drop once the limbs collapse onto their stops.
+  // No stop is softer than I·(30 rad/s)² either: G6's servo pushes a joint with I·(6 rad/s)²,
+  // so that a heavy subtree (713 kg, I = 2.4e3 kg·m²) went 1.5° through a 10⁴ N·m/rad stop; at
+  // I·30² it holds within 5° × 36/(36 + 900) = 0.2°, whatever the mass.
   SimOptions capped = options;
   capped.stop_frequency_limit = kStopFrequency;
+  capped.stop_frequency_floor = kGenericStopFloorFrequency;
   Generic g{model, derived, capped, results, {}};
   const std::vector<ContactPoint> contacts = sim->contact_points();
   mass_matrix(g, *sim);

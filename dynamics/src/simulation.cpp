@@ -377,9 +377,11 @@ std::unique_ptr<Simulation> Simulation::build(const Model& model, const Derived&
   for (std::size_t i = 1; i < n; ++i) q0[i] = model.links[i].initial_displacement;
   for (const Stop& stop : stops) {
     double k = options.stop_stiffness;
-    if (options.stop_frequency_limit > 0) {
-      const double w = options.stop_frequency_limit;
-      k = std::min(k, subtree_axis_inertia(model, derived, stop.link, q0, m.inertias) * w * w);
+    if (options.stop_frequency_limit > 0 || options.stop_frequency_floor > 0) {
+      const double inertia = subtree_axis_inertia(model, derived, stop.link, q0, m.inertias);
+      const double high = options.stop_frequency_limit, low = options.stop_frequency_floor;
+      if (high > 0) k = std::min(k, inertia * high * high);
+      if (low > 0) k = std::max(k, inertia * low * low);
     }
     SimTK::Force::MobilityLinearStop(m.forces, m.matter.updMobilizedBody(stop.body), SimTK::MobilizerQIndex(0), k,
                                      options.stop_dissipation, stop.lower, stop.upper);

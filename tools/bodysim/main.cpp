@@ -342,8 +342,9 @@ int main(int argc, char** argv) {
             sim.contact_params.friction, sim.contact_params.dissipation, sim.contact_params.transition_velocity,
             sim.stop_stiffness,
             command == "check"
-                ? fmt::format(", in the generic checks at most the joint's subtree inertia × ({:g} rad/s)²",
-                              dynamics::kGenericStopFrequency)
+                ? fmt::format(", in the generic checks between the joint's subtree inertia × ({:g} rad/s)² and "
+                              "× ({:g} rad/s)²",
+                              dynamics::kGenericStopFloorFrequency, dynamics::kGenericStopFrequency)
                 : ""),
         4);
     if (command == "check-tank") {

@@ -50,6 +50,9 @@ struct SimOptions {
   /// > 0: no stop stiffer than I·ω² (rad/s; I the inertia of the joint's subtree about its axis,
   /// or its mass for a slider), so that no stop rings faster than ω; 0: stop_stiffness for all.
   double stop_frequency_limit = 0;
+  /// > 0: no stop softer than I·ω² (rad/s, the same I), so that a heavy subtree does not push
+  /// through its stop; 0: no floor. Applied after stop_frequency_limit.
+  double stop_frequency_floor = 0;
   double accuracy = 1e-5;        ///< RungeKuttaMersonIntegrator accuracy
   bool balance_inertia = false;  ///< use bodyfmt::balance_inertia for invalid tensors
   bool lock_joints = false;      ///< weld every joint at its initial position (a rigid body)
