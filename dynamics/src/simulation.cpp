@@ -144,7 +144,11 @@ struct Simulation::Impl {
       for (std::size_t i = run.begin; i < run.end; ++i) {
         const ContactPoint& p = points[i];
         // The touching point, from the link origin (world axes); a sphere touches at its lowest.
-        const Eigen::Vector3d lever = p.radius == 0 ? Eigen::Vector3d(R * p.position_in_link) : p.offset(R);
+        // A sphere or rim whose centre is more than its radius up touches nothing: skipped
+        // before the rim's trigonometry, which made check-tank 12 % slower on SimpleTank's gun.
+        const Eigen::Vector3d centre = R * p.position_in_link;
+        if (origin.z() + centre.z() - p.radius >= 0) continue;
+        const Eigen::Vector3d lever = p.radius == 0 ? centre : p.offset(R);
         const double depth = -(origin.z() + lever.z());
         if (!(depth > 0)) continue;
         const Eigen::Vector3d v = velocity + omega.cross(lever);
