@@ -33,7 +33,7 @@ Eigen::Vector3d ContactPoint::offset(const Eigen::Matrix3d& R) const {
   const Eigen::Vector3d axis = R * rim_axis;
   Eigen::Vector3d down = -Eigen::Vector3d::UnitZ() + axis.z() * axis;
   down = down.norm() > 1e-9 ? down.normalized() : Eigen::Vector3d(R * rim_start);
-  return centre + radius * (std::cos(rim_angle) * down + std::sin(rim_angle) * axis.cross(down));
+  return centre + radius * (rim_cos * down + rim_sin * axis.cross(down));
 }
 
 std::vector<ContactPoint> collect_contact_points(const Model& model, DiagnosticSink& sink) {
@@ -74,6 +74,8 @@ std::vector<ContactPoint> collect_contact_points(const Model& model, DiagnosticS
               p.rim_axis = axis;
               p.rim_start = start;
               p.rim_angle = 2 * kPi * k / kRimPoints;
+              p.rim_cos = std::cos(p.rim_angle);
+              p.rim_sin = std::sin(p.rim_angle);
               out.push_back(p);
             }
           continue;

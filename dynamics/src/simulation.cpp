@@ -148,6 +148,11 @@ struct Simulation::Impl {
         // before the rim's trigonometry, which made check-tank 12 % slower on SimpleTank's gun.
         const Eigen::Vector3d centre = R * p.position_in_link;
         if (origin.z() + centre.z() - p.radius >= 0) continue;
+        // A rim reaches radius·√(1 − a_z²) below its centre (a its axis in the world).
+        if (!p.rim_axis.isZero()) {
+          const double a_z = R.row(2).dot(p.rim_axis);
+          if (origin.z() + centre.z() - p.radius * std::sqrt(std::max(0.0, 1 - a_z * a_z)) >= 0) continue;
+        }
         const Eigen::Vector3d lever = p.radius == 0 ? centre : p.offset(R);
         const double depth = -(origin.z() + lever.z());
         if (!(depth > 0)) continue;

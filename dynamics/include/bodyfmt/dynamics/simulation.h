@@ -107,7 +107,8 @@ struct ContactPoint {
   /// In the circle's plane, link frame, unit: where the points start when the circle lies flat
   /// and has no lowest point.
   Eigen::Vector3d rim_start = Eigen::Vector3d::Zero();
-  double rim_angle = 0;  ///< round the rim from its lowest point, rad
+  double rim_angle = 0;             ///< round the rim from its lowest point, rad
+  double rim_cos = 1, rim_sin = 0;  ///< of rim_angle, computed once: the force evaluation needs them
 
   bool is_sphere() const { return radius > 0 && rim_axis.isZero(); }
   /// Where the point touches a floor below, from the link origin in world axes, for the link
