@@ -25,6 +25,17 @@ std::vector<Eigen::Vector3d> sphere_directions(int count) {
 
 }  // namespace
 
+Eigen::Vector3d ContactPoint::offset(const Eigen::Matrix3d& R) const {
+  const Eigen::Vector3d centre = R * position_in_link;
+  if (rim_axis.isZero()) return centre - Eigen::Vector3d(0, 0, radius);
+  // The rim's lowest point is along the downward vertical projected onto the circle's plane;
+  // a circle lying flat has none, and its points start where the link says.
+  const Eigen::Vector3d axis = R * rim_axis;
+  Eigen::Vector3d down = -Eigen::Vector3d::UnitZ() + axis.z() * axis;
+  down = down.norm() > 1e-9 ? down.normalized() : Eigen::Vector3d(R * rim_start);
+  return centre + radius * (rim_cos * down + rim_sin * axis.cross(down));
+}
+
 std::vector<ContactPoint> collect_contact_points(const Model& model, DiagnosticSink& sink) {
   GeometryAlreadyReported quiet(sink);
   std::vector<ContactPoint> out;
@@ -49,6 +60,24 @@ std::vector<ContactPoint> collect_contact_points(const Model& model, DiagnosticS
           for (double end : {-0.5, 0.5})
             out.push_back({static_cast<LinkIndex>(i), shape.X_LS * Eigen::Vector3d(0, end * capsule->height, 0),
                            capsule->radius * scale});
+          continue;
+        }
+        // A cylinder touches a plane on the rims of its ends (open or closed): exactly at a
+        // rim's lowest point when it lies or leans, on the whole rim when it stands. Its
+        // tessellated 20-gon would rest on a flat lying on its side, where a cylinder rolls.
+        if (const auto* cylinder = std::get_if<Cylinder>(&shape.geometry)) {
+          const Eigen::Vector3d axis = L.col(1) / scale, start = L.col(0) / scale;
+          for (double end : {-0.5, 0.5})
+            for (int k = 0; k < kRimPoints; ++k) {
+              ContactPoint p{static_cast<LinkIndex>(i), shape.X_LS * Eigen::Vector3d(0, end * cylinder->height, 0),
+                             cylinder->radius * scale};
+              p.rim_axis = axis;
+              p.rim_start = start;
+              p.rim_angle = 2 * kPi * k / kRimPoints;
+              p.rim_cos = std::cos(p.rim_angle);
+              p.rim_sin = std::sin(p.rim_angle);
+              out.push_back(p);
+            }
           continue;
         }
       }

@@ -250,10 +250,10 @@ void drop(Generic& g, const std::vector<ContactPoint>& contacts) {
     // The built system's pose: the file's, with the joints at their initial displacements
     // (derived.X_WL has them at zero, which would drop a bent model from the wrong height).
     for (const ContactPoint& p : sim->contact_points()) {
-      const Eigen::Vector3d x = sim->link_pose(p.link) * p.position_in_link;
-      lowest = std::min(lowest, x.z() - p.radius);
-      box.add(x - Eigen::Vector3d(0, 0, p.radius));
-      box.add(x + Eigen::Vector3d(0, 0, p.radius));
+      const Eigen::Isometry3d X = sim->link_pose(p.link);
+      lowest = std::min(lowest, p.touching(X).z());
+      box.add(p.touching(X));
+      box.add(p.top(X));
     }
     const double drop = 0.02;
     Eigen::Isometry3d X = as_isometry(model.root().X_PL);
@@ -451,8 +451,8 @@ void joint_ranges(Generic& g) {
       }
     }
     const bool degrees = kind == JointType::kRevolute;
-    g.add(make(fmt::format("{} ({} joints, stops at most as stiff as the subtree inertia × ({:g} rad/s)²; {})", label,
-                           pushed.size(), kStopFrequency, where),
+    g.add(make(fmt::format("{} ({} joints, stops between the subtree inertia × ({:g} rad/s)² and × ({:g} rad/s)²; {})",
+                           label, pushed.size(), kGenericStopFloorFrequency, kStopFrequency, where),
                worst, 1, degrees ? "°" : "mm", degrees ? "≤ 1°" : "≤ 1 mm", worst <= 1));
   }
 }
@@ -579,7 +579,7 @@ void surface_velocity(Generic& g, const std::vector<ContactPoint>& contacts) {
     double top = -std::numeric_limits<double>::infinity(), others = -std::numeric_limits<double>::infinity();
     LinkIndex highest = -1;
     for (const ContactPoint& p : contacts) {
-      const double z = (X[p.link] * p.position_in_link).z() + p.radius;
+      const double z = p.top(X[p.link]).z();
       if (p.link == track)
         top = std::max(top, z);
       else if (z > others) {
@@ -647,8 +647,7 @@ void determinism(Generic& g, const std::vector<ContactPoint>& contacts) {
     if (is_free_root(g.model)) {
       // 2 cm above the floor in the held pose, not the zero pose.
       double lowest = std::numeric_limits<double>::infinity();
-      for (const ContactPoint& p : contacts)
-        lowest = std::min(lowest, (sim->link_pose(p.link) * p.position_in_link).z() - p.radius);
+      for (const ContactPoint& p : contacts) lowest = std::min(lowest, p.touching(sim->link_pose(p.link)).z());
       Eigen::Isometry3d X = as_isometry(g.model.root().X_PL);
       if (std::isfinite(lowest)) X.translation().z() += 0.02 - lowest;
       sim->set_root_pose(X);
@@ -700,8 +699,12 @@ std::vector<CheckResult> run_generic_checks(const Model& model, const Derived& d
   // link (GR001's 5 g head, I = 6.7e-7 kg·m²) rings at 1.2e5 rad/s and held the explicit
   // integrator to 40 µs steps wherever a joint leant on its stop: all of G6's push, and G5's
   // free drop once the limbs collapse onto their stops.
+  // No stop is softer than I·(30 rad/s)² either: G6's servo pushes a joint with I·(6 rad/s)²,
+  // so that a heavy subtree (713 kg, I = 2.4e3 kg·m²) went 1.5° through a 10⁴ N·m/rad stop; at
+  // I·30² it holds within 5° × 36/(36 + 900) = 0.2°, whatever the mass.
   SimOptions capped = options;
   capped.stop_frequency_limit = kStopFrequency;
+  capped.stop_frequency_floor = kGenericStopFloorFrequency;
   Generic g{model, derived, capped, results, {}};
   const std::vector<ContactPoint> contacts = sim->contact_points();
   mass_matrix(g, *sim);

@@ -46,8 +46,7 @@ double SimbodyEngine::penetration() const { return sim_->max_penetration(); }
 int SimbodyEngine::contacts() const {
   int n = 0;
   for (const ContactPoint& p : sim_->contact_points()) {
-    const Eigen::Vector3d x = sim_->link_pose(p.link) * p.position_in_link;
-    n += x.z() - p.radius < 0 ? 1 : 0;
+    n += p.touching(sim_->link_pose(p.link)).z() < 0 ? 1 : 0;
   }
   return n;
 }

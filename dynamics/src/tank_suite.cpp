@@ -445,7 +445,7 @@ std::string floor_contact_at(const Model& model, const std::vector<ContactPoint>
     bool below = false;
     for (LinkIndex k = p.link; k >= 0; k = model.links[k].parent) below = below || k == joint;
     if (!below) continue;
-    const double z = (X_root.inverse() * X[p.link] * p.position_in_link).z() - p.radius;
+    const double z = p.touching(X_root.inverse() * X[p.link]).z();
     if (z < lowest_z + 0.01)
       return fmt::format("(link \"{}\" would reach {:.3g} m above the floor)", model.links[p.link].name, z - lowest_z);
   }
@@ -654,8 +654,8 @@ std::optional<TankLayout> find_tank(const Model& model, const Derived& /*derived
   double lowest = std::numeric_limits<double>::infinity();
   LinkIndex lowest_link = -1;
   for (const ContactPoint& p : points) {
-    // The lowest point of a sphere contact at the file pose (root frame z is up).
-    const Eigen::Vector3d x = X_RL[p.link] * p.position_in_link - Eigen::Vector3d(0, 0, p.radius);
+    // Where it touches at the file pose (root frame z is up): a sphere or rim at its lowest.
+    const Eigen::Vector3d x = p.touching(X_RL[p.link]);
     by_link[p.link].push_back(x);
     if (x.z() < lowest) {
       lowest = x.z();

@@ -1,12 +1,14 @@
 #!/usr/bin/env python3
-"""`bodysim check` on a population of random valid free-root models (random_models.py): every
+"""`bodysim check` on a population of random valid models (random_models.py; free roots, or
+with --fixed-root the same models fixed to the world): every
 model is first shown valid (bodycheck: no finding at all), then `bodysim check` (with
 --cross-check mujoco when asked) must fail none of its checks. A check that cannot apply is a
 SKIP with its reason, which is counted, not failed. Prints the outcome counts per check and,
 for every model that failed a check or was refused, its seed, what it is and the failing lines.
 
-CI runs a small fixed-seed sample; by hand, any number of models from any seed:
-  bodysim_population.py BODYSIM BODYCHECK WORKDIR [--count N] [--seed S] [--cross-check]
+CI runs a small fixed-seed sample: the first seeds and the seeds a fix was shown on (--also);
+by hand, any number of models from any seed:
+  bodysim_population.py BODYSIM BODYCHECK WORKDIR [--count N] [--seed S] [--also S1,S2,...] [--cross-check]
   BODYFMT_POPULATION=200 ... (overrides --count)
 Exit 0 when no model failed a check, 1 otherwise, 2 on a usage error."""
 import argparse
@@ -59,7 +61,9 @@ def main():
     parser.add_argument("workdir")
     parser.add_argument("--count", type=int, default=6)
     parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--also", default="", help="comma-separated seeds run besides the range")
     parser.add_argument("--cross-check", action="store_true", help="bodysim check --cross-check mujoco")
+    parser.add_argument("--fixed-root", action="store_true", help="the same models with their root fixed")
     parser.add_argument("--keep-going", action="store_true", help="(always on) kept for symmetry with other tests")
     args = parser.parse_args()
     count = int(os.environ.get("BODYFMT_POPULATION", args.count))
@@ -69,8 +73,13 @@ def main():
     counts = collections.defaultdict(collections.Counter)  # check -> outcome -> models
     failed_models, refused, invalid = [], [], []
     start = cpu_seconds()
-    for seed in range(args.seed, args.seed + count):
-        text, description = random_models.generate(seed)
+    try:
+        also = [int(s) for s in args.also.split(",") if s.strip()]
+    except ValueError:
+        parser.error(f"--also takes comma-separated seeds, not {args.also!r}")
+    seeds = list(range(args.seed, args.seed + count)) + [s for s in also if not args.seed <= s < args.seed + count]
+    for seed in seeds:
+        text, description = random_models.generate(seed, args.fixed_root)
         path = work / f"random{seed}.body"
         path.write_text(text, encoding="utf-8")
         check = subprocess.run([args.bodycheck, "--no-config", str(path)], capture_output=True, text=True)
@@ -100,13 +109,15 @@ def main():
     used = cpu_seconds() - start
 
     mode = "bodysim check --cross-check mujoco" if args.cross_check else "bodysim check"
-    print(f"{mode} on {count} random valid models (seeds {args.seed}..{args.seed + count - 1}), "
-          f"{used:.1f} s CPU")
+    mode += ", fixed roots" if args.fixed_root else ""
+    extra = [s for s in seeds if not args.seed <= s < args.seed + count]
+    print(f"{mode} on {len(seeds)} random valid models (seeds {args.seed}..{args.seed + count - 1}"
+          f"{''.join(f', {s}' for s in extra)}), {used:.1f} s CPU")
     print(f"{'PASS':>5} {'FAIL':>5} {'SKIP':>5}  check")
     for key in sorted(counts):
         c = counts[key]
         print(f"{c['PASS']:5d} {c['FAIL']:5d} {c['SKIP']:5d}  {key}")
-    print(f"models: {count - len(failed_models) - len(refused) - len(invalid)} passed, "
+    print(f"models: {len(seeds) - len(failed_models) - len(refused) - len(invalid)} passed, "
           f"{len(failed_models)} failed a check, {len(refused)} refused or timed out, "
           f"{len(invalid)} not valid (a generator defect)")
     if args.cross_check:

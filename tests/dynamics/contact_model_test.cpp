@@ -130,3 +130,79 @@ TEST_CASE("contact model: on a gentler slope the box creeps at the speed where �
   b->sim->advance_to(2.0);
   CHECK(velocity_x(*b->sim) == doctest::Approx(vt * (1 - std::sqrt(1 - std::tan(theta) / mu))).epsilon(1e-2));
 }
+
+namespace {
+
+// A solid 2 kg cylinder, r = 0.1 m, h = 0.3 m, along its link's Y (Choreonoid's cylinder axis):
+// lying on its side with the link unturned. Inertia m·(3r² + h²)/12 across, m·r²/2 along.
+const char* kCylinder = R"(format: ChoreonoidBody
+format_version: 2.0
+angle_unit: degree
+links:
+  - name: ROLLER
+    joint_type: free
+    mass: 2.0
+    inertia: [0.02, 0, 0, 0, 0.01, 0, 0, 0, 0.02]
+    elements:
+      - type: Shape
+        geometry: { type: Cylinder, radius: 0.1, height: 0.3 }
+)";
+
+constexpr double kRadius = 0.1, kLength = 0.3;
+
+std::unique_ptr<Built> cylinder_at(const Eigen::Isometry3d& X) {
+  auto b = std::make_unique<Built>();
+  std::optional<Model> model = load_body_string(kCylinder, "cylinder.body", LoadOptions{}, b->sink);
+  REQUIRE(model);
+  b->model = std::move(*model);
+  b->derived = compute_derived(b->model, b->sink);
+  b->sim = Simulation::build(b->model, b->derived, SimOptions{}, b->sink);
+  REQUIRE(b->sim);
+  b->sim->set_root_pose(X);
+  return b;
+}
+
+}  // namespace
+
+TEST_CASE("contact model: a cylinder on its side touches along its lowest line, whatever its roll") {
+  // The floor carries it on the lowest points of its two end rims: 2 points sunk by m·g/(2·k),
+  // k = m·g/(4·1e-4), at any roll angle. Rolled by half a facet of a 20-gon (9°), a tessellated
+  // rim would rest on a flat 1.2 mm lower, and hold there.
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.linear() = Eigen::AngleAxisd(M_PI / 20, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  X.translation().z() = kRadius;
+  auto b = cylinder_at(X);
+  b->sim->advance_to(1.0);
+  CHECK(b->sim->link_pose(0).translation().z() == doctest::Approx(kRadius - 2e-4).epsilon(1e-4));
+  CHECK(mean_floor_force(*b->sim) == doctest::Approx(kMass * kG).epsilon(1e-4));
+}
+
+TEST_CASE("contact model: a cylinder set rolling on its side rolls on at v = ω·r, without losing speed") {
+  // Rolling without slip, the touching line does not move: no friction and no damping work,
+  // so 1 m/s is kept for the whole second (a 20-gon would knock on every facet, 32 per second).
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.translation().z() = kRadius - 2e-4;
+  auto b = cylinder_at(X);
+  b->sim->set_root_velocity(Eigen::Vector3d(0, 1 / kRadius, 0), Eigen::Vector3d(1, 0, 0));
+  b->sim->advance_to(1.0);
+  const auto [omega, v] = b->sim->link_velocity(0);
+  CHECK(v.x() == doctest::Approx(1).epsilon(1e-3));
+  CHECK(omega.y() == doctest::Approx(1 / kRadius).epsilon(1e-3));
+  CHECK(b->sim->link_pose(0).translation().x() == doctest::Approx(1).epsilon(2e-3));
+  CHECK(std::abs(b->sim->link_pose(0).translation().z() - (kRadius - 2e-4)) < 2e-5);
+}
+
+TEST_CASE("contact model: a cylinder standing on an end rests on its whole rim, level and still") {
+  // Standing, the rim has no lowest point: its 20 points share the weight, 20 springs sunk by
+  // m·g/(20·k), and it stays upright without drifting or turning.
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  X.translation().z() = kLength / 2;
+  auto b = cylinder_at(X);
+  b->sim->advance_to(1.0);
+  const Eigen::Isometry3d rest = b->sim->link_pose(0);
+  CHECK(rest.translation().z() == doctest::Approx(kLength / 2 - 4e-4 / 20).epsilon(1e-5));
+  CHECK(rest.translation().head<2>().norm() < 1e-9);
+  CHECK(Eigen::AngleAxisd(rest.linear() * X.linear().transpose()).angle() < 1e-9);
+  CHECK(mean_floor_force(*b->sim) == doctest::Approx(kMass * kG).epsilon(1e-4));
+}

@@ -1,12 +1,14 @@
 #!/usr/bin/env python3
-"""Seeded random valid free-root .body models for bodysim's population test: trees of boxes,
+"""Seeded random valid .body models for bodysim's population test, free-root (or, on request,
+the same model with its root fixed to the world where the free one was released): trees of boxes,
 cylinders, spheres and capsules whose mass data are exact for their shapes (closed forms
 written here, not the project's), no two shapes overlapping (bounding spheres apart), masses
 from grams to tens of kilograms, aspects from flat plates to tall posts, released level or
 tilted so that they land on a face, tip over an edge, roll or tumble.
 
-generate(seed) -> (text, description); the same seed always gives the same model.
-Usage: random_models.py SEED [OUT.body]   (prints the model when OUT is not given)"""
+generate(seed, fixed_root=False) -> (text, description); the same seed always gives the same
+model, and with fixed_root the same model with a fixed root.
+Usage: random_models.py [--fixed-root] SEED [OUT.body]   (prints the model when OUT is not given)"""
 import math
 import random
 import sys
@@ -113,7 +115,7 @@ def link_text(name, parent, joint, shape, place, shape_rotation):
     return lines
 
 
-def generate(seed):
+def generate(seed, fixed_root=False):
     rng = random.Random(seed)
     size = 10 ** rng.uniform(math.log10(0.012), math.log10(0.5))  # 1.2 cm to 0.5 m across
     density = 10 ** rng.uniform(math.log10(200), math.log10(8000))  # foam to steel
@@ -130,7 +132,7 @@ def generate(seed):
     centres = [(0.0, 0.0, 0.0)]  # shape centres in the root frame (every link frame is parallel)
     bounds = [shape_properties(kind, dims, density)[2]]
     links = [
-        link_text("ROOT", None, [("joint_type", "free"), ("translation", vec((0, 0, 1.0)))] +
+        link_text("ROOT", None, [("joint_type", "fixed" if fixed_root else "free"), ("translation", vec((0, 0, 1.0)))] +
                   ([("rotation", vec(tilt_axis + (tilt,)))] if tilt else []), shapes[0], (0, 0, 0),
                   root_shape_rotation)
     ]
@@ -180,7 +182,8 @@ def generate(seed):
         link_origins.append(tuple(origin))
         shapes.append(shape)
     total = sum(shape_properties(*s)[0] for s in shapes)
-    description = (f"seed {seed}: {role} {kind} {len(names)} link{'s' if len(names) > 1 else ''}, "
+    description = (f"seed {seed}{' fixed root' if fixed_root else ''}: {role} {kind} "
+                   f"{len(names)} link{'s' if len(names) > 1 else ''}, "
                    f"{size * 100:.3g} cm, {total:.3g} kg, tilted {tilt:.3g}°")
     header = [
         f"# Random valid model (tests/dynamics/random_models.py), {description}",
@@ -195,12 +198,15 @@ def generate(seed):
 
 
 def main():
-    if len(sys.argv) not in (2, 3):
+    args = sys.argv[1:]
+    fixed_root = args[:1] == ["--fixed-root"]
+    args = args[1:] if fixed_root else args
+    if len(args) not in (1, 2):
         print(__doc__, file=sys.stderr)
         return 2
-    text, _ = generate(int(sys.argv[1]))
-    if len(sys.argv) == 3:
-        with open(sys.argv[2], "w", encoding="utf-8") as f:
+    text, _ = generate(int(args[0]), fixed_root)
+    if len(args) == 2:
+        with open(args[1], "w", encoding="utf-8") as f:
             f.write(text)
     else:
         sys.stdout.write(text)

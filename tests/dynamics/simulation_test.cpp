@@ -205,7 +205,9 @@ TEST_CASE("dynamics: +dq on a track drives along a_w × z, also when the vehicle
   CHECK(std::abs(omega.z()) < 1e-3);
 }
 
-TEST_CASE("dynamics: a joint stop holds with stop_stiffness, or at most I·ω² under stop_frequency_limit") {
+TEST_CASE(
+    "dynamics: a joint stop holds with stop_stiffness, at most I·ω² under stop_frequency_limit, at least "
+    "I·ω² under stop_frequency_floor") {
   // ARM turns about Z (no gravity torque) with the COM 0.1 m off the axis: I = 0.01 + 1 · 0.1² =
   // 0.02 kg·m² about the axis. A constant 18 N·m pushes it into its +10° stop, a damper settles
   // it: at rest the stop pushes back k·x = 18 N·m, so x = 18/k past the limit.
@@ -226,14 +228,15 @@ links:
     inertia: [0.01, 0, 0, 0, 0.01, 0, 0, 0, 0.01]
 )";
   const double limit = 10 * M_PI / 180, torque = 18;
-  for (const double omega : {0.0, 300.0, 1000.0}) {
+  for (const double omega : {0.0, 300.0, 1000.0, -1000.0}) {
     SimOptions o = no_contact();
     o.gravity = 0;
-    o.stop_frequency_limit = omega;
+    // -1000: a floor, 0.02 · 1000² = 2·10⁴ over stop_stiffness (a heavy subtree's stop).
+    (omega < 0 ? o.stop_frequency_floor : o.stop_frequency_limit) = std::abs(omega);
     auto b = build(text, o);
     REQUIRE(b->sim);
-    // 0.02 · 300² = 1800 N·m/rad < 10⁴; 0.02 · 1000² = 2·10⁴ leaves stop_stiffness.
-    const double k = omega == 300 ? 1800 : o.stop_stiffness;
+    // 0.02 · 300² = 1800 N·m/rad < 10⁴; 0.02 · 1000² = 2·10⁴ leaves stop_stiffness as a limit.
+    const double k = omega == 300 ? 1800 : omega < 0 ? 2e4 : o.stop_stiffness;
     CAPTURE(omega);
     b->sim->set_joint_position(1, limit);
     b->sim->set_servo(1, {0, 2 * std::sqrt(k * 0.02) + 5, nullptr, nullptr, torque});

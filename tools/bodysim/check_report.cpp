@@ -26,8 +26,9 @@ void print_check_header(const SimCommand& command, const std::string& path, cons
                   sim.contact_params.friction, sim.contact_params.dissipation, sim.contact_params.transition_velocity,
                   sim.stop_stiffness,
                   command.name == "check"
-                      ? fmt::format(", in the generic checks at most the joint's subtree inertia × ({:g} rad/s)²",
-                                    dynamics::kGenericStopFrequency)
+                      ? fmt::format(", in the generic checks between the joint's subtree inertia × ({:g} rad/s)² and "
+                                    "× ({:g} rad/s)²",
+                                    dynamics::kGenericStopFloorFrequency, dynamics::kGenericStopFrequency)
                       : ""),
       4);
   if (command.name == "check-tank") {

@@ -126,6 +126,9 @@ std::vector<CheckResult> run_mujoco_cross_check(const Model& model, const Derive
 /// The generic checks' joint stops are no stiffer than I·ω² with this ω (rad/s; I the inertia of
 /// the joint's subtree about its axis, its mass for a slider): SimOptions::stop_frequency_limit.
 constexpr double kGenericStopFrequency = 300;
+/// ... and no softer than I·ω² with this ω: SimOptions::stop_frequency_floor. A fixed 10⁴ per rad
+/// (or m) gives way under a heavy subtree's own servo (a 713 kg plate's joint went 1.5° past).
+constexpr double kGenericStopFloorFrequency = 30;
 
 /// The generic checks for any model (spec §4 "Generic checks"): mass matrix symmetric positive
 /// definite at random poses, drop onto the floor (no NaN, energy never grows, settles).

@@ -30,8 +30,9 @@ struct DropMeasures {
   int contacts = 0;               ///< points (Simbody) or contacts (MuJoCo) under the floor at the end
   /// Fewest and most contacts over the last 0.5 s: a rest that switches between contact sets.
   int contacts_min = 0, contacts_max = 0;
-  /// How fast the root still turns at the end: the angle between its orientations 0.5 s
-  /// before the end and at the end, over 0.5 s (rad/s). A rest that creeps shows here.
+  /// How fast the root still turns at the end: the angle between its orientations 0.1 s
+  /// before the end and at the end, over 0.1 s (rad/s). A rest that creeps shows here; the
+  /// last of a settling has died out by then.
   double turn_rate = 0;
   /// The impact, which sets the settle time: how far the root sank below its rest height, and
   /// how far it rose above it afterwards (a bounce), in m.
@@ -46,6 +47,10 @@ struct DropMeasures {
   /// Its narrowest horizontal width (m): a tilt of the rest by 0.5 mm across it is within the
   /// height band (the span when the support is a point or a line).
   double support_width = 0;
+  /// When the support is a line (two points, or all on one line: a roller on its side), its
+  /// direction in the root's axes; zero otherwise. Resting on a line, how far the model turned
+  /// about it is decided by the impacts, as its yaw is.
+  Eigen::Vector3d support_line = Eigen::Vector3d::Zero();
   double support_time = 0;
   double support_speed = 0;
   /// Landed tilted from its rest (more than 1e-3 rad at first contact) and tipped onto its

@@ -50,6 +50,9 @@ struct SimOptions {
   /// > 0: no stop stiffer than I·ω² (rad/s; I the inertia of the joint's subtree about its axis,
   /// or its mass for a slider), so that no stop rings faster than ω; 0: stop_stiffness for all.
   double stop_frequency_limit = 0;
+  /// > 0: no stop softer than I·ω² (rad/s, the same I), so that a heavy subtree does not push
+  /// through its stop; 0: no floor. Applied after stop_frequency_limit.
+  double stop_frequency_floor = 0;
   double accuracy = 1e-5;        ///< RungeKuttaMersonIntegrator accuracy
   bool balance_inertia = false;  ///< use bodyfmt::balance_inertia for invalid tensors
   bool lock_joints = false;      ///< weld every joint at its initial position (a rigid body)
@@ -87,12 +90,37 @@ struct JointServo {
   double torque = 0;
 };
 
-/// A point of a link that touches the floor: a vertex (radius 0), or the centre of a sphere
-/// (a Sphere shape, a Capsule's end) whose lowest point touches it.
+/// Points on each circle of a cylinder (a symmetric set about the lowest point, so that the
+/// normal forces on it are conservative as the lowest point moves round the rim).
+constexpr int kRimPoints = 20;
+
+/// A point of a link that touches the floor: a vertex (radius 0), the centre of a sphere (a
+/// Sphere shape, a Capsule's end) whose lowest point touches it, or one of kRimPoints points
+/// spread evenly round a circle (a Cylinder's end: rim_axis is not zero), counted from the
+/// circle's lowest point as the link turns. A cylinder on its side then touches along its
+/// lowest line, as a real one does, and one standing on an end rests on its whole rim.
 struct ContactPoint {
   LinkIndex link = -1;
-  Eigen::Vector3d position_in_link = Eigen::Vector3d::Zero();
+  Eigen::Vector3d position_in_link = Eigen::Vector3d::Zero();  ///< the vertex, or the sphere's or circle's centre
   double radius = 0;
+  Eigen::Vector3d rim_axis = Eigen::Vector3d::Zero();  ///< the circle's normal, link frame, unit; zero: no circle
+  /// In the circle's plane, link frame, unit: where the points start when the circle lies flat
+  /// and has no lowest point.
+  Eigen::Vector3d rim_start = Eigen::Vector3d::Zero();
+  double rim_angle = 0;             ///< round the rim from its lowest point, rad
+  double rim_cos = 1, rim_sin = 0;  ///< of rim_angle, computed once: the force evaluation needs them
+
+  bool is_sphere() const { return radius > 0 && rim_axis.isZero(); }
+  /// Where the point touches a floor below, from the link origin in world axes, for the link
+  /// turned by R: the vertex, the sphere's lowest point, or the point's place on the rim.
+  Eigen::Vector3d offset(const Eigen::Matrix3d& R) const;
+  /// The same point in the world, for the link at X_WL.
+  Eigen::Vector3d touching(const Eigen::Isometry3d& X_WL) const { return X_WL.translation() + offset(X_WL.linear()); }
+  /// The highest point of the same shape part (the sphere's top; the rim point itself, the
+  /// rim's top being one of its points), for vertical extents.
+  Eigen::Vector3d top(const Eigen::Isometry3d& X_WL) const {
+    return is_sphere() ? X_WL * position_in_link + Eigen::Vector3d(0, 0, radius) : touching(X_WL);
+  }
 };
 
 class Simulation {
