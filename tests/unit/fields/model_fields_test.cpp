@@ -432,10 +432,12 @@ TEST_CASE("model fields: what the table leaves out, --fix's comparison still hol
       {"devices reordered", [](Model& m) { std::swap(m.devices[0], m.devices[1]); }},
       {"body handler", [](Model& m) { m.body_handlers.push_back("Handler.so"); }},
   };
-  for (const auto& [what, edit] : edits) {
+  for (const auto& what_edit : edits) {
+    // Not a structured binding: clang 14 cannot capture one in CAPTURE's lambda.
+    const auto& what = what_edit.first;
     CAPTURE(what);
     Model changed = base;
-    edit(changed);
+    what_edit.second(changed);
     CHECK(model_difference(base, changed));
   }
 }
