@@ -1,5 +1,6 @@
 #include <bodyfmt/converters/output_set.h>
 
+#include <bodyfmt/read_file.h>
 #include <bodyfmt/rules.h>
 #include <fmt/format.h>
 
@@ -9,6 +10,7 @@
 #include <fstream>
 #include <iostream>
 #include <iterator>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <system_error>
@@ -72,11 +74,15 @@ fs::path follow_links(fs::path path) {
   return path.lexically_normal();
 }
 
-std::string read_all(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+// A folder's record is a line per generated file; far more than any export writes.
+constexpr std::uintmax_t kMaxRecordBytes = 16u << 20;
+
+/// The regular file at `path` up to `max_bytes`, through the one bounded reader: nothing for a
+/// FIFO or a device put in the output folder (which a plain stream would block on), a missing
+/// file, or one larger than the limit.
+std::optional<std::string> read_bounded(const fs::path& path, std::uintmax_t max_bytes) {
+  std::string why;
+  return read_regular_file(path.string(), max_bytes, why);
 }
 
 /// A folder's record of generated files: file name -> the export (its main file, relative to
@@ -85,7 +91,8 @@ using Record = std::map<std::string, std::string>;
 
 Record read_record(const fs::path& folder) {
   Record record;
-  std::istringstream in(read_all(folder / OutputSet::kRecordName));
+  // An unreadable record claims nothing: every file there is then one this export did not write.
+  std::istringstream in(read_bounded(folder / OutputSet::kRecordName, kMaxRecordBytes).value_or(""));
   std::string line;
   while (std::getline(in, line)) {
     const auto tab = line.find('\t');
@@ -252,7 +259,7 @@ bool Commit::claim(Destination& d, const std::string& contents, bool exists) {
   staged_names_[folder].insert(name);
   const std::string self = self_in(folder);
   const auto owner = record.find(name);
-  if (exists && read_all(d.target) == contents) {
+  if (exists && read_bounded(d.target, contents.size()) == contents) {
     d.unchanged = true;
   } else if (exists && (owner == record.end() || owner->second != self)) {
     return refuse(d.given, owner == record.end()
@@ -290,7 +297,8 @@ bool Commit::plan_records() {
     if (!problem.empty()) return refuse(where, problem);
     d.given = d.target = folder / OutputSet::kRecordName;
     files_[d.relative] = format_record(record);
-    d.unchanged = fs::is_regular_file(d.target, ec) && read_all(d.target) == files_[d.relative];
+    d.unchanged =
+        fs::is_regular_file(d.target, ec) && read_bounded(d.target, files_[d.relative].size()) == files_[d.relative];
     destinations_.push_back(std::move(d));
   }
   return true;

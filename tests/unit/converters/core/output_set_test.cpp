@@ -10,6 +10,7 @@
 
 #include "support/export_helpers.h"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -46,6 +47,23 @@ TEST_CASE("converters: OutputSet writes every staged file on commit and nothing 
   CHECK(read(dir / "meshes" / OutputSet::kRecordName) == "a.stl\t../robot.urdf\n");
   // robot.urdf, meshes/, meshes/a.stl, the record: no temporary files left
   CHECK(count_entries(dir) == 4);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("converters: a FIFO in place of a folder's record is refused, never read") {
+  // Opened, a FIFO with no writer blocks a reader for good: the record path is checked first, and
+  // the record is read only through the bounded reader, which takes regular files only.
+  const fs::path dir = fresh_dir("record_fifo");
+  fs::create_directories(dir / "meshes");
+  REQUIRE(::mkfifo((dir / "meshes" / OutputSet::kRecordName).c_str(), 0600) == 0);
+  { std::ofstream(dir / "meshes/a.stl") << "not ours"; }
+  OutputSet out(dir / "robot.urdf");
+  out.set_main("<robot/>");
+  out.add("meshes/a.stl", "abc");
+  CollectingSink sink;
+  CHECK_FALSE(out.commit(sink));  // a.stl is a file this export cannot show it wrote
+  CHECK(read(dir / "meshes/a.stl") == "not ours");
+  CHECK_FALSE(fs::exists(dir / "robot.urdf"));
   fs::remove_all(dir);
 }
 
