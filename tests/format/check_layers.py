@@ -39,11 +39,17 @@ def public_header_homes(root):
     headers = os.listdir(os.path.join(root, "libbodyfmt/include/bodyfmt"))
     for header in headers:
         stem = header[:-2]
-        owners = set()
+        exact, prefixed = set(), set()
         for folder, _, files in os.walk(src):
             for f in files:
-                if f == stem + ".cpp" or (f.startswith(stem + "_") and f.endswith(".cpp")):
-                    owners.add(os.path.relpath(folder, src).split(os.sep)[0])
+                owner = os.path.relpath(folder, src).split(os.sep)[0]
+                if f == stem + ".cpp":
+                    exact.add(owner)
+                elif f.startswith(stem + "_") and f.endswith(".cpp"):
+                    prefixed.add(owner)
+        # X.cpp names the home; X_*.cpp only where there is no X.cpp (model.h is model/model.cpp's,
+        # not fields/model_fields.cpp's)
+        owners = exact or prefixed
         if len(owners) == 1:
             homes["bodyfmt/" + header] = ("libbodyfmt/src", owners.pop())
     for folder, path in folders_of(root, "converters").items():

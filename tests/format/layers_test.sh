@@ -27,6 +27,8 @@ plant text_includes_loader "libbodyfmt/src/text/text_util.cpp: includes load/sca
   sed -i '1i #include "load/scalar.h"' libbodyfmt/src/text/text_util.cpp
 plant mesh_includes_tessellate "libbodyfmt/src/mesh/mesh.cpp: includes bodyfmt/tessellate.h" \
   sed -i '1i #include <bodyfmt/tessellate.h>' libbodyfmt/src/mesh/mesh.cpp
+plant io_includes_model "libbodyfmt/src/io/read_file.cpp: includes bodyfmt/model.h" \
+  sed -i '1i #include <bodyfmt/model.h>' libbodyfmt/src/io/read_file.cpp
 plant core_includes_export "converters/core/loss.cpp: includes bodyfmt/converters/shape_plan.h" \
   sed -i '1i #include <bodyfmt/converters/shape_plan.h>' converters/core/loss.cpp
 plant unplaced_folder "libbodyfmt/src/newthing: a folder with no layer" \
