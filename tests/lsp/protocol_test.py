@@ -290,8 +290,13 @@ def newer_edit_supersedes():
         c.diagnostics(uri, 21)
         time.sleep(0.3)
         c.request("shutdown")
-        stale = [m for m in c.backlog if m.get("method") == "textDocument/publishDiagnostics"]
-        assert not stale, "published for superseded versions: %s" % [m["params"].get("version") for m in stale]
+        # Version 2 is the first edit after a quiet spell, so it is checked at once (see
+        # debounce_holds_bursts_only); its findings are rightly published when that check ends
+        # before the server has read version 3 (a loaded or sanitized machine). Versions 3 to 20
+        # arrive while a check is pending or running: each is held and superseded by the next.
+        stale = [m["params"].get("version") for m in c.backlog
+                 if m.get("method") == "textDocument/publishDiagnostics" and m["params"].get("version") != 2]
+        assert not stale, "published for superseded versions: %s" % stale
     finally:
         c.kill()
 

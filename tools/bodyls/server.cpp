@@ -94,6 +94,9 @@ struct Server::Impl {
   bool shutdown = false;
   bool exited = false;
   bool stopping = false;
+  // While the messages of one read are handled, no check starts: a client's batch of edits is
+  // one burst, whatever the scheduler does between two of its messages.
+  bool reading_batch = false;
   int exit_code = 1;
   bool client_watches = false;
   bool client_disabled_actions = false;
@@ -455,7 +458,9 @@ struct Server::Impl {
         poll_dependencies();
         next_poll = now + std::chrono::milliseconds(options.poll_ms);
       }
-      if (std::optional<Snapshot> s = take_due(now, false)) {
+      std::optional<Snapshot> s;
+      if (!reading_batch) s = take_due(now, false);
+      if (s) {
         lock.unlock();
         check_and_publish(*s);
         lock.lock();
@@ -463,7 +468,7 @@ struct Server::Impl {
       }
       Clock::time_point until = client_watches ? now + std::chrono::hours(1) : next_poll;
       for (const auto& [uri, d] : documents)
-        if (d.pending) until = std::min(until, d.due);
+        if (d.pending && !reading_batch) until = std::min(until, d.due);  // the batch's end wakes us
       wake.wait_until(lock, until);
     }
   }
@@ -540,6 +545,16 @@ Server::~Server() {
 }
 
 void Server::handle_batch(const std::vector<std::string>& bodies) {
+  struct HoldChecks {
+    Impl& impl;
+    explicit HoldChecks(Impl& i) : impl(i) { set(true); }
+    ~HoldChecks() { set(false); }
+    void set(bool hold) {
+      std::lock_guard<std::mutex> lock(impl.mutex);
+      impl.reading_batch = hold;
+      if (!hold) impl.wake.notify_all();
+    }
+  } hold(*impl_);
   // Cancellations first: a request cancelled in the same read is answered as cancelled.
   for (const std::string& body : bodies) {
     const json message = json::parse(body, nullptr, false);

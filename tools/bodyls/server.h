@@ -34,7 +34,8 @@ class Server {
   Server& operator=(const Server&) = delete;
 
   /// Handles the messages read in one go: a `$/cancelRequest` among them cancels a request
-  /// before it of the same batch.
+  /// before it of the same batch, and no check starts until the last is handled (a client's
+  /// batch of edits is one burst).
   void handle_batch(const std::vector<std::string>& bodies);
   void handle(const std::string& body);
   /// A frame that is not the protocol's: the parse error, with a null id.
