@@ -92,6 +92,12 @@ MUTANTS = [
      "refuse", ["arm.body:{line}:", "[joint-range-reversed]"]),
     ("arm", "a massless forearm", [("        mass: 1.0\n", "        mass: 0.0\n")],
      "refuse", ["link \"FOREARM\" moves (a revolute joint) but has zero mass", "[inertia-nonpositive-mass]"]),
+    # A fixed root bolted below the floor: G9 (determinism) runs without it, and says so; with the
+    # floor it threw the links out and stopped on the step budget after 11 s of CPU.
+    ("arm", "the arm bolted 0.5 m below the floor", [("  - name: BASE\n    joint_type: fixed\n",
+                                                      "  - name: BASE\n    translation: [0, 0, -0.5]\n    joint_type: fixed\n")],
+     "pass", [r're:(?s)PASS  determinism: .*?\(without the floor: the root is fixed, and link "SHOULDER" starts 0\.42 m\s+inside it\) \[G9\]',
+              r're:(?s)PASS  convergence: .*?\(without the\s+floor: the root is fixed']),
     ("arm", "an unlimited shoulder", [("joint_range: [-170, 170]", "joint_range: unlimited")],
      "skip", ["SKIP  joint ranges of \"SHOULDER\" [G6]: unlimited ranges: no stop to test"]),
     ("conveyor", "the conveyor as written (axis -Y: a box on it moves toward -X)", [], "pass",
