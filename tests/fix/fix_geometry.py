@@ -78,14 +78,19 @@ def main():
     tank_copy = os.path.join(work, "simpletank.body")
     shutil.copyfile(tank, tank_copy)
     os.chmod(tank_copy, 0o644)
-    if run(bodysim, "check-tank", tank_copy).returncode == 0:
+    # BODYSIM is "-" in a build without Simbody (-DBODYFMT_WITH_SIMBODY=OFF): the fix is still
+    # made and checked, the tank suite is not run, and the output says so.
+    if bodysim != "-" and run(bodysim, "check-tank", tank_copy).returncode == 0:
         failures.append("the unfixed tank passes check-tank: this check proves nothing")
     fix = run(bodycheck, "--fix=geometry", tank_copy)
     if fix.returncode != 0:
         failures.append(f"tank: --fix=geometry exit {fix.returncode}: {fix.stderr[-400:]}")
-    sim = run(bodysim, "check-tank", tank_copy)
-    if sim.returncode != 0:
-        failures.append(f"tank: check-tank exit {sim.returncode}: {(sim.stdout + sim.stderr)[-600:]}")
+    if bodysim == "-":
+        print("not run: bodysim check-tank on the fixed tank (bodysim is not built: no Simbody)")
+    else:
+        sim = run(bodysim, "check-tank", tank_copy)
+        if sim.returncode != 0:
+            failures.append(f"tank: check-tank exit {sim.returncode}: {(sim.stdout + sim.stderr)[-600:]}")
 
     import yaml
     for form, parse in (("json", json.loads), ("yaml", yaml.safe_load)):
