@@ -695,10 +695,11 @@ void determinism(Generic& g, const std::vector<ContactPoint>& contacts) {
   if (first.empty() || second.empty() || fine.empty()) return;
   int differ = 0;
   for (std::size_t i = 0; i < first.size(); ++i) differ += first[i] == second[i] ? 0 : 1;
-  g.add(
-      make("G9 determinism: link positions after 0.3 s held at a pose (a free root dropped 2 cm), two runs, values "
-           "that differ" + floor_note,
-           differ, 0, "", "= 0", differ == 0));
+  const std::string name =
+      "G9 determinism: link positions after 0.3 s held at a pose (a free root dropped 2 cm), two runs, values that "
+      "differ" +
+      floor_note;
+  g.add(make(name, differ, 0, "", "= 0", differ == 0));
   double moved = 0, change = 0;
   for (std::size_t i = 0; i < first.size(); i += 6)
     for (int c = 0; c < 3; ++c) {

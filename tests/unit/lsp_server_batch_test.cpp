@@ -90,19 +90,21 @@ TEST_CASE("lsp server: no check starts while one read's messages are handled") {
     bodyfmt::lsp::Server server(test_front(), options, [&client](const std::string& body) { client.take(body); });
     server.handle(message("initialize", {{"capabilities", json::object()}}, 1));
     server.handle(message("initialized", json::object()));
-    server.handle(message("textDocument/didOpen",
-                          {{"textDocument", {{"uri", uri}, {"languageId", "body"}, {"version", 1}, {"text", kModel}}}}));
+    server.handle(
+        message("textDocument/didOpen",
+                {{"textDocument", {{"uri", uri}, {"languageId", "body"}, {"version", 1}, {"text", kModel}}}}));
     REQUIRE(client.wait_for_version(1));
     // Version 2 finds the findings up to date; the unknown request 99 between it and version 3
     // holds the reader for a second.
-    server.handle_batch({append_comment(uri, 2), message("bodyls/noSuchRequest", json::object(), 99),
-                         append_comment(uri, 3)});
+    server.handle_batch(
+        {append_comment(uri, 2), message("bodyls/noSuchRequest", json::object(), 99), append_comment(uri, 3)});
     REQUIRE(client.wait_for_version(3));
     received = client.received();
   }
   std::vector<int> versions;
   for (const json& m : received)
-    if (m.value("method", "") == "textDocument/publishDiagnostics") versions.push_back(m["params"].value("version", -1));
+    if (m.value("method", "") == "textDocument/publishDiagnostics")
+      versions.push_back(m["params"].value("version", -1));
   std::string listed;
   for (int v : versions) listed += " " + std::to_string(v);
   INFO("diagnostics published for versions" << listed);
