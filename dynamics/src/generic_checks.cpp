@@ -6,6 +6,7 @@
 
 #include <bodyfmt/angles.h>
 #include <bodyfmt/dynamics/checks.h>
+#include <bodyfmt/physical.h>
 
 #include <fmt/format.h>
 
@@ -30,11 +31,12 @@ CheckResult make(std::string name, double measured, double expected, std::string
 
 bool is_free_root(const Model& model) { return model.root().joint_type == JointType::kFree; }
 
-/// True when a joint on the path to the root lets the link move: a link welded to a fixed root
-/// by fixed joints only is part of the world.
+/// True when a joint on the path to the root lets the link move (the physical gate's is_moving,
+/// whose LinkPhysics::welded_to_world is the opposite): a link fixed to a fixed root, or carried
+/// by a track, is part of the world.
 bool moves_relative_to_world(const Model& model, LinkIndex link) {
   for (LinkIndex i = link; i >= 0; i = model.links[static_cast<std::size_t>(i)].parent)
-    if (model.links[static_cast<std::size_t>(i)].joint_type != JointType::kFixed) return true;
+    if (is_moving(model.links[static_cast<std::size_t>(i)])) return true;
   return false;
 }
 
