@@ -28,7 +28,7 @@ constexpr double kHeightTolerance = 0.5e-3;
 constexpr double kForceTolerance = 0.01;
 constexpr double kSettleTolerance = 0.05;
 constexpr double kOrientationTolerance = 1e-3;
-// A resting body does not turn by itself: the root's turn over the last 0.5 s, per second.
+// A resting body does not turn by itself: the root's turn over the last kTurnWindow, per second.
 constexpr double kRestTurnRate = 1e-4;
 constexpr double kTurnWindow = 0.1;  // s: the turn rate at rest is measured over the end of the run
 // Up directions further apart than this (rad) are rests on different faces after a tumble.
@@ -266,8 +266,8 @@ DropMeasures drop(Make make, const Eigen::Isometry3d& start, const std::vector<S
   // How fast it turns at the end: over the last 0.1 s, where a creep goes on at its pace and
   // the last of a settling has died out (a 199 kg post on a 1.4 m support still turned
   // 0.8 mrad in MuJoCo over the 0.49 s after it came within 1e-3 rad of its rest).
-  const double window = kTurnWindow;
-  const Sample& window_start = samples[samples.size() - 1 - static_cast<std::size_t>(std::lround(window / kSample))];
+  const Sample& window_start =
+      samples[samples.size() - 1 - static_cast<std::size_t>(std::lround(kTurnWindow / kSample))];
   r.turn_rate = angle_of(end.R * window_start.R.transpose()) / (end.t - window_start.t);
   for (const Sample& s : samples)
     if (s.force > 0) {

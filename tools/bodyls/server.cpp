@@ -467,8 +467,9 @@ struct Server::Impl {
         continue;
       }
       Clock::time_point until = client_watches ? now + std::chrono::hours(1) : next_poll;
-      for (const auto& [uri, d] : documents)
-        if (d.pending && !reading_batch) until = std::min(until, d.due);  // the batch's end wakes us
+      if (!reading_batch)  // else the batch's end wakes us
+        for (const auto& [uri, d] : documents)
+          if (d.pending) until = std::min(until, d.due);
       wake.wait_until(lock, until);
     }
   }
