@@ -33,38 +33,36 @@ def folders_of(root, base):
 
 def public_header_homes(root):
     """bodyfmt/X.h -> the libbodyfmt/src folder that implements it; bodyfmt/converters/X.h ->
-    its converters folder."""
-    homes = {}
+    its converters folder. Also the headers that more than one folder implements, which have no
+    single home and would otherwise go unchecked."""
+    homes, several = {}, []
     src = os.path.join(root, "libbodyfmt/src")
-    headers = os.listdir(os.path.join(root, "libbodyfmt/include/bodyfmt"))
-    for header in headers:
+    sources = [(os.path.relpath(folder, src).split(os.sep)[0], f)
+               for folder, _, files in os.walk(src) for f in files if f.endswith(".cpp")]
+    for header in sorted(os.listdir(os.path.join(root, "libbodyfmt/include/bodyfmt"))):
         stem = header[:-2]
-        exact, prefixed = set(), set()
-        for folder, _, files in os.walk(src):
-            for f in files:
-                owner = os.path.relpath(folder, src).split(os.sep)[0]
-                if f == stem + ".cpp":
-                    exact.add(owner)
-                elif f.startswith(stem + "_") and f.endswith(".cpp"):
-                    prefixed.add(owner)
+        exact = {owner for owner, f in sources if f == stem + ".cpp"}
+        prefixed = {owner for owner, f in sources if f.startswith(stem + "_")}
         # X.cpp names the home; X_*.cpp only where there is no X.cpp (model.h is model/model.cpp's,
         # not fields/model_fields.cpp's)
         owners = exact or prefixed
         if len(owners) == 1:
             homes["bodyfmt/" + header] = ("libbodyfmt/src", owners.pop())
+        elif len(owners) > 1:
+            several.append(f"libbodyfmt/include/bodyfmt/{header}: implemented in {', '.join(sorted(owners))}; "
+                           "give it one home (rename the others)")
     for folder, path in folders_of(root, "converters").items():
         include = os.path.join(path, "include/bodyfmt/converters")
         if os.path.isdir(include):
             for header in os.listdir(include):
                 homes["bodyfmt/converters/" + header] = ("converters", folder)
-    return homes
+    return homes, several
 
 
 def main():
     root = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else
                            os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
-    problems = []
-    homes = public_header_homes(root)
+    homes, problems = public_header_homes(root)
     checked = 0
     for base, order in LAYERS.items():
         level = {name: i for i, name in enumerate(order)}

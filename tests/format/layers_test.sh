@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The layer check (check_layers.py) passes on the project and fails on planted violations: a
-# ground-level file that includes the loader, a public header included below its code, and a
-# new folder nobody placed. Each on a copy of the two checked roots.
+# ground-level file that includes the loader, a public header included below its code, a public
+# header implemented in two folders, and a new folder nobody placed. Each on a copy of the two
+# checked roots.
 # usage: layers_test.sh SOURCE_DIR WORK_DIR
 set -u
 source=$1 work=$2
@@ -31,6 +32,8 @@ plant io_includes_model "libbodyfmt/src/io/read_file.cpp: includes bodyfmt/model
   sed -i '1i #include <bodyfmt/model.h>' libbodyfmt/src/io/read_file.cpp
 plant core_includes_export "converters/core/loss.cpp: includes bodyfmt/converters/shape_plan.h" \
   sed -i '1i #include <bodyfmt/converters/shape_plan.h>' converters/core/loss.cpp
+plant header_with_two_homes "libbodyfmt/include/bodyfmt/yaml.h: implemented in diff, yaml" \
+  cp libbodyfmt/src/yaml/yaml.cpp libbodyfmt/src/diff/yaml.cpp
 plant unplaced_folder "libbodyfmt/src/newthing: a folder with no layer" \
   sh -c 'mkdir libbodyfmt/src/newthing && echo "int x;" > libbodyfmt/src/newthing/a.cpp'
 echo "$failures failures"
