@@ -95,6 +95,8 @@ std::vector<RuleInfo> make_table() {
       {"load-inertia-size", E, "an inertia has neither 6 nor 9 elements", "Choreonoid refuses the file", ""},
       {"load-axis", E, "an illegal joint axis symbol", "Choreonoid refuses the file", ""},
       {"load-range", E, "an invalid joint range or limit", "Choreonoid refuses the file", ""},
+      {"load-infinite-limit", N, "a joint limit written as infinity (`inf`, or a number too large for a double)",
+       "Choreonoid's strtod reads it as an open side, as `unlimited`; other YAML readers take the word as text", ""},
       {"load-joint-type", E, "an illegal joint type", "Choreonoid refuses the file", ""},
       {"load-actuation-mode", E, "an illegal actuation mode", "Choreonoid refuses the file", ""},
       {"load-angle-on-prismatic", W, "joint_angle on a prismatic joint in a degree file",

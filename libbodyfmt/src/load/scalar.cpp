@@ -18,15 +18,6 @@ bool is_scalar(LoadContext& ctx, const yaml::NodeRef& ref, const char* what) {
   return false;
 }
 
-/// YAML 1.1's own spellings of NaN and infinity (.nan, .inf, -.Inf, ...): floats to a YAML
-/// reader, text to Choreonoid's strtod.
-bool is_yaml_special_float(std::string_view text) {
-  if (!text.empty() && (text.front() == '+' || text.front() == '-')) text.remove_prefix(1);
-  for (std::string_view word : {".nan", ".NaN", ".NAN", ".inf", ".Inf", ".INF"})
-    if (text == word) return true;
-  return false;
-}
-
 /// NaN and infinity (also from an overflowing literal such as 1e999) load in Choreonoid but
 /// break every simulator and exporter: an error, saying why.
 bool report_if_not_finite(LoadContext& ctx, const yaml::NodeRef& ref, double value) {

@@ -6,6 +6,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <string_view>
+#include <utility>
+#include <vector>
 
 namespace bodyfmt::detail {
 namespace {
@@ -91,9 +95,12 @@ std::optional<Eigen::Vector3d> read_translation(LoadContext& ctx, const yaml::No
     return std::nullopt;
   }
   if (!is_sequence_of_sequences(ref)) return read_vec3(ctx, ref);
+  // A list whose first item is a list is the sum of its items, and Choreonoid reads each item
+  // the same way (StdSceneReader::readTranslation is recursive), so an alias to such a sum can
+  // be one of the terms: `[ *OFFSET, [0, 0, 0.4] ]`. The YAML depth budget bounds the recursion.
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   for (const yaml::NodeRef& item : ref->items()) {
-    auto v = read_vec3(ctx, item);
+    auto v = read_translation(ctx, ref.child(item));
     if (!v) return std::nullopt;
     sum += *v;
   }
@@ -167,27 +174,55 @@ std::optional<Eigen::Vector3d> read_joint_axis(LoadContext& ctx, const yaml::Nod
 
 namespace {
 
-// One element of a limit: a number (converted to radians when asked) or `unlimited`.
-std::optional<double> limit_value(LoadContext& ctx, const yaml::NodeRef& ref, bool convert_angle,
-                                  double unlimited_value) {
+// One element of a limit, read as Choreonoid's readLimitValue reads it (StdBodyLoader.cpp): the
+// whole scalar as a number (strtod, trailing blanks allowed) or else the word `unlimited`. Any
+// other text is refused there ("Unknown symbol is used as a jointRange value"), so unlike the
+// other numbers of a file, `0.t` is an error here and not a lenient 0. strtod reads `inf` (and
+// an overflowing `1e999`) as infinity: Choreonoid keeps it, an open side, which the model
+// holds as kUnlimited with the sign of the value.
+std::optional<double> limit_value(LoadContext& ctx, const yaml::NodeRef& ref, bool convert_angle, bool upper) {
   if (!ref || !ref->is_scalar()) {
     ctx.report("load-range", ref, "invalid type value is used as a joint range value");
     return std::nullopt;
   }
-  if (ref->scalar() == "unlimited") return unlimited_value;
-  if (!parse_double_exact(ref->scalar())) {
-    // Choreonoid rejects any other symbol here (§3 "Unknown symbol is used as a jointRange value").
-    const char* b = ref->scalar().data();  // NUL-terminated
-    char* e = nullptr;
-    std::strtod(b, &e);
-    if (e == b) {
-      ctx.report("load-range", ref, "unknown symbol \"" + std::string(ref->scalar()) + "\" is used as a range value",
+  const std::string_view text = ref->scalar();
+  if (text == "unlimited") return upper ? kUnlimited : -kUnlimited;
+  const std::optional<double> value = parse_double_exact(text);
+  if (!value) {
+    if (is_yaml_special_float(text)) {
+      ctx.report("load-range", ref,
+                 "\"" + std::string(text) +
+                     "\" is YAML's spelling of infinity or NaN, which Choreonoid's number reader does not know: "
+                     "it refuses the file (unknown symbol used as a range value)",
+                 "write unlimited");
+    } else {
+      ctx.report("load-range", ref,
+                 "unknown symbol \"" + std::string(text) +
+                     "\" is used as a range value; Choreonoid reads a limit whole and refuses the file",
                  "use a number or unlimited");
-      return std::nullopt;
     }
+    return std::nullopt;
   }
-  auto value = required_double(ctx, ref);
-  if (!value) return std::nullopt;
+  if (std::isnan(*value)) {
+    ctx.report("load-number", ref,
+               "the value \"" + std::string(text) + "\" is not a number (NaN); a limit must be a number or unlimited",
+               "write unlimited");
+    return std::nullopt;
+  }
+  if (std::isinf(*value)) {
+    const bool open = (*value > 0) == upper;  // +inf as an upper limit, -inf as a lower one
+    std::vector<FixIt> fixes;
+    if (open) {
+      if (auto fix = edit_value(*ref, "unlimited", FixSafety::kSafe)) fixes.push_back(std::move(*fix));
+    }
+    ctx.report("load-infinite-limit", ref,
+               "\"" + std::string(text) + "\" reads as " + (*value > 0 ? "+" : "-") + "infinity: " +
+                   (open ? "an open limit, as `unlimited`"
+                         : std::string("an ") + (upper ? "upper" : "lower") +
+                               " limit beyond the other side, so the range is empty"),
+               open ? "write unlimited, the spelling every reader of the file understands" : "", std::move(fixes));
+    return *value > 0 ? kUnlimited : -kUnlimited;
+  }
   return convert_angle ? ctx.angle(*value, ref) : *value;
 }
 
@@ -196,7 +231,7 @@ std::optional<double> limit_value(LoadContext& ctx, const yaml::NodeRef& ref, bo
 std::optional<std::pair<double, double>> read_range(LoadContext& ctx, const yaml::NodeRef& ref, bool convert_angle) {
   if (!ref) return std::nullopt;
   if (ref->is_scalar()) {
-    auto v = limit_value(ctx, ref, convert_angle, kUnlimited);
+    auto v = limit_value(ctx, ref, convert_angle, true);
     if (!v) return std::nullopt;
     return std::make_pair(-*v, *v);
   }
@@ -208,8 +243,8 @@ std::optional<std::pair<double, double>> read_range(LoadContext& ctx, const yaml
     ctx.report("load-range", ref, "a joint range must have two elements, found " + std::to_string(ref->items().size()));
     return std::nullopt;
   }
-  auto lower = limit_value(ctx, ref->items()[0], convert_angle, -kUnlimited);
-  auto upper = limit_value(ctx, ref->items()[1], convert_angle, kUnlimited);
+  auto lower = limit_value(ctx, ref->items()[0], convert_angle, false);
+  auto upper = limit_value(ctx, ref->items()[1], convert_angle, true);
   if (!lower || !upper) return std::nullopt;
   return std::make_pair(*lower, *upper);
 }
@@ -221,7 +256,7 @@ std::optional<std::pair<double, double>> read_symmetric_limit(LoadContext& ctx, 
     ctx.report("load-range", ref, "this limit must be a scalar");
     return std::nullopt;
   }
-  auto v = limit_value(ctx, ref, convert_angle, kUnlimited);
+  auto v = limit_value(ctx, ref, convert_angle, true);
   if (!v) return std::nullopt;
   return std::make_pair(-*v, *v);
 }
@@ -233,8 +268,8 @@ std::optional<std::pair<double, double>> read_velocity_range(LoadContext& ctx, c
     ctx.report("load-range", ref, "the joint velocity range must have two elements");
     return std::nullopt;
   }
-  auto lower = limit_value(ctx, ref->items()[0], convert_angle, -kUnlimited);
-  auto upper = limit_value(ctx, ref->items()[1], convert_angle, kUnlimited);
+  auto lower = limit_value(ctx, ref->items()[0], convert_angle, false);
+  auto upper = limit_value(ctx, ref->items()[1], convert_angle, true);
   if (!lower || !upper) return std::nullopt;
   return std::make_pair(*lower, *upper);
 }

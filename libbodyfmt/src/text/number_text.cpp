@@ -5,6 +5,13 @@
 
 namespace bodyfmt::detail {
 
+bool is_yaml_special_float(std::string_view text) {
+  if (!text.empty() && (text.front() == '+' || text.front() == '-')) text.remove_prefix(1);
+  for (std::string_view word : {".nan", ".NaN", ".NAN", ".inf", ".Inf", ".INF"})
+    if (text == word) return true;
+  return false;
+}
+
 bool only_trailing_space(const char* p) {
   while (*p == ' ' || *p == '\t' || *p == '\r' || *p == '\n') ++p;
   return *p == '\0';

@@ -15,6 +15,10 @@ std::optional<double> parse_double_exact(std::string_view text);
 /// number such as `-0.25` or `1e-3` (the value strtod gives), nullopt for anything else, which strtod then reads.
 std::optional<double> parse_plain_decimal(std::string_view text);
 
+/// YAML 1.1's own spellings of NaN and infinity (`.nan`, `.inf`, `-.Inf`, ...): floats to a YAML
+/// reader, text that Choreonoid's strtod cannot read.
+bool is_yaml_special_float(std::string_view text);
+
 /// True when only blanks and line breaks are left before the NUL at `p`.
 bool only_trailing_space(const char* p);
 

@@ -62,6 +62,41 @@ links:
   r.expect_clean();
 }
 
+TEST_CASE("load: a translation sum may hold sums, through an alias too (readTranslation is recursive)") {
+  auto r = load_v2(R"(
+links:
+  - name: A
+    translation: &OFFSET [[0.1, 0, 0], [0, 0.2, 0]]
+  - name: B
+    parent: A
+    translation: [ *OFFSET, [-0.012, 0.03, 0.42] ]
+  - name: C
+    parent: A
+    translation: [[1, 0, 0], [[0, 1, 0], [[0, 0, 1], [0, 0, 2]]]]
+)");
+  // A = (0.1, 0.2, 0); B = A's sum + (-0.012, 0.03, 0.42); C = x + (y + (z + 2z)).
+  CHECK(near(r.link("A").X_PL.translation(), Eigen::Vector3d(0.1, 0.2, 0)));
+  CHECK(near(r.link("B").X_PL.translation(), Eigen::Vector3d(0.088, 0.23, 0.42), 1e-15));
+  CHECK(near(r.link("C").X_PL.translation(), Eigen::Vector3d(1, 1, 3)));
+  r.expect_clean();
+}
+
+TEST_CASE("load: a term of a translation sum that is no vector is located at the term") {
+  auto r = load_v2(R"(
+links:
+  - name: A
+    translation: [[1, 0, 0], [[0, 1], [0, 0, 1]]]
+  - name: B
+    parent: A
+    translation: [[1, 0, 0], 5]
+)");
+  // Line 5 "    translation: [[1, 0, 0], [[0, 1]," : [0, 1] starts at column 31.
+  CHECK(pos(r.take("load-vector-size")) == Pos{5, 31});
+  // Line 8: the scalar 5 at column 30 (Choreonoid: "The value is not a listing").
+  CHECK(pos(r.take("load-type")) == Pos{8, 30});
+  r.expect_clean();
+}
+
 TEST_CASE("load: rotation with a zero axis and wrong element count are errors") {
   auto r = load_v2(R"(
 links:
@@ -205,5 +240,75 @@ links:
   CHECK(pos(r.take("load-range")) == Pos{6, 61});
   CHECK(pos(r.take("load-range")) == Pos{7, 61});
   CHECK(r.link("B").joint_range_upper == kUnlimited);
+  r.expect_clean();
+}
+
+TEST_CASE("load: inf in a limit is an open side, as Choreonoid's strtod reads it, with a note") {
+  auto r = load_v2(R"(
+links:
+  - name: A
+  - {name: P, parent: A, joint_type: revolute, joint_range: [0.0, inf]}
+  - {name: Q, parent: A, joint_type: revolute, joint_range: [-inf, 30]}
+  - {name: R, parent: A, joint_type: revolute, joint_range: inf}
+  - {name: V, parent: A, joint_type: revolute, joint_velocity_range: [-INF, Infinity]}
+  - {name: E, parent: A, joint_type: revolute, max_joint_effort: inf}
+  - {name: O, parent: A, joint_type: prismatic, joint_range: [0, 1e999]}
+)");
+  CHECK(r.link("P").joint_range_lower == 0);
+  CHECK(r.link("P").joint_range_upper == kUnlimited);
+  CHECK(r.link("Q").joint_range_lower == -kUnlimited);
+  CHECK(r.link("Q").joint_range_upper == doctest::Approx(kPi / 6).epsilon(1e-15));
+  CHECK(r.link("R").joint_range_lower == -kUnlimited);
+  CHECK(r.link("R").joint_range_upper == kUnlimited);
+  CHECK(r.link("V").velocity_lower == -kUnlimited);
+  CHECK(r.link("V").velocity_upper == kUnlimited);
+  CHECK(r.link("E").effort_lower == -kUnlimited);
+  CHECK(r.link("E").effort_upper == kUnlimited);
+  CHECK(r.link("O").joint_range_lower == 0);
+  CHECK(r.link("O").joint_range_upper == kUnlimited);
+  // One note at each infinite value (columns counted on the lines above), each with a safe
+  // fix-it to `unlimited`, the spelling that means the same to Choreonoid.
+  for (Pos at : {Pos{5, 67}, Pos{6, 62}, Pos{7, 61}, Pos{8, 71}, Pos{8, 77}, Pos{9, 66}, Pos{10, 66}}) {
+    CAPTURE(at);
+    auto d = r.take("load-infinite-limit");
+    CHECK(pos(d) == at);
+    CHECK(d.severity == bodyfmt::Severity::kNote);
+    REQUIRE(d.fixes.size() == 1);
+    CHECK(d.fixes[0].replacement == "unlimited");
+    CHECK(d.fixes[0].safety == bodyfmt::FixSafety::kSafe);
+  }
+  r.expect_clean();
+}
+
+TEST_CASE("load: an infinity on the wrong side gives an empty range and no fix-it") {
+  auto r = load_v2(R"(
+links:
+  - name: A
+  - {name: X, parent: A, joint_type: revolute, joint_range: [inf, 0]}
+)");
+  CHECK(r.link("X").joint_range_lower == kUnlimited);
+  CHECK(r.link("X").joint_range_upper == 0);
+  auto d = r.take("load-infinite-limit");
+  CHECK(pos(d) == Pos{5, 62});
+  CHECK(d.fixes.empty());
+  r.expect_clean();
+}
+
+TEST_CASE("load: a limit is read whole, as readLimitValue does: 0.t, .inf and nan are refused") {
+  auto r = load_v2(R"(
+links:
+  - name: A
+  - {name: B, parent: A, joint_type: revolute, joint_range: [0.t, 1]}
+  - {name: C, parent: A, joint_type: revolute, joint_range: [-1, .inf]}
+  - {name: D, parent: A, joint_type: revolute, max_joint_velocity: 2rad}
+  - {name: N, parent: A, joint_type: revolute, joint_range: [nan, 1]}
+)");
+  // Choreonoid: "Unknown symbol is used as a jointRange value" (not the lenient prefix 0).
+  CHECK(pos(r.take("load-range")) == Pos{5, 62});
+  CHECK(pos(r.take("load-range")) == Pos{6, 66});
+  CHECK(pos(r.take("load-range")) == Pos{7, 68});
+  CHECK(pos(r.take("load-number")) == Pos{8, 62});
+  CHECK_FALSE(r.has("load-lenient-number"));
+  CHECK(r.link("B").joint_range_lower == -kUnlimited);
   r.expect_clean();
 }
