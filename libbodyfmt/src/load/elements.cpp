@@ -17,7 +17,7 @@ namespace {
 
 bool is_scene_only_type(std::string_view t) {
   return t == "LineSet" || t == "DirectionalLight" || t == "PerspectiveCamera" || t == "OrthographicCamera" ||
-         t == "Fog" || t == "Text" || t == "Node";
+         t == "Fog" || t == "Text";
 }
 
 }  // namespace
@@ -107,7 +107,7 @@ void ElementReader::read_node(const yaml::NodeRef& node, const std::string& type
     return;
   }
   if (type == "Skip") return;
-  if (type == "Group" || type == "Transform" || type == "Node") {
+  if (type == "Group" || type == "Transform") {
     MappingReader r(ctx_, node, type + " node");
     r.take({"type"});
     r.take({"name"});
@@ -146,6 +146,17 @@ void ElementReader::read_node(const yaml::NodeRef& node, const std::string& type
     return;
   }
   if (is_core_device_type(type) || is_plugin_node_type(type)) return read_device(node, type, frame);
+  if (type == "Node") {
+    // Choreonoid's scene reader makes an empty node of it (StdSceneReader's readNodeNode):
+    // nothing under it is read, mass and devices included, and it says nothing.
+    for (const yaml::MapEntry& entry : node->entries()) {
+      if (entry.key == "type" || entry.key == "name") continue;
+      ctx_.report("load-ignored-key", entry.key_location,
+                  "a Node is an empty scene node to Choreonoid: its " + std::string(entry.key) + " is ignored",
+                  "use a Group, or a Transform to place its elements");
+    }
+    return;
+  }
   if (is_scene_only_type(type)) {
     ctx_.report("load-scene-node", node, "a " + type + " node has no meaning in a body model; it is ignored");
     if (type == "PerspectiveCamera" && node->is_mapping())  // its field_of_view is an angle (§8.8)

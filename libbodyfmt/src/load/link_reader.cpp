@@ -103,8 +103,10 @@ void read_joint(LoadContext& ctx, MappingReader& r, Link& link) {
   if (axis_inertia) {
     link.joint_axis_inertia = required_double(ctx, axis_inertia).value_or(0);
   } else if (rotor_inertia || gear_ratio) {
-    double rotor = rotor_inertia ? required_double(ctx, rotor_inertia).value_or(0) : 0;
-    double gear = gear_ratio ? required_double(ctx, gear_ratio).value_or(1) : 1;
+    // Unlike joint_axis_inertia (toDouble, a prefix), Choreonoid reads these two whole, with
+    // defaults: a value that is not a number is ignored (no rotor inertia, no gear factor).
+    double rotor = rotor_inertia ? optional_double(ctx, rotor_inertia).value_or(0) : 0;
+    double gear = gear_ratio ? optional_double(ctx, gear_ratio).value_or(1) : 1;
     link.joint_axis_inertia = gear * gear * rotor;
   }
 }

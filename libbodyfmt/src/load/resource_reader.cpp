@@ -197,7 +197,7 @@ class Resources final : public ResourceReader {
     const std::string device_prefix = text({"device_prefix", "devicePrefix"}).value_or(prefix);
     int id_offset = 0;
     if (auto v = r.take({"joint_id_offset", "jointIdOffset"}))
-      id_offset = static_cast<int>(required_int(ctx_, v).value_or(0));
+      id_offset = static_cast<int>(optional_int(ctx_, v).value_or(0));  // a whole read, default 0
     yaml::NodeRef parent = r.take({"parent"});
     r.take({"name"});
 
@@ -275,7 +275,8 @@ class Resources final : public ResourceReader {
       link.name = base + std::to_string(i);
       link.joint_type = JointType::kRevolute;
       link.joint_id = -1;
-      link.X_PL = Eigen::AffineCompact3d::Identity();
+      // Choreonoid clones the template link and sets only the translation of the clone's
+      // offset (Link::setOffsetTranslation): the template's rotation stays in every link.
       link.X_PL.translation() = *joint_offset;
       link.initial_displacement =
           static_cast<std::size_t>(i - 1) < initial.size()

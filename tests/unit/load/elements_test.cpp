@@ -313,3 +313,27 @@ links:
   CHECK(r.link("A").shapes.at(0).X_LS.translation() == Eigen::Vector3d::Zero());
   r.expect_clean();
 }
+
+TEST_CASE("load: a Node is an empty scene node: nothing under it is read, and each key is warned") {
+  auto r = load_v2(R"(
+links:
+  - name: A
+    elements:
+      - type: Node
+        name: holder
+        translation: [0, 0, 1]
+        elements:
+          - type: RigidBody
+            mass: 5
+          - type: Shape
+            geometry: { type: Sphere, radius: 0.1 }
+)");
+  // Choreonoid's StdSceneReader makes `new SgNode` of it: no RigidBody (the link keeps its
+  // default 1 kg of link-level mass data), no shape.
+  const bodyfmt::Link& a = r.link("A");
+  CHECK(a.shapes.empty());
+  for (const auto& c : a.mass_contributions) CHECK(c.mass != 5);
+  CHECK(pos(r.take("load-ignored-key")) == Pos{8, 9});  // translation
+  CHECK(pos(r.take("load-ignored-key")) == Pos{9, 9});  // elements
+  r.expect_clean();
+}

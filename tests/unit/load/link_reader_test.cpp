@@ -196,6 +196,25 @@ links:
   r.expect_clean();
 }
 
+TEST_CASE("load: rotor_inertia and gear_ratio are read whole with defaults, joint_axis_inertia by its prefix") {
+  auto r = load_v2(R"(
+links:
+  - name: A
+  - {name: G, parent: A, joint_type: revolute, rotor_inertia: 0.5, gear_ratio: 100:1}
+  - {name: R, parent: A, joint_type: revolute, rotor_inertia: [1e-4], gear_ratio: 3}
+  - {name: J, parent: A, joint_type: revolute, joint_axis_inertia: 2.5kg}
+)");
+  // Choreonoid (StdBodyLoader, Mapping::get / read): gear 100:1 is no number, so Ir = 0.5 and
+  // not 100^2 * 0.5; a list as rotor inertia is ignored (0); joint_axis_inertia is toDouble.
+  CHECK(r.link("G").joint_axis_inertia == 0.5);
+  CHECK(r.link("R").joint_axis_inertia == 0);
+  CHECK(r.link("J").joint_axis_inertia == 2.5);
+  CHECK(pos(r.take("load-ignored-value")) == Pos{5, 80});
+  CHECK(pos(r.take("load-ignored-value")) == Pos{6, 63});
+  CHECK(pos(r.take("load-lenient-number")) == Pos{7, 68});
+  r.expect_clean();
+}
+
 // ---------------------------------------------------------------------------------------
 // Mass combination (§6.4)
 

@@ -61,6 +61,20 @@ TEST_CASE("load: recursion through three files in two folders is detected") {
   CHECK(r.m().links.size() == 3);
 }
 
+TEST_CASE("load: joint_id_offset is read whole with a default of 0, as Choreonoid's Mapping::get does") {
+  auto r = load_file(kData + "id_offset_forms.body");
+  // 10.0 and abc are not whole integers: no offset (gripper ids 0 and 1), each warned at its value.
+  CHECK(r.link("F_PALM").joint_id == 0);
+  CHECK(r.link("F_FINGER").joint_id == 1);
+  CHECK(r.link("A_PALM").joint_id == 0);
+  CHECK(r.link("W_PALM").joint_id == 30);  // the camelCase spelling
+  CHECK(r.link("W_FINGER").joint_id == 31);
+  CHECK(pos(r.take("load-ignored-value")) == Pos{12, 22});
+  CHECK(pos(r.take("load-ignored-value")) == Pos{17, 22});
+  CHECK_FALSE(r.has("load-number"));
+  CHECK_FALSE(r.has("load-lenient-number"));
+}
+
 TEST_CASE("load: SubBody prefixes, suffixes, id offsets, device prefix and root overrides") {
   auto r = load_file(kData + "includer.body");
   const bodyfmt::Model& m = r.m();
@@ -199,6 +213,32 @@ links:
   CHECK(m.links[2].initial_displacement == doctest::Approx(M_PI / 18));
   CHECK(m.links[3].initial_displacement == doctest::Approx(M_PI / 9));
   CHECK(m.links[4].initial_displacement == 0);  // missing entries are 0
+}
+
+TEST_CASE("load: every ContinuousTrack link keeps the template's rotation (the clone's offset translation only)") {
+  auto r = bodyfmt::test::load_v2(R"(
+links:
+  - name: BODY
+    joint_type: free
+  - type: ContinuousTrack
+    name: BELT
+    parent: BODY
+    translation: [0, 0.3, 0]
+    rotation: [1, 0, 0, 90]
+    joint_axis: Y
+    numJoints: 3
+    joint_offset: [0.05, 0, 0]
+)");
+  const bodyfmt::Model& m = r.m();
+  REQUIRE(m.links.size() == 4);
+  const Eigen::Matrix3d rx90 = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  CHECK(m.links[1].X_PL.translation().isApprox(Eigen::Vector3d(0, 0.3, 0)));
+  for (int i = 1; i <= 3; ++i) {
+    CAPTURE(i);
+    CHECK(m.links[static_cast<std::size_t>(i)].X_PL.linear().isApprox(rx90, 1e-15));
+  }
+  CHECK(m.links[2].X_PL.translation().isApprox(Eigen::Vector3d(0.05, 0, 0)));
+  CHECK(m.links[3].X_PL.translation().isApprox(Eigen::Vector3d(0.05, 0, 0)));
 }
 
 TEST_CASE("load: a ContinuousTrack with too few joints is an error") {
