@@ -25,9 +25,7 @@ Appearance read_appearance(LoadContext& ctx, const yaml::NodeRef& appearance) {
   }
   MappingReader r(ctx, appearance, "appearance");
   if (yaml::NodeRef m = r.take({"material"})) {
-    if (!m->is_mapping()) {
-      ctx.report("load-type", m, "material must be a mapping");
-    } else {
+    if (mapping_or_ignored(ctx, m, "material")) {
       Material material;
       MappingReader mr(ctx, m, "material");
       assign_if(material.ambient_intensity, take_optional_double(mr, {"ambient", "ambientIntensity"}));
@@ -104,7 +102,7 @@ Appearance read_appearance(LoadContext& ctx, const yaml::NodeRef& appearance) {
       tr.report_unknown(body_key_names("texture"));
       result.texture = texture;
     } else {
-      ctx.report("load-type", t, "texture must be a mapping");
+      mapping_or_ignored(ctx, t, "texture");  // findMapping: warns and skips
     }
   }
   if (yaml::NodeRef transform = r.take({"texture_transform", "textureTransform"}); transform && transform->is_mapping())

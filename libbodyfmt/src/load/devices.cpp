@@ -71,8 +71,16 @@ bool read_camera(MappingReader& r, Device& d) {
   assign_if(c.max_distance, take_optional_double(r, {"max_distance"}));
   assign_if(c.detection_rate, take_optional_double(r, {"detection_rate"}));
   assign_if(c.error_deviation, take_optional_double(r, {"error_deviation"}));
-  if (auto rot = r.take({"optical_frame_rotation"}))
-    if (auto R = read_rotation(ctx, rot)) c.optical_frame_rotation = *R;
+  // readAngleAxis skips a value that is not a list, and an empty list, without a word.
+  if (auto rot = r.take({"optical_frame_rotation"})) {
+    if (listing_or_ignored(ctx, rot, "optical_frame_rotation")) {
+      if (rot->items().empty())
+        ctx.report("load-ignored-value", rot, "optical_frame_rotation is an empty list; Choreonoid skips it",
+                   "write [x, y, z, angle]");
+      else if (auto R = read_rotation(ctx, rot))
+        c.optical_frame_rotation = *R;
+    }
+  }
   d.params = c;
   return true;
 }

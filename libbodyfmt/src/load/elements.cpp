@@ -191,13 +191,13 @@ void ElementReader::read_part(const yaml::NodeRef& node, ModelPart part, const E
   inner.part = part;
   inner.part_source = node.use_site();
   // Inline shortcuts come before `elements` (body-format-spec §8.4).
+  // Both are findMapping reads in Choreonoid: a value of another type is skipped.
   if (auto resource = r.take({"resource"})) {
-    if (resources_ && resource->is_mapping())
-      resources_->read_resource(*this, resource, inner);
-    else if (!resource->is_mapping())
-      ctx_.report("load-type", resource, "resource must be a mapping");
+    if (mapping_or_ignored(ctx_, resource, "resource") && resources_) resources_->read_resource(*this, resource, inner);
   }
-  if (auto shape = r.take({"shape"})) read_shape(shape, inner);
+  if (auto shape = r.take({"shape"})) {
+    if (mapping_or_ignored(ctx_, shape, "shape")) read_shape(shape, inner);
+  }
   read_elements(r.take({"elements"}), inner);
   r.report_unknown(body_key_names("element:Visual"));
 }
@@ -211,7 +211,9 @@ void ElementReader::read_rigid_body(const yaml::NodeRef& node, const ElementFram
   c.source = node.use_site();
   Eigen::Vector3d com = Eigen::Vector3d::Zero();
   if (auto v = r.take({"center_of_mass", "centerOfMass"})) {
-    if (auto x = read_vec3(ctx_, v)) com = *x;
+    // A findListing read here (unlike the link's own key): another type leaves the origin.
+    if (listing_or_ignored(ctx_, v, "center_of_mass"))
+      if (auto x = read_vec3(ctx_, v)) com = *x;
   }
   if (auto v = r.take({"mass"})) {
     if (auto m = optional_double(ctx_, v)) c.mass = *m;

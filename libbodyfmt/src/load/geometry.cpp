@@ -29,10 +29,7 @@ std::vector<Eigen::Vector3d> triples(const std::vector<double>& v) {
 
 std::vector<int> indices(LoadContext& ctx, const yaml::NodeRef& ref) {
   std::vector<int> out;
-  if (!ref || !ref->is_sequence()) {
-    if (ref) ctx.report("load-type", ref, "an index list must be a sequence");
-    return out;
-  }
+  if (!ref || !listing_or_ignored(ctx, ref, "an index list")) return out;  // findListing
   for (const yaml::NodeRef& item : ref->items()) {
     auto v = required_int(ctx, item);
     out.push_back(v ? static_cast<int>(*v) : -1);
@@ -41,7 +38,8 @@ std::vector<int> indices(LoadContext& ctx, const yaml::NodeRef& ref) {
 }
 
 std::vector<double> numbers_or_empty(LoadContext& ctx, const yaml::NodeRef& ref) {
-  if (!ref) return {};
+  // Every number list of a geometry is read with findListing: another type is skipped.
+  if (!ref || !listing_or_ignored(ctx, ref, "this list")) return {};
   auto v = read_numbers(ctx, ref);
   return v ? *v : std::vector<double>{};
 }
@@ -254,10 +252,7 @@ int division_number_from(LoadContext& ctx, const yaml::NodeRef& at, long n, std:
 }
 
 std::optional<Geometry> read_geometry(LoadContext& ctx, const yaml::NodeRef& geometry, int& division_number) {
-  if (!geometry->is_mapping()) {
-    ctx.report("load-type", geometry, "geometry must be a mapping");
-    return std::nullopt;
-  }
+  if (!mapping_or_ignored(ctx, geometry, "geometry")) return std::nullopt;  // findMapping: no geometry
   MappingReader r(ctx, geometry, "geometry");
   yaml::NodeRef type = r.take({"type"});
   if (!type) {

@@ -75,6 +75,28 @@ std::optional<Eigen::Vector3d> read_optional_vec3(LoadContext& ctx, const yaml::
   return read_vec3(ctx, ref);
 }
 
+namespace {
+
+bool of_type_or_ignored(LoadContext& ctx, const yaml::NodeRef& ref, std::string_view key, bool is_expected,
+                        const char* expected) {
+  if (is_expected) return true;
+  ctx.report("load-ignored-value", ref,
+             std::string(key) + (ref->is_null() ? " is empty" : " must be a " + std::string(expected)) +
+                 "; Choreonoid skips it without a word",
+             ref->is_null() ? "give it a value or remove the key" : std::string("write a ") + expected);
+  return false;
+}
+
+}  // namespace
+
+bool listing_or_ignored(LoadContext& ctx, const yaml::NodeRef& ref, std::string_view key) {
+  return of_type_or_ignored(ctx, ref, key, ref->is_sequence(), "sequence");
+}
+
+bool mapping_or_ignored(LoadContext& ctx, const yaml::NodeRef& ref, std::string_view key) {
+  return of_type_or_ignored(ctx, ref, key, ref->is_mapping(), "mapping");
+}
+
 std::optional<std::vector<double>> read_numbers(LoadContext& ctx, const yaml::NodeRef& ref) {
   if (!expect_sequence(ctx, ref, "this value")) return std::nullopt;
   std::vector<double> values;

@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 
 #include <optional>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -18,6 +19,11 @@ std::optional<Eigen::Vector3d> read_vec3(LoadContext& ctx, const yaml::NodeRef& 
 /// Optional vector keys (shape/device parameters): a scalar or mapping in their place is
 /// treated by Choreonoid as absent; we warn and return nullopt.
 std::optional<Eigen::Vector3d> read_optional_vec3(LoadContext& ctx, const yaml::NodeRef& ref);
+/// Keys Choreonoid reads with findListing / findMapping: a value of another YAML type (a
+/// scalar, an empty `key:`) is skipped there without a word. True when `ref` has the expected
+/// type; otherwise a load-ignored-value warning at the value, naming `key`, and false.
+bool listing_or_ignored(LoadContext& ctx, const yaml::NodeRef& ref, std::string_view key);
+bool mapping_or_ignored(LoadContext& ctx, const yaml::NodeRef& ref, std::string_view key);
 /// A flat list of numbers of any length, each leniently converted.
 std::optional<std::vector<double>> read_numbers(LoadContext& ctx, const yaml::NodeRef& ref);
 

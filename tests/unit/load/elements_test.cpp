@@ -337,3 +337,51 @@ links:
   CHECK(pos(r.take("load-ignored-key")) == Pos{9, 9});  // elements
   r.expect_clean();
 }
+
+TEST_CASE("load: keys Choreonoid reads with findMapping or findListing skip a value of another type, with a warning") {
+  auto r = load_v2(R"(
+links:
+  - name: A
+    elements:
+      - type: Shape
+        geometry: 5
+      - type: Shape
+        geometry: { type: Box, size: [1, 2, 3] }
+        appearance:
+          material:
+          texture: abc
+      - type: Visual
+        resource: x
+        shape: []
+      - type: RigidBody
+        mass: 2
+        center_of_mass: 0.5
+        inertia: [1, 0, 0, 1, 0, 1]
+      - type: Shape
+        geometry: { type: Extrusion, cross_section: [0, 0, 1, 0, 1, 1, 0, 0], spine: [0, 0, 0, 0, 1, 0], scale: 1 }
+      - type: Camera
+        name: cam
+        format: COLOR
+        optical_frame_rotation: []
+)");
+  // Choreonoid: StdSceneReader::readShape / readAppearance /
+  // readExtrusion, StdBodyLoader::readVisualOrCollision / readRigidBody use findMapping / findListing, which
+  // return an invalid node for a value of another type; VisionSensor's readAngleAxis skips
+  // an empty list. Nothing is refused.
+  // An empty value (material:) is located at its key.
+  for (Pos at :
+       {Pos{7, 19}, Pos{11, 11}, Pos{12, 20}, Pos{14, 19}, Pos{15, 16}, Pos{18, 25}, Pos{21, 113}, Pos{25, 33}}) {
+    CAPTURE(at);
+    CHECK(pos(r.take("load-ignored-value")) == at);
+  }
+  const bodyfmt::Link& a = r.link("A");
+  // The Shape without geometry makes nothing; the box keeps the default appearance.
+  REQUIRE(a.shapes.size() >= 1);
+  CHECK(std::holds_alternative<Box>(a.shapes[0].geometry));
+  // The RigidBody's centre of mass stays at its origin.
+  REQUIRE(a.mass_contributions.size() == 1);
+  CHECK(a.mass_contributions[0].mass == 2);
+  CHECK(a.mass_contributions[0].center_of_mass.isZero());
+  CHECK_FALSE(r.has("load-type"));
+  r.expect_clean();
+}
