@@ -52,8 +52,11 @@ Appearance read_appearance(LoadContext& ctx, const yaml::NodeRef& appearance) {
       if (auto v = mr.take({"diffuse", "diffuseColor"})) colour(v, "diffuse", material.diffuse_color);
       if (auto v = mr.take({"emissive", "emissiveColor"})) colour(v, "emissive", material.emissive_color);
       if (auto v = mr.take({"specular", "specularColor"})) colour(v, "specular", material.specular_color);
-      if (auto v = mr.take({"specular_exponent"})) {
-        assign_if(material.specular_exponent, optional_double(ctx, v));
+      // Choreonoid falls back to shininess whenever specular_exponent does not read as a number.
+      yaml::NodeRef exponent_node = mr.take({"specular_exponent"});
+      const std::optional<double> exponent = exponent_node ? optional_double(ctx, exponent_node) : std::nullopt;
+      if (exponent) {
+        material.specular_exponent = *exponent;
         if (auto shininess = mr.take({"shininess"}))
           ctx.report("load-ignored-key", shininess,
                      "\"shininess\" is ignored by Choreonoid when specular_exponent is given", "remove shininess");

@@ -436,7 +436,17 @@ void BodyReader::read_links(const yaml::NodeRef& links, Model& model, std::vecto
     std::vector<const yaml::MapEntry*> sorted;
     for (const auto& e : links->entries()) sorted.push_back(&e);
     std::sort(sorted.begin(), sorted.end(), [](auto* a, auto* b) { return a->key < b->key; });
-    for (const yaml::MapEntry* e : sorted) read_link_node(e->value, std::string(e->key), model, entries);
+    for (const yaml::MapEntry* e : sorted) {
+      // As for elements: Choreonoid's readNodeInLinks refuses an inner type other than the key.
+      if (const yaml::MapEntry* inner = e->value->is_mapping() ? e->value->find("type") : nullptr;
+          inner && inner->value->scalar() != e->key) {
+        ctx_.report("load-type-mismatch", links.child(inner->value),
+                    "the node type \"" + std::string(inner->value->scalar()) + "\" is different from the type \"" +
+                        std::string(e->key) + "\" specified in the parent node");
+        continue;
+      }
+      read_link_node(links.child(e->value), std::string(e->key), model, entries);
+    }
   } else {
     ctx_.report("load-no-links", links, "invalid value specified in the \"links\" key");
   }
@@ -676,7 +686,11 @@ void BodyReader::read_extra_joints(const yaml::NodeRef& extra_joints, Model& mod
     } else {
       joint.type = type->scalar();
     }
-    if (auto axis = r.take({"axis", "jointAxis"})) {
+    if (auto axis = r.take({"axis", "jointAxis"}); axis && (joint.type == "fixed" || joint.type == "ball")) {
+      // readExtraJoint reads the axis of a hinge or a piston only.
+      ctx_.report("load-ignored-key", axis, "a " + joint.type + " extra joint has no axis; Choreonoid does not read it",
+                  "remove it");
+    } else if (axis) {
       if (auto a = read_vec3(ctx_, axis)) {
         if (a->norm() > 0)
           joint.axis = a->normalized();

@@ -101,11 +101,21 @@ void read_range_sensor(MappingReader& r, Device& d) {
   r.take({"pitch_samples"});
   assign_if(s.min_distance, take_optional_double(r, {"min_distance", "minDistance"}));
   assign_if(s.max_distance, take_optional_double(r, {"max_distance", "maxDistance"}));
+  // VisionSensor::readSpecifications reads frame_rate first, RangeSensor's own reader then
+  // scan_rate, which wins when both are written.
+  assign_if(s.scan_rate, take_optional_double(r, {"frame_rate", "frameRate"}));
   assign_if(s.scan_rate, take_optional_double(r, {"scan_rate", "scanRate"}));
-  assign_if(s.scan_rate, take_optional_double(r, {"frame_rate"}));
   assign_if(s.detection_rate, take_optional_double(r, {"detection_rate"}));
   assign_if(s.error_deviation, take_optional_double(r, {"error_deviation"}));
-  r.take({"optical_frame"});
+  // The same check as a camera's: Choreonoid refuses an unknown optical frame for every
+  // VisionSensor ("Unknown optical frame type").
+  if (yaml::NodeRef frame = r.take({"optical_frame"})) {
+    if (!frame->is_scalar() || (frame->scalar() != "gl" && frame->scalar() != "cv" && frame->scalar() != "robotics"))
+      r.context().report("device-optical-frame", frame,
+                         "unknown optical frame type" +
+                             (frame->is_scalar() ? " \"" + std::string(frame->scalar()) + "\"" : std::string()),
+                         "use gl, cv or robotics");
+  }
   r.context().note_rotation_angles(r.take({"optical_frame_rotation"}));
   d.type = "RangeSensor";
   d.params = s;

@@ -233,7 +233,7 @@ Geometry read_resource_geometry(LoadContext& ctx, MappingReader& r) {
     mesh.uri_source = uri.use_site();
     mesh.resolved_path = resolve_uri(ctx, uri, mesh.uri, uri->location.file);
   }
-  if (auto node = r.take({"node", "fragment"})) mesh.node = required_string(ctx, node).value_or("");
+  if (auto node = take_resource_node(ctx, r)) mesh.node = required_string(ctx, node).value_or("");
   if (auto metadata = r.take({"metadata"})) read_mesh_metadata(ctx, metadata, mesh);
   if (auto crease = take_optional_angle(r, {"crease_angle", "creaseAngle"})) mesh.crease_angle = *crease;
   r.take({"remove_redundant_vertices", "removeRedundantVertices"});
@@ -249,6 +249,14 @@ int division_number_from(LoadContext& ctx, const yaml::NodeRef& at, long n, std:
                std::string(key) + " " + std::to_string(n) + " is clamped to " + std::to_string(kMaxDivisionNumber),
                "a sphere has about n^2/2 vertices; use a smaller " + std::string(key));
   return n < 4 ? 20 : static_cast<int>(std::min<long>(n, kMaxDivisionNumber));
+}
+
+yaml::NodeRef take_resource_node(LoadContext& ctx, MappingReader& r) {
+  if (!r.has({"fragment"}) || !r.has({"node"})) return r.take({"node", "fragment"});
+  yaml::NodeRef fragment = r.take({"fragment"});
+  ctx.report("load-ignored-key", r.take({"node"}), "Choreonoid reads fragment before node: this node is ignored",
+             "keep one of them");
+  return fragment;
 }
 
 std::optional<Geometry> read_geometry(LoadContext& ctx, const yaml::NodeRef& geometry, int& division_number) {

@@ -61,12 +61,15 @@ void read_joint(LoadContext& ctx, MappingReader& r, Link& link) {
     link.sources.set(LinkSources::kJointId, id.use_site());
     if (auto v = required_int(ctx, id)) link.joint_id = *v < 0 ? -1 : static_cast<int>(*v);
   }
-  // joint_displacement wins over joint_angle; joint_angle is always an angle (§3).
+  // joint_displacement wins over joint_angle; joint_angle is always an angle (§3). Choreonoid
+  // reads joint_angle first in any case (toDouble), so a joint_angle that is no number refuses
+  // the file even where joint_displacement replaces it.
   yaml::NodeRef angle = r.take({"joint_angle", "jointAngle"});
   yaml::NodeRef displacement = r.take({"joint_displacement", "jointDisplacement"});
   if (displacement) {
     if (auto v = required_double(ctx, displacement))
       link.initial_displacement = revolute ? ctx.angle(*v, displacement) : *v;
+    if (angle) required_double(ctx, angle);  // read (a non-number refuses the file), then replaced
   } else if (angle) {
     if (auto v = required_double(ctx, angle)) {
       link.initial_displacement = ctx.angle(*v, angle);
@@ -186,6 +189,9 @@ LinkEntry read_link(LoadContext& ctx, const yaml::NodeRef& node, Model& model, R
   if (auto import = r.take({"import"})) {
     // body-format-spec §6.5: import only adds info keys; model keys in it have no effect.
     ctx.report("load-import", import, "import only adds info keys; model keys inside it are ignored by Choreonoid");
+    if (import->is_sequence())  // Choreonoid: importList[i].toMapping(), which throws
+      for (const yaml::NodeRef& item : import->items())
+        if (!item->is_mapping()) ctx.report("load-type", import.child(item), "an import list item must be a mapping");
   }
   ElementReader elements(ctx, model, index, resources);
   elements.read_elements(r.take({"elements"}), ElementFrame{});

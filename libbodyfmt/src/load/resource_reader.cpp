@@ -53,7 +53,7 @@ class Resources final : public ResourceReader {
     std::string name;
     if (auto n = r.take({"name"})) name = n->scalar();
     yaml::NodeRef uri = r.take({"uri"});
-    yaml::NodeRef fragment = r.take({"node", "fragment"});
+    yaml::NodeRef fragment = take_resource_node(ctx_, r);
     yaml::NodeRef metadata = r.take({"metadata"});
     ElementFrame inner = frame;
     Eigen::Affine3d X = Eigen::Affine3d::Identity();

@@ -457,3 +457,36 @@ TEST_CASE("load: a SubBody without a parent drops its links and the extra joints
   CHECK(sink.has("structure-no-parent"));
   CHECK(sink.has("structure-unreachable"));
 }
+
+TEST_CASE("load: an extra joint's axis is read for a hinge or a piston only") {
+  auto r = load_v2(R"(
+links:
+  - name: A
+  - {name: B, parent: A}
+extra_joints:
+  - {link1_name: A, link2_name: B, joint_type: ball, axis: [0, 0, 0]}
+  - {link1_name: A, link2_name: B, joint_type: fixed, jointAxis: X}
+  - {link1_name: A, link2_name: B, joint_type: hinge, axis: [0, 0, 0]}
+)");
+  // StdBodyLoader::readExtraJoint: extractEigen(axis) only for Hinge and Piston, so the ball's
+  // zero vector and the fixed joint's symbol are never read; the hinge's zero axis is.
+  CHECK(pos(r.take("load-ignored-key")) == Pos{7, 60});
+  CHECK(pos(r.take("load-ignored-key")) == Pos{8, 66});
+  CHECK(pos(r.take("extra-joint-axis")) == Pos{9, 61});
+  r.take("load-legacy-key");  // jointAxis
+  CHECK_FALSE(r.has("load-type"));
+  r.expect_clean();
+}
+
+TEST_CASE("load: links given as a mapping refuse an inner type other than the key") {
+  auto r = load_v2(R"(
+links:
+  Link:
+    type: SubBody
+    name: A
+)");
+  // StdBodyLoader::readNodeInLinks: "The node type ... is different from the type ...".
+  CHECK(pos(r.take("load-type-mismatch")) == Pos{5, 11});
+  r.take("load-no-links");  // the only link was refused
+  r.expect_clean();
+}

@@ -234,3 +234,30 @@ TEST_CASE("load: SimpleTank devices match the reference numbers") {
   CHECK(c.width == 320);
   CHECK(c.height == 240);
 }
+
+TEST_CASE("load: a RangeSensor reads frame_rate, then scan_rate, and refuses an unknown optical frame") {
+  auto r = load_v2(R"(
+links:
+  - name: A
+    elements:
+      - type: RangeSensor
+        name: both
+        frame_rate: 5
+        scan_rate: 20
+      - type: RangeSensor
+        name: camel
+        frameRate: 20
+      - type: RangeSensor
+        name: bad
+        optical_frame: ros
+)");
+  // VisionSensor::readSpecifications reads {frame_rate, frameRate}; RangeSensor's reader then
+  // reads {scan_rate, scanRate}, which wins. Both are "Unknown optical frame type" checks.
+  const auto& devices = r.m().devices;
+  REQUIRE(devices.size() == 3);
+  CHECK(std::get<RangeSensorParams>(devices[0].params).scan_rate == 20);
+  CHECK(std::get<RangeSensorParams>(devices[1].params).scan_rate == 20);
+  CHECK(pos(r.take("device-optical-frame")) == Pos{15, 24});
+  r.take("load-legacy-key");  // frameRate
+  r.expect_clean();
+}

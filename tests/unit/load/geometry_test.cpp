@@ -373,3 +373,29 @@ links:
   CHECK(pos(r.take("load-vector-size")) == Pos{9, 91});
   r.expect_clean();
 }
+
+TEST_CASE("load: a Resource names its node by fragment before node, and specular_exponent falls back to shininess") {
+  auto r = load_v2(R"(
+links:
+  - name: A
+    elements:
+      - type: Shape
+        geometry: {type: Resource, uri: missing.stl, fragment: F, node: N}
+      - type: Shape
+        geometry: {type: Box}
+        appearance:
+          material: {specular_exponent: high, shininess: 0.5}
+)");
+  // StdSceneReader::readResource: find({"fragment", "node"}). readMaterial: a specular_exponent
+  // that does not read as a number falls to shininess, 127 * 0.5 + 1 = 64.5.
+  const auto& s = r.link("A").shapes;
+  REQUIRE(s.size() == 2);
+  CHECK(bodyfmt::geometry_get<bodyfmt::MeshResource>(s[0].geometry).node == "F");
+  CHECK(pos(r.take("load-ignored-key")) == Pos{7, 73});
+  REQUIRE(s[1].appearance.material.has_value());
+  CHECK(s[1].appearance.material->specular_exponent == 64.5);
+  CHECK(pos(r.take("load-ignored-value")) == Pos{11, 41});
+  r.take("mesh-file-missing");
+  r.take("load-legacy-shininess");
+  r.expect_clean();
+}

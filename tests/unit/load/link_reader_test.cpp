@@ -376,3 +376,18 @@ links:
   CHECK(mp.inertia == Eigen::Matrix3d::Zero());
   r.expect_clean();
 }
+
+TEST_CASE("load: joint_angle is read even where joint_displacement replaces it, and import items are mappings") {
+  auto r = load_v2(R"(
+links:
+  - name: A
+    import: [base_info, {x: 1}]
+  - {name: B, parent: A, joint_type: revolute, joint_angle: abc, joint_displacement: 10}
+)");
+  // StdBodyLoader: joint_angle's toDouble throws before joint_displacement is read; an import
+  // list's items go through toMapping, which throws on a scalar.
+  CHECK(pos(r.take("load-type")) == Pos{5, 14});
+  CHECK(pos(r.take("load-number")) == Pos{6, 61});
+  CHECK(r.link("B").initial_displacement == doctest::Approx(M_PI / 18).epsilon(1e-15));
+  r.expect_clean();
+}
