@@ -426,6 +426,115 @@ def language_features():
         c.kill()
 
 
+# A robot composed of SubBody files: main.body includes parts/arm.body with a prefix and a
+# suffix, which includes parts/hand.body with a prefix of its own. The expected positions
+# below were counted by hand from these texts (0-based lines, UTF-16 characters).
+SUB_MAIN = ("format: ChoreonoidBody\nformat_version: 2.0\nangle_unit: degree\nname: ROBOT\nroot_link: BASE\n"
+            "links:\n"
+            "  - name: BASE\n    joint_type: free\n    mass: 1\n    inertia: [1,0,0,0,1,0,0,0,1]\n"
+            "  - type: SubBody\n    uri: parts/arm.body\n    parent: BASE\n    prefix: L_\n    suffix: _a\n"
+            "  - name: TOOL\n    parent: L_WRIST3_a\n    joint_type: fixed\n    mass: 0.2\n"
+            "    inertia: [1,0,0,0,1,0,0,0,1]\n"
+            "  - name: GRIP\n    parent: L_HF1_a\n    joint_type: fixed\n    mass: 0.2\n"
+            "    inertia: [1,0,0,0,1,0,0,0,1]\n"
+            "extra_joints:\n  - link1_name: L_WRIST3_a\n    link2_name: GRIP\n    joint_type: ball\n")
+SUB_ARM = ("format: ChoreonoidBody\nformat_version: 2.0\nangle_unit: degree\nname: ARM\nroot_link: SHOULDER\n"
+           "links:\n"
+           "  - name: SHOULDER\n    joint_type: revolute\n    joint_axis: Z\n    joint_id: 0\n    mass: 1\n"
+           "    inertia: [1,0,0,0,1,0,0,0,1]\n"
+           "  - { name: \"WRIST3\", parent: SHOULDER, joint_type: revolute, joint_axis: X, joint_id: 1, mass: 0.5, "
+           "inertia: [1,0,0,0,1,0,0,0,1] }\n"
+           "  - type: SubBody\n    uri: hand.body\n    parent: WRIST3\n    prefix: H\n")
+SUB_HAND = ("format: ChoreonoidBody\nformat_version: 2.0\nname: HAND\nlinks:\n"
+            "  - { joint_name: \"" + EMOJI[0] + "\", name: F1, joint_type: fixed, mass: 0.1, "
+            "inertia: [1,0,0,0,1,0,0,0,1] }\n")
+
+
+def lsp_range(line, start, end):
+    return {"start": {"line": line, "character": start}, "end": {"line": line, "character": end}}
+
+
+def definitions(c, uri, line, character):
+    reply = c.request("textDocument/definition", {"textDocument": {"uri": uri},
+                                                  "position": {"line": line, "character": character}})
+    assert "error" not in reply, reply
+    result = reply["result"]
+    return [] if result is None else (result if isinstance(result, list) else [result])
+
+
+@case
+def definition_in_subbody():
+    folder = work_dir("definition_in_subbody")
+    os.makedirs(os.path.join(folder, "parts"))
+    main, arm, hand = (os.path.join(folder, n) for n in ("main.body", "parts/arm.body", "parts/hand.body"))
+    for path, text in ((main, SUB_MAIN), (arm, SUB_ARM), (hand, SUB_HAND)):
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(text)
+    c = client()
+    try:
+        c.initialize()
+        c.open(uri_of(main), SUB_MAIN)
+        c.diagnostics(uri_of(main), 1)
+        # `parent: L_WRIST3_a` (line 16): "WRIST3" quoted in arm.body's flow mapping, line 12.
+        wrist = [{"uri": uri_of(arm), "range": lsp_range(12, 12, 20)}]
+        assert definitions(c, uri_of(main), 16, 14) == wrist, definitions(c, uri_of(main), 16, 14)
+        # An extra joint's link1_name names it too (line 26).
+        assert definitions(c, uri_of(main), 26, 17) == wrist
+        # `parent: L_HF1_a` (line 21): F1 in hand.body, included by arm.body with the prefix H,
+        # after a joint name of one surrogate pair (line 4, characters 30-32; bytes 32-34).
+        assert definitions(c, uri_of(main), 21, 14) == [{"uri": uri_of(hand), "range": lsp_range(4, 30, 32)}]
+        # A link of this file is still this file's.
+        assert definitions(c, uri_of(main), 12, 13) == [{"uri": uri_of(main), "range": lsp_range(6, 10, 14)}]
+        # arm.body open with unsaved edits (a line above, a joint name of two surrogate pairs
+        # before the name): the model reads the buffer, and the location is in its text.
+        edited = "# \U0001F600 edited\n" + SUB_ARM.replace('{ name: "WRIST3"', '{ joint_name: "\U0001F600\U0001F600", name: "WRIST3"')
+        c.open(uri_of(arm), edited)
+        c.diagnostics(uri_of(main))  # main.body is checked again with the buffer
+        assert definitions(c, uri_of(main), 16, 14) == [{"uri": uri_of(arm), "range": lsp_range(13, 32, 40)}]
+        with open(arm, encoding="utf-8") as f:
+            assert f.read() == SUB_ARM, "the test must leave arm.body unsaved"
+        assert c.finish() == 0
+    finally:
+        c.kill()
+
+
+@case
+def definition_in_subbody_hostile():
+    # SubBody files that cannot be read (missing, a directory) give no location and the server
+    # answers on; an include cycle (a.body -> b.body -> a.body) is cut by the loader, and b.body's
+    # link is still found where it is written.
+    folder = work_dir("definition_in_subbody_hostile")
+    os.makedirs(os.path.join(folder, "dir.body"))
+    head = "format: ChoreonoidBody\nformat_version: 2.0\nname: %s\n"
+    link = "  - { name: %s, joint_type: fixed, mass: 1, inertia: [1,0,0,0,1,0,0,0,1] }\n"
+    with open(os.path.join(folder, "a.body"), "w") as f:
+        f.write(head % "A" + "links:\n" + link % "CA" + "  - { type: SubBody, uri: b.body, parent: CA }\n")
+    with open(os.path.join(folder, "b.body"), "w") as f:
+        f.write(head % "B" + "links:\n" + link % "CB" + "  - { type: SubBody, uri: a.body, parent: CB }\n")
+    main = os.path.join(folder, "main.body")
+    text = (head % "M" + "links:\n" + link % "BASE" +
+            "  - { type: SubBody, uri: missing.body, parent: BASE }\n"   # line 5
+            "  - { type: SubBody, uri: dir.body, parent: BASE }\n"       # line 6
+            "  - { type: SubBody, uri: a.body, parent: BASE }\n"         # line 7
+            "extra_joints:\n"
+            "  - { link1_name: MISSING, link2_name: CB, joint_type: ball }\n")  # line 9
+    with open(main, "w") as f:
+        f.write(text)
+    c = client()
+    try:
+        c.initialize()
+        c.open(uri_of(main), text)
+        c.diagnostics(uri_of(main), 1)
+        assert definitions(c, uri_of(main), 9, 20) == []  # MISSING: in no file that loaded
+        # CB: b.body's line 4, "  - { name: CB" (characters 12-14).
+        assert definitions(c, uri_of(main), 9, 40) == [{"uri": uri_of(os.path.join(folder, "b.body")),
+                                                        "range": lsp_range(4, 12, 14)}]
+        assert definitions(c, uri_of(main), 6, 45) == [{"uri": uri_of(main), "range": lsp_range(4, 12, 16)}]
+        assert c.finish() == 0
+    finally:
+        c.kill()
+
+
 def corpus_models():
     root = os.path.join(SHARED, "corpus", "choreonoid")
     names = ["SR1/SR1.body", "GR001/GR001.body", "PA10/PA10.body", "Tank/Tank.body", "JACO2/JACO2.body"]

@@ -370,6 +370,98 @@ TEST_CASE("lsp features: definition of a parent, an alias and a uri") {
   CHECK(fs::equivalent(defs[0].file, kCorpus + "Tank/TankBody.body"));
 }
 
+TEST_CASE("lsp features: definition of a link a SubBody file defines, with prefixes, suffixes and nesting") {
+  // Tank.body's TRACK_L has `parent: CHASSIS`, a link of TankBody.body (line 8: "    name: CHASSIS").
+  {
+    const std::string path = kCorpus + "Tank/Tank.body";
+    bodyfmt::CollectingSink sink;
+    const auto model = bodyfmt::load_body(path, {}, sink);
+    REQUIRE(model);
+    Document d = doc(read(path), path);
+    d.model = &*model;
+    d.model_is_current = true;
+    const auto defs = definition(d, point_of(d.text, "parent: CHASSIS", 9));
+    REQUIRE(defs.size() == 1);
+    CHECK(fs::equivalent(defs[0].file, kCorpus + "Tank/TankBody.body"));
+    CHECK(defs[0].range.begin.line == 8);
+    CHECK(defs[0].range.begin.column == 11);
+    CHECK(defs[0].to_token_end);
+  }
+  // main.body includes arm.body (prefix L_, suffix _a), which includes hand.body (prefix H).
+  const fs::path dir = fs::temp_directory_path() / "bodyls_definition_subbody_test";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "parts");
+  std::ofstream(dir / "parts" / "hand.body") << "format: ChoreonoidBody\nformat_version: 2.0\nname: HAND\nlinks:\n"
+                                                "  - { joint_name: \"\xC3\xB6\", name: F1, mass: 1 }\n";
+  std::ofstream(dir / "parts" / "arm.body") << "format: ChoreonoidBody\nformat_version: 2.0\nname: ARM\nlinks:\n"
+                                               "  - name: SHOULDER\n    mass: 1\n"
+                                               "  - { name: \"WRIST3\", parent: SHOULDER, mass: 1 }\n"
+                                               "  - type: SubBody\n    uri: hand.body\n    parent: WRIST3\n"
+                                               "    prefix: H\n";
+  const std::string main_text =
+      "format: ChoreonoidBody\nformat_version: 2.0\nname: ROBOT\nlinks:\n  - name: BASE\n    joint_type: free\n    "
+      "mass: 1\n"
+      "  - { type: SubBody, uri: parts/arm.body, parent: BASE, prefix: L_, suffix: _a }\n"
+      "  - { name: TOOL, parent: L_WRIST3_a, mass: 1 }\n"
+      "  - { name: GRIP, parent: L_HF1_a, mass: 1 }\n"
+      "extra_joints:\n  - { link1_name: L_HF1_a, link2_name: BASE, joint_type: ball }\n";
+  const std::string main_path = (dir / "main.body").string();
+  bodyfmt::CollectingSink sink;
+  const auto model = bodyfmt::load_body_string(main_text, main_path, {}, sink);
+  REQUIRE(model);
+  Document d = doc(main_text, main_path);
+  d.model = &*model;
+  d.model_is_current = true;
+  auto defs = definition(d, point_of(main_text, "L_WRIST3_a", 3));
+  REQUIRE(defs.size() == 1);
+  CHECK(fs::equivalent(defs[0].file, dir / "parts" / "arm.body"));
+  CHECK(defs[0].range.begin.line == 7);  // "  - { name: \"WRIST3\"": the quote, byte column 13
+  CHECK(defs[0].range.begin.column == 13);
+  for (const std::string& at : {std::string("parent: L_HF1_a"), std::string("link1_name: L_HF1_a")}) {
+    defs = definition(d, point_of(main_text, at, static_cast<int>(at.size()) - 2));
+    REQUIRE(defs.size() == 1);
+    CHECK(fs::equivalent(defs[0].file, dir / "parts" / "hand.body"));
+    CHECK(defs[0].range.begin.line == 5);  // after "ö", two bytes: byte column 31
+    CHECK(defs[0].range.begin.column == 31);
+  }
+  // A link of this text is found in it, once.
+  defs = definition(d, point_of(main_text, "parent: BASE", 9));
+  REQUIRE(defs.size() == 1);
+  CHECK(defs[0].file == main_path);
+  CHECK(!defs[0].to_token_end);
+  CHECK(text_of(main_text, defs[0].range) == "BASE");
+  // The name as the SubBody file writes it is no link of the composed model.
+  std::string unprefixed = main_text;
+  unprefixed.replace(unprefixed.find("L_WRIST3_a"), 10, "WRIST3");
+  d.text = unprefixed;
+  d.model_is_current = false;
+  CHECK(definition(d, point_of(unprefixed, "parent: WRIST3", 9)).empty());
+  fs::remove_all(dir);
+}
+
+TEST_CASE("lsp features: definition of a ContinuousTrack's link is its template's name") {
+  const std::string text =
+      "format: ChoreonoidBody\nformat_version: 2.0\nname: T\nlinks:\n  - name: BODY\n    joint_type: free\n    mass: "
+      "1\n"
+      "  - type: ContinuousTrack\n    name: SHOE\n    parent: BODY\n    numJoints: 4\n"
+      "    jointOffset: [ 0.1, 0, 0 ]\n    joint_axis: Y\n    mass: 0.1\n"
+      "  - { name: TIP, parent: SHOE3, mass: 0.1 }\n";
+  bodyfmt::CollectingSink sink;
+  const auto model = bodyfmt::load_body_string(text, "/tmp/track.body", {}, sink);
+  REQUIRE(model);
+  Document d = doc(text, "/tmp/track.body");
+  d.model = &*model;
+  d.model_is_current = true;
+  auto defs = definition(d, point_of(text, "SHOE3", 2));
+  REQUIRE(defs.size() == 1);
+  CHECK(defs[0].file == "/tmp/track.body");
+  CHECK(defs[0].range.begin.line == 9);  // "    name: SHOE"
+  CHECK(defs[0].range.begin.column == 11);
+  // A model of an older text cannot place anything in this one.
+  d.model_is_current = false;
+  CHECK(definition(d, point_of(text, "SHOE3", 2)).empty());
+}
+
 TEST_CASE("lsp features: references and rename of a link") {
   const Document d = doc(kSmall);
   auto refs = references(d, point_of(kSmall, "name: base", 7), false);

@@ -84,7 +84,8 @@ bool is_feature_method(const std::string& method) {
 std::optional<json> answer_feature(const std::string& method, const json& params, const FeatureDocument& document) {
   if (!is_feature_method(method)) return std::nullopt;
   static const std::map<std::string, std::string> no_other_texts;
-  FileTexts texts(document.path, document.uri, document.text, no_other_texts);
+  FileTexts texts(document.path, document.uri, document.text,
+                  document.model_texts ? *document.model_texts : no_other_texts);
   const TextLines lines(document.text);
   Document doc;
   doc.path = document.path;
@@ -120,8 +121,18 @@ std::optional<json> answer_feature(const std::string& method, const json& params
             ? definition(doc, at)
             : references(doc, at, params.value("context", json::object()).value("includeDeclaration", false));
     json out = json::array();
-    for (const FileRange& r : found)
-      out.push_back({{"uri", texts.uri(r.file)}, {"range", range_json(texts, r.file, r.range)}});
+    for (const FileRange& r : found) {
+      if (!r.to_token_end) {
+        out.push_back({{"uri", texts.uri(r.file)}, {"range", range_json(texts, r.file, r.range)}});
+        continue;
+      }
+      // A place the model read: its token in that file's text; a file that cannot be read now
+      // is no place to go.
+      const TextLines* file_lines = texts.lines(r.file);
+      if (!file_lines || r.range.begin.line > file_lines->line_count()) continue;
+      out.push_back({{"uri", texts.uri(r.file)},
+                     {"range", to_json(file_lines->token_range(r.range.begin.line, r.range.begin.column))}});
+    }
     if (out.empty() && method == "textDocument/definition") return json(nullptr);
     return out;
   }

@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -22,6 +23,9 @@ struct FeatureDocument {
   std::string text;
   std::shared_ptr<const Model> model;  ///< of the last text that loaded (null: none has)
   bool model_is_current = false;
+  /// The open buffers the model read in place of its included files (by canonical path): the
+  /// model's positions in them are converted with those texts; other files are read from disk.
+  std::shared_ptr<const std::map<std::string, std::string>> model_texts;
 };
 
 /// The answer to `method` (textDocument/hover, completion, definition, references,

@@ -75,6 +75,8 @@ struct Server::Impl {
     std::vector<Diagnostic> findings;
     std::shared_ptr<const Model> model;  ///< of the last text that loaded
     int model_version = -1;
+    /// The other open buffers that model read as its included files, by canonical path.
+    std::shared_ptr<const std::map<std::string, std::string>> model_texts;
     std::vector<std::string> dependencies;  ///< canonical paths of the files the model was read from
     std::map<std::string, fs::file_time_type> dependency_times;
     std::set<std::string> published_uris;
@@ -399,7 +401,14 @@ struct Server::Impl {
     if (it == documents.end() || it->second.version != s.version || it->second.text != s.text) return;
     Document& d = it->second;
     d.checked_version = s.version;
-    if (result.model) d.model = result.model, d.model_version = s.version;
+    if (result.model) {
+      d.model = result.model;
+      d.model_version = s.version;
+      auto texts = std::make_shared<std::map<std::string, std::string>>();
+      for (const std::string& path : dependencies)
+        if (auto open = s.other_texts.find(path); open != s.other_texts.end()) texts->insert(*open);
+      d.model_texts = std::move(texts);
+    }
     if (result.loaded) {
       d.dependencies = dependencies;
       d.dependency_times.clear();
@@ -498,7 +507,8 @@ struct Server::Impl {
       auto it = documents.find(params.at("textDocument").at("uri").get<std::string>());
       if (it == documents.end()) throw std::invalid_argument("the document is not open");
       const Document& d = it->second;
-      document = FeatureDocument{d.uri, d.path, d.text, d.model, d.model && d.model_version == d.version};
+      document =
+          FeatureDocument{d.uri, d.path, d.text, d.model, d.model && d.model_version == d.version, d.model_texts};
     }
     return answer_feature(method, params, document);
   }

@@ -129,6 +129,36 @@ def viewer_failures(viewer):
     return failures
 
 
+def definition_plan(root, expected):
+    """Tank.body's `parent: CHASSIS` names a link of its SubBody TankBody.body: where the editor
+    must land, found here in TankBody.body's text (1-based line, 1-based byte column)."""
+    tank = os.path.realpath(os.path.join(root, "Tank", "Tank.body"))
+    body = os.path.realpath(os.path.join(root, "Tank", "TankBody.body"))
+    if tank not in expected or not os.path.exists(body):
+        return None
+    def place(text, needle, shift):
+        at = text.find(needle)
+        if at < 0:
+            return None
+        start = text.rfind("\n", 0, at) + 1
+        return text.count("\n", 0, at) + 1, len(text[start:at].encode("utf-8")) + shift + 1
+    source = place(expected[tank]["text"], "parent: CHASSIS", len("parent: ") + 2)
+    with open(body, encoding="utf-8") as f:
+        target = place(f.read(), "name: CHASSIS", len("name: "))
+    if not source or not target:
+        return None
+    return {"path": tank, "line": source[0], "column": source[1], "counts": counts_by_file(expected[tank]["opened"]),
+            "expect": {"file": os.path.realpath(body), "line": target[0], "column": target[1]}}
+
+
+def definition_failures(got, plan):
+    if not got:
+        return ["definition: no result"]
+    want = plan["expect"]
+    landed = {"file": os.path.realpath(got.get("file") or ""), "line": got.get("line"), "column": got.get("column")}
+    return [] if landed == want else [f"definition: landed at {landed}, expected {want}"]
+
+
 def run_editor(editor, program, plan_path, result_path, work, here):
     env = dict(os.environ, BODYLS_PLAN=plan_path, BODYLS_RESULT=result_path, HOME=work, XDG_CONFIG_HOME=work,
                XDG_DATA_HOME=work, XDG_STATE_HOME=work, XDG_CACHE_HOME=work)
@@ -177,6 +207,13 @@ def main():
 
     plan = {"server": os.path.abspath(server), "editors_dir": os.path.abspath(editors_dir), "root_dir": root,
             "timeout_ms": int(10000 * SCALE), "edit_line": EDIT_LINE, "models": plan_models}
+    definition = None
+    if editor == "nvim":
+        definition = definition_plan(root, expected)
+        if definition:
+            plan["definition"] = definition
+        else:
+            failures.append("no Tank/Tank.body with `parent: CHASSIS` in the corpus for go to definition")
     viewer = "--viewer" in sys.argv[8:]
     if viewer:
         plan["viewer"] = models[0]
@@ -215,6 +252,8 @@ def main():
             failures += differences(f"{name} {step} ({editor})", shown, keys)
             failures += differences(f"{name} {step} (server's positions from UTF-16)", raw, keys)
 
+    if definition:
+        failures += definition_failures(result.get("definition"), definition)
     if viewer:
         failures += viewer_failures(result.get("viewer"))
 

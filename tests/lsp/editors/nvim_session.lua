@@ -6,8 +6,9 @@
 --   BODYLS_PLAN=plan.json BODYLS_RESULT=out.json nvim --headless -u NONE -i NONE -n -c "luafile nvim_session.lua"
 --
 -- The plan: {server, editors_dir, root_dir, timeout_ms, edit_line, models: [{path, opened, edited}],
--- viewer}, `opened` and `edited` the number of bodycheck's findings by file, before and after the
--- edit; `viewer` a model to open in bodyview with :BodyView at the end.
+-- definition, viewer}, `opened` and `edited` the number of bodycheck's findings by file, before and
+-- after the edit; `definition` {path, line, column, counts}: where to go to definition at the end
+-- (1-based line and byte column); `viewer` a model to open in bodyview with :BodyView at the end.
 local plan = vim.fn.json_decode(table.concat(vim.fn.readfile(os.getenv("BODYLS_PLAN")), "\n"))
 local result = { models = {}, notes = {} }
 
@@ -203,6 +204,27 @@ local function check_viewer(path)
   end
 end
 
+-- Go to definition (vim.lsp.buf.definition, what `gd` maps to in most set-ups) on a name the
+-- model's SubBody file defines: where the editor lands (file, 1-based line, 1-based byte column).
+local function check_definition(def)
+  local entry = {}
+  result.definition = entry
+  local uri = vim.uri_from_fname(def.path)
+  local before = count(uri) -- the model was opened before: wait for this opening's check
+  vim.cmd("edit " .. vim.fn.fnameescape(def.path))
+  local buf = vim.api.nvim_get_current_buf()
+  wait_for(buf, uri, before, def.counts, def.path .. ": open for definition")
+  vim.api.nvim_win_set_cursor(0, { def.line, def.column - 1 })
+  vim.lsp.buf.definition()
+  vim.wait(plan.timeout_ms, function()
+    return vim.api.nvim_get_current_buf() ~= buf
+  end, 5)
+  local cursor = vim.api.nvim_win_get_cursor(0)
+  entry.file = vim.api.nvim_buf_get_name(0)
+  entry.line = cursor[1]
+  entry.column = cursor[2] + 1
+end
+
 local ok, failure = pcall(function()
   vim.o.swapfile = false
   vim.o.hidden = true
@@ -218,6 +240,9 @@ local ok, failure = pcall(function()
   })
   for _, model in ipairs(plan.models) do
     run_model(model)
+  end
+  if plan.definition then
+    check_definition(plan.definition)
   end
   if plan.viewer then
     check_viewer(plan.viewer)

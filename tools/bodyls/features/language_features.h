@@ -30,6 +30,10 @@ struct TextRange {
 struct FileRange {
   std::string file;
   TextRange range;
+  /// The model knows where a name begins, not where it ends: the range is then the token that
+  /// begins at range.begin in the file's text (as a finding's), which the server finds in the
+  /// text the model was read from.
+  bool to_token_end = false;
 };
 
 /// One open document as the features see it.
@@ -67,8 +71,10 @@ struct CompletionItem {
 /// anchors after `*`, files after `uri:`.
 std::vector<CompletionItem> complete(const Document& document, TextPoint at);
 
-/// `parent: X` -> link X's name; `*a` -> `&a`; a `uri` value -> the file it names (a SubBody's
-/// model too). Empty when nothing is defined at `at`.
+/// `parent: X` (and root_link, link1_name, link2_name) -> link X's name: in this text, or
+/// where the model read it (a SubBody file, nested ones too, with the SubBody's prefix and
+/// suffix in X; a ContinuousTrack's template); `*a` -> `&a`; a `uri` value -> the file it names
+/// (a SubBody's model too). Empty when nothing is defined at `at`.
 std::vector<FileRange> definition(const Document& document, TextPoint at);
 
 /// On a link's name or a `parent:` value naming it: every `parent:` value naming the link,

@@ -1,6 +1,7 @@
 // definition, references, prepare_rename and rename_link (language_features.h): a link's name
-// and every place that names it (parent, root_link, an extra joint's link1_name/link2_name),
-// anchors and aliases, and the files a uri names.
+// (in this text, or where the model read it: a SubBody file) and every place that names it
+// (parent, root_link, an extra joint's link1_name/link2_name), anchors and aliases, and the
+// files a uri names.
 #include "cursor.h"
 #include "language_features.h"
 #include "link_items.h"
@@ -62,6 +63,34 @@ std::vector<int> declarations(const Outline& o, const std::string& name) {
   std::vector<int> found;
   for (const LinkItem& link : link_items(o))
     if (link.name >= 0 && link.name_text == name) found.push_back(link.name);
+  return found;
+}
+
+bool same_file(const std::string& a, const std::string& b) {
+  if (a == b) return true;
+  std::error_code ec, ec2;
+  const std::filesystem::path ca = std::filesystem::weakly_canonical(a, ec);
+  const std::filesystem::path cb = std::filesystem::weakly_canonical(b, ec2);
+  return !ec && !ec2 && ca == cb;
+}
+
+/// Where the model read the name of the links called `name` that the text does not declare:
+/// a SubBody file's `name` (the model's link names carry the SubBody's prefix and suffix, its
+/// locations the included file), or a name this text writes in another form (a ContinuousTrack's
+/// template, an alias), which only a model of the text as it is now can place.
+std::vector<FileRange> model_declarations(const Document& d, const std::string& name, bool declared_here) {
+  std::vector<FileRange> found;
+  if (!d.model) return found;
+  for (const Link& link : d.model->links) {
+    if (link.name != name) continue;
+    const SourceLocation at = link.sources.name();
+    if (!at.known() || at.file.empty()) continue;
+    const std::string& file = at.file.str();
+    if (same_file(file, d.path) && (declared_here || !d.model_is_current)) continue;
+    const TextPoint begin{at.line, at.column};
+    FileRange range{file, {begin, begin}, true};
+    found.push_back(std::move(range));
+  }
   return found;
 }
 
@@ -145,6 +174,7 @@ std::vector<FileRange> definition(const Document& document, TextPoint point) {
   if (!name.empty()) {
     std::vector<FileRange> out;
     for (int d : declarations(c.outline, name)) out.push_back(c.here(d));
+    for (FileRange& r : model_declarations(document, name, !out.empty())) out.push_back(std::move(r));
     return out;
   }
   const std::string& key = at.holder->key;
