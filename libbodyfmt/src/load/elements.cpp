@@ -148,13 +148,12 @@ void ElementReader::read_node(const yaml::NodeRef& node, const std::string& type
   if (is_core_device_type(type) || is_plugin_node_type(type)) return read_device(node, type, frame);
   if (type == "Node") {
     // Choreonoid's scene reader makes an empty node of it (StdSceneReader's readNodeNode):
-    // nothing under it is read, mass and devices included, and it says nothing.
-    for (const yaml::MapEntry& entry : node->entries()) {
-      if (entry.key == "type" || entry.key == "name") continue;
-      ctx_.report("load-ignored-key", entry.key_location,
-                  "a Node is an empty scene node to Choreonoid: its " + std::string(entry.key) + " is ignored",
-                  "use a Group, or a Transform to place its elements");
-    }
+    // nothing under it is read, mass and devices included, and it says nothing. A Node without
+    // elements is a named marker (Choreonoid's WRS2018 HoseConnector has one): nothing is lost.
+    if (const yaml::MapEntry* elements = node->find("elements"); elements && !elements->value->is_null())
+      ctx_.report("load-ignored-key", elements->key_location,
+                  "a Node is an empty scene node to Choreonoid: its elements (shapes, mass, devices) are ignored",
+                  "use a Group, or a Transform to place them");
     return;
   }
   if (is_scene_only_type(type)) {
