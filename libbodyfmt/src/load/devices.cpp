@@ -162,7 +162,7 @@ bool is_plugin_node_type(std::string_view type) {
 }
 
 bool read_device_params(MappingReader& r, std::string_view t, Device& d) {
-  if (t == "Camera" || t == "CameraDevice" || t == "VisionSensor" || t == "RangeCamera") return read_camera(r, d);
+  if (t == "Camera" || t == "CameraDevice") return read_camera(r, d);
   if (t == "RangeSensor") {
     read_range_sensor(r, d);
   } else if (t == "SpotLight" || t == "PointLight") {

@@ -261,3 +261,22 @@ links:
   r.take("load-legacy-key");  // frameRate
   r.expect_clean();
 }
+
+TEST_CASE("load: RangeCamera and VisionSensor are no node types Choreonoid reads") {
+  auto r = load_v2(R"(
+links:
+  - name: A
+    elements:
+      - {type: RangeCamera, name: depth, format: DEPTH}
+      - {type: VisionSensor, name: vision, format: COLOR, is_optional: true}
+      - {type: CameraDevice, name: cam, format: COLOR}
+)");
+  // Only Camera and CameraDevice register a reader (Camera.cpp); RangeCamera registers a writer
+  // under the name Camera, VisionSensor nothing: an unknown node type, skipped if optional.
+  CHECK(pos(r.take("load-unknown-node-type")) == Pos{6, 16});
+  CHECK(pos(r.take("load-optional-node-skipped")) == Pos{7, 16});
+  const auto& devices = r.m().devices;
+  REQUIRE(devices.size() == 1);
+  CHECK(devices[0].name == "cam");
+  r.expect_clean();
+}

@@ -72,8 +72,7 @@ std::string element_kind(std::string_view type) {
   const auto& devices = device_type_names();
   if (std::find(devices.begin(), devices.end(), type) == devices.end()) return {};
   // Camera's other spellings read the same keys (body-format-spec §10.2).
-  const std::string_view camera[] = {"CameraDevice", "VisionSensor", "RangeCamera"};
-  if (std::find(std::begin(camera), std::end(camera), type) != std::end(camera)) return "device:Camera";
+  if (type == "CameraDevice") return "device:Camera";
   const std::string specific = "device:" + std::string(type);
   if (table_node(specific)) return specific;
   return "device";
