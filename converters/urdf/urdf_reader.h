@@ -22,7 +22,21 @@
 
 namespace bodyfmt::urdf_import {
 
+/// Whose reading of a URDF the model takes where two consumers differ (IMPORT.md, "Two readings").
+enum class UrdfSemantics {
+  /// The URDF spec's, as urdfdom and ROS tools read it: urdf2body writes a new model with this
+  /// meaning (a link without <inertial> is a massless frame, a root `world` link fixes the base)
+  /// and notes each place where Choreonoid's URDF loader reads the same text differently
+  /// (`import-choreonoid-differs`).
+  kUrdf,
+  /// Choreonoid's URDF loader's (src/URDFBodyLoader): a wrapper body file is a Body file, so it
+  /// loads link for link as Choreonoid loads it, each difference a `wrapper-urdf-semantics`
+  /// warning at its URDF line.
+  kChoreonoid,
+};
+
 struct UrdfImportOptions {
+  UrdfSemantics semantics = UrdfSemantics::kUrdf;
   /// Roots for `package://NAME/...` URIs, searched before ROS_PACKAGE_PATH.
   std::vector<std::string> package_paths;
   bool use_ros_package_path = true;

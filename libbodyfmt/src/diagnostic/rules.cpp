@@ -307,8 +307,27 @@ std::vector<RuleInfo> make_table() {
        "its content is not imported", ""},
       {"import-convention", W,
        "a URDF construct outside the URDF spec that ROS tools or simulators accept (missing products of "
-       "inertia, a second shape in a <geometry>, lower > upper, a zero radius, <capsule>); read as they do",
+       "inertia, a second shape in a <geometry>, lower > upper, a zero radius, <capsule>, a vector with commas); "
+       "read as they do",
        "another consumer of the same file may read it differently or refuse it", ""},
+      {"import-choreonoid-differs", N,
+       "urdf2body wrote the URDF meaning of a construct that Choreonoid's URDF loader reads differently: a link "
+       "without <inertial> is massless here and 1 kg with identity inertia there; a root `world` link is the fixed "
+       "frame here and a free-floating link there",
+       "a wrapper body file around the same URDF loads as Choreonoid reads it, so the two models differ there", ""},
+      {"wrapper-urdf-semantics", W,
+       "a wrapper body file's URDF says something Choreonoid's URDF loader reads differently from the URDF spec and "
+       "ROS tools: a link without <inertial> (1 kg, identity inertia), an <inertial> without <inertia> (identity), a "
+       "root `world` link (kept as the free-floating root: the robot is not fixed), a floating, planar or unknown "
+       "joint type (fixed), a negative box edge or a sphere or cylinder size that is not positive (no shape); the "
+       "model is loaded as Choreonoid loads it",
+       "a wrapper is a Body file: Choreonoid simulates these values, which the URDF's author most likely did not mean",
+       ""},
+      {"wrapper-urdf-refused", E,
+       "a wrapper body file's URDF holds what Choreonoid's URDF loader refuses: a mass of 0, a <limit> without "
+       "velocity or effort or with a negative one, an <inertia> without a product of inertia, an <axis> without xyz, "
+       "a second shape in a <geometry>, <capsule>",
+       "Choreonoid loads no body from the wrapper; bodyfmt reads on to report the rest", ""},
       // Dynamics checker (dynamics/, bodysim)
       {"dynamics-contact-geometry", W,
        "bodysim --contact simbody could not turn a collision shape into Simbody contact geometry (a Brick needs a "
