@@ -412,7 +412,8 @@ void Reader::read_inertial(const XMLElement* e, Link& link) {
   }
   // The tensor is given in the inertial frame; the link keeps it in link axes (rpy rotates it).
   c.inertia = X_LC.linear() * I * X_LC.linear().transpose();
-  if (c.mass == 0 && (!I.isZero(0) || !c.center_of_mass.isZero(0)))
+  // (Choreonoid's URDF loader refuses a mass of 0: reported above, in a wrapper.)
+  if (c.mass == 0 && !choreonoid() && (!I.isZero(0) || !c.center_of_mass.isZero(0)))
     loss(c.source, LossKind::kDynamics,
          fmt::format("the inertia and centre of mass of the massless link '{}' (Choreonoid ignores both when the "
                      "mass is 0, body-format-spec §6.4)",

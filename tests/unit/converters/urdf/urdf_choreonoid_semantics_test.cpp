@@ -277,5 +277,65 @@ TEST_CASE("urdf semantics (e): what toVector3 refuses stays an error") {
   }
 }
 
+// One defect per mutant of a complete URDF, which loads silently: each is reported once, at its
+// place, as what Choreonoid's URDF loader refuses or reads its own way.
+const char* const kComplete = R"(
+<robot name="r">
+  <link name="a">
+    <inertial><mass value="1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>
+    <visual><geometry><box size="1 1 1"/></geometry></visual>
+  </link>
+  <link name="b"><inertial><mass value="1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>
+  <joint name="ab" type="revolute">
+    <parent link="a"/><child link="b"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="2" velocity="3"/>
+  </joint>
+</robot>
+)";
+
+TEST_CASE("urdf semantics: what Choreonoid's URDF loader refuses or changes, one mutant each") {
+  load_wrapped(kComplete).expect_clean();
+  struct Mutant {
+    const char* find;
+    const char* replace;
+    const char* rule;
+    Pos at;
+  };
+  const Mutant mutants[] = {
+      {"<mass value=\"1\"/><inertia", "<mass value=\"0\"/><inertia", "wrapper-urdf-refused", {3, 21}},
+      {" effort=\"2\"", "", "wrapper-urdf-refused", {10, 5}},
+      {" velocity=\"3\"", "", "wrapper-urdf-refused", {10, 5}},
+      {"effort=\"2\"", "effort=\"-2\"", "wrapper-urdf-refused", {10, 33}},
+      {" ixy=\"0\"", "", "wrapper-urdf-refused", {3, 32}},
+      {"<axis xyz=\"0 0 1\"/>", "<axis/>", "wrapper-urdf-refused", {9, 5}},
+      {"<box size=\"1 1 1\"/>", "<box size=\"1 1 1\"/><sphere radius=\"1\"/>", "wrapper-urdf-refused", {4, 42}},
+      {"<box size=\"1 1 1\"/>", "<capsule radius=\"1\" length=\"1\"/>", "wrapper-urdf-refused", {4, 23}},
+      {"type=\"revolute\"", "type=\"floating\"", "wrapper-urdf-semantics", {7, 20}},
+      {"type=\"revolute\"", "type=\"planar\"", "wrapper-urdf-semantics", {7, 20}},
+      {"type=\"revolute\"", "type=\"screw\"", "wrapper-urdf-semantics", {7, 20}},
+      {"<box size=\"1 1 1\"/>", "<cylinder radius=\"1\" length=\"0\"/>", "wrapper-urdf-semantics", {4, 44}},
+      {"<box size=\"1 1 1\"/>", "<sphere radius=\"-0.5\"/>", "wrapper-urdf-semantics", {4, 31}},
+  };
+  for (const Mutant& mutant : mutants) {
+    CAPTURE(mutant.replace);
+    std::string urdf = kComplete;
+    const std::size_t at = urdf.find(mutant.find);
+    REQUIRE(at != std::string::npos);
+    urdf.replace(at, std::strlen(mutant.find), mutant.replace);
+    LoadResult r = load_wrapped(urdf);
+    REQUIRE(r.model);
+    CHECK(pos(r.take(mutant.rule)) == mutant.at);
+    r.expect_clean();
+    if (std::strstr(mutant.replace, "type=") && r.model) {
+      // Choreonoid sets no joint type for these: the link keeps cnoid::Link's, fixed, and no joint id.
+      CHECK(r.link("b").joint_type == JointType::kFixed);
+      CHECK(r.link("b").joint_id == -1);
+    }
+    if (std::strstr(mutant.replace, "<cylinder") || std::strstr(mutant.replace, "<sphere radius=\"-"))
+      CHECK(r.link("a").shapes.empty());
+  }
+}
+
 }  // namespace
 }  // namespace bodyfmt::test
