@@ -75,6 +75,7 @@ class Reader {
 
  private:
   Elements collect(const XMLElement* robot);
+  void collect_visual_materials(const Elements& elements);
   std::optional<Tree> connect(const Elements& elements);
   void choose_root(const Elements& elements, Tree& tree);
   std::vector<bool> build_links(const Elements& elements, const Tree& tree, Model& model);
@@ -943,7 +944,28 @@ Elements Reader::collect(const XMLElement* robot) {
              fmt::format("<{}> in a <robot> is not URDF; it is ignored", e->Name()));
     }
   }
+  if (choreonoid()) collect_visual_materials(elements);
   return elements;
+}
+
+// Choreonoid's URDF loader knows every material before it reads a link: the top-level ones, then
+// those its visuals define, in document order, the first of a name winning. A visual may so name
+// a colour that a later link defines. (Each is reported where it is read, not here.)
+void Reader::collect_visual_materials(const Elements& elements) {
+  for (const XMLElement* link : elements.links)
+    for (const XMLElement* v = link->FirstChildElement("visual"); v; v = v->NextSiblingElement("visual")) {
+      const XMLElement* m = v->FirstChildElement("material");
+      const XMLElement* color = m ? m->FirstChildElement("color") : nullptr;
+      const char* name = m ? m->Attribute("name") : nullptr;
+      const char* rgba = color ? color->Attribute("rgba") : nullptr;
+      if (!name || !*name || !rgba) continue;
+      if (auto v4 = comma_separated(rgba, 4)) {
+        Material material;
+        material.diffuse_color = Eigen::Vector3d((*v4)[0], (*v4)[1], (*v4)[2]);
+        material.transparency = 1.0 - (*v4)[3];
+        materials_.emplace(name, material);
+      }
+    }
 }
 
 // Each link has at most one parent joint; a link without one is a root.

@@ -337,5 +337,33 @@ TEST_CASE("urdf semantics: what Choreonoid's URDF loader refuses or changes, one
   }
 }
 
+// Choreonoid's URDF loader collects every material (top level, then each visual's, in document
+// order) before it reads the links; urdfdom and urdf2body know a material once it is defined.
+const char* const kLateMaterial = R"(
+<robot name="r">
+  <link name="a">
+    <inertial><mass value="1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>
+    <visual><geometry><sphere radius="1"/></geometry><material name="blue"/></visual>
+  </link>
+  <link name="b">
+    <inertial><mass value="1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>
+    <visual><geometry><sphere radius="1"/></geometry><material name="blue"><color rgba="0 0 1 0.75"/></material></visual>
+  </link>
+  <joint name="ab" type="fixed"><parent link="a"/><child link="b"/></joint>
+</robot>
+)";
+
+TEST_CASE("urdf semantics: a visual may name a material a later link defines, in a wrapper") {
+  LoadResult r = load_wrapped(kLateMaterial);
+  const Shape& shape = r.link("a").shapes.at(0);
+  REQUIRE(shape.appearance.material);
+  CHECK(shape.appearance.material->diffuse_color == Eigen::Vector3d(0, 0, 1));
+  CHECK(shape.appearance.material->transparency == 0.25);
+  r.expect_clean();
+
+  Imported out = urdf2body(kLateMaterial, "material");
+  CHECK(has_line(out.run.output, "robot.urdf:4:64: warning", "import-material"));
+}
+
 }  // namespace
 }  // namespace bodyfmt::test
