@@ -123,9 +123,15 @@ class Reader {
   bool choreonoid() const { return options_.semantics == UrdfSemantics::kChoreonoid; }
   /// Where Choreonoid's URDF loader reads the text differently from the URDF spec: a warning in
   /// a wrapper (the model follows Choreonoid), a note in urdf2body (the model follows the URDF).
-  void differs(const SourceLocation& at, std::string message, std::string hint = {}) {
-    report(choreonoid() ? "wrapper-urdf-semantics" : "import-choreonoid-differs", at, std::move(message),
-           std::move(hint));
+  /// A wrapper's warning has a rule of its own for each kind, so that one can be disabled and
+  /// none hides another when a report folds the repeats of a rule.
+  enum class Difference { kMass, kWorld, kOther };
+  void differs(Difference kind, const SourceLocation& at, std::string message, std::string hint = {}) {
+    const char* rule = !choreonoid()                ? "import-choreonoid-differs"
+                       : kind == Difference::kMass  ? "wrapper-urdf-mass"
+                       : kind == Difference::kWorld ? "wrapper-urdf-world"
+                                                    : "wrapper-urdf-semantics";
+    report(rule, at, std::move(message), std::move(hint));
   }
   /// What Choreonoid's URDF loader refuses (it loads no body): an error in a wrapper only.
   void refused(const SourceLocation& at, const std::string& what) {
@@ -299,7 +305,7 @@ bool Reader::unusable_size(const XMLElement* shape, const char* attribute, doubl
   // whose radius or length is not positive; the URDF loader keeps the empty shape node and loads
   // on (a box with a zero edge is a flat mesh there, as here).
   if (choreonoid() && (value < 0 || (value == 0 && !zero_allowed))) {
-    differs(at_.at(shape, attribute),
+    differs(Difference::kOther, at_.at(shape, attribute),
             fmt::format("<{}> has {} {}: Choreonoid's URDF loader makes no shape of it (its mesh generator refuses a "
                         "{} size) and loads on",
                         shape->Name(), attribute, converters::format_number(value), value < 0 ? "negative" : "zero"),
@@ -380,7 +386,7 @@ void Reader::read_inertial(const XMLElement* e, Link& link) {
   Eigen::Matrix3d I = Eigen::Matrix3d::Zero();
   if (!inertia && choreonoid()) {
     I = Eigen::Matrix3d::Identity();
-    differs(at_.at(e),
+    differs(Difference::kMass, at_.at(e),
             fmt::format("this <inertial> has no <inertia>: Choreonoid's URDF loader gives link '{}' identity inertia "
                         "(1 kg·m² about each axis; urdfdom refuses it)",
                         link.name),
@@ -617,7 +623,7 @@ void Reader::read_link(const XMLElement* e, Link& link) {
       // Choreonoid's URDF loader leaves such a link at its Link defaults: 1 kg at the origin with
       // identity inertia. A link without mass contributions is that (body-format-spec §6.4 rule 4),
       // as a .body link without mass data is; the body writer then writes no mass keys either.
-      differs(at_.at(e),
+      differs(Difference::kMass, at_.at(e),
               fmt::format("link '{}' has no <inertial>: Choreonoid's URDF loader gives it 1 kg at its origin with "
                           "identity inertia (1 kg·m² about each axis), where URDF means a massless frame; {}",
                           link.name, total),
@@ -632,7 +638,7 @@ void Reader::read_link(const XMLElement* e, Link& link) {
     c.mass = 0;
     c.source = at_.at(e);
     link.mass_contributions.push_back(c);
-    differs(at_.at(e),
+    differs(Difference::kMass, at_.at(e),
             fmt::format("link '{}' has no <inertial>: written with mass 0 (URDF's massless frame); Choreonoid's URDF "
                         "loader, and so a wrapper body file around this URDF, gives it 1 kg with identity inertia ({} "
                         "there)",
@@ -688,7 +694,7 @@ void Reader::read_joint(const JointInfo& joint, Link& link, bool collapsed_world
     // Choreonoid's URDF loader sets a joint type for revolute, continuous, prismatic and fixed
     // only: any other joint keeps its link's default, a fixed joint.
     link.joint_type = JointType::kFixed;
-    differs(at_.at(e, "type"),
+    differs(Difference::kOther, at_.at(e, "type"),
             fmt::format("the {} joint '{}' is a fixed joint in Choreonoid's URDF loader (it reads no other type than "
                         "revolute, continuous, prismatic and fixed): '{}' does not move against '{}'",
                         type, joint.name, joint.child, joint.parent),
@@ -1044,21 +1050,22 @@ void Reader::choose_root(const Elements& elements, Tree& tree) {
   // a parent joint is the body's root, on a free joint.
   const bool has_inertial = r->FirstChildElement("inertial") != nullptr;
   if (choreonoid()) {
-    differs(at_.at(r, "name"),
+    const bool fixed = std::strcmp(type, "fixed") == 0;
+    differs(Difference::kWorld, at_.at(r, "name"),
             fmt::format("the root link 'world' stays a link in Choreonoid's URDF loader: the free-floating root of the "
-                        "body ({}), holding '{}' on the fixed joint '{}'; the robot is not fixed to the ground, as ROS "
-                        "tools read 'world'",
+                        "body ({}), holding '{}' on the fixed joint '{}'; {}",
                         has_inertial ? "with its <inertial>" : "1 kg with identity inertia: it has no <inertial>",
-                        j.child, j.name),
-            fmt::format("to fix '{}' to the ground in Choreonoid, load urdf2body's .body of this URDF (its root is "
-                        "'{}', joint_type: fixed)",
-                        j.child, j.child));
+                        j.child, j.name,
+                        fixed ? "the robot is not fixed to the ground, where ROS tools take 'world' as the fixed frame"
+                              : "the robot carries the 'world' link"),
+            fmt::format("load urdf2body's .body of this URDF instead: its root is '{}' on a {} joint, without 'world'",
+                        j.child, fixed ? "fixed" : "free"));
     return;
   }
   tree.root_joint = children[0];
   tree.root = elements.link_index.at(j.child);
   report_world_content(r);
-  differs(at_.at(r, "name"),
+  differs(Difference::kWorld, at_.at(r, "name"),
           fmt::format("the root link 'world' is the fixed frame: '{}' is written as the root on a {} joint (as ROS "
                       "tools read 'world'); Choreonoid's URDF loader, and so a wrapper body file around this URDF, "
                       "keeps 'world' as the free-floating root link{}, so that the robot is not fixed there",

@@ -11,6 +11,12 @@
 /// `import-mesh` (a mesh that cannot be found: the URI and every place searched). Constructs a
 /// .body cannot hold are reported as `export-loss` with their kind (converters/core: loss.h),
 /// so that `--strict` and `--allow-loss` treat them as the exporters' losses.
+///
+/// Where Choreonoid's URDF loader reads a URDF otherwise than the URDF spec (IMPORT.md, "Two
+/// readings"), UrdfImportOptions::semantics chooses: urdf2body keeps the URDF meaning with an
+/// `import-choreonoid-differs` note at each place; a wrapper body file takes Choreonoid's with a
+/// warning (`wrapper-urdf-mass`, `wrapper-urdf-world`, `wrapper-urdf-semantics`), and what that
+/// loader refuses is `wrapper-urdf-refused`.
 #include <bodyfmt/diagnostic.h>
 #include <bodyfmt/model.h>
 
@@ -30,8 +36,7 @@ enum class UrdfSemantics {
   /// (`import-choreonoid-differs`).
   kUrdf,
   /// Choreonoid's URDF loader's (src/URDFBodyLoader): a wrapper body file is a Body file, so it
-  /// loads link for link as Choreonoid loads it, each difference a `wrapper-urdf-semantics`
-  /// warning at its URDF line.
+  /// loads link for link as Choreonoid loads it, each difference a warning at its URDF line.
   kChoreonoid,
 };
 

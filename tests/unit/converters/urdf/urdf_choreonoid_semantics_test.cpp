@@ -110,8 +110,8 @@ TEST_CASE("urdf semantics (a): a link without <inertial> is 1 kg with identity i
   CHECK(probe.center_of_mass.isApprox(Eigen::Vector3d(0.1, 0, 0)));
   CHECK(probe.inertia.isApprox(Eigen::Matrix3d::Identity()));
   CHECK(compute_mass_properties(r.link("base")).mass == 2);
-  CHECK(pos(r.take("wrapper-urdf-semantics")) == Pos{5, 3});  // <link name="tool_frame"/>
-  CHECK(pos(r.take("wrapper-urdf-semantics")) == Pos{7, 5});  // the <inertial> without <inertia>
+  CHECK(pos(r.take("wrapper-urdf-mass")) == Pos{5, 3});  // <link name="tool_frame"/>
+  CHECK(pos(r.take("wrapper-urdf-mass")) == Pos{7, 5});  // the <inertial> without <inertia>
   r.expect_clean();
 }
 
@@ -152,8 +152,8 @@ TEST_CASE("urdf semantics (b): a root 'world' link stays the free root link in a
   CHECK(m.links[1].joint_type == JointType::kFixed);
   CHECK(m.links[1].joint_name == "anchor");
   CHECK(m.links[1].X_PL.translation() == Eigen::Vector3d(0, 0, 1));
-  CHECK(pos(r.take("wrapper-urdf-semantics")) == Pos{2, 9});  // world's name: the robot is not fixed
-  CHECK(pos(r.take("wrapper-urdf-semantics")) == Pos{2, 3});  // world has no <inertial>: 1 kg
+  CHECK(pos(r.take("wrapper-urdf-world")) == Pos{2, 9});  // world's name: the robot is not fixed
+  CHECK(pos(r.take("wrapper-urdf-mass")) == Pos{2, 3});   // world has no <inertial>: 1 kg
   r.expect_clean();
 }
 
@@ -278,7 +278,8 @@ TEST_CASE("urdf semantics (e): what toVector3 refuses stays an error") {
 }
 
 // One defect per mutant of a complete URDF, which loads silently: each is reported once, at its
-// place, as what Choreonoid's URDF loader refuses or reads its own way.
+// place, as what Choreonoid's URDF loader refuses or reads its own way (a root `world` link is
+// case (b) above).
 const char* const kComplete = R"(
 <robot name="r">
   <link name="a">
@@ -311,6 +312,16 @@ TEST_CASE("urdf semantics: what Choreonoid's URDF loader refuses or changes, one
       {"<axis xyz=\"0 0 1\"/>", "<axis/>", "wrapper-urdf-refused", {9, 5}},
       {"<box size=\"1 1 1\"/>", "<box size=\"1 1 1\"/><sphere radius=\"1\"/>", "wrapper-urdf-refused", {4, 42}},
       {"<box size=\"1 1 1\"/>", "<capsule radius=\"1\" length=\"1\"/>", "wrapper-urdf-refused", {4, 23}},
+      {"<link name=\"b\"><inertial><mass value=\"1\"/><inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" "
+       "izz=\"1\"/></inertial></link>",
+       "<link name=\"b\"/>",
+       "wrapper-urdf-mass",
+       {6, 3}},
+      {"<mass value=\"1\"/><inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/></inertial>\n    "
+       "<visual>",
+       "<mass value=\"1\"/></inertial>\n    <visual>",
+       "wrapper-urdf-mass",
+       {3, 5}},
       {"type=\"revolute\"", "type=\"floating\"", "wrapper-urdf-semantics", {7, 20}},
       {"type=\"revolute\"", "type=\"planar\"", "wrapper-urdf-semantics", {7, 20}},
       {"type=\"revolute\"", "type=\"screw\"", "wrapper-urdf-semantics", {7, 20}},
