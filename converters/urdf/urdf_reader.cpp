@@ -75,6 +75,7 @@ class Reader {
 
  private:
   Elements collect(const XMLElement* robot);
+  void collect_visual_materials(const Elements& elements);
   std::optional<Tree> connect(const Elements& elements);
   void choose_root(const Elements& elements, Tree& tree);
   std::vector<bool> build_links(const Elements& elements, const Tree& tree, Model& model);
@@ -102,6 +103,7 @@ class Reader {
 
   void read_material(const XMLElement* e, bool top_level);
   void read_link(const XMLElement* e, Link& link);
+  void read_link_shapes(const XMLElement* e, Link& link);
   void read_inertial(const XMLElement* e, Link& link);
   void read_shape(const XMLElement* e, Link& link, bool visual);
   std::optional<Geometry> read_geometry(const XMLElement* geometry, Eigen::Isometry3d& X_LS, Eigen::Vector3d& scale);
@@ -115,6 +117,27 @@ class Reader {
   void report_reversed_range(const XMLElement* limit, const std::string& joint, double lower, double upper);
   bool unusable_size(const XMLElement* shape, const char* attribute, double value, bool zero_allowed);
   void report_world_content(const XMLElement* world);
+  void read_fixed_axis(const XMLElement* joint, Link& link);
+
+  /// A wrapper body file: the model is read as Choreonoid's URDF loader reads it.
+  bool choreonoid() const { return options_.semantics == UrdfSemantics::kChoreonoid; }
+  /// Where Choreonoid's URDF loader reads the text differently from the URDF spec: a warning in
+  /// a wrapper (the model follows Choreonoid), a note in urdf2body (the model follows the URDF).
+  /// A wrapper's warning has a rule of its own for each kind, so that one can be disabled and
+  /// none hides another when a report folds the repeats of a rule.
+  enum class Difference { kMass, kWorld, kOther };
+  void differs(Difference kind, const SourceLocation& at, std::string message, std::string hint = {}) {
+    const char* rule = !choreonoid()                ? "import-choreonoid-differs"
+                       : kind == Difference::kMass  ? "wrapper-urdf-mass"
+                       : kind == Difference::kWorld ? "wrapper-urdf-world"
+                                                    : "wrapper-urdf-semantics";
+    report(rule, at, std::move(message), std::move(hint));
+  }
+  /// What Choreonoid's URDF loader refuses (it loads no body): an error in a wrapper only.
+  void refused(const SourceLocation& at, const std::string& what) {
+    report("wrapper-urdf-refused", at,
+           what + ": Choreonoid's URDF loader refuses the file, so this wrapper body file does not load in Choreonoid");
+  }
   std::string mesh_uri(const XMLElement* mesh, const std::string& filename, std::string& resolved);
 
   std::string_view text_;
@@ -128,11 +151,48 @@ class Reader {
   std::map<std::string, Material> materials_;
   std::unordered_map<std::string, std::pair<std::string, std::string>> mesh_cache_;  // uri -> relative, resolved
   std::unordered_map<std::string, bool> mesh_reported_;
+  std::size_t links_without_inertial_ = 0;
 };
+
+// Choreonoid's URDF loader reads a vector number by number, each followed by spaces and at most
+// one comma (cnoid::toVector3 in src/Util/EigenUtil.cpp; toVector4 for colours), so that
+// "0.07, 0, -0.69" is three numbers there; urdfdom splits at spaces and refuses "0.07,". Returns
+// nullopt where that reading fails too (a doubled comma, a missing number, one too many).
+std::optional<std::vector<double>> comma_separated(const char* text, std::size_t count) {
+  const char* p = text;
+  const char* end = text + std::strlen(text);
+  auto space = [](char c) { return c != 0 && std::strchr(" \t\r\n\v\f", c) != nullptr; };
+  std::vector<double> values;
+  for (std::size_t i = 0; i < count; ++i) {
+    while (p < end && space(*p)) ++p;
+    const bool plus = p < end && *p == '+';
+    if (plus) ++p;
+    double v = 0;
+    auto [next, ec] = std::from_chars(p, end, v);
+    if (ec != std::errc() || (plus && (*p == '-' || *p == '+')) || !std::isfinite(v)) return std::nullopt;
+    values.push_back(v);
+    p = next;
+    while (p < end && space(*p)) ++p;
+    if (p < end && *p == ',') ++p;
+  }
+  while (p < end && space(*p)) ++p;
+  if (p != end) return std::nullopt;
+  return values;
+}
 
 std::optional<std::vector<double>> Reader::numbers(const XMLElement* e, const char* attribute, std::size_t count) {
   const char* text = e->Attribute(attribute);
   if (!text) return std::nullopt;
+  if (count > 1 && std::strchr(text, ','))
+    if (auto v = comma_separated(text, count)) {
+      std::string read;
+      for (double x : *v) read += (read.empty() ? "" : " ") + converters::format_number(x);
+      convention(at_.at(e, attribute),
+                 fmt::format("{}=\"{}\" separates its numbers with commas: read as Choreonoid's URDF loader reads it, "
+                             "\"{}\" (urdfdom and the ROS tools refuse it)",
+                             attribute, text, read));
+      return v;
+    }
   std::vector<double> values;
   const char* p = text;
   const char* end = text + std::strlen(text);
@@ -217,6 +277,10 @@ void Reader::report_unknown_children(const XMLElement* e, std::initializer_list<
 // and files written for them leave the zeros out.
 std::optional<double> Reader::product_of_inertia(const XMLElement* inertia, const char* attribute) {
   if (inertia->Attribute(attribute)) return number(inertia, attribute);
+  if (choreonoid()) {
+    refused(at_.at(inertia), fmt::format("<inertia> has no {} attribute", attribute));
+    return 0.0;
+  }
   convention(at_.at(inertia), fmt::format("<inertia> has no {} attribute; read as 0, as Drake and MuJoCo do (urdfdom "
                                           "refuses it)",
                                           attribute));
@@ -237,6 +301,17 @@ void Reader::report_reversed_range(const XMLElement* limit, const std::string& j
 // Gazebo) leaves the shape out as a reported loss, since Choreonoid refuses a size that is not
 // positive; a negative size is no shape at all and is an error at its attribute.
 bool Reader::unusable_size(const XMLElement* shape, const char* attribute, double value, bool zero_allowed) {
+  // Choreonoid's mesh generator makes no mesh of a negative box edge, nor of a sphere or cylinder
+  // whose radius or length is not positive; the URDF loader keeps the empty shape node and loads
+  // on (a box with a zero edge is a flat mesh there, as here).
+  if (choreonoid() && (value < 0 || (value == 0 && !zero_allowed))) {
+    differs(Difference::kOther, at_.at(shape, attribute),
+            fmt::format("<{}> has {} {}: Choreonoid's URDF loader makes no shape of it (its mesh generator refuses a "
+                        "{} size) and loads on",
+                        shape->Name(), attribute, converters::format_number(value), value < 0 ? "negative" : "zero"),
+            "remove the shape, or give it a positive size");
+    return true;
+  }
   if (value < 0) {
     report("import-value", at_.at(shape, attribute),
            fmt::format("<{}> has a negative {} ({})", shape->Name(), attribute, converters::format_number(value)));
@@ -300,12 +375,23 @@ void Reader::read_inertial(const XMLElement* e, Link& link) {
     c.source = at_.at(mass, "value");
     if (*m < 0)
       report("import-mass", at_.at(mass, "value"), fmt::format("link '{}' has a negative mass {}", link.name, *m));
+    else if (*m == 0 && choreonoid())
+      refused(at_.at(mass, "value"), fmt::format("link '{}' has mass 0 (its <inertial> needs a positive mass; a "
+                                                 "link without <inertial> is read as 1 kg)",
+                                                 link.name));
   } else if (!mass->Attribute("value")) {
     report("import-structure", at_.at(mass), "<mass> has no value attribute");
   }
   const XMLElement* inertia = e->FirstChildElement("inertia");
   Eigen::Matrix3d I = Eigen::Matrix3d::Zero();
-  if (!inertia) {
+  if (!inertia && choreonoid()) {
+    I = Eigen::Matrix3d::Identity();
+    differs(Difference::kMass, at_.at(e),
+            fmt::format("this <inertial> has no <inertia>: Choreonoid's URDF loader gives link '{}' identity inertia "
+                        "(1 kg·m² about each axis; urdfdom refuses it)",
+                        link.name),
+            "add <inertia ixx ixy ixz iyy iyz izz>");
+  } else if (!inertia) {
     report("import-structure", at_.at(e), "this <inertial> has no <inertia>");
   } else {
     link.sources.set(LinkSources::kInertia, at_.at(inertia));
@@ -333,7 +419,8 @@ void Reader::read_inertial(const XMLElement* e, Link& link) {
   }
   // The tensor is given in the inertial frame; the link keeps it in link axes (rpy rotates it).
   c.inertia = X_LC.linear() * I * X_LC.linear().transpose();
-  if (c.mass == 0 && (!I.isZero(0) || !c.center_of_mass.isZero(0)))
+  // (Choreonoid's URDF loader refuses a mass of 0: reported above, in a wrapper.)
+  if (c.mass == 0 && !choreonoid() && (!I.isZero(0) || !c.center_of_mass.isZero(0)))
     loss(c.source, LossKind::kDynamics,
          fmt::format("the inertia and centre of mass of the massless link '{}' (Choreonoid ignores both when the "
                      "mass is 0, body-format-spec §6.4)",
@@ -393,7 +480,9 @@ std::optional<Geometry> Reader::read_geometry(const XMLElement* g, Eigen::Isomet
     report("import-structure", at_.at(g), "this <geometry> is empty");
     return std::nullopt;
   }
-  if (const XMLElement* extra = shape->NextSiblingElement())
+  if (const XMLElement* extra = shape->NextSiblingElement(); extra && choreonoid())
+    refused(at_.at(extra), fmt::format("a second shape <{}> in one <geometry>", extra->Name()));
+  else if (extra)
     convention(at_.at(extra), fmt::format("a <geometry> holds one shape; this <{}> is ignored (urdfdom, Gazebo and "
                                           "MoveIt take the first, <{}>)",
                                           extra->Name(), shape->Name()));
@@ -461,9 +550,12 @@ std::optional<Geometry> Reader::read_geometry(const XMLElement* g, Eigen::Isomet
   // Not URDF 1.0, but urdfdom-based tools (Drake, Gazebo's parser) read it: a Z-axis capsule
   // whose length is the cylindrical part.
   if (named(shape, "capsule")) {
-    convention(at_.at(shape),
-               "<capsule> is not URDF 1.0 (urdfdom refuses it); read as Drake and sdformat read it, a "
-               "capsule along Z whose length is the cylindrical part");
+    if (choreonoid())
+      refused(at_.at(shape), "<capsule> (not URDF 1.0; read as Drake and sdformat read it)");
+    else
+      convention(at_.at(shape),
+                 "<capsule> is not URDF 1.0 (urdfdom refuses it); read as Drake and sdformat read it, a "
+                 "capsule along Z whose length is the cylindrical part");
     return along_z(Capsule{});
   }
   report("import-value", at_.at(shape), fmt::format("<{}> is not a URDF geometry", shape->Name()));
@@ -523,17 +615,57 @@ void Reader::read_link(const XMLElement* e, Link& link) {
       report("import-structure", at_.at(inertial->NextSiblingElement("inertial")),
              "a link has one <inertial>; this one is ignored");
   } else {
-    // URDF: a link without <inertial> has no mass (a frame); Choreonoid would give it 1 kg.
+    const std::string total = links_without_inertial_ == 1
+                                  ? std::string("it is the only such link")
+                                  : fmt::format("the {} links without <inertial> add {} kg", links_without_inertial_,
+                                                links_without_inertial_);
+    if (choreonoid()) {
+      // Choreonoid's URDF loader leaves such a link at its Link defaults: 1 kg at the origin with
+      // identity inertia. A link without mass contributions is that (body-format-spec §6.4 rule 4),
+      // as a .body link without mass data is; the body writer then writes no mass keys either.
+      differs(Difference::kMass, at_.at(e),
+              fmt::format("link '{}' has no <inertial>: Choreonoid's URDF loader gives it 1 kg at its origin with "
+                          "identity inertia (1 kg·m² about each axis), where URDF means a massless frame; {}",
+                          link.name, total),
+              "give it an <inertial> with its real mass, or load urdf2body's .body of this URDF, which keeps it "
+              "massless");
+      read_link_shapes(e, link);
+      return;
+    }
+    // URDF: a link without <inertial> has no mass (a frame); Choreonoid's URDF loader gives it 1 kg.
     MassContribution c;
     c.from_link_keys = true;
     c.mass = 0;
     c.source = at_.at(e);
     link.mass_contributions.push_back(c);
+    differs(Difference::kMass, at_.at(e),
+            fmt::format("link '{}' has no <inertial>: written with mass 0 (URDF's massless frame); Choreonoid's URDF "
+                        "loader, and so a wrapper body file around this URDF, gives it 1 kg with identity inertia ({} "
+                        "there)",
+                        link.name, total));
   }
+  read_link_shapes(e, link);
+}
+
+void Reader::read_link_shapes(const XMLElement* e, Link& link) {
   for (const XMLElement* v = e->FirstChildElement("visual"); v; v = v->NextSiblingElement("visual"))
     read_shape(v, link, true);
   for (const XMLElement* c = e->FirstChildElement("collision"); c; c = c->NextSiblingElement("collision"))
     read_shape(c, link, false);
+}
+
+// Choreonoid's URDF loader reads the <axis> of every joint, a fixed one too: normalised, or 1 0 0
+// without one (a zero axis stays zero). It moves nothing, so nothing is reported.
+void Reader::read_fixed_axis(const XMLElement* joint, Link& link) {
+  link.joint_axis = Eigen::Vector3d::UnitX();
+  const XMLElement* a = joint->FirstChildElement("axis");
+  if (!a) return;
+  link.sources.set(LinkSources::kJointAxis, at_.at(a, "xyz"));
+  if (!a->Attribute("xyz")) {
+    refused(at_.at(a), "this <axis> has no xyz attribute");
+    return;
+  }
+  if (auto v = vec3(a, "xyz")) link.joint_axis = v->isZero(0) ? *v : v->stableNormalized();
 }
 
 void Reader::read_joint(const JointInfo& joint, Link& link, bool collapsed_world) {
@@ -556,10 +688,19 @@ void Reader::read_joint(const JointInfo& joint, Link& link, bool collapsed_world
     link.joint_type = JointType::kRevolute;
   else if (prismatic)
     link.joint_type = JointType::kPrismatic;
-  else if (type == "floating")
-    link.joint_type = JointType::kFree;
   else if (type == "fixed")
     link.joint_type = JointType::kFixed;
+  else if (choreonoid() && !type.empty()) {
+    // Choreonoid's URDF loader sets a joint type for revolute, continuous, prismatic and fixed
+    // only: any other joint keeps its link's default, a fixed joint.
+    link.joint_type = JointType::kFixed;
+    differs(Difference::kOther, at_.at(e, "type"),
+            fmt::format("the {} joint '{}' is a fixed joint in Choreonoid's URDF loader (it reads no other type than "
+                        "revolute, continuous, prismatic and fixed): '{}' does not move against '{}'",
+                        type, joint.name, joint.child, joint.parent),
+            type == "floating" ? "make it the root's joint: a root link is free in Choreonoid" : "");
+  } else if (type == "floating")
+    link.joint_type = JointType::kFree;
   else if (type == "planar") {
     link.joint_type = JointType::kFixed;
     loss(at_.at(e, "type"), LossKind::kJoints,
@@ -571,12 +712,16 @@ void Reader::read_joint(const JointInfo& joint, Link& link, bool collapsed_world
         "revolute, continuous, prismatic, fixed, floating or planar");
   }
   (void)collapsed_world;
+  if (choreonoid() && !revolute && !prismatic) read_fixed_axis(e, link);
   if (revolute || prismatic) {
     Eigen::Vector3d axis(1, 0, 0);  // URDF's default
     if (const XMLElement* a = e->FirstChildElement("axis")) {
       link.sources.set(LinkSources::kJointAxis, at_.at(a, "xyz"));
-      if (a->Attribute("xyz"))
+      if (a->Attribute("xyz")) {
         if (auto v = vec3(a, "xyz")) axis = *v;
+      } else if (choreonoid()) {
+        refused(at_.at(a), "this <axis> has no xyz attribute");
+      }
     }
     if (axis.isZero(0)) {
       report("import-value", link.sources.joint_axis().known() ? link.sources.joint_axis() : at_.at(e),
@@ -610,6 +755,14 @@ void Reader::read_joint(const JointInfo& joint, Link& link, bool collapsed_world
         link.joint_range_upper = upper >= converters::kUnlimitedStandIn ? kUnlimited : upper;
         if (lower > upper) report_reversed_range(limit, joint.name, lower, upper);
       }
+      if (choreonoid())
+        for (const char* attribute : {"velocity", "effort"}) {
+          if (!limit->Attribute(attribute))
+            refused(at_.at(limit), fmt::format("the <limit> of joint '{}' has no {}", joint.name, attribute));
+          else if (number(limit, attribute).value_or(0) < 0)
+            refused(at_.at(limit, attribute),
+                    fmt::format("the {} limit of joint '{}' is negative", attribute, joint.name));
+        }
       if (limit->Attribute("velocity"))
         if (auto v = number(limit, "velocity")) {
           link.sources.set(LinkSources::kJointVelocity, at_.at(limit, "velocity"));
@@ -735,6 +888,7 @@ std::optional<Model> Reader::read() {
   model.source = at_.at(robot);
 
   const Elements elements = collect(robot);
+  for (const XMLElement* link : elements.links) links_without_inertial_ += !link->FirstChildElement("inertial");
   if (elements.links.empty()) {
     report("import-structure", at_.at(robot), "the robot has no links");
     return std::nullopt;
@@ -796,7 +950,28 @@ Elements Reader::collect(const XMLElement* robot) {
              fmt::format("<{}> in a <robot> is not URDF; it is ignored", e->Name()));
     }
   }
+  if (choreonoid()) collect_visual_materials(elements);
   return elements;
+}
+
+// Choreonoid's URDF loader knows every material before it reads a link: the top-level ones, then
+// those its visuals define, in document order, the first of a name winning. A visual may so name
+// a colour that a later link defines. (Each is reported where it is read, not here.)
+void Reader::collect_visual_materials(const Elements& elements) {
+  for (const XMLElement* link : elements.links)
+    for (const XMLElement* v = link->FirstChildElement("visual"); v; v = v->NextSiblingElement("visual")) {
+      const XMLElement* m = v->FirstChildElement("material");
+      const XMLElement* color = m ? m->FirstChildElement("color") : nullptr;
+      const char* name = m ? m->Attribute("name") : nullptr;
+      const char* rgba = color ? color->Attribute("rgba") : nullptr;
+      if (!name || !*name || !rgba) continue;
+      if (auto v4 = comma_separated(rgba, 4)) {
+        Material material;
+        material.diffuse_color = Eigen::Vector3d((*v4)[0], (*v4)[1], (*v4)[2]);
+        material.transparency = 1.0 - (*v4)[3];
+        materials_.emplace(name, material);
+      }
+    }
 }
 
 // Each link has at most one parent joint; a link without one is a root.
@@ -870,11 +1045,32 @@ void Reader::choose_root(const Elements& elements, Tree& tree) {
   if (std::strcmp(r->Attribute("name"), "world") != 0 || children.size() != 1) return;
   const JointInfo& j = elements.joints[static_cast<std::size_t>(children[0])];
   const char* type = j.element->Attribute("type");
-  if (type && (std::strcmp(type, "fixed") == 0 || std::strcmp(type, "floating") == 0)) {
-    tree.root_joint = children[0];
-    tree.root = elements.link_index.at(j.child);
-    report_world_content(r);
+  if (!type || (std::strcmp(type, "fixed") != 0 && std::strcmp(type, "floating") != 0)) return;
+  // Choreonoid's URDF loader has no such convention: every link is a link, and the one without
+  // a parent joint is the body's root, on a free joint.
+  const bool has_inertial = r->FirstChildElement("inertial") != nullptr;
+  if (choreonoid()) {
+    const bool fixed = std::strcmp(type, "fixed") == 0;
+    differs(Difference::kWorld, at_.at(r, "name"),
+            fmt::format("the root link 'world' stays a link in Choreonoid's URDF loader: the free-floating root of the "
+                        "body ({}), holding '{}' on the fixed joint '{}'; {}",
+                        has_inertial ? "with its <inertial>" : "1 kg with identity inertia: it has no <inertial>",
+                        j.child, j.name,
+                        fixed ? "the robot is not fixed to the ground, where ROS tools take 'world' as the fixed frame"
+                              : "the robot carries the 'world' link"),
+            fmt::format("load urdf2body's .body of this URDF instead: its root is '{}' on a {} joint, without 'world'",
+                        j.child, fixed ? "fixed" : "free"));
+    return;
   }
+  tree.root_joint = children[0];
+  tree.root = elements.link_index.at(j.child);
+  report_world_content(r);
+  differs(Difference::kWorld, at_.at(r, "name"),
+          fmt::format("the root link 'world' is the fixed frame: '{}' is written as the root on a {} joint (as ROS "
+                      "tools read 'world'); Choreonoid's URDF loader, and so a wrapper body file around this URDF, "
+                      "keeps 'world' as the free-floating root link{}, so that the robot is not fixed there",
+                      j.child, std::strcmp(type, "fixed") == 0 ? "fixed" : "free",
+                      has_inertial ? "" : " (of 1 kg: it has no <inertial>)"));
 }
 
 // Depth-first pre-order from the root, children in joint document order; joint ids in the

@@ -11,6 +11,12 @@
 /// `import-mesh` (a mesh that cannot be found: the URI and every place searched). Constructs a
 /// .body cannot hold are reported as `export-loss` with their kind (converters/core: loss.h),
 /// so that `--strict` and `--allow-loss` treat them as the exporters' losses.
+///
+/// Where Choreonoid's URDF loader reads a URDF otherwise than the URDF spec (IMPORT.md, "Two
+/// readings"), UrdfImportOptions::semantics chooses: urdf2body keeps the URDF meaning with an
+/// `import-choreonoid-differs` note at each place; a wrapper body file takes Choreonoid's with a
+/// warning (`wrapper-urdf-mass`, `wrapper-urdf-world`, `wrapper-urdf-semantics`), and what that
+/// loader refuses is `wrapper-urdf-refused`.
 #include <bodyfmt/diagnostic.h>
 #include <bodyfmt/model.h>
 
@@ -22,7 +28,20 @@
 
 namespace bodyfmt::urdf_import {
 
+/// Whose reading of a URDF the model takes where two consumers differ (IMPORT.md, "Two readings").
+enum class UrdfSemantics {
+  /// The URDF spec's, as urdfdom and ROS tools read it: urdf2body writes a new model with this
+  /// meaning (a link without <inertial> is a massless frame, a root `world` link fixes the base)
+  /// and notes each place where Choreonoid's URDF loader reads the same text differently
+  /// (`import-choreonoid-differs`).
+  kUrdf,
+  /// Choreonoid's URDF loader's (src/URDFBodyLoader): a wrapper body file is a Body file, so it
+  /// loads link for link as Choreonoid loads it, each difference a warning at its URDF line.
+  kChoreonoid,
+};
+
 struct UrdfImportOptions {
+  UrdfSemantics semantics = UrdfSemantics::kUrdf;
   /// Roots for `package://NAME/...` URIs, searched before ROS_PACKAGE_PATH.
   std::vector<std::string> package_paths;
   bool use_ros_package_path = true;

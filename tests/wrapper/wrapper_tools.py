@@ -4,9 +4,13 @@
     wrapper_tools.py BIN_DIR SHARED_DIR EXAMPLES_DIR WORK_DIR
 
 A one-line wrapper around the corpus URDF SR1.urdf (written at test time in WORK_DIR, naming
-the URDF by a relative path) must be the model urdf2body makes of SR1.urdf: the same bodyinfo
-values (--format yaml), the same body2urdf and body2mjcf outputs, no difference in bodydiff, and every other tool
-reads it. bodycheck on a wrapper around a URDF with a planted defect locates the finding at the
+the URDF by a relative path) must be the model urdf2body makes of SR1.urdf but for what
+Choreonoid's URDF loader reads differently (IMPORT.md, "Two readings"; in SR1.urdf only the
+visuals naming a material that a later link defines, which the wrapper colours): the same
+bodyinfo values (--format yaml), the same body2urdf and body2mjcf outputs (materials aside, which
+are counted), no difference in bodydiff, and every other tool reads it. Its links must be those
+of Choreonoid's reference of SR1.body, from which SR1.urdf was made (tree, joints, mass data,
+frames). bodycheck on a wrapper around a URDF with a planted defect locates the finding at the
 URDF's line and column. A wrapper around a .body is that model, with its linkInfo checked.
 """
 import os
@@ -14,6 +18,7 @@ import re
 import shutil
 import subprocess
 import sys
+import xml.etree.ElementTree as ET
 
 import yaml
 
@@ -89,6 +94,23 @@ def identity_quat(match):
     return "" if len(q) == 4 and all(abs(a - b) <= TOLERANCE for a, b in zip(q, (1, 0, 0, 0))) else match.group(0)
 
 
+def without_materials(text):
+    """An export without its materials: definitions and references (URDF and MJCF)."""
+    text = re.sub(r'\n *<material name="[^"]*">\s*<color rgba="[^"]*"/>\s*</material>', "", text)
+    text = re.sub(r'\n *<material [^>]*/>', "", text)
+    return re.sub(r' material="[^"]*"', "", text)
+
+
+def coloured_visuals(urdf_path):
+    """Visuals with a colour as Choreonoid's URDF loader reads them: an inline <color>, or a
+    material name that the file defines anywhere (it collects every material first, IMPORT.md)."""
+    robot = ET.parse(urdf_path).getroot()
+    defined = {m.get("name") for m in robot.findall("material") if m.find("color") is not None}
+    materials = [v.find("material") for v in robot.iter("visual")]
+    defined |= {m.get("name") for m in materials if m is not None and m.find("color") is not None}
+    return sum(1 for m in materials if m is not None and (m.find("color") is not None or m.get("name") in defined))
+
+
 def export_text(path):
     """An export without its header comment (it names the file it came from) and without
     <origin> elements and quat attributes that are the default to rounding."""
@@ -106,6 +128,7 @@ wrapper = os.path.join(WORK, "sr1", "SR1.body")
 write(wrapper, "model_file: " + os.path.relpath(sr1, os.path.dirname(wrapper)) + "\n")
 imported = os.path.join(WORK, "imported", "SR1.body")
 code, _, err = run("urdf2body", sr1, "-o", imported)
+undefined_materials = err.count("[import-material]")  # urdf2body's order: defined later, so not found
 expect(code in (0, 1) and os.path.exists(imported), f"urdf2body SR1.urdf: exit {code}\n{err[-2000:]}")
 
 infos = []
@@ -123,6 +146,27 @@ if len(infos) == 2:
     print(f"bodyinfo: {a.get('num_links')} links, {a.get('num_joints')} joints, total mass {a.get('total_mass')} kg: "
           f"every value equal, the largest relative difference {worst[0]:.1e}")
 
+# Against Choreonoid: the reference of SR1.body (Choreonoid's BodyLoader), of which SR1.urdf is a
+# translation. Its links' tree, joints, mass data and frames must be the wrapper's (SR1.urdf gives
+# every link an <inertial>, so Choreonoid's URDF loader and urdfdom read it alike); the URDF's
+# ranges (1.57 for pi/2), velocity limits, CHEST shapes, root pose and sensors are its own.
+reference = yaml.safe_load(read(os.path.join(SHARED, "corpus", "reference", "SR1", "SR1.ref.yaml")))
+if infos:
+    mine = {link["name"]: link for link in infos[0]["links"]}
+    compared = 0
+    for field in ("total_mass", "num_links", "num_joints"):
+        expect(same_values(infos[0][field], reference[field]), f"SR1 wrapper: {field} {infos[0][field]} != "
+               f"Choreonoid's {reference[field]}")
+    for link in reference["links"]:
+        for field in ("parent", "joint_type", "joint_id", "joint_axis", "mass", "center_of_mass", "inertia",
+                      "translation", "rotation", "world_translation_at_zero"):
+            if field in link:
+                compared += 1
+                got = mine.get(link["name"], {}).get(field, "missing")
+                expect(same_values(got, link[field]),
+                       f"SR1 wrapper: {link['name']}.{field} {got} != Choreonoid's {link[field]}")
+    print(f"SR1 wrapper against Choreonoid's reference of SR1.body: {compared} link values compared")
+
 for tool, ext in (("body2urdf", "urdf"), ("body2mjcf", "xml")):
     outputs = []
     for name, model in (("wrapper", wrapper), ("imported", imported)):
@@ -131,8 +175,17 @@ for tool, ext in (("body2urdf", "urdf"), ("body2mjcf", "xml")):
         code, _, err = run(tool, model, "-o", out, "--allow-loss", "geometry,dynamics,joints,devices")
         expect(code in (0, 1), f"{tool} {name}: exit {code}\n{err[-2000:]}")
         outputs.append((code, export_text(out) if os.path.exists(out) else None))
-    expect(outputs[0][0] == outputs[1][0] and same_export(outputs[0][1], outputs[1][1]),
-           f"{tool}: the wrapper's export differs from urdf2body's SR1.body's")
+    # The wrapper colours every visual whose material the file defines (Choreonoid's URDF loader
+    # collects them all first); urdf2body leaves out those it reported undefined. Nothing else differs.
+    coloured = coloured_visuals(sr1)
+    uses = [len(re.findall(r'<material name="[^"]*"/>|material="', text or "")) for _, text in outputs]
+    expect(uses == [coloured, coloured - undefined_materials] and undefined_materials > 0,
+           f"{tool}: the wrapper's export has {uses[0]} material references, urdf2body's {uses[1]}; expected "
+           f"{coloured} (Choreonoid's coloured visuals) and {coloured - undefined_materials}")
+    expect(outputs[0][0] == outputs[1][0] and
+           same_export(*(without_materials(text) if text else text for _, text in outputs)),
+           f"{tool}: the wrapper's export differs from urdf2body's SR1.body's (materials aside)")
+    print(f"{tool}: {uses[0]} material references in the wrapper's export, {uses[1]} in urdf2body's")
     print(f"{tool}: exit {outputs[0][0]} both, {len(NUMBER.findall(outputs[0][1] or ''))} numbers equal, "
           f"the largest relative difference so far {worst[0]:.1e}")
 

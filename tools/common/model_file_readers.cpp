@@ -10,6 +10,8 @@ void add_model_file_readers(LoadOptions& options) {
   options.model_file_readers[".urdf"] = [](const std::string& path, const std::string& text, const LoadOptions& load,
                                            DiagnosticSink& sink) {
     urdf_import::UrdfImportOptions import;
+    // A wrapper is a Body file: it loads as Choreonoid's URDF loader loads the URDF.
+    import.semantics = urdf_import::UrdfSemantics::kChoreonoid;
     import.package_paths = load.package_paths;
     import.use_ros_package_path = load.use_ros_package_path;
     import.resolve_meshes = load.load_meshes;

@@ -309,8 +309,36 @@ std::vector<RuleInfo> make_table() {
        "its content is not imported", ""},
       {"import-convention", W,
        "a URDF construct outside the URDF spec that ROS tools or simulators accept (missing products of "
-       "inertia, a second shape in a <geometry>, lower > upper, a zero radius, <capsule>); read as they do",
+       "inertia, a second shape in a <geometry>, lower > upper, a zero radius, <capsule>, a vector with commas); "
+       "read as they do",
        "another consumer of the same file may read it differently or refuse it", ""},
+      {"import-choreonoid-differs", N,
+       "urdf2body wrote the URDF meaning of a construct that Choreonoid's URDF loader reads differently: a link "
+       "without <inertial> is massless here and 1 kg with identity inertia there; a root `world` link is the fixed "
+       "frame here and a free-floating link there (converters/urdf/IMPORT.md, \"Two readings\")",
+       "a wrapper body file around the same URDF loads as Choreonoid reads it, so the two models differ there", ""},
+      {"wrapper-urdf-mass", W,
+       "a link of a wrapper body file's URDF has no <inertial>, or an <inertial> no <inertia>: Choreonoid's URDF "
+       "loader gives it 1 kg at its origin with identity inertia (identity inertia), where URDF means a massless "
+       "frame; the model is loaded so",
+       "a wrapper is a Body file: Choreonoid simulates phantom masses the URDF's author did not write (each link "
+       "without <inertial> adds 1 kg)",
+       ""},
+      {"wrapper-urdf-world", W,
+       "a wrapper body file's URDF has a root link named `world` on a fixed or floating joint: Choreonoid's URDF "
+       "loader keeps it as a link, the body's free-floating root, so the robot is not fixed to the ground",
+       "ROS tools take `world` as the fixed frame; in Choreonoid the base falls or drifts (urdf2body's .body fixes it)",
+       ""},
+      {"wrapper-urdf-semantics", W,
+       "a wrapper body file's URDF says something else Choreonoid's URDF loader reads differently from the URDF "
+       "spec: a floating, planar or unknown joint type (fixed), a negative box edge or a sphere or cylinder size "
+       "that is not positive (no shape); the model is loaded as Choreonoid loads it",
+       "a wrapper is a Body file: Choreonoid simulates it so, which the URDF's author most likely did not mean", ""},
+      {"wrapper-urdf-refused", E,
+       "a wrapper body file's URDF holds what Choreonoid's URDF loader refuses: a mass of 0, a <limit> without "
+       "velocity or effort or with a negative one, an <inertia> without a product of inertia, an <axis> without xyz, "
+       "a second shape in a <geometry>, <capsule>",
+       "Choreonoid loads no body from the wrapper; bodyfmt reads on to report the rest", ""},
       // Dynamics checker (dynamics/, bodysim)
       {"dynamics-contact-geometry", W,
        "bodysim --contact simbody could not turn a collision shape into Simbody contact geometry (a Brick needs a "
