@@ -1,6 +1,7 @@
 #include <bodyfmt/converters/xml_writer.h>
 
 #include <bodyfmt/converters/names.h>
+#include <bodyfmt/converters/numbers.h>
 #include <bodyfmt/rules.h>
 
 #include <fmt/format.h>
@@ -10,6 +11,13 @@
 namespace bodyfmt::converters {
 
 using tinyxml2::XMLElement;
+
+namespace {
+/// "x, y, z", as a .body list writes a vector.
+std::string list_text(const Eigen::Vector3d& v) {
+  return format_number(v.x()) + ", " + format_number(v.y()) + ", " + format_number(v.z());
+}
+}  // namespace
 
 XMLElement* XmlWriter::element(XMLElement* parent, const char* name) {
   XMLElement* e = doc_.NewElement(name);
@@ -25,6 +33,28 @@ void XmlWriter::loss(LossKind kind, XMLElement* parent, const SourceLocation& at
                      const std::string& hint) {
   report_loss(sink_, at, target_, kind, what, hint);
   comment(parent, "export-loss: " + what);
+}
+
+void XmlWriter::value_changed(XMLElement* parent, const SourceLocation& at, const std::string& what) {
+  report_rule(sink_, "export-value-changed", at, what);
+  comment(parent, "export-value-changed: " + what);
+}
+
+Eigen::Vector3d XmlWriter::written_axis(XMLElement* parent, std::size_t index) {
+  const Link& link = model_.links[index];
+  const double norm = link.joint_axis.norm();
+  if (!(norm > 0)) return link.joint_axis;  // refused by check_joints before any writer runs
+  const Eigen::Vector3d axis = link.joint_axis / norm;
+  if (!joint_findings_) joint_findings_ = assess_joints(model_);
+  for (const PhysicalFinding& f : *joint_findings_) {
+    if (f.defect != PhysicalDefect::kAxisNotUnit || f.link != static_cast<LinkIndex>(index)) continue;
+    value_changed(parent, f.at,
+                  fmt::format("the joint axis [{}] of link \"{}\" is not a unit vector (length {}); written as its "
+                              "direction [{}]: {} reads an axis as a direction, while Choreonoid uses it as given and "
+                              "scales the joint's displacement and velocity by its length",
+                              list_text(link.joint_axis), link.name, format_number(norm), list_text(axis), target_));
+  }
+  return axis;
 }
 
 void XmlWriter::fatal(std::string_view rule, const SourceLocation& at, std::string message) {
