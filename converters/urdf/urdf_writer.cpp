@@ -175,7 +175,17 @@ bool Writer::assess_inertias() {
   // The consumers that load a URDF for dynamics refuse these tensors: Drake
   // (RotationalInertia::CouldBePhysicallyValid), gz-math (MassMatrix3::IsValid) and MuJoCo's
   // compiler. URDF itself holds any six numbers, so the tensor is written as given unless the
-  // user asks for the balanced one.
+  // user asks for the balanced one. A mass they refuse is written as given too; each is a loss
+  // of the dynamics kind, so that --allow-loss dynamics accepts it like the others.
+  struct DynamicsLoss : DiagnosticSink {
+    DiagnosticSink& inner;
+    explicit DynamicsLoss(DiagnosticSink& s) : inner(s) {}
+    void report(Diagnostic d) override {
+      d.category = std::string(converters::loss_kind_name(converters::LossKind::kDynamics));
+      inner.report(std::move(d));
+    }
+  } dynamics_loss(sink_);
+  const std::string_view dynamics = converters::loss_kind_name(converters::LossKind::kDynamics);
   PhysicalOptions gate;
   gate.balance_inertia = options_.balance_inertia;
   const PhysicalVerdict verdict = assess_physical(model_, derived_, gate);
@@ -200,27 +210,35 @@ bool Writer::assess_inertias() {
       }
       continue;
     }
-    if (f.defect != PhysicalDefect::kNotPositiveDefinite && f.defect != PhysicalDefect::kTriangle) continue;
     const std::size_t i = static_cast<std::size_t>(f.link);
     const Link& link = model_.links[i];
-    if (!f.balanced_by_policy) {
-      // A loss of the dynamics kind, so that --allow-loss dynamics accepts it like the others.
-      struct DynamicsLoss : DiagnosticSink {
-        DiagnosticSink& inner;
-        explicit DynamicsLoss(DiagnosticSink& s) : inner(s) {}
-        void report(Diagnostic d) override {
-          d.category = std::string(converters::loss_kind_name(converters::LossKind::kDynamics));
-          inner.report(std::move(d));
-        }
-      } dynamics_loss(sink_);
-      const std::string hint = converters::nearest_inertia_hint(f);
+    if (f.defect == PhysicalDefect::kNegativeMass) {
       report_physical_as(dynamics_loss, "export-loss", f,
-                         fmt::format("principal moments {} of link \"{}\" ({}{}) are written as given, but Drake, "
-                                     "gz-math and MuJoCo refuse to load this URDF (loss kind: {})",
-                                     converters::moments_text(f.principal.moments), link.name,
-                                     converters::inertia_defect_text(f), f.validity.negative_moment ? "" : " < 0",
-                                     converters::loss_kind_name(converters::LossKind::kDynamics)),
-                         hint + (hint.empty() ? "" : "; ") + "--balance-inertia writes it");
+                         fmt::format("the mass {} kg of link \"{}\" is written as given, but Drake and gz-math refuse "
+                                     "a negative mass and MuJoCo clamps it to 0 (loss kind: {})",
+                                     format_number(derived_.mass[i].mass), link.name, dynamics));
+      continue;
+    }
+    if (f.defect == PhysicalDefect::kMovingMassless || f.defect == PhysicalDefect::kMovingBelowMinimum) {
+      report_physical_as(dynamics_loss, "export-loss", f,
+                         fmt::format("the mass {} kg and principal moments {} of moving link \"{}\" are written as "
+                                     "given, but MuJoCo refuses a moving body below mjMINVAL = 1e-15 when no fixed "
+                                     "child carries mass (loss kind: {})",
+                                     format_number(derived_.mass[i].mass),
+                                     converters::moments_text(f.principal.moments), link.name, dynamics),
+                         "give the link its real mass");
+      continue;
+    }
+    if (f.defect != PhysicalDefect::kNotPositiveDefinite && f.defect != PhysicalDefect::kTriangle) continue;
+    if (!f.balanced_by_policy) {
+      const std::string hint = converters::nearest_inertia_hint(f);
+      report_physical_as(
+          dynamics_loss, "export-loss", f,
+          fmt::format("principal moments {} of link \"{}\" ({}{}) are written as given, but Drake, "
+                      "gz-math and MuJoCo refuse to load this URDF (loss kind: {})",
+                      converters::moments_text(f.principal.moments), link.name, converters::inertia_defect_text(f),
+                      f.validity.negative_moment ? "" : " < 0", dynamics),
+          hint + (hint.empty() ? "" : "; ") + "--balance-inertia writes it");
       continue;
     }
     const Eigen::Matrix3d after = f.balanced_inertia();
