@@ -1,7 +1,7 @@
 #include <bodyfmt/converters/xml_writer.h>
 
 #include <bodyfmt/converters/names.h>
-#include <bodyfmt/converters/numbers.h>
+#include <bodyfmt/converters/value_changes.h>
 #include <bodyfmt/rules.h>
 
 #include <fmt/format.h>
@@ -11,13 +11,6 @@
 namespace bodyfmt::converters {
 
 using tinyxml2::XMLElement;
-
-namespace {
-/// "x, y, z", as a .body list writes a vector.
-std::string list_text(const Eigen::Vector3d& v) {
-  return format_number(v.x()) + ", " + format_number(v.y()) + ", " + format_number(v.z());
-}
-}  // namespace
 
 XMLElement* XmlWriter::element(XMLElement* parent, const char* name) {
   XMLElement* e = doc_.NewElement(name);
@@ -41,20 +34,10 @@ void XmlWriter::value_changed(XMLElement* parent, const SourceLocation& at, cons
 }
 
 Eigen::Vector3d XmlWriter::written_axis(XMLElement* parent, std::size_t index) {
-  const Link& link = model_.links[index];
-  const double norm = link.joint_axis.norm();
-  if (!(norm > 0)) return link.joint_axis;  // refused by check_joints before any writer runs
-  const Eigen::Vector3d axis = link.joint_axis / norm;
   if (!joint_findings_) joint_findings_ = assess_joints(model_);
-  for (const PhysicalFinding& f : *joint_findings_) {
-    if (f.defect != PhysicalDefect::kAxisNotUnit || f.link != static_cast<LinkIndex>(index)) continue;
-    value_changed(parent, f.at,
-                  fmt::format("the joint axis [{}] of link \"{}\" is not a unit vector (length {}); written as its "
-                              "direction [{}]: {} reads an axis as a direction, while Choreonoid uses it as given and "
-                              "scales the joint's displacement and velocity by its length",
-                              list_text(link.joint_axis), link.name, format_number(norm), list_text(axis), target_));
-  }
-  return axis;
+  if (const std::optional<ValueChange> change = axis_change(model_, *joint_findings_, index, target_))
+    value_changed(parent, change->at, change->what);
+  return axis_direction(model_.links[index]);
 }
 
 void XmlWriter::fatal(std::string_view rule, const SourceLocation& at, std::string message) {

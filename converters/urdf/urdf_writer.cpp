@@ -220,6 +220,7 @@ bool Writer::assess_inertias() {
       continue;
     }
     if (f.defect == PhysicalDefect::kMovingMassless || f.defect == PhysicalDefect::kMovingBelowMinimum) {
+      if (!verdict.links[i].usable) continue;  // reported for its negative mass or moment, as body2mjcf does
       report_physical_as(dynamics_loss, "export-loss", f,
                          fmt::format("the mass {} kg and principal moments {} of moving link \"{}\" are written as "
                                      "given, but MuJoCo refuses a moving body below mjMINVAL = 1e-15 when no fixed "

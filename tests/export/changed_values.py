@@ -4,17 +4,17 @@
     changed_values.py TOOL=PATH... --cases DIR
     changed_values.py TOOL=PATH... --silent MODEL_OR_DIR...
 
-TOOL is body2urdf, body2mjcf and bodycheck.
+TOOL is body2urdf, body2mjcf and bodycheck, and body2gltf where it is given.
 
 --cases: each mutant in DIR (tests/data/export_changed) carries one value an export cannot
 write as given, on a line marked `# <- changed`. The table below says, per tool and option set,
 which rule must be reported at that line and at the column of its key (counted here from the
 text, not taken from the tools), with which severity, which exit code, and whether the output
-is written (then with the change commented in it). bodycheck must report its rule at the same
+is written (then, URDF and MJCF, with the change commented in it). bodycheck must report its rule at the same
 line and column: one gate, one place.
 
---silent: every .body model under the given files and folders is exported by body2urdf and
-body2mjcf (as given, and body2mjcf also with --actuators velocity); none may report a changed
+--silent: every .body model under the given files and folders is exported by body2urdf,
+body2mjcf (as given, and also with --actuators velocity) and body2gltf; none may report a changed
 value (export-value-changed) or an asymmetric inertia, except the findings listed in SILENT_EXPECTED
 with their reason.
 """
@@ -49,8 +49,10 @@ CASES = {
     "axis_not_unit.body": ("joint_axis", ("joint-axis-not-unit", "warning"), [
         ("body2urdf", [], "export-value-changed", "warning", 1, True),
         ("body2mjcf", [], "export-value-changed", "warning", 1, True),
+        ("body2gltf", [], "export-value-changed", "warning", 1, True),
         ("body2urdf", ["--strict"], "export-value-changed", "error", 2, False),
         ("body2mjcf", ["--strict"], "export-value-changed", "error", 2, False),
+        ("body2gltf", ["--strict"], "export-value-changed", "error", 2, False),
     ]),
     "prismatic_axis_not_unit.body": ("joint_axis", ("joint-axis-not-unit", "warning"), [
         ("body2urdf", [], "export-value-changed", "warning", 1, True),
@@ -60,6 +62,7 @@ CASES = {
     # URDF writes the track's axis only in a comment, as given: nothing changed there.
     "track_axis_not_unit.body": ("joint_axis", ("joint-axis-not-unit", "warning"), [
         ("body2mjcf", [], "export-value-changed", "warning", 1, True),
+        ("body2gltf", [], "export-value-changed", "warning", 1, True),
         ("body2mjcf", ["--strict", "--allow-loss", "tracks"], "export-value-changed", "error", 2, False),
     ]),
     # URDF holds a zero-width range as written.
@@ -89,7 +92,7 @@ def findings(text, model):
 
 
 def export(tools, tool, model, options, out_dir):
-    extension = {"body2urdf": "urdf", "body2mjcf": "xml"}[tool]
+    extension = {"body2urdf": "urdf", "body2mjcf": "xml", "body2gltf": "glb"}[tool]
     target = os.path.join(out_dir, f"{tool}.{extension}")
     if os.path.exists(target):
         os.remove(target)
@@ -97,8 +100,8 @@ def export(tools, tool, model, options, out_dir):
                           text=True, timeout=600)
     written = None
     if os.path.exists(target):
-        with open(target, encoding="utf-8") as f:
-            written = f.read()
+        with open(target, "rb") as f:
+            written = f.read().decode("utf-8", errors="replace")
     return proc, written
 
 
@@ -136,6 +139,8 @@ def check_cases(tools, folder):
                                 f"{line}:{column} (found {[f[:4] for f in found]})")
         with tempfile.TemporaryDirectory() as out:
             for tool, options, rule, severity, code, written in runs:
+                if tool not in tools:
+                    continue
                 what = f"{name}: {tool} {' '.join(options)}".rstrip()
                 proc, text = export(tools, tool, model, options, out)
                 found = findings(proc.stdout + proc.stderr, model)
@@ -146,7 +151,7 @@ def check_cases(tools, folder):
                     failures.append(f"{what}: exit {proc.returncode}, expected {code}")
                 if written and text is None:
                     failures.append(f"{what}: not written")
-                elif written and "<!-- export-value-changed: " not in text:
+                elif written and tool != "body2gltf" and "<!-- export-value-changed: " not in text:
                     failures.append(f"{what}: written without the change commented in it")
                 if not written and text is not None:
                     failures.append(f"{what}: written, but it must not be")
@@ -173,7 +178,10 @@ def check_silent(tools, paths):
         for base, model in models_under(paths):
             count += 1
             rel = os.path.relpath(model, base)
-            for tool, options in (("body2urdf", []), ("body2mjcf", []), ("body2mjcf", ["--actuators", "velocity"])):
+            for tool, options in (("body2urdf", []), ("body2mjcf", []), ("body2mjcf", ["--actuators", "velocity"]),
+                                  ("body2gltf", [])):
+                if tool not in tools:
+                    continue
                 proc, _ = export(tools, tool, model, options, out)
                 if proc.returncode not in (0, 1, 2):
                     failures.append(f"{rel}: {tool} exited {proc.returncode}")
