@@ -33,4 +33,27 @@ std::string balanced_inertia_text(const Link& link, const PhysicalFinding& f, co
       moments_text(principal_inertia(after).moments));
 }
 
+std::string asymmetric_inertia_text(const Link& link, const PhysicalFinding& f) {
+  const Eigen::Matrix3d& I = link.mass_contributions[f.contribution].inertia;
+  const char* axis = "xyz";
+  const int row = f.row, col = f.column;
+  return fmt::format(
+      "the inertia [{}, {}, {}, {}, {}, {}, {}, {}, {}] of link \"{}\" is not symmetric: I{}{} = {} but "
+      "I{}{} = {}",
+      format_number(I(0, 0)), format_number(I(0, 1)), format_number(I(0, 2)), format_number(I(1, 0)),
+      format_number(I(1, 1)), format_number(I(1, 2)), format_number(I(2, 0)), format_number(I(2, 1)),
+      format_number(I(2, 2)), link.name, axis[row], axis[col], format_number(I(row, col)), axis[col], axis[row],
+      format_number(I(col, row)));
+}
+
+Eigen::Matrix3d symmetrised_contribution(const Link& link, const PhysicalFinding& f) {
+  return symmetrized_inertia(link.mass_contributions[f.contribution].inertia);
+}
+
+std::string symmetrised_inertia_text(const Link& link, const PhysicalFinding& f) {
+  return asymmetric_inertia_text(link, f) +
+         fmt::format("; written symmetrised (--balance-inertia, the mean of each off-diagonal pair) as {}",
+                     tensor_text(symmetrised_contribution(link, f)));
+}
+
 }  // namespace bodyfmt::converters

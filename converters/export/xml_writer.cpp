@@ -1,6 +1,7 @@
 #include <bodyfmt/converters/xml_writer.h>
 
 #include <bodyfmt/converters/names.h>
+#include <bodyfmt/converters/value_changes.h>
 #include <bodyfmt/rules.h>
 
 #include <fmt/format.h>
@@ -25,6 +26,18 @@ void XmlWriter::loss(LossKind kind, XMLElement* parent, const SourceLocation& at
                      const std::string& hint) {
   report_loss(sink_, at, target_, kind, what, hint);
   comment(parent, "export-loss: " + what);
+}
+
+void XmlWriter::value_changed(XMLElement* parent, const SourceLocation& at, const std::string& what) {
+  report_rule(sink_, "export-value-changed", at, what);
+  comment(parent, "export-value-changed: " + what);
+}
+
+Eigen::Vector3d XmlWriter::written_axis(XMLElement* parent, std::size_t index) {
+  if (!joint_findings_) joint_findings_ = assess_joints(model_);
+  if (const std::optional<ValueChange> change = axis_change(model_, *joint_findings_, index, target_))
+    value_changed(parent, change->at, change->what);
+  return axis_direction(model_.links[index]);
 }
 
 void XmlWriter::fatal(std::string_view rule, const SourceLocation& at, std::string message) {

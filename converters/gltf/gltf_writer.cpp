@@ -7,6 +7,7 @@
 #include <bodyfmt/converters/loss.h>
 #include <bodyfmt/converters/staged_files.h>
 #include <bodyfmt/converters/transforms.h>
+#include <bodyfmt/converters/value_changes.h>
 #include <bodyfmt/mesh.h>
 #include <bodyfmt/read_file.h>
 #include <bodyfmt/rules.h>
@@ -189,6 +190,7 @@ class Writer {
   const GltfOptions& options_;
   converters::OutputSet& output_;
   DiagnosticSink& sink_;
+  std::optional<std::vector<PhysicalFinding>> joint_findings_;  // assess_joints(), on first use
 
   SceneTables tables_;
   std::unique_ptr<aiScene> scene_;
@@ -597,6 +599,11 @@ std::uint32_t Writer::write_link(std::uint32_t parent, std::size_t index) {
   if (moving) {
     const Eigen::Vector3d axis = link.joint_axis.normalized();
     x["joint_axis"] = vec3(axis.allFinite() ? axis : link.joint_axis);
+    // A viewer turns the joint about a direction; an axis the gate finds not of unit length is
+    // then a changed value, said at it as body2urdf and body2mjcf say it.
+    if (!joint_findings_) joint_findings_ = assess_joints(model_);
+    if (const auto change = converters::axis_change(model_, *joint_findings_, index, "a glTF viewer"))
+      report_rule(sink_, "export-value-changed", change->at, change->what + " (extras.joint_axis)");
   }
   if (link.joint_id >= 0) x["joint_id"] = link.joint_id;
   if (link.joint_type == JointType::kRevolute || link.joint_type == JointType::kPrismatic) {

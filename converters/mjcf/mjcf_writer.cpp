@@ -114,8 +114,8 @@ class Writer : converters::XmlWriter {
   /// A value the export changed so that MuJoCo accepts it: a loss of the value as given,
   /// reported now and commented in the link's body when it is written.
   void changed(std::size_t link_index, const SourceLocation& at, const std::string& what) {
-    // Not a loss that --strict refuses: the user asked for it (--balance-inertia), or MuJoCo
-    // cannot load the body otherwise; a warning with the old and new values.
+    // A warning with the old and new values (the user asked for it with --balance-inertia, or
+    // MuJoCo cannot load the body otherwise); --strict refuses it as it does a loss.
     report_rule(sink_, "export-value-changed", at, "MuJoCo cannot accept " + what);
     inertia_notes_[link_index].push_back("export-value-changed: " + what);
   }
@@ -198,9 +198,25 @@ bool Writer::prepare_inertials() {
   PhysicalOptions gate;
   gate.balance_inertia = options_.balance_inertia;
   const PhysicalVerdict verdict = assess_physical(model_, derived_, gate);
+  bool writable = true;
   for (const PhysicalFinding& f : verdict.findings) {
     const std::size_t i = static_cast<std::size_t>(f.link);
     const Link& link = model_.links[i];
+    if (f.defect == PhysicalDefect::kInertiaAsymmetric) {
+      // bodycheck's error, at its place: MJCF holds a symmetric tensor, so only
+      // --balance-inertia writes one for it, said (the mean of each pair, as bodysim simulates).
+      if (options_.balance_inertia) {
+        changed(i, f.at, converters::symmetrised_inertia_text(link, f));
+      } else {
+        writable = false;
+        report_physical(sink_, f,
+                        converters::asymmetric_inertia_text(link, f) +
+                            "; MuJoCo holds a symmetric tensor, so the model is not written",
+                        "write the 6-element form [Ixx, Ixy, Ixz, Iyy, Iyz, Izz] with the values you mean; "
+                        "--balance-inertia writes the mean of each off-diagonal pair");
+      }
+      continue;
+    }
     if (f.defect == PhysicalDefect::kNegativeMass) {
       report_physical(sink_, f,
                       fmt::format("link \"{}\" has mass {} kg; MuJoCo refuses negative masses", link.name,
@@ -224,7 +240,7 @@ bool Writer::prepare_inertials() {
     out.inertia = f.balanced_inertia();
     changed(i, f.at, converters::balanced_inertia_text(link, f, before, out.inertia));
   }
-  if (!verdict.masses_usable) return false;
+  if (!verdict.masses_usable || !writable) return false;
 
   // A moving body MuJoCo refuses (below mjMINVAL, no welded descendant that carries mass) is
   // written with the documented floor.
@@ -292,8 +308,7 @@ void Writer::write_joint(XMLElement* body, std::size_t index) {
     case JointType::kPseudoContinuousTrack: {
       // MuJoCo 2.2.2 has no surface velocity: the track stays a welded body with its geoms and
       // its axis is kept for a controller (dynamics-checker.md §3.2).
-      const double norm = link.joint_axis.norm();
-      const Eigen::Vector3d axis = norm > 0 ? Eigen::Vector3d(link.joint_axis / norm) : link.joint_axis;
+      const Eigen::Vector3d axis = written_axis(body, index);
       const std::string name = unique(numeric_names_, "track_axis:" + link.name);
       track_axes_.emplace_back(name, vec3(axis));
       loss(converters::LossKind::kTracks, body, joint_at,
@@ -306,12 +321,12 @@ void Writer::write_joint(XMLElement* body, std::size_t index) {
     case JointType::kRevolute:
     case JointType::kPrismatic: break;
   }
+  const Eigen::Vector3d axis = written_axis(body, index);  // its report comes before the joint
   XMLElement* j = element(body, "joint");
   j->SetAttribute("name", link.name.c_str());
   j->SetAttribute("type", link.joint_type == JointType::kRevolute ? "hinge" : "slide");
   j->SetAttribute("pos", "0 0 0");
-  const double norm = link.joint_axis.norm();
-  j->SetAttribute("axis", vec3(norm > 0 ? Eigen::Vector3d(link.joint_axis / norm) : link.joint_axis).c_str());
+  j->SetAttribute("axis", vec3(axis).c_str());
   const double lo = link.joint_range_lower, hi = link.joint_range_upper;
   const bool lo_finite = lo > -kUnlimited, hi_finite = hi < kUnlimited;
   if (lo_finite && hi_finite) {
@@ -704,19 +719,24 @@ void Writer::write_actuators() {
   for (std::size_t i : order) {
     const Link& link = model_.links[i];
     // MuJoCo wants lower < upper here too: an empty range is written as the narrowest one it
-    // accepts (as the joint's own range is), a reversed one as no limit, reported.
+    // accepts (as the joint's own range is, which write_joint reports), a reversed one as no
+    // limit; both reported.
     auto range = [&](XMLElement* e, const char* limited, const char* range, double lo, double hi,
-                     const SourceLocation& at) {
+                     const SourceLocation& at, bool joint_range) {
       const bool finite = lo > -kUnlimited && hi < kUnlimited;
       if (finite && lo > hi)
         loss(converters::LossKind::kJoints, e, first_known({at, link.source}),
              fmt::format("the reversed {} [{}, {}] of actuator '{}' (written unlimited)", range, format_number(lo),
                          format_number(hi), link.name));
       if (finite && lo <= hi) {
+        const double upper = lo < hi ? hi : std::nextafter(lo, kUnlimited);
+        if (upper != hi && !joint_range)
+          value_changed(e, first_known({at, link.source}),
+                        fmt::format("MuJoCo cannot accept the zero-width {0} [{1}, {1}] of actuator '{2}' (written "
+                                    "[{1}, {3}])",
+                                    range, format_number(lo), link.name, format_number(upper)));
         e->SetAttribute(limited, "true");
-        e->SetAttribute(
-            range, fmt::format("{} {}", format_number(lo), format_number(lo < hi ? hi : std::nextafter(lo, kUnlimited)))
-                       .c_str());
+        e->SetAttribute(range, fmt::format("{} {}", format_number(lo), format_number(upper)).c_str());
       } else {
         e->SetAttribute(limited, "false");
       }
@@ -725,10 +745,12 @@ void Writer::write_actuators() {
     a->SetAttribute("name", link.name.c_str());
     a->SetAttribute("joint", link.name.c_str());
     if (position)
-      range(a, "ctrllimited", "ctrlrange", link.joint_range_lower, link.joint_range_upper, link.sources.joint_range());
+      range(a, "ctrllimited", "ctrlrange", link.joint_range_lower, link.joint_range_upper, link.sources.joint_range(),
+            true);
     else
-      range(a, "ctrllimited", "ctrlrange", link.velocity_lower, link.velocity_upper, link.sources.joint_velocity());
-    range(a, "forcelimited", "forcerange", link.effort_lower, link.effort_upper, link.source);
+      range(a, "ctrllimited", "ctrlrange", link.velocity_lower, link.velocity_upper, link.sources.joint_velocity(),
+            false);
+    range(a, "forcelimited", "forcerange", link.effort_lower, link.effort_upper, link.source, false);
   }
 }
 

@@ -81,8 +81,9 @@ class Writer : converters::XmlWriter {
   void check_name(const std::string& name, const char* what, const SourceLocation& at);
   void origin(XMLElement* parent, const Eigen::Affine3d& X, bool always = false);
   /// Reports the inertias URDF consumers refuse, and with --balance-inertia chooses the
-  /// balanced tensors written instead.
-  void assess_inertias();
+  /// balanced tensors written instead. Returns false when an inertia cannot be written: an
+  /// asymmetric tensor (URDF holds six numbers) without --balance-inertia.
+  bool assess_inertias();
   void write_inertial(XMLElement* link_el, std::size_t index);
   void write_shapes(XMLElement* link_el, std::size_t link_index);
   std::vector<Piece> pieces(XMLElement* link_el, std::size_t link_index, std::size_t shape_index);
@@ -134,6 +135,7 @@ class Writer : converters::XmlWriter {
   std::set<std::string> link_names_;
   std::vector<XMLElement*> pending_joints_;
   std::map<std::size_t, std::pair<Eigen::Matrix3d, std::string>> balanced_;  // link -> tensor, what changed
+  std::map<std::size_t, std::vector<std::string>> asymmetric_notes_;         // link -> its symmetrised tensors
 };
 
 }  // namespace
@@ -169,36 +171,75 @@ void Writer::origin(XMLElement* parent, const Eigen::Affine3d& X, bool always) {
   o->SetAttribute("rpy", format_vector(rotated ? rpy_of(X.linear()) : Eigen::Vector3d::Zero()).c_str());
 }
 
-void Writer::assess_inertias() {
+bool Writer::assess_inertias() {
   // The consumers that load a URDF for dynamics refuse these tensors: Drake
   // (RotationalInertia::CouldBePhysicallyValid), gz-math (MassMatrix3::IsValid) and MuJoCo's
   // compiler. URDF itself holds any six numbers, so the tensor is written as given unless the
-  // user asks for the balanced one.
+  // user asks for the balanced one. A mass they refuse is written as given too; each is a loss
+  // of the dynamics kind, so that --allow-loss dynamics accepts it like the others.
+  struct DynamicsLoss : DiagnosticSink {
+    DiagnosticSink& inner;
+    explicit DynamicsLoss(DiagnosticSink& s) : inner(s) {}
+    void report(Diagnostic d) override {
+      d.category = std::string(converters::loss_kind_name(converters::LossKind::kDynamics));
+      inner.report(std::move(d));
+    }
+  } dynamics_loss(sink_);
+  const std::string_view dynamics = converters::loss_kind_name(converters::LossKind::kDynamics);
   PhysicalOptions gate;
   gate.balance_inertia = options_.balance_inertia;
   const PhysicalVerdict verdict = assess_physical(model_, derived_, gate);
+  bool writable = true;
   for (const PhysicalFinding& f : verdict.findings) {
-    if (f.defect != PhysicalDefect::kNotPositiveDefinite && f.defect != PhysicalDefect::kTriangle) continue;
+    if (f.defect == PhysicalDefect::kInertiaAsymmetric) {
+      // bodycheck's error, at its place: <inertia> holds six numbers, so the tensor the model
+      // gives is not the one written; only --balance-inertia writes the symmetric one, said.
+      const Link& link = model_.links[static_cast<std::size_t>(f.link)];
+      if (options_.balance_inertia) {
+        report_physical_as(sink_, "export-value-changed", f,
+                           "URDF cannot hold " + converters::symmetrised_inertia_text(link, f));
+        asymmetric_notes_[static_cast<std::size_t>(f.link)].push_back("export-value-changed: " +
+                                                                      converters::symmetrised_inertia_text(link, f));
+      } else {
+        writable = false;
+        report_physical(sink_, f,
+                        converters::asymmetric_inertia_text(link, f) +
+                            "; URDF holds a symmetric tensor (six numbers), so the model is not written",
+                        "write the 6-element form [Ixx, Ixy, Ixz, Iyy, Iyz, Izz] with the values you mean; "
+                        "--balance-inertia writes the mean of each off-diagonal pair");
+      }
+      continue;
+    }
     const std::size_t i = static_cast<std::size_t>(f.link);
     const Link& link = model_.links[i];
-    if (!f.balanced_by_policy) {
-      // A loss of the dynamics kind, so that --allow-loss dynamics accepts it like the others.
-      struct DynamicsLoss : DiagnosticSink {
-        DiagnosticSink& inner;
-        explicit DynamicsLoss(DiagnosticSink& s) : inner(s) {}
-        void report(Diagnostic d) override {
-          d.category = std::string(converters::loss_kind_name(converters::LossKind::kDynamics));
-          inner.report(std::move(d));
-        }
-      } dynamics_loss(sink_);
-      const std::string hint = converters::nearest_inertia_hint(f);
+    if (f.defect == PhysicalDefect::kNegativeMass) {
       report_physical_as(dynamics_loss, "export-loss", f,
-                         fmt::format("principal moments {} of link \"{}\" ({}{}) are written as given, but Drake, "
-                                     "gz-math and MuJoCo refuse to load this URDF (loss kind: {})",
-                                     converters::moments_text(f.principal.moments), link.name,
-                                     converters::inertia_defect_text(f), f.validity.negative_moment ? "" : " < 0",
-                                     converters::loss_kind_name(converters::LossKind::kDynamics)),
-                         hint + (hint.empty() ? "" : "; ") + "--balance-inertia writes it");
+                         fmt::format("the mass {} kg of link \"{}\" is written as given, but Drake and gz-math refuse "
+                                     "a negative mass and MuJoCo clamps it to 0 (loss kind: {})",
+                                     format_number(derived_.mass[i].mass), link.name, dynamics));
+      continue;
+    }
+    if (f.defect == PhysicalDefect::kMovingMassless || f.defect == PhysicalDefect::kMovingBelowMinimum) {
+      if (!verdict.links[i].usable) continue;  // reported for its negative mass or moment, as body2mjcf does
+      report_physical_as(dynamics_loss, "export-loss", f,
+                         fmt::format("the mass {} kg and principal moments {} of moving link \"{}\" are written as "
+                                     "given, but MuJoCo refuses a moving body below mjMINVAL = 1e-15 when no fixed "
+                                     "child carries mass (loss kind: {})",
+                                     format_number(derived_.mass[i].mass),
+                                     converters::moments_text(f.principal.moments), link.name, dynamics),
+                         "give the link its real mass");
+      continue;
+    }
+    if (f.defect != PhysicalDefect::kNotPositiveDefinite && f.defect != PhysicalDefect::kTriangle) continue;
+    if (!f.balanced_by_policy) {
+      const std::string hint = converters::nearest_inertia_hint(f);
+      report_physical_as(
+          dynamics_loss, "export-loss", f,
+          fmt::format("principal moments {} of link \"{}\" ({}{}) are written as given, but Drake, "
+                      "gz-math and MuJoCo refuse to load this URDF (loss kind: {})",
+                      converters::moments_text(f.principal.moments), link.name, converters::inertia_defect_text(f),
+                      f.validity.negative_moment ? "" : " < 0", dynamics),
+          hint + (hint.empty() ? "" : "; ") + "--balance-inertia writes it");
       continue;
     }
     const Eigen::Matrix3d after = f.balanced_inertia();
@@ -207,15 +248,20 @@ void Writer::assess_inertias() {
     report_physical_as(sink_, "export-value-changed", f, "Drake, gz-math and MuJoCo cannot accept " + what);
     balanced_.emplace(i, std::make_pair(after, what));
   }
+  return writable;
 }
 
 void Writer::write_inertial(XMLElement* link_el, std::size_t index) {
   const MassProperties& mp = derived_.mass[index];
   const auto balanced = balanced_.find(index);
+  const auto symmetrised = asymmetric_notes_.find(index);
+  if (symmetrised != asymmetric_notes_.end())
+    for (const std::string& note : symmetrised->second) comment(link_el, note);
   if (balanced != balanced_.end()) comment(link_el, "export-value-changed: " + balanced->second.second);
   XMLElement* inertial = element(link_el, "inertial");
   // body-format-spec §6.4/§19: the CoM frame has the link's axes, so rpy stays 0 and the
-  // tensor is written as it is (symmetrised); defaults (1 kg, identity) are written too.
+  // tensor is written as it is (symmetric within the gate's tolerance, or symmetrised with
+  // --balance-inertia and said); defaults (1 kg, identity) are written too.
   origin(inertial, Eigen::Isometry3d(Eigen::Translation3d(mp.center_of_mass)), true);
   element(inertial, "mass")->SetAttribute("value", format_number(mp.mass).c_str());
   const Eigen::Matrix3d I = balanced != balanced_.end() ? balanced->second.first : symmetrized_inertia(mp.inertia);
@@ -401,9 +447,8 @@ void Writer::write_joint(std::size_t index, const std::string& joint_name) {
   element(j, "parent")->SetAttribute("link", parent.name.c_str());
   element(j, "child")->SetAttribute("link", link.name.c_str());
   if (!movable) return;
-  const double norm = link.joint_axis.norm();
-  element(j, "axis")->SetAttribute(
-      "xyz", format_vector(norm > 0 ? Eigen::Vector3d(link.joint_axis / norm) : link.joint_axis).c_str());
+  const Eigen::Vector3d axis = written_axis(j, index);
+  element(j, "axis")->SetAttribute("xyz", format_vector(axis).c_str());
   // URDF has one symmetric bound for velocity and effort.
   auto symmetric = [&](double lo, double hi, const char* what, const SourceLocation& at) {
     if (lo == -hi) return finite_or_stand_in(hi);
@@ -485,7 +530,10 @@ bool Writer::run() {
   }
   flush();
   materials_at_ = text_.size();
-  assess_inertias();
+  if (!assess_inertias()) {
+    output_.fail();
+    return false;
+  }
 
   for (const Link& link : model_.links) link_names_.insert(link.name);
   const std::string world_joint = write_world(model_.root());

@@ -110,6 +110,14 @@ def main():
         failures.append(f"urdf2body: no value change reported at the link: {imported.stderr[-400:]}")
     elif "mass: 15" not in open(out).read():
         failures.append("urdf2body: the written body does not have mass 15")
+    # --strict refuses a changed value as it does a loss: an error at the same place, nothing written.
+    strict_out = os.path.join(work, "massless_strict.body")
+    strict = subprocess.run([urdf2body, urdf, "-o", strict_out, "--mass-from-geometry", "500", "--strict"],
+                            capture_output=True, text=True, timeout=300)
+    if (strict.returncode != 2 or os.path.exists(strict_out)
+            or not re.search(r":3:\d+: error: link \"base\" has no <inertial>.*\[export-value-changed\]", strict.stderr)):
+        failures.append(f"urdf2body --strict: exit {strict.returncode}, written {os.path.exists(strict_out)}: "
+                        f"{strict.stderr[-400:]}")
 
     for f in failures:
         print("FAIL", f)

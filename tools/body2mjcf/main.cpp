@@ -1,7 +1,8 @@
 // body2mjcf: writes an MJCF model (plus STL meshes) for MuJoCo 2.2.2 from a Choreonoid .body model.
 // Exit codes (tools/common/front.h): 0 written with nothing lost; 1 written, with losses or
 // other findings reported; 2 not written (bad usage, the model cannot be loaded, an inertia
-// MuJoCo refuses without --balance-inertia, a fatal problem, or --strict losses).
+// MuJoCo refuses or an asymmetric one without --balance-inertia, a fatal problem, or --strict
+// losses and changed values).
 
 #include "export_run.h"
 #include "front.h"
@@ -23,7 +24,8 @@ int main(int argc, char** argv) {
   CLI::App& app = front.app();
   app.add_option("-o,--output", output, "the MJCF file to write ('-': standard output)")->required();
   app.add_flag("--balance-inertia", options.balance_inertia,
-               "write the nearest valid inertia for links MuJoCo refuses (a warning per link)");
+               "write the nearest valid inertia for links MuJoCo refuses, and the mean of each off-diagonal pair of "
+               "an asymmetric one (a warning per link)");
   app.add_option("--actuators", actuators, "one actuator per revolute and prismatic joint")
       ->check(CLI::IsMember({"none", "position", "velocity"}));
   app.add_option("--mesh-folder", options.mesh_folder,
@@ -53,11 +55,16 @@ int main(int argc, char** argv) {
       },
       [](const std::vector<Diagnostic>& diagnostics) {
         // A refused inertia has its own remedy.
-        const bool refused_inertia = std::any_of(diagnostics.begin(), diagnostics.end(), [](const Diagnostic& d) {
-          return d.severity >= Severity::kError && d.rule_id.rfind("inertia-", 0) == 0;
-        });
-        return refused_inertia
-                   ? std::string("MuJoCo refuses an inertia (--balance-inertia writes the nearest valid one)")
-                   : std::string();
+        auto refused = [&diagnostics](auto is_rule) {
+          return std::any_of(diagnostics.begin(), diagnostics.end(),
+                             [&](const Diagnostic& d) { return d.severity >= Severity::kError && is_rule(d.rule_id); });
+        };
+        if (refused([](const std::string& id) { return id == "inertia-asymmetric"; }))
+          return std::string(
+              "MJCF holds a symmetric inertia (--balance-inertia writes the mean of each off-diagonal "
+              "pair)");
+        if (refused([](const std::string& id) { return id.rfind("inertia-", 0) == 0; }))
+          return std::string("MuJoCo refuses an inertia (--balance-inertia writes the nearest valid one)");
+        return std::string();
       });
 }

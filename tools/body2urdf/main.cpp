@@ -1,7 +1,7 @@
 // body2urdf: writes a URDF (plus mesh files) for a Choreonoid .body model.
 // Exit codes (tools/common/front.h): 0 written with nothing lost; 1 written, with losses or
 // other findings reported; 2 not written (bad usage, the model cannot be loaded, a fatal
-// problem, or --strict losses).
+// problem, an asymmetric inertia without --balance-inertia, or --strict losses and changed values).
 
 #include "export_run.h"
 #include "front.h"
@@ -66,8 +66,8 @@ int main(int argc, char** argv) {
                "write capsules as <capsule> (Drake and sdformat read it, urdfdom refuses it; default: a mesh)");
   app.add_flag("--devices-as-frames", options.devices_as_frames, "write devices as fixed child links");
   app.add_flag("--balance-inertia", options.balance_inertia,
-               "write the nearest valid inertia for links whose inertia Drake, gz-math and MuJoCo refuse (a warning "
-               "per link; the tensor body2mjcf writes)");
+               "write the nearest valid inertia for links whose inertia Drake, gz-math and MuJoCo refuse, and the mean "
+               "of each off-diagonal pair of an asymmetric one (a warning per link; the tensors body2mjcf writes)");
   if (auto code = front.parse(argc, argv)) return *code;
   options.mesh_format = mesh_format == "dae" ? converters::MeshFormat::kDae : converters::MeshFormat::kStl;
 

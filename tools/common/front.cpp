@@ -196,7 +196,9 @@ void Front::add_options() {
   werror_option_ = app_.add_flag("--werror", werror_, "treat warnings as errors")->group(policy);
   app_.add_flag("--no-config", no_config_, "ignore .bodycheck.yaml files")->group(policy);
   if (features_.exporter) {
-    app_.add_flag("--strict", strict_, "treat every export loss as an error: nothing is written")->group(policy);
+    app_.add_flag("--strict", strict_,
+                  "treat every export loss and every value the export changes as an error: nothing is written")
+        ->group(policy);
     app_.add_option("--allow-loss", allowed_losses_,
                     "kinds of loss to accept: still reported, but the exit code stays 0 when only these were lost ("
                     "comma-separated: tracks, closed-loops, devices, textures, materials, geometry, joints, dynamics)")

@@ -155,9 +155,9 @@ int main(int argc, char** argv) {
   };
   steps.refusal = [&](const std::vector<Diagnostic>& diagnostics) {
     const bool strict_losses = std::any_of(diagnostics.begin(), diagnostics.end(), [](const Diagnostic& d) {
-      return d.rule_id == "export-loss" && d.severity >= Severity::kError;
+      return (d.rule_id == "export-loss" || d.rule_id == "export-value-changed") && d.severity >= Severity::kError;
     });
-    if (strict_losses) return std::string("--strict makes every loss an error");
+    if (strict_losses) return std::string("--strict makes every loss and every changed value an error");
     return front.may_write(diagnostics) ? std::string()
                                         : std::string("the URDF has errors (--best-effort writes it anyway)");
   };

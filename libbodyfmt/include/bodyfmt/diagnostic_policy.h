@@ -4,8 +4,8 @@
 /// Stages report with the rule table's default severities and know nothing about the run.
 /// A DiagnosticPolicy wraps the sink they report to and applies, in this order: per-rule
 /// enable/disable, inline suppressions (`# bodycheck: disable=RULE`), per-rule severities,
-/// `strict` (`export-loss` becomes an error) and `werror` (warnings become errors). It counts what it forwards by
-/// severity and by rule. It never throws. Fatal diagnostics are never dropped or changed.
+/// `strict` (`export-loss` and `export-value-changed` become errors) and `werror` (warnings become errors). It
+/// counts what it forwards by severity and by rule. It never throws. Fatal diagnostics are never dropped or changed.
 ///
 /// The `.bodycheck.yaml` file that sets these options for a folder is the tools' business
 /// (tools/common/check_config.h).
@@ -35,7 +35,9 @@ struct PolicyOptions {
   /// entry matching the same rule wins (a config's first, then the command line's).
   std::vector<std::pair<std::string, Severity>> severities;
   bool werror = false;  ///< warnings become errors
-  bool strict = false;  ///< `export-loss` findings become errors (converters)
+  /// `export-loss` and `export-value-changed` findings become errors (converters): what a target
+  /// cannot express and what a writer changes on the way out are refused alike.
+  bool strict = false;
   bool inline_suppressions = true;
 };
 

@@ -239,7 +239,8 @@ void DiagnosticPolicy::report(Diagnostic d) {
         }
         if (set->second) d.severity = *set->second;
       }
-      if (options_.strict && d.severity < Severity::kError && rule_pattern_matches("export-loss*", d.rule_id))
+      if (options_.strict && d.severity < Severity::kError &&
+          (rule_pattern_matches("export-loss*", d.rule_id) || d.rule_id == "export-value-changed"))
         d.severity = Severity::kError;
       if (options_.werror && d.severity == Severity::kWarning) d.severity = Severity::kError;
     }

@@ -279,10 +279,10 @@ std::vector<RuleInfo> make_table() {
        "range itself as joint-range-reversed",
        ""},
       {"export-value-changed", W,
-       "the export changed a value so that the target accepts it (a balanced inertia, a raised mass), with the old and "
-       "new values",
-       "the exported body simulates differently from the model as written unless this is reported; --strict does not "
-       "refuse it",
+       "the export wrote a value other than the model's (a symmetrised or balanced inertia, a normalised joint axis, a "
+       "raised mass, a widened empty range), at the value's line, with the value read, the value written and why",
+       "the exported body simulates differently from the model as written unless this is reported; --strict makes it "
+       "an error, as it does export-loss, and nothing is written",
        ""},
       {"appearance-value-range", W,
        "a material colour component or transparency is outside 0..1; Choreonoid keeps it and its renderer clamps it",

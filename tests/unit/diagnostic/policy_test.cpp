@@ -66,7 +66,7 @@ TEST_CASE("policy: per-rule severities raise or lower a rule, the last match win
   CHECK(out.diagnostics()[4].severity == Severity::kFatal);
 }
 
-TEST_CASE("policy: werror turns warnings into errors, strict turns export-loss into an error") {
+TEST_CASE("policy: werror turns warnings into errors, strict turns export-loss and export-value-changed into errors") {
   CollectingSink out;
   PolicyOptions options;
   options.werror = true;
@@ -85,9 +85,11 @@ TEST_CASE("policy: werror turns warnings into errors, strict turns export-loss i
   strict_policy.report(make(1, Severity::kWarning, "export-loss"));
   strict_policy.report(make(2, Severity::kNote, "export-loss"));
   strict_policy.report(make(3, Severity::kWarning, "export-name"));
+  strict_policy.report(make(4, Severity::kWarning, "export-value-changed"));  // a changed value is refused too
   CHECK(strict_out.diagnostics()[0].severity == Severity::kError);
   CHECK(strict_out.diagnostics()[1].severity == Severity::kError);
   CHECK(strict_out.diagnostics()[2].severity == Severity::kWarning);
+  CHECK(strict_out.diagnostics()[3].severity == Severity::kError);
 }
 
 TEST_CASE("policy: suppressions read from a stream are those read from the text, CRLF lines too") {

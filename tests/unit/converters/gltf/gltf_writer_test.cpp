@@ -228,6 +228,16 @@ TEST_CASE("gltf: losses are reported at their source lines, once each") {
   CHECK(expected.size() == 6);
 }
 
+TEST_CASE("gltf: an axis that is not a unit vector is written as its direction and said at the axis") {
+  // losses.body's ARM has joint_axis: [0, 2, 0] on line 36, its value at column 17 (bodycheck's
+  // joint-axis-not-unit place); TRACK's Y is a unit vector and says nothing.
+  auto e = export_model(kData / "losses.body");
+  std::vector<std::pair<int, int>> changed;
+  for (const Diagnostic& d : e->sink.diagnostics())
+    if (d.rule_id == "export-value-changed") changed.emplace_back(d.location.line, d.location.column);
+  CHECK(changed == std::vector<std::pair<int, int>>{{36, 17}});
+}
+
 TEST_CASE("gltf: a model glTF can express fully reports no loss") {
   auto e = export_model(kData / "textured.body");
   for (const Diagnostic& d : e->sink.diagnostics()) CHECK_MESSAGE(d.rule_id != "export-loss", d.message);

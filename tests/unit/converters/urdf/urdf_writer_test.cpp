@@ -240,6 +240,9 @@ TEST_CASE("urdf: numeric round trip through urdfdom (masses, joints, forward kin
   int compared = 0;
   std::vector<fs::path> bodies = corpus_bodies();
   bodies.push_back(kData / "clean.body");
+  // Axes of other lengths: Choreonoid moves by the axis as written, URDF by its direction.
+  bodies.push_back(fs::path(BODYFMT_TEST_DATA_DIR) / "export_changed" / "axis_not_unit.body");
+  bodies.push_back(fs::path(BODYFMT_TEST_DATA_DIR) / "export_changed" / "prismatic_axis_not_unit.body");
   for (const auto& body : bodies) {
     CAPTURE(body.string());
     Export e = export_file(body);

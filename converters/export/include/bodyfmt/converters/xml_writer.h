@@ -9,9 +9,12 @@
 #include <bodyfmt/derived.h>
 #include <bodyfmt/diagnostic.h>
 #include <bodyfmt/model.h>
+#include <bodyfmt/physical.h>
 
 #include <tinyxml2.h>
+#include <Eigen/Core>
 
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -32,6 +35,14 @@ class XmlWriter {
   void loss(tinyxml2::XMLElement* parent, const PlannedLoss& planned) {
     loss(planned.kind, parent, planned.at, planned.what, planned.hint);
   }
+  /// A value written other than the model's: `export-value-changed` at `at` (the value's key),
+  /// with `what` (the value read, the value written and why), commented in `parent`.
+  void value_changed(tinyxml2::XMLElement* parent, const SourceLocation& at, const std::string& what);
+  /// The axis the joint of link `index` is written with: its direction (URDF and MJCF read an
+  /// axis as one). When the physical-validity gate finds it is not a unit vector
+  /// (joint-axis-not-unit), that is a changed value, reported by value_changed in `parent`; an
+  /// axis within the gate's tolerance is normalised without a word.
+  Eigen::Vector3d written_axis(tinyxml2::XMLElement* parent, std::size_t index);
   /// Reports a rule whose table severity is fatal and marks the export failed.
   void fatal(std::string_view rule, const SourceLocation& at, std::string message);
   /// Fails on a name XML cannot hold (control characters, invalid UTF-8); `what` is "link",
@@ -55,6 +66,10 @@ class XmlWriter {
   DiagnosticSink& sink_;
   tinyxml2::XMLDocument doc_;
   bool failed_ = false;
+
+ private:
+  /// The joint half of the gate (assess_joints), computed on first use.
+  std::optional<std::vector<PhysicalFinding>> joint_findings_;
 };
 
 /// An XML writer's entry point: the joint checks every export needs first, then
