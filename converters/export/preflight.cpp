@@ -34,4 +34,21 @@ bool check_joints(const Model& model, DiagnosticSink& sink, bool reversed_range_
   return usable;
 }
 
+bool check_link_names(const Model& model, DiagnosticSink& sink, std::string_view format) {
+  bool usable = true;
+  for (std::size_t i = 0; i < model.links.size(); ++i) {
+    const Link& link = model.links[i];
+    if (!link.name.empty()) continue;
+    usable = false;
+    const std::string parent =
+        link.parent >= 0 ? fmt::format(" (child of \"{}\")", model.links[static_cast<std::size_t>(link.parent)].name)
+                         : std::string(" (the root)");
+    report_rule(sink, "export-link-unnamed", link.source,
+                fmt::format("link {}{} has no name, which {} needs to refer to it; the model is not written", i, parent,
+                            format),
+                "add name: LINK_NAME");
+  }
+  return usable;
+}
+
 }  // namespace bodyfmt::converters

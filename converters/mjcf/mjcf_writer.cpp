@@ -909,7 +909,7 @@ int collision_group_of(const std::string& model_name) {
 
 bool write_mjcf(const Model& model, const Derived& derived, const MjcfOptions& options, converters::OutputSet& output,
                 DiagnosticSink& sink) {
-  return converters::write_xml<Writer>(model, derived, options, output, sink);
+  return converters::write_xml<Writer>(model, derived, options, output, sink, "MJCF");
 }
 
 }  // namespace bodyfmt::mjcf

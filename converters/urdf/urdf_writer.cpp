@@ -143,7 +143,8 @@ class Writer : converters::XmlWriter {
 bool write_urdf(const Model& model, const Derived& derived, const UrdfOptions& options, converters::OutputSet& output,
                 DiagnosticSink& sink) {
   // A reversed range is written as it is (see write_joint).
-  return converters::write_xml<Writer>(model, derived, options, output, sink, /*reversed_range_writable=*/true);
+  return converters::write_xml<Writer>(model, derived, options, output, sink, kTarget,
+                                       /*reversed_range_writable=*/true);
 }
 
 void Writer::flush() {

@@ -101,7 +101,10 @@ std::vector<RuleInfo> make_table() {
       {"load-actuation-mode", E, "an illegal actuation mode", "Choreonoid refuses the file", ""},
       {"load-angle-on-prismatic", W, "joint_angle on a prismatic joint in a degree file",
        "Choreonoid converts it from degrees", ""},
-      {"load-link-name", E, "a link has no name", "it cannot be referenced as a parent", ""},
+      {"load-link-name", W, "a link has no name",
+       "Choreonoid loads it (a root or a leaf), but nothing can name it as a parent and URDF and MJCF cannot "
+       "write it",
+       ""},
       {"load-link-type", E, "an unknown node type in `links`", "Choreonoid refuses the file", ""},
       {"load-mass-ignored", W, "mass keys where Choreonoid ignores them (Transform, SubBody)",
        "the mass the author meant is not simulated", ""},
@@ -268,6 +271,8 @@ std::vector<RuleInfo> make_table() {
       // Exporters (converters/, each target's SUPPORT.md)
       {"export-loss", W, "the target format cannot express a construct of the model",
        "the exported file silently differs from what Choreonoid simulates unless this is reported", ""},
+      {"export-link-unnamed", E, "a link without a name, which URDF and MJCF cannot write",
+       "their joints, parents and contact exclusions refer to links by name; none is made up", ""},
       {"export-name", W, "a name the target format's tools cannot use, or one renamed to stay unique",
        "ROS tools (tf, MoveIt) rely on URDF names of letters, digits and '_'", ""},
       {"export-name-conflict", F,

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <map>
 #include <unordered_map>
+#include <vector>
 
 namespace bodyfmt {
 namespace {
@@ -151,13 +152,17 @@ std::vector<ModelChange> diff_models(const Model& old_model, const Model& new_mo
   if (!old_model.links.empty() && !new_model.links.empty())
     diff_fields(a.model_fields(), b.model_fields(), "", options.tolerance, out);
 
-  std::unordered_map<std::string_view, std::size_t> old_links;
+  // Links pair by name; the k-th link of a name with the k-th of it on the other side, since
+  // Choreonoid loads links without a name (the only name that can repeat).
+  std::unordered_map<std::string_view, std::vector<std::size_t>> old_links;
   old_links.reserve(old_model.links.size());
-  for (std::size_t i = 0; i < old_model.links.size(); ++i) old_links.emplace(old_model.links[i].name, i);
+  for (std::size_t i = 0; i < old_model.links.size(); ++i) old_links[old_model.links[i].name].push_back(i);
+  std::unordered_map<std::string_view, std::size_t> seen;
   std::vector<bool> matched(old_model.links.size(), false);
   for (std::size_t i = 0; i < new_model.links.size(); ++i) {
+    const std::size_t k = seen[new_model.links[i].name]++;
     auto it = old_links.find(new_model.links[i].name);
-    if (it == old_links.end()) {
+    if (it == old_links.end() || k >= it->second.size()) {
       const LinkFields l = b.link(i);
       ModelChange c;
       c.kind = ChangeKind::kAdded;
@@ -168,8 +173,9 @@ std::vector<ModelChange> diff_models(const Model& old_model, const Model& new_mo
       out.push_back(std::move(c));
       continue;
     }
-    matched[it->second] = true;
-    const LinkFields before = a.link(it->second);
+    const std::size_t j = it->second[k];
+    matched[j] = true;
+    const LinkFields before = a.link(j);
     LinkFields after = b.link(i);
     pair_shapes(before.fields, after.fields);
     diff_fields(before.fields, after.fields, new_model.links[i].name, options.tolerance, out);

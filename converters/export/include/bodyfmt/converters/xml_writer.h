@@ -72,12 +72,14 @@ class XmlWriter {
   std::optional<std::vector<PhysicalFinding>> joint_findings_;
 };
 
-/// An XML writer's entry point: the joint checks every export needs first, then
+/// An XML writer's entry point: the joint and link-name checks every export needs first (all of
+/// them, so every problem is reported), then
 /// `WriterType(model, derived, options, output, sink).run()`.
 template <typename WriterType, typename Options>
 bool write_xml(const Model& model, const Derived& derived, const Options& options, OutputSet& output,
-               DiagnosticSink& sink, bool reversed_range_writable = false) {
-  if (!check_joints(model, sink, reversed_range_writable)) {
+               DiagnosticSink& sink, std::string_view format, bool reversed_range_writable = false) {
+  const bool joints_usable = check_joints(model, sink, reversed_range_writable);
+  if (!check_link_names(model, sink, format) || !joints_usable) {
     output.fail();
     return false;
   }
