@@ -72,11 +72,13 @@ def diff(expected, actual):
         exp_list, act_list = expected.get(kind) or [], actual.get(kind) or []
         exp_names = [x.get("name") for x in exp_list]
         act_names = [x.get("name") for x in act_list]
-        if exp_names != act_names:
+        if exp_names == act_names:  # by position: devices may share a name, often ""
+            pairs = list(zip(exp_list, act_list))
+        else:
             out.append(f"{kind} order: {act_names} != {exp_names}")
-        act_by_name = {x.get("name"): x for x in act_list}
-        for item in exp_list:
-            other = act_by_name.get(item.get("name"))
+            act_by_name = {x.get("name"): x for x in act_list}
+            pairs = [(item, act_by_name.get(item.get("name"))) for item in exp_list]
+        for item, other in pairs:
             if other is None:
                 out.append(f"{kind} {item.get('name')} missing")
             else:
