@@ -8,6 +8,7 @@
 #include "load/link_reader.h"
 #include "load/mapping_reader.h"
 #include "load/scalar.h"
+#include "load/scene_file.h"
 #include "load/uri.h"
 #include "load/values.h"
 #include "mesh_import/file_cache_impl.h"
@@ -42,7 +43,7 @@ std::string lower_extension(const std::string& path) {
 class Resources final : public ResourceReader {
  public:
   Resources(const LoadOptions& options, LoadContext& ctx, Model& model, LoadSession& session)
-      : options_(options), ctx_(ctx), model_(model), session_(session) {}
+      : options_(options), ctx_(ctx), model_(model), session_(session), scenes_(options, ctx) {}
 
   void set_main_document(const yaml::Document* main_document) override { main_ = main_document; }
   bool read_yaml_without_main_document() const override { return read_yaml_without_main_; }
@@ -64,6 +65,9 @@ class Resources final : public ResourceReader {
     if (auto s = r.take({"scale"}))
       if (s->is_sequence())
         if (auto v = read_vec3(ctx_, s)) X.linear() = X.linear() * v->asDiagonal();
+    // In a scene file read with a length unit, Choreonoid scales this node's translation but
+    // not the file it names, which has a length unit of its own.
+    if (frame.scene_file && frame.scene_length_scale != 1.0) X.linear() /= frame.scene_length_scale;
     inner = reader.push_frame(frame, X);
     r.take({"crease_angle", "creaseAngle"});
     r.report_unknown(body_key_names("element:Resource"));
@@ -75,7 +79,25 @@ class Resources final : public ResourceReader {
     if (path.empty()) return;
     std::string ext = lower_extension(path);
     if (ext == ".yaml" || ext == ".yml") {
+      if (frame.scene_file) {
+        // StdSceneLoader's reader has no main YAML reader to read a YAML resource with.
+        ctx_.report("scene-unsupported", uri, "a scene file cannot name a YAML resource; it is not read",
+                    "move its nodes into the scene file");
+        return;
+      }
       read_yaml_fragment(reader, uri, path, fragment, inner);
+      return;
+    }
+    if (ext == ".scen") {
+      if (fragment) {
+        ctx_.report("scene-unsupported", fragment,
+                    "bodyfmt cannot select a node of a scene file; the resource is not read",
+                    "name the whole file, or move the node into a scene file of its own");
+        return;
+      }
+      MeshResource unit;
+      if (metadata) read_mesh_metadata(ctx_, metadata, unit);
+      scenes_.read(reader, uri, path, unit, inner);
       return;
     }
     Shape shape;
@@ -297,6 +319,7 @@ class Resources final : public ResourceReader {
   bool read_yaml_without_main_ = false;
   LoadSession& session_;
   std::map<std::string, std::unique_ptr<yaml::Document>> yaml_files_;
+  SceneFiles scenes_;
 };
 
 }  // namespace
