@@ -171,8 +171,9 @@ std::vector<RuleInfo> make_table() {
        "files that each name another many times multiply: every use adds its shapes to the model",
        "LoadOptions::max_expanded_yaml_nodes (default 40,000,000)"},
       {"scene-unsupported", E,
-       "a scene file resource bodyfmt or Choreonoid cannot read: a YAML resource inside a scene file, or a "
-       "node/fragment selecting part of a scene file",
+       "a scene file resource bodyfmt or Choreonoid cannot read: a YAML resource inside a scene file, a "
+       "node/fragment selecting part of a scene file, or a scene file given as a Shape's geometry that is not one "
+       "shape without a transform of its own",
        "its shapes are missing", ""},
       {"subbody-missing", E, "a SubBody file cannot be read", "its links are missing", ""},
       {"subbody-load", E, "a SubBody file cannot be loaded", "its links are missing", ""},

@@ -309,6 +309,8 @@ void ElementReader::read_shape(const yaml::NodeRef& node, const ElementFrame& fr
   }
   r.take({"is_meta_scene"});
   r.report_unknown(body_key_names("element:Shape"));
+  if (resources_ && geometry_is<MeshResource>(shape.geometry) && resources_->read_scene_geometry(*this, shape, inner))
+    return;
   add_shape(std::move(shape), inner);
 }
 

@@ -36,6 +36,9 @@ class ElementReader;
 struct ResourceHandler {
   virtual ~ResourceHandler() = default;
   virtual void read_resource(ElementReader& reader, const yaml::NodeRef& node, const ElementFrame& frame) = 0;
+  /// A Shape whose geometry is a Resource the handler reads itself (a scene file): adds what
+  /// it gives, or reports why not, and returns true; false leaves the shape to the caller.
+  virtual bool read_scene_geometry(ElementReader& reader, Shape& shape, const ElementFrame& frame) = 0;
 };
 
 class ElementReader {

@@ -97,7 +97,7 @@ class Resources final : public ResourceReader {
       }
       MeshResource unit;
       if (metadata) read_mesh_metadata(ctx_, metadata, unit);
-      scenes_.read(reader, uri, path, unit, inner);
+      scenes_.read(reader, uri.use_site(), path, unit, inner);
       return;
     }
     Shape shape;
@@ -111,6 +111,17 @@ class Resources final : public ResourceReader {
     if (metadata) read_mesh_metadata(ctx_, metadata, mesh);
     shape.geometry = mesh;
     reader.add_shape(std::move(shape), inner);
+  }
+
+  bool read_scene_geometry(ElementReader& reader, Shape& shape, const ElementFrame& frame) override {
+    const MeshResource* mesh = geometry_if<MeshResource>(shape.geometry);
+    if (!mesh || lower_extension(mesh->resolved_path) != ".scen") return false;
+    if (!mesh->node.empty())
+      ctx_.report("scene-unsupported", mesh->uri_source,
+                  "bodyfmt cannot select a node of a scene file; the geometry is not read");
+    else
+      scenes_.read_as_geometry(reader, std::move(shape), frame);
+    return true;
   }
 
   void read_link_node(const yaml::NodeRef& node, const std::string& type, std::vector<LinkEntry>& entries) override {

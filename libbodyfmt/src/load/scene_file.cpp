@@ -13,7 +13,7 @@
 
 namespace bodyfmt::detail {
 
-void SceneFiles::read(ElementReader& reader, const yaml::NodeRef& uri, const std::string& path,
+void SceneFiles::read(ElementReader& reader, const SourceLocation& uri, const std::string& path,
                       const MeshResource& resource, const ElementFrame& frame) {
   const std::string identity = file_identity(path);
   if (std::find(chain_.begin(), chain_.end(), identity) != chain_.end()) {
@@ -65,7 +65,39 @@ void SceneFiles::read(ElementReader& reader, const yaml::NodeRef& uri, const std
   ctx_.own_angle_unit = own_angle_unit;
 }
 
-const SceneFiles::File& SceneFiles::load(const yaml::NodeRef& uri, const std::string& path,
+void SceneFiles::read_as_geometry(ElementReader& reader, Shape shape, const ElementFrame& frame) {
+  const MeshResource& resource = geometry_get<MeshResource>(shape.geometry);
+  std::vector<Shape>& shapes = reader.model().links[static_cast<std::size_t>(reader.link_index())].shapes;
+  const std::size_t first = shapes.size();
+  const int errors = ctx_.errors;
+  read(reader, resource.uri_source, resource.resolved_path, resource, frame);
+  if (shapes.size() == first && ctx_.errors != errors) return;  // the file could not be read: reported
+  // The shape must sit where the geometry's Shape node puts it: the length unit may scale it,
+  // nothing may move or turn it (an upper axis is a transform above it too).
+  Eigen::Affine3d expected = Eigen::Affine3d::Identity();
+  expected.linear() *= resource.length_scale;
+  expected = frame.X_LF * expected;
+  const bool single = shapes.size() == first + 1 && !resource.y_up &&
+                      shapes.back().X_LS.matrix().isApprox(expected.matrix().topRows<3>(), 1e-12);
+  if (!single) {
+    const std::size_t added = shapes.size() - first;
+    const std::string what = added == 0   ? "has no shape"
+                             : added == 1 ? "moves or turns its shape"
+                                          : "has " + std::to_string(added) + " shapes";
+    ctx_.report("scene-unsupported", resource.uri_source,
+                "a scene file given as a geometry must be a single shape with no transform of its own; this one " +
+                    what + ", so Choreonoid refuses it",
+                "name it by a Resource node instead of a geometry");
+    shapes.resize(first);
+    return;
+  }
+  Shape& added = shapes.back();
+  // readResourceAsGeometry keeps only the mesh: name and appearance are the Shape node's.
+  added.name = shape.name;
+  added.appearance = shape.appearance;
+}
+
+const SceneFiles::File& SceneFiles::load(const SourceLocation& uri, const std::string& path,
                                          const std::string& identity) {
   auto [it, inserted] = files_.try_emplace(identity);
   File& file = it->second;

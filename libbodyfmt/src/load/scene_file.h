@@ -27,8 +27,12 @@ class SceneFiles {
   /// Adds the shapes of the scene file at `path`, which `uri` names, to `reader`'s link under
   /// `frame` (the Resource node's); `resource` carries the node's metadata (length unit,
   /// upper axis). Every problem is reported, located in the scene file where it is written.
-  void read(ElementReader& reader, const yaml::NodeRef& uri, const std::string& path, const MeshResource& resource,
+  void read(ElementReader& reader, const SourceLocation& uri, const std::string& path, const MeshResource& resource,
             const ElementFrame& frame);
+  /// A Shape whose geometry is a Resource naming a scene file: Choreonoid takes the mesh of
+  /// the file's one shape, which must have no transform of its own (StdSceneReader's
+  /// readResourceAsGeometry), and the Shape's appearance. Adds that shape, else reports why.
+  void read_as_geometry(ElementReader& reader, Shape shape, const ElementFrame& frame);
 
  private:
   struct File {
@@ -37,7 +41,7 @@ class SceneFiles {
     bool degrees = true;  ///< the scene file's own angle_unit
   };
 
-  const File& load(const yaml::NodeRef& uri, const std::string& path, const std::string& identity);
+  const File& load(const SourceLocation& uri, const std::string& path, const std::string& identity);
   /// Reads the header (format, format_version, angle_unit, scene) as StdSceneReader does.
   void read_header(File& file);
 

@@ -168,6 +168,25 @@ TEST_CASE("load: a scene file's length unit scales its lengths; scale_orientatio
   r.expect_clean();
 }
 
+TEST_CASE("load: a scene file as a Shape's geometry gives its one shape the Shape's place and appearance") {
+  auto r = load_file(kData + "geometry.body");
+  // primitives.scen has four shapes: Choreonoid refuses it as a geometry.
+  auto d = r.take("scene-unsupported");
+  CHECK(file_name(d.location) == "geometry.body");
+  CHECK(pos(d) == Pos{16, 41});
+  r.expect_clean();
+  const bodyfmt::Link& base = r.link("BASE");
+  REQUIRE(base.shapes.size() == 1);
+  const bodyfmt::Shape& plate = base.shapes[0];
+  CHECK(plate.name == "PLATE");
+  REQUIRE(bodyfmt::geometry_is<bodyfmt::Box>(plate.geometry));
+  CHECK(bodyfmt::geometry_get<bodyfmt::Box>(plate.geometry).size.isApprox(Eigen::Vector3d(0.1, 0.2, 0.3)));
+  CHECK(plate.X_LS.translation().isApprox(Eigen::Vector3d(0, 0, 1)));
+  // The Shape node's blue, not the scene file's red.
+  REQUIRE(plate.appearance.material);
+  CHECK(plate.appearance.material->diffuse_color.isApprox(Eigen::Vector3d(0, 0, 1)));
+}
+
 TEST_CASE("load: what a scene file cannot hold is reported at its line in the scene file") {
   auto r = load_file(kData + "errors.body");
   auto typo = r.take("load-unknown-model-key");
