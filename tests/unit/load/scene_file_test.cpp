@@ -112,7 +112,7 @@ TEST_CASE("load: a radian scene file inside a degree body, each read in its own 
   r.expect_clean();
 }
 
-TEST_CASE("load: a degree scene file inside a radian body; the body's upgrade leaves the scene alone") {
+TEST_CASE("load: a degree scene file inside a radian body, whose upgrade leaves the scene alone") {
   auto r = load_file(kData + "units_radian_body.body");
   // The body turns pi about Z; the scene 90 degrees about Y, then (0,0,1): Ry90 (0,0,1) =
   // (1,0,0), Rz180 (1,0,0) = (-1,0,0). Rz180 Ry90 sends x to -z, y to -y, z to -x.
@@ -153,7 +153,7 @@ TEST_CASE("load: nested transforms and a nested scene file in radians, inside a 
   r.expect_clean();
 }
 
-TEST_CASE("load: a scene file's length unit scales its lengths; scale_orientation turns the scale axes") {
+TEST_CASE("load: a scene file's length unit scales its lengths, scale_orientation turns the scale axes") {
   auto r = load_file(kData + "scaled.body");
   const bodyfmt::Link& base = r.link("BASE");
   REQUIRE(base.shapes.size() == 1);
