@@ -196,8 +196,9 @@ TEST_CASE("load: what a scene file cannot hold is reported at its line in the sc
   CHECK(file_name(rigid.location) == "errors.scen");
   CHECK(pos(rigid) == Pos{7, 11});
   CHECK(pos(r.take("geometry-unknown-type")) == Pos{10, 22});
-  CHECK(pos(r.take("load-scene-node")) == Pos{11, 5});  // a scene light, not a device
-  CHECK(pos(r.take("load-type")) == Pos{13, 22});       // `elements` keyed by `type`
+  CHECK(pos(r.take("load-scene-node")) == Pos{11, 5});   // a scene light, not a device
+  CHECK(pos(r.take("load-type")) == Pos{13, 22});        // `elements` keyed by `type`
+  CHECK(pos(r.take("load-ignored-key")) == Pos{17, 5});  // a Node is empty: its elements are not read
   r.expect_clean();
   // The box (at the origin: its translation is misspelt) and the last sphere are kept.
   const bodyfmt::Link& base = r.link("BASE");
