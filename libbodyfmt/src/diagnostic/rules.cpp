@@ -163,8 +163,10 @@ std::vector<RuleInfo> make_table() {
       {"scene-format-name", W, "a scene file's `format` is neither choreonoid_scene nor ChoreonoidScene",
        "Choreonoid does not check it, so a file meant as something else is read as a scene", ""},
       {"scene-empty", W, "a scene file's `scene` has no node", "the resource adds nothing to draw or collide", ""},
-      {"scene-recursion", E, "scene files include themselves or each other, or nest deeper than 16",
-       "loading would never end", ""},
+      {"scene-recursion", E,
+       "scene files include themselves or each other, or nest deeper than 16 files or than max_yaml_depth YAML "
+       "levels together",
+       "loading would never end, or would run out of stack", "LoadOptions::max_yaml_depth (default 200)"},
       {"scene-expansion", E,
        "the scene files a body includes, counted once per use, expand to more YAML nodes than "
        "max_expanded_yaml_nodes",

@@ -31,6 +31,14 @@ void SceneFiles::read(ElementReader& reader, const SourceLocation& uri, const st
   if (expanded_nodes_ > options_.max_expanded_yaml_nodes) return;  // reported where the budget ran out
   const File& file = load(uri, path, identity);
   if (!file.scene) return;
+  // Each file nested in the next adds its depth to the readers' recursion: together they are
+  // bounded as one document is (--max-yaml-depth), so that no stack runs out.
+  if (chain_depth_ + file.depth > options_.max_yaml_depth) {
+    ctx_.report("scene-recursion", uri,
+                "scene files nested in one another are deeper than " + std::to_string(options_.max_yaml_depth) +
+                    " YAML levels together; this one is not read");
+    return;
+  }
   // A scene file named many times by scene files named many times multiplies: the shapes
   // of every use are the model's, so the uses together are bounded as one document is.
   expanded_nodes_ += file.document->expanded_node_count;
@@ -59,7 +67,9 @@ void SceneFiles::read(ElementReader& reader, const SourceLocation& uri, const st
   ctx_.degrees = file.degrees;
   ctx_.own_angle_unit = true;
   chain_.push_back(identity);
+  chain_depth_ += file.depth;
   reader.read_elements(file.scene, inner);
+  chain_depth_ -= file.depth;
   chain_.pop_back();
   ctx_.degrees = degrees;
   ctx_.own_angle_unit = own_angle_unit;
@@ -114,7 +124,10 @@ const SceneFiles::File& SceneFiles::load(const SourceLocation& uri, const std::s
   // A scene file is a document of its own: StdSceneLoader reads it with a new YAML reader,
   // which sees no anchor of the body file.
   file.document = yaml::parse_yaml(*text, path, po, ctx_.sink);
-  if (file.document && file.document->root) read_header(file);
+  if (file.document && file.document->root) {
+    file.depth = file.document->root->expanded_depth;
+    read_header(file);
+  }
   return file;
 }
 

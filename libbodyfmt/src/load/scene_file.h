@@ -39,6 +39,7 @@ class SceneFiles {
     std::unique_ptr<yaml::Document> document;
     yaml::NodeRef scene;  ///< the `scene` value; empty when the file cannot be used (reported)
     bool degrees = true;  ///< the scene file's own angle_unit
+    int depth = 0;        ///< the document's nesting depth
   };
 
   const File& load(const SourceLocation& uri, const std::string& path, const std::string& identity);
@@ -49,6 +50,7 @@ class SceneFiles {
   LoadContext& ctx_;
   std::map<std::string, File> files_;  ///< by file_identity; each file is parsed once per load
   std::vector<std::string> chain_;     ///< identities of the scene files being read, outermost first
+  int chain_depth_ = 0;                ///< the nesting depths of the files in chain_, added up
   std::size_t expanded_nodes_ = 0;     ///< YAML nodes of every scene file use so far
 };
 

@@ -274,6 +274,33 @@ TEST_CASE("load: hostile scene files: deep nesting, a multiplying include, a FIF
     r.expect_clean();
     CHECK(r.link("BASE").shapes.size() == 16);
   }
+  SUBCASE("two scene files of 60 nested Transforms each are deeper together than one document may be") {
+    // Each file: 60 Transforms, one inside the next's elements, around a Resource (a.scen) or
+    // a Shape (b.scen). Depths: 1 (the innermost mapping; 2 for the Shape and its geometry)
+    // + 2 x 60 + the scene list + the root = 123 and 124; together 247 > 200 (the default).
+    auto nested = [](const std::string& innermost) {
+      std::string text = "format_version: 2.0\nscene:\n", indent = "  ";
+      for (int i = 0; i < 60; ++i) {
+        text += indent + "- type: Transform\n" + indent + "  elements:\n";
+        indent += "    ";
+      }
+      return text + indent + "- " + innermost + "\n";
+    };
+    write(dir.path / "a.scen", nested("{type: Resource, uri: b.scen}"));
+    write(dir.path / "b.scen", nested("{type: Shape, geometry: {type: Sphere}}"));
+    write(dir.path / "main.body", body_naming("a.scen"));
+    auto r = load_file((dir.path / "main.body").string());
+    auto d = r.take("scene-recursion");
+    // Line 2 + 2 x 60 + 1; the uri after 2 + 4 x 60 spaces and "- {type: Resource, uri: ".
+    CHECK(file_name(d.location) == "a.scen");
+    CHECK(pos(d) == Pos{123, 267});
+    r.expect_clean();
+    CHECK(r.link("BASE").shapes.empty());
+    write(dir.path / "main.body", body_naming("b.scen"));  // one alone is within the bound
+    r = load_file((dir.path / "main.body").string());
+    r.expect_clean();
+    CHECK(r.link("BASE").shapes.size() == 1);
+  }
   SUBCASE("a file named 10 times by a file named 10 times runs out of the node budget") {
     std::string ten = "format_version: 2.0\nscene:\n";
     for (int i = 0; i < 10; ++i) ten += "  - {type: Resource, uri: leaf.scen}\n";
