@@ -155,6 +155,10 @@ std::vector<RuleInfo> make_table() {
       {"resource-missing", E, "a resource file cannot be read", "its geometry is missing", ""},
       {"resource-fragment", E, "a YAML fragment anchor is not found", "Choreonoid refuses the file", ""},
       {"resource-unsupported", E, "a Resource node where none can be read", "its geometry is missing", ""},
+      {"resource-recursion", E,
+       "YAML resources (with their fragments) include themselves or each other, or resources nested in one another "
+       "are deeper than max_yaml_depth YAML levels together",
+       "Choreonoid would recurse until its stack runs out", "LoadOptions::max_yaml_depth (default 200)"},
       // Scene files (.scen) named by a Resource node (§9.2)
       {"scene-header", E,
        "a scene file's header is malformed: not a mapping, format_version missing or >= 2.1, angle_unit neither "

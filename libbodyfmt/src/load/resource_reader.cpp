@@ -43,7 +43,7 @@ std::string lower_extension(const std::string& path) {
 class Resources final : public ResourceReader {
  public:
   Resources(const LoadOptions& options, LoadContext& ctx, Model& model, LoadSession& session)
-      : options_(options), ctx_(ctx), model_(model), session_(session), scenes_(options, ctx) {}
+      : options_(options), ctx_(ctx), model_(model), session_(session), scenes_(options, ctx, include_depth_) {}
 
   void set_main_document(const yaml::Document* main_document) override { main_ = main_document; }
   bool read_yaml_without_main_document() const override { return read_yaml_without_main_; }
@@ -159,7 +159,7 @@ class Resources final : public ResourceReader {
     const yaml::Document* doc = load_yaml_file(uri, path);
     if (!doc) return;
     if (!fragment) {
-      reader.read_elements(doc->root, frame);
+      read_nested_yaml(reader, uri, file_identity(path), doc->root, frame);
       return;
     }
     const std::string name(fragment->scalar());
@@ -179,7 +179,32 @@ class Resources final : public ResourceReader {
     yaml::NodeRef ref;
     ref.node = target;
     ref.alias_site = &fragment.use_site();
-    reader.read_elements(ref, frame);
+    read_nested_yaml(reader, fragment, file_identity(path) + "#" + name, ref, frame);
+  }
+
+  /// Reads YAML resource text that may name YAML resources in turn, which Choreonoid follows
+  /// without a guard: a cycle, or a chain deeper than one document may be, is refused at `at`.
+  void read_nested_yaml(ElementReader& reader, const yaml::NodeRef& at, const std::string& key,
+                        const yaml::NodeRef& elements, const ElementFrame& frame) {
+    if (std::find(yaml_chain_.begin(), yaml_chain_.end(), key) != yaml_chain_.end()) {
+      std::string chain;
+      for (const std::string& k : yaml_chain_) chain += std::filesystem::path(k).filename().string() + " -> ";
+      chain += std::filesystem::path(key).filename().string();
+      ctx_.report("resource-recursion", at, "YAML resources include each other: " + chain);
+      return;
+    }
+    const int depth = elements->expanded_depth;
+    if (include_depth_ + depth > options_.max_yaml_depth) {
+      ctx_.report("resource-recursion", at,
+                  "resources nested in one another are deeper than " + std::to_string(options_.max_yaml_depth) +
+                      " YAML levels together; this one is not read");
+      return;
+    }
+    yaml_chain_.push_back(key);
+    include_depth_ += depth;
+    reader.read_elements(elements, frame);
+    include_depth_ -= depth;
+    yaml_chain_.pop_back();
   }
 
   std::shared_ptr<const Model> load_subbody(const yaml::NodeRef& uri, const std::string& path) {
@@ -330,6 +355,9 @@ class Resources final : public ResourceReader {
   bool read_yaml_without_main_ = false;
   LoadSession& session_;
   std::map<std::string, std::unique_ptr<yaml::Document>> yaml_files_;
+  std::vector<std::string> yaml_chain_;  ///< "file#fragment" of the YAML resources being read, outermost first
+  /// The depths of the YAML resources and scene files being read, one inside the next, added up.
+  int include_depth_ = 0;
   SceneFiles scenes_;
 };
 

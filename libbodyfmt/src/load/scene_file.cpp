@@ -35,7 +35,7 @@ void SceneFiles::read(ElementReader& reader, const SourceLocation& uri, const st
   // bounded as one document is (--max-yaml-depth), so that no stack runs out.
   if (chain_depth_ + file.depth > options_.max_yaml_depth) {
     ctx_.report("scene-recursion", uri,
-                "scene files nested in one another are deeper than " + std::to_string(options_.max_yaml_depth) +
+                "resources nested in one another are deeper than " + std::to_string(options_.max_yaml_depth) +
                     " YAML levels together; this one is not read");
     return;
   }

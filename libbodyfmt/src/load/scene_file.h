@@ -22,7 +22,10 @@ class SceneFiles {
   /// How many scene files may include one another, one inside the next.
   static constexpr std::size_t kMaxNesting = 16;
 
-  SceneFiles(const LoadOptions& options, LoadContext& ctx) : options_(options), ctx_(ctx) {}
+  /// `include_depth`: the depths of the included files being read, added up, which the
+  /// caller shares with its own includes (YAML resources).
+  SceneFiles(const LoadOptions& options, LoadContext& ctx, int& include_depth)
+      : options_(options), ctx_(ctx), chain_depth_(include_depth) {}
 
   /// Adds the shapes of the scene file at `path`, which `uri` names, to `reader`'s link under
   /// `frame` (the Resource node's); `resource` carries the node's metadata (length unit,
@@ -50,7 +53,7 @@ class SceneFiles {
   LoadContext& ctx_;
   std::map<std::string, File> files_;  ///< by file_identity; each file is parsed once per load
   std::vector<std::string> chain_;     ///< identities of the scene files being read, outermost first
-  int chain_depth_ = 0;                ///< the nesting depths of the files in chain_, added up
+  int& chain_depth_;                   ///< the nesting depths of the files being read, added up
   std::size_t expanded_nodes_ = 0;     ///< YAML nodes of every scene file use so far
 };
 
