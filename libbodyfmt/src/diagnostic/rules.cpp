@@ -155,6 +155,32 @@ std::vector<RuleInfo> make_table() {
       {"resource-missing", E, "a resource file cannot be read", "its geometry is missing", ""},
       {"resource-fragment", E, "a YAML fragment anchor is not found", "Choreonoid refuses the file", ""},
       {"resource-unsupported", E, "a Resource node where none can be read", "its geometry is missing", ""},
+      {"resource-recursion", E,
+       "YAML resources (with their fragments) include themselves or each other, or resources nested in one another "
+       "are deeper than max_yaml_depth YAML levels together",
+       "Choreonoid would recurse until its stack runs out", "LoadOptions::max_yaml_depth (default 200)"},
+      // Scene files (.scen) named by a Resource node (§9.2)
+      {"scene-header", E,
+       "a scene file's header is malformed: not a mapping, format_version missing or >= 2.1, angle_unit neither "
+       "degree nor radian (or radian in 2.0), or no `scene` key",
+       "Choreonoid's scene loader loads nothing from the file, so the body refuses the resource", ""},
+      {"scene-format-name", W, "a scene file's `format` is neither choreonoid_scene nor ChoreonoidScene",
+       "Choreonoid does not check it, so a file meant as something else is read as a scene", ""},
+      {"scene-empty", W, "a scene file's `scene` has no node", "the resource adds nothing to draw or collide", ""},
+      {"scene-recursion", E,
+       "scene files include themselves or each other, or nest deeper than 16 files or than max_yaml_depth YAML "
+       "levels together",
+       "loading would never end, or would run out of stack", "LoadOptions::max_yaml_depth (default 200)"},
+      {"scene-expansion", E,
+       "the scene files a body includes, counted once per use, expand to more YAML nodes than "
+       "max_expanded_yaml_nodes",
+       "files that each name another many times multiply: every use adds its shapes to the model",
+       "LoadOptions::max_expanded_yaml_nodes (default 40,000,000)"},
+      {"scene-unsupported", E,
+       "a scene file resource bodyfmt or Choreonoid cannot read: a YAML resource inside a scene file, a "
+       "node/fragment selecting part of a scene file, or a scene file given as a Shape's geometry that is not one "
+       "shape without a transform of its own",
+       "its shapes are missing", ""},
       {"subbody-missing", E, "a SubBody file cannot be read", "its links are missing", ""},
       {"subbody-load", E, "a SubBody file cannot be loaded", "its links are missing", ""},
       {"subbody-recursion", E, "SubBody includes form a cycle", "loading would never end", ""},

@@ -20,13 +20,28 @@ bool is_scene_only_type(std::string_view t) {
          t == "Fog" || t == "Text";
 }
 
+/// The node types Choreonoid's scene reader defines, the only ones a .scen file may use.
+const std::vector<std::string_view>& scene_file_types() {
+  static const std::vector<std::string_view> types = {
+      "DirectionalLight", "Fog",      "Group", "LineSet",   "Node", "OrthographicCamera", "PerspectiveCamera",
+      "PointLight",       "Resource", "Shape", "SpotLight", "Text", "Transform"};
+  return types;
+}
+
+bool is_scene_file_type(std::string_view t) {
+  const auto& types = scene_file_types();
+  return std::find(types.begin(), types.end(), t) != types.end();
+}
+
 }  // namespace
 
 ElementReader::ElementReader(LoadContext& ctx, Model& model, LinkIndex link, ResourceHandler* resources)
     : ctx_(ctx), model_(model), link_(link), resources_(resources) {}
 
-void ElementReader::read_elements(const yaml::NodeRef& elements, const ElementFrame& frame) {
+void ElementReader::read_elements(const yaml::NodeRef& elements, const ElementFrame& outer) {
   if (!elements) return;
+  ElementFrame frame = outer;
+  frame.scene_top = false;
   if (elements->is_sequence()) {
     for (const yaml::NodeRef& raw_item : elements->items()) {
       const yaml::NodeRef item = elements.child(raw_item);
@@ -45,6 +60,14 @@ void ElementReader::read_elements(const yaml::NodeRef& elements, const ElementFr
   }
   if (elements->is_mapping()) {
     if (const yaml::MapEntry* type = elements->find("type")) {
+      if (outer.scene_file && !outer.scene_top) {
+        // Choreonoid's scene reader reads every key of an `elements` mapping as a node type
+        // and refuses `type: X`, whose value is not a mapping.
+        ctx_.report("load-type", elements.child(type->value),
+                    "in a scene file, an elements mapping is keyed by node type; this node cannot be read",
+                    "write elements as a list: - type: " + std::string(type->value->scalar()));
+        return;
+      }
       read_node(elements, std::string(type->value->scalar()), frame);
       return;
     }
@@ -71,7 +94,8 @@ void ElementReader::read_elements(const yaml::NodeRef& elements, const ElementFr
   ctx_.report("load-type", elements, "a value of the \"elements\" key must be a sequence or a mapping");
 }
 
-std::optional<ElementFrame> ElementReader::enter(MappingReader& r, const ElementFrame& frame, bool allow_scale) {
+std::optional<ElementFrame> ElementReader::enter(MappingReader& r, const ElementFrame& frame, bool allow_scale,
+                                                 const yaml::NodeRef& scale_orientation) {
   Eigen::Affine3d X = Eigen::Affine3d::Identity();
   if (auto t = r.take({"translation"})) {
     if (auto v = read_translation(ctx_, t)) X.translation() = *v;
@@ -86,8 +110,15 @@ std::optional<ElementFrame> ElementReader::enter(MappingReader& r, const Element
         ctx_.report("load-ignored-value", s, "scale must be a 3-element sequence; Choreonoid ignores a scalar",
                     "write [sx, sy, sz]");
       } else if (auto v = read_vec3(ctx_, s)) {
-        X.linear() = X.linear() * v->asDiagonal();
+        Eigen::Matrix3d S = v->asDiagonal();
+        // A scene file's Transform scales along the axes of its scale_orientation (SgScaleTransform).
+        if (scale_orientation)
+          if (auto R = read_rotation(ctx_, scale_orientation)) S = *R * S * R->transpose();
+        X.linear() = X.linear() * S;
       }
+    } else if (scale_orientation) {
+      ctx_.report("load-ignored-key", scale_orientation.use_site(),
+                  "scale_orientation without scale has no effect; Choreonoid does not read it");
     }
   }
   return push_frame(frame, X);
@@ -106,6 +137,13 @@ void ElementReader::read_node(const yaml::NodeRef& node, const std::string& type
     ctx_.report("load-type", node, "a " + type + " node must be a mapping");
     return;
   }
+  if (frame.scene_file) {
+    if (!is_scene_file_type(type)) return report_undefined_type(node, type, frame);
+    if (type == "PointLight" || type == "SpotLight") {  // scene lights in a scene file, not devices
+      ctx_.report("load-scene-node", node, "a " + type + " node has no meaning in a body model; it is ignored");
+      return;
+    }
+  }
   if (type == "Skip") return;
   if (type == "Group" || type == "Transform") {
     MappingReader r(ctx_, node, type + " node");
@@ -113,7 +151,8 @@ void ElementReader::read_node(const yaml::NodeRef& node, const std::string& type
     r.take({"name"});
     ElementFrame inner = frame;
     if (type == "Transform") {
-      inner = *enter(r, frame);
+      const yaml::NodeRef scale_orientation = frame.scene_file ? r.take({"scale_orientation"}) : yaml::NodeRef{};
+      inner = *enter(r, frame, true, scale_orientation);
       // body-format-spec §6.4 rule 5: mass keys on a Transform are ignored by Choreonoid.
       for (KeyNames names :
            {KeyNames{"mass"}, KeyNames{"center_of_mass", "centerOfMass", "centerofMass"}, KeyNames{"inertia"}}) {
@@ -130,7 +169,7 @@ void ElementReader::read_node(const yaml::NodeRef& node, const std::string& type
       }
     }
     read_elements(r.take({"elements"}), inner);
-    r.report_unknown(body_key_names("element:Transform"));
+    r.report_unknown(body_key_names(frame.scene_file ? "scene:Transform" : "element:Transform"));
     return;
   }
   if (type == "RigidBody") return read_rigid_body(node, frame);
@@ -162,15 +201,21 @@ void ElementReader::read_node(const yaml::NodeRef& node, const std::string& type
       if (const yaml::MapEntry* fov = node->find("field_of_view")) ctx_.note_angle(node.child(fov->value));
     return;
   }
-  // body-format-spec §7.2 rule 3.
+  report_undefined_type(node, type, frame);
+}
+
+void ElementReader::report_undefined_type(const yaml::NodeRef& node, const std::string& type,
+                                          const ElementFrame& frame) {
+  // body-format-spec §7.2 rule 3; a scene file knows only the scene reader's types.
   MappingReader r(ctx_, node, type);
   yaml::NodeRef optional = r.take({"is_optional", "isOptional"});
   bool is_optional = optional && text::parse_bool_word(optional->scalar()).value_or(false);
-  std::string_view guess = text::suggest(type, element_type_names());
+  std::string_view guess = text::suggest(type, frame.scene_file ? scene_file_types() : element_type_names());
   const yaml::MapEntry* type_entry = node->find("type");
   yaml::NodeRef at = type_entry ? type_entry->value : node;
   ctx_.report(is_optional ? "load-optional-node-skipped" : "load-unknown-node-type", at,
               "the node type \"" + type + "\" is not defined" +
+                  (frame.scene_file ? std::string(" in a Choreonoid scene file") : std::string()) +
                   (is_optional ? std::string("; this optional node is skipped") : std::string()),
               guess.empty() ? std::string() : "did you mean " + std::string(guess) + "?");
 }
@@ -264,6 +309,8 @@ void ElementReader::read_shape(const yaml::NodeRef& node, const ElementFrame& fr
   }
   r.take({"is_meta_scene"});
   r.report_unknown(body_key_names("element:Shape"));
+  if (resources_ && geometry_is<MeshResource>(shape.geometry) && resources_->read_scene_geometry(*this, shape, inner))
+    return;
   add_shape(std::move(shape), inner);
 }
 

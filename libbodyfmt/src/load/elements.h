@@ -19,6 +19,15 @@ struct ElementFrame {
   int frame = -1;                                      ///< Link::frames index of the innermost transform node
   ModelPart part = ModelPart::kBoth;
   SourceLocation part_source;  ///< the Visual/Collision node that set `part`
+  /// Inside a Choreonoid scene file (.scen, load/scene_file.h): only the scene reader's node
+  /// types are defined there (no RigidBody, Visual, Collision or devices).
+  bool scene_file = false;
+  /// The `scene` value itself, which alone may be one mapping with a `type`; an `elements`
+  /// mapping in a scene file is always type-keyed.
+  bool scene_top = false;
+  /// The metadata length scale of the enclosing scene file: Choreonoid scales its lengths,
+  /// not the meshes it includes.
+  double scene_length_scale = 1.0;
 };
 
 /// Hook for Resource element nodes (meshes and YAML fragments), provided by the resource
@@ -27,6 +36,9 @@ class ElementReader;
 struct ResourceHandler {
   virtual ~ResourceHandler() = default;
   virtual void read_resource(ElementReader& reader, const yaml::NodeRef& node, const ElementFrame& frame) = 0;
+  /// A Shape whose geometry is a Resource the handler reads itself (a scene file): adds what
+  /// it gives, or reports why not, and returns true; false leaves the shape to the caller.
+  virtual bool read_scene_geometry(ElementReader& reader, Shape& shape, const ElementFrame& frame) = 0;
 };
 
 class ElementReader {
@@ -50,7 +62,12 @@ class ElementReader {
 
  private:
   Link& link() { return model_.links[static_cast<std::size_t>(link_)]; }
-  std::optional<ElementFrame> enter(class MappingReader& r, const ElementFrame& frame, bool allow_scale = true);
+  /// Enters a node's own translation, rotation and scale (`scale_orientation`: a scene file
+  /// Transform's, which orients the scale axes).
+  std::optional<ElementFrame> enter(class MappingReader& r, const ElementFrame& frame, bool allow_scale = true,
+                                    const yaml::NodeRef& scale_orientation = {});
+  /// An element node type the file's grammar does not define (load-unknown-node-type).
+  void report_undefined_type(const yaml::NodeRef& node, const std::string& type, const ElementFrame& frame);
   void read_rigid_body(const yaml::NodeRef& node, const ElementFrame& frame);
   void read_device(const yaml::NodeRef& node, const std::string& type, const ElementFrame& frame);
   void read_part(const yaml::NodeRef& node, ModelPart part, const ElementFrame& frame);

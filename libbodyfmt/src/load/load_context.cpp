@@ -77,7 +77,7 @@ double LoadContext::angle(double value, const yaml::NodeRef& at) {
 }
 
 void LoadContext::record_upgrade(const yaml::NodeRef& at, double radians) {
-  if (degrees || !at) return;
+  if (degrees || own_angle_unit || !at) return;
   std::optional<FixIt> fix = edit_value(*at, number_text(radians * 180.0 / kPi), FixSafety::kUpgrade);
   if (!fix) {
     upgrade_blockers.push_back(at->location);

@@ -25,6 +25,9 @@ std::string number_text(double value);
 struct LoadContext {
   DiagnosticSink& sink;
   bool degrees = true;  ///< the file's angle unit (body-format-spec §3)
+  /// While a file with its own angle unit is read (a .scen scene file): the body's format
+  /// upgrade does not rewrite that file's angles, so none are recorded.
+  bool own_angle_unit = false;
   /// Of a primitive without division_number: 20, or a wrapper's geometry.divisionNumber (§2.4).
   int default_division_number = 20;
   int errors = 0;

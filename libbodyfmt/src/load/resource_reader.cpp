@@ -8,6 +8,7 @@
 #include "load/link_reader.h"
 #include "load/mapping_reader.h"
 #include "load/scalar.h"
+#include "load/scene_file.h"
 #include "load/uri.h"
 #include "load/values.h"
 #include "mesh_import/file_cache_impl.h"
@@ -42,7 +43,7 @@ std::string lower_extension(const std::string& path) {
 class Resources final : public ResourceReader {
  public:
   Resources(const LoadOptions& options, LoadContext& ctx, Model& model, LoadSession& session)
-      : options_(options), ctx_(ctx), model_(model), session_(session) {}
+      : options_(options), ctx_(ctx), model_(model), session_(session), scenes_(options, ctx, include_depth_) {}
 
   void set_main_document(const yaml::Document* main_document) override { main_ = main_document; }
   bool read_yaml_without_main_document() const override { return read_yaml_without_main_; }
@@ -64,6 +65,9 @@ class Resources final : public ResourceReader {
     if (auto s = r.take({"scale"}))
       if (s->is_sequence())
         if (auto v = read_vec3(ctx_, s)) X.linear() = X.linear() * v->asDiagonal();
+    // In a scene file read with a length unit, Choreonoid scales this node's translation but
+    // not the file it names, which has a length unit of its own.
+    if (frame.scene_file && frame.scene_length_scale != 1.0) X.linear() /= frame.scene_length_scale;
     inner = reader.push_frame(frame, X);
     r.take({"crease_angle", "creaseAngle"});
     r.report_unknown(body_key_names("element:Resource"));
@@ -75,7 +79,25 @@ class Resources final : public ResourceReader {
     if (path.empty()) return;
     std::string ext = lower_extension(path);
     if (ext == ".yaml" || ext == ".yml") {
+      if (frame.scene_file) {
+        // StdSceneLoader's reader has no main YAML reader to read a YAML resource with.
+        ctx_.report("scene-unsupported", uri, "a scene file cannot name a YAML resource; it is not read",
+                    "move its nodes into the scene file");
+        return;
+      }
       read_yaml_fragment(reader, uri, path, fragment, inner);
+      return;
+    }
+    if (ext == ".scen") {
+      if (fragment) {
+        ctx_.report("scene-unsupported", fragment,
+                    "bodyfmt cannot select a node of a scene file; the resource is not read",
+                    "name the whole file, or move the node into a scene file of its own");
+        return;
+      }
+      MeshResource unit;
+      if (metadata) read_mesh_metadata(ctx_, metadata, unit);
+      scenes_.read(reader, uri.use_site(), path, unit, inner);
       return;
     }
     Shape shape;
@@ -89,6 +111,17 @@ class Resources final : public ResourceReader {
     if (metadata) read_mesh_metadata(ctx_, metadata, mesh);
     shape.geometry = mesh;
     reader.add_shape(std::move(shape), inner);
+  }
+
+  bool read_scene_geometry(ElementReader& reader, Shape& shape, const ElementFrame& frame) override {
+    const MeshResource* mesh = geometry_if<MeshResource>(shape.geometry);
+    if (!mesh || lower_extension(mesh->resolved_path) != ".scen") return false;
+    if (!mesh->node.empty())
+      ctx_.report("scene-unsupported", mesh->uri_source,
+                  "bodyfmt cannot select a node of a scene file; the geometry is not read");
+    else
+      scenes_.read_as_geometry(reader, std::move(shape), frame);
+    return true;
   }
 
   void read_link_node(const yaml::NodeRef& node, const std::string& type, std::vector<LinkEntry>& entries) override {
@@ -126,7 +159,7 @@ class Resources final : public ResourceReader {
     const yaml::Document* doc = load_yaml_file(uri, path);
     if (!doc) return;
     if (!fragment) {
-      reader.read_elements(doc->root, frame);
+      read_nested_yaml(reader, uri, file_identity(path), doc->root, frame);
       return;
     }
     const std::string name(fragment->scalar());
@@ -146,7 +179,32 @@ class Resources final : public ResourceReader {
     yaml::NodeRef ref;
     ref.node = target;
     ref.alias_site = &fragment.use_site();
-    reader.read_elements(ref, frame);
+    read_nested_yaml(reader, fragment, file_identity(path) + "#" + name, ref, frame);
+  }
+
+  /// Reads YAML resource text that may name YAML resources in turn, which Choreonoid follows
+  /// without a guard: a cycle, or a chain deeper than one document may be, is refused at `at`.
+  void read_nested_yaml(ElementReader& reader, const yaml::NodeRef& at, const std::string& key,
+                        const yaml::NodeRef& elements, const ElementFrame& frame) {
+    if (std::find(yaml_chain_.begin(), yaml_chain_.end(), key) != yaml_chain_.end()) {
+      std::string chain;
+      for (const std::string& k : yaml_chain_) chain += std::filesystem::path(k).filename().string() + " -> ";
+      chain += std::filesystem::path(key).filename().string();
+      ctx_.report("resource-recursion", at, "YAML resources include each other: " + chain);
+      return;
+    }
+    const int depth = elements->expanded_depth;
+    if (include_depth_ + depth > options_.max_yaml_depth) {
+      ctx_.report("resource-recursion", at,
+                  "resources nested in one another are deeper than " + std::to_string(options_.max_yaml_depth) +
+                      " YAML levels together; this one is not read");
+      return;
+    }
+    yaml_chain_.push_back(key);
+    include_depth_ += depth;
+    reader.read_elements(elements, frame);
+    include_depth_ -= depth;
+    yaml_chain_.pop_back();
   }
 
   std::shared_ptr<const Model> load_subbody(const yaml::NodeRef& uri, const std::string& path) {
@@ -297,6 +355,10 @@ class Resources final : public ResourceReader {
   bool read_yaml_without_main_ = false;
   LoadSession& session_;
   std::map<std::string, std::unique_ptr<yaml::Document>> yaml_files_;
+  std::vector<std::string> yaml_chain_;  ///< "file#fragment" of the YAML resources being read, outermost first
+  /// The depths of the YAML resources and scene files being read, one inside the next, added up.
+  int include_depth_ = 0;
+  SceneFiles scenes_;
 };
 
 }  // namespace

@@ -278,3 +278,13 @@ TEST_CASE("load: mesh-heavy corpus models resolve every mesh") {
     }
   }
 }
+
+TEST_CASE("load: a YAML fragment that names itself is refused where it does, not followed until the stack ends") {
+  auto r = load_file(kData + "yaml_cycle.body");
+  auto d = r.take("resource-recursion");
+  CHECK(file_name(d.location.file.str()) == "yaml_cycle.yaml");
+  CHECK(pos(d) == Pos{3, 50});  // the fragment name PART on the Resource node inside PART
+  CHECK(d.message.find("yaml_cycle.yaml#PART -> yaml_cycle.yaml#PART") != std::string::npos);
+  r.expect_clean();
+  CHECK(r.link("BASE").shapes.size() == 1);  // the sphere, read once
+}
