@@ -1,4 +1,5 @@
-// choreonoid_dump: loads one .body file with Choreonoid's own BodyLoader and prints what that
+// choreonoid_dump: loads one .body file (or .urdf, or a wrapper around one, when Choreonoid's
+// URDF loader is linked in: CMakeLists.txt) with Choreonoid's own BodyLoader and prints what that
 // loader computed, in the reference schema of shared/corpus/README.md. It is the independent
 // side of the conformance check: every value here comes from Choreonoid, none from bodyfmt.
 // Built against a Choreonoid build by hand (README.md), never by the project or its CI.
