@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 
 namespace bodyfmt::detail {
 namespace {
@@ -85,20 +86,71 @@ bool read_camera(MappingReader& r, Device& d) {
   return true;
 }
 
+// One scan axis of a RangeSensor as Choreonoid's RangeSensor reads it: min and max angles
+// before a range (a range of |v| centred on 0), max below min ignored; a step (a negative one
+// ignored) before a number of samples n, which makes the step range / (n - 1), or 0 for one
+// sample (n below 1 ignored). The model keeps the width and the step: an asymmetric min/max
+// keeps its width only.
+struct ScanAxisKeys {
+  KeyNames min, max, range, step;
+  std::string_view samples;
+};
+
+void read_scan_axis(MappingReader& r, const ScanAxisKeys& keys, double& range, double& step) {
+  LoadContext& ctx = r.context();
+  auto angle = [&](KeyNames names) -> std::pair<yaml::NodeRef, std::optional<double>> {
+    yaml::NodeRef ref = r.take(names);
+    std::optional<double> v = ref ? optional_double(ctx, ref) : std::nullopt;
+    return {ref, v ? std::optional<double>(ctx.angle(*v, ref)) : std::nullopt};
+  };
+  auto ignored = [&](const yaml::NodeRef& at, const std::string& why) {
+    ctx.report("load-ignored-value", at, why + "; Choreonoid ignores it and keeps the default");
+  };
+  auto [min_ref, lo] = angle(keys.min);
+  auto [max_ref, hi] = angle(keys.max);
+  auto [range_ref, width] = angle(keys.range);
+  if (lo && hi) {
+    if (*hi >= *lo)
+      range = *hi - *lo;
+    else
+      ignored(max_ref, "the maximum angle is below the minimum");
+  } else if (width) {
+    range = std::abs(*width);
+  }
+  auto [step_ref, by] = angle(keys.step);
+  yaml::NodeRef samples_ref = r.take({keys.samples});
+  if (step_ref) {
+    if (by && *by >= 0)
+      step = *by;
+    else if (by)
+      ignored(step_ref, "a negative step");
+  } else if (samples_ref) {
+    if (auto n = optional_int(ctx, samples_ref)) {
+      if (*n >= 1)
+        step = *n == 1 ? 0.0 : range / static_cast<double>(*n - 1);
+      else
+        ignored(samples_ref, "fewer than one sample");
+    }
+  }
+}
+
 void read_range_sensor(MappingReader& r, Device& d) {
   RangeSensorParams s;
-  assign_if(s.yaw_range, opt_angle(r, {"yaw_range", "yawRange", "scanAngle"}));
-  auto min_yaw = opt_angle(r, {"min_yaw_angle"});
-  auto max_yaw = opt_angle(r, {"max_yaw_angle"});
-  if (min_yaw && max_yaw) s.yaw_range = *max_yaw - *min_yaw;
-  assign_if(s.yaw_step, opt_angle(r, {"yaw_step", "yawStep", "scanStep"}));
-  r.take({"yaw_samples"});
-  assign_if(s.pitch_range, opt_angle(r, {"pitch_range", "pitchRange"}));
-  auto min_pitch = opt_angle(r, {"min_pitch_angle"});
-  auto max_pitch = opt_angle(r, {"max_pitch_angle"});
-  if (min_pitch && max_pitch) s.pitch_range = *max_pitch - *min_pitch;
-  assign_if(s.pitch_step, opt_angle(r, {"pitch_step", "pitchStep"}));
-  r.take({"pitch_samples"});
+  s.pitch_step = 0;  // Choreonoid's constructor: no pitch range, and no pitch step
+  read_scan_axis(r,
+                 {{"min_yaw_angle"},
+                  {"max_yaw_angle"},
+                  {"yaw_range", "yawRange", "scanAngle"},
+                  {"yaw_step", "yawStep", "scanStep"},
+                  "yaw_samples"},
+                 s.yaw_range, s.yaw_step);
+  read_scan_axis(r,
+                 {{"min_pitch_angle"},
+                  {"max_pitch_angle"},
+                  {"pitch_range", "pitchRange"},
+                  {"pitch_step", "pitchStep"},
+                  "pitch_samples"},
+                 s.pitch_range, s.pitch_step);
   assign_if(s.min_distance, take_optional_double(r, {"min_distance", "minDistance"}));
   assign_if(s.max_distance, take_optional_double(r, {"max_distance", "maxDistance"}));
   // VisionSensor::readSpecifications reads frame_rate first, RangeSensor's own reader then

@@ -280,3 +280,40 @@ links:
   CHECK(devices[0].name == "cam");
   r.expect_clean();
 }
+
+TEST_CASE(
+    "load: a RangeSensor's scan axes follow RangeSensor.cpp: samples make the step, invalid values keep defaults") {
+  auto r = load_v2(R"(
+links:
+  - name: A
+    elements:
+      - {type: RangeSensor, name: samples, yaw_range: 180, yaw_samples: 181, pitch_range: 30, pitch_samples: 1}
+      - {type: RangeSensor, name: minmax, min_yaw_angle: -30, max_yaw_angle: 90, yaw_step: 0.5}
+      - {type: RangeSensor, name: bad, min_yaw_angle: 10, max_yaw_angle: -10, yaw_step: -1, pitch_samples: 0}
+      - {type: RangeSensor, name: negative, yaw_range: -90}
+      - {type: RangeSensor, name: defaults}
+)");
+  const auto& devices = r.m().devices;
+  REQUIRE(devices.size() == 5);
+  auto params = [&](std::size_t i) { return std::get<RangeSensorParams>(devices[i].params); };
+  // setNumYawSamples(181) over 180 deg: pi / 180 per sample; one pitch sample: step 0.
+  CHECK(params(0).yaw_range == doctest::Approx(kPi).epsilon(1e-15));
+  CHECK(params(0).yaw_step == doctest::Approx(kPi / 180).epsilon(1e-15));
+  CHECK(params(0).pitch_range == doctest::Approx(kPi / 6).epsilon(1e-15));
+  CHECK(params(0).pitch_step == 0);
+  // min/max: the width 120 deg; the step as written.
+  CHECK(params(1).yaw_range == doctest::Approx(2 * kPi / 3).epsilon(1e-15));
+  CHECK(params(1).yaw_step == doctest::Approx(kPi / 360).epsilon(1e-15));
+  // max below min, a negative step and no sample: Choreonoid's defaults (120 deg, 1 rad, pitch 0 and 0).
+  CHECK(params(2).yaw_range == doctest::Approx(2 * kPi / 3).epsilon(1e-15));
+  CHECK(params(2).yaw_step == 1.0);
+  CHECK(params(2).pitch_step == 0);
+  // setYawRange(angle) takes |angle|.
+  CHECK(params(3).yaw_range == doctest::Approx(kPi / 2).epsilon(1e-15));
+  CHECK(params(4).pitch_range == 0);
+  CHECK(params(4).pitch_step == 0);
+  CHECK(pos(r.take("load-ignored-value")) == Pos{8, 74});
+  CHECK(pos(r.take("load-ignored-value")) == Pos{8, 89});
+  CHECK(pos(r.take("load-ignored-value")) == Pos{8, 108});
+  r.expect_clean();
+}
