@@ -79,25 +79,15 @@ class Resources final : public ResourceReader {
     if (path.empty()) return;
     std::string ext = lower_extension(path);
     if (ext == ".yaml" || ext == ".yml") {
-      if (frame.scene_file) {
-        // StdSceneLoader's reader has no main YAML reader to read a YAML resource with.
-        ctx_.report("scene-unsupported", uri, "a scene file cannot name a YAML resource; it is not read",
-                    "move its nodes into the scene file");
-        return;
-      }
+      // In a scene file too: Choreonoid 25994f3e reads it there with the scene file's reader
+      // (tests/data/body_choreonoid/scene_yaml_resource, made by Choreonoid itself).
       read_yaml_fragment(reader, uri, path, fragment, inner);
       return;
     }
     if (ext == ".scen") {
-      if (fragment) {
-        ctx_.report("scene-unsupported", fragment,
-                    "bodyfmt cannot select a node of a scene file; the resource is not read",
-                    "name the whole file, or move the node into a scene file of its own");
-        return;
-      }
       MeshResource unit;
       if (metadata) read_mesh_metadata(ctx_, metadata, unit);
-      scenes_.read(reader, uri.use_site(), path, unit, inner);
+      scenes_.read(reader, uri.use_site(), path, unit, inner, fragment);
       return;
     }
     Shape shape;
@@ -202,7 +192,11 @@ class Resources final : public ResourceReader {
     }
     yaml_chain_.push_back(key);
     include_depth_ += depth;
-    reader.read_elements(elements, frame);
+    // The fragment is one node (or a list of them), as a scene file's `scene` is: in a scene
+    // file, a mapping with a type is that node, not an elements mapping keyed by type.
+    ElementFrame top = frame;
+    top.scene_top = frame.scene_file;
+    reader.read_elements(elements, top);
     include_depth_ -= depth;
     yaml_chain_.pop_back();
   }

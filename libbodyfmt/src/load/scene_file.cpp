@@ -6,6 +6,7 @@
 #include "load/resource_reader.h"
 #include "load/scalar.h"
 #include "load/uri.h"
+#include "load/values.h"
 #include "mesh_import/scene_tree.h"
 
 #include <algorithm>
@@ -13,8 +14,61 @@
 
 namespace bodyfmt::detail {
 
+Eigen::Matrix3d SceneFiles::transform_linear(const yaml::NodeRef& node) {
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+  if (const yaml::MapEntry* rotation = node->find("rotation"))
+    if (auto r = read_rotation(ctx_, node.child(rotation->value))) R = *r;
+  if (const yaml::MapEntry* scale = node->find("scale")) {
+    if (auto s = read_optional_vec3(ctx_, node.child(scale->value))) {
+      Eigen::Matrix3d O = Eigen::Matrix3d::Identity();  // scale_orientation: O diag(s) O^T
+      if (const yaml::MapEntry* orientation = node->find("scale_orientation"))
+        if (auto o = read_rotation(ctx_, node.child(orientation->value))) O = *o;
+      R = R * O * s->asDiagonal() * O.transpose();
+    }
+  }
+  return R;
+}
+
+bool SceneFiles::find_named(const yaml::NodeRef& elements, std::string_view name, const Eigen::Matrix3d& above,
+                            yaml::NodeRef& found, Eigen::Matrix3d& found_above) {
+  if (!elements) return false;
+  // The forms of `scene` and `elements`: a list of nodes, one node with a type, or a mapping
+  // keyed by type (visited in key order, as the element reader visits it).
+  std::vector<std::pair<yaml::NodeRef, std::string>> nodes;
+  if (elements->is_sequence()) {
+    for (const yaml::NodeRef& item : elements->items()) {
+      const yaml::MapEntry* type = item->is_mapping() ? item->find("type") : nullptr;
+      if (type && type->value->is_scalar())
+        nodes.emplace_back(elements.child(item), std::string(type->value->scalar()));
+    }
+  } else if (elements->is_mapping()) {
+    if (const yaml::MapEntry* type = elements->find("type"); type && type->value->is_scalar()) {
+      nodes.emplace_back(elements, std::string(type->value->scalar()));
+    } else {
+      std::vector<const yaml::MapEntry*> keyed;
+      for (const yaml::MapEntry& e : elements->entries()) keyed.push_back(&e);
+      std::sort(keyed.begin(), keyed.end(), [](auto* a, auto* b) { return a->key < b->key; });
+      for (const yaml::MapEntry* e : keyed)
+        if (e->value->is_mapping()) nodes.emplace_back(elements.child(e->value), std::string(e->key));
+    }
+  }
+  for (const auto& [node, type] : nodes) {
+    const yaml::MapEntry* node_name = node->find("name");
+    if (node_name && node_name->value->is_scalar() && node_name->value->scalar() == name) {
+      found = node;
+      found_above = above;
+      return true;
+    }
+    if (const yaml::MapEntry* children = node->find("elements")) {
+      const Eigen::Matrix3d inner = type == "Transform" ? Eigen::Matrix3d(above * transform_linear(node)) : above;
+      if (find_named(node.child(children->value), name, inner, found, found_above)) return true;
+    }
+  }
+  return false;
+}
+
 void SceneFiles::read(ElementReader& reader, const SourceLocation& uri, const std::string& path,
-                      const MeshResource& resource, const ElementFrame& frame) {
+                      const MeshResource& resource, const ElementFrame& frame, const yaml::NodeRef& node) {
   const std::string identity = file_identity(path);
   if (std::find(chain_.begin(), chain_.end(), identity) != chain_.end()) {
     std::string chain;
@@ -68,7 +122,31 @@ void SceneFiles::read(ElementReader& reader, const SourceLocation& uri, const st
   ctx_.own_angle_unit = true;
   chain_.push_back(identity);
   chain_depth_ += file.depth;
-  reader.read_elements(file.scene, inner);
+  yaml::NodeRef scene = file.scene;
+  if (node) {
+    // Re-centred as adjustNodeCoordinate does: the node keeps the linear part above it and its
+    // own; its own translation is cancelled by the frame it is read under.
+    yaml::NodeRef named;
+    Eigen::Matrix3d above = Eigen::Matrix3d::Identity();
+    const std::string name = node->is_scalar() ? std::string(node->scalar()) : std::string();
+    if (!find_named(file.scene, name, Eigen::Matrix3d::Identity(), named, above)) {
+      ctx_.report("mesh-node-not-found", node,
+                  "node \"" + name + "\" is not found in \"" + std::filesystem::path(path).filename().string() + "\"",
+                  "name a node of the scene file, or remove node:");
+      scene = {};
+    } else {
+      Eigen::Affine3d X = Eigen::Affine3d::Identity();
+      X.linear() = above;
+      const yaml::MapEntry* type = named->find("type");
+      if (const yaml::MapEntry* t = named->find("translation");
+          t && type && type->value->is_scalar() && type->value->scalar() == "Transform")
+        if (auto v = read_translation(ctx_, named.child(t->value))) X.translate(-*v);
+      inner = reader.push_frame(inner, X);
+      inner.scene_top = true;
+      scene = named;
+    }
+  }
+  if (scene) reader.read_elements(scene, inner);
   chain_depth_ -= file.depth;
   chain_.pop_back();
   ctx_.degrees = degrees;

@@ -13,6 +13,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace bodyfmt::detail {
@@ -30,8 +31,12 @@ class SceneFiles {
   /// Adds the shapes of the scene file at `path`, which `uri` names, to `reader`'s link under
   /// `frame` (the Resource node's); `resource` carries the node's metadata (length unit,
   /// upper axis). Every problem is reported, located in the scene file where it is written.
+  /// With `node` (the Resource's node/fragment value), only the first node of that name, in
+  /// depth-first order, is read, as StdSceneReader's extractNamedSceneNodes takes it: detached
+  /// and re-centred (the rotation and scale above it and its own are kept, every translation
+  /// above it and its own dropped), under the Resource node's frame.
   void read(ElementReader& reader, const SourceLocation& uri, const std::string& path, const MeshResource& resource,
-            const ElementFrame& frame);
+            const ElementFrame& frame, const yaml::NodeRef& node = {});
   /// A Shape whose geometry is a Resource naming a scene file: Choreonoid takes the mesh of
   /// the file's one shape, which must have no transform of its own (StdSceneReader's
   /// readResourceAsGeometry), and the Shape's appearance. Adds that shape, else reports why.
@@ -48,6 +53,12 @@ class SceneFiles {
   const File& load(const SourceLocation& uri, const std::string& path, const std::string& identity);
   /// Reads the header (format, format_version, angle_unit, scene) as StdSceneReader does.
   void read_header(File& file);
+  /// The first node named `name` under `elements` (depth-first), with the linear part (rotation
+  /// and scale) of the Transform nodes above it; false when there is none.
+  bool find_named(const yaml::NodeRef& elements, std::string_view name, const Eigen::Matrix3d& above,
+                  yaml::NodeRef& found, Eigen::Matrix3d& found_above);
+  /// The rotation and scale of a Transform node (its translation aside).
+  Eigen::Matrix3d transform_linear(const yaml::NodeRef& node);
 
   const LoadOptions& options_;
   LoadContext& ctx_;

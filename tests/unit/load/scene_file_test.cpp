@@ -225,22 +225,23 @@ TEST_CASE("load: a scene file's header is checked as Choreonoid's scene loader c
   CHECK(r.link("BASE").shapes.empty());  // Choreonoid loads nothing from any of them
 }
 
-TEST_CASE("load: an empty scene, a YAML resource in a scene file and a node of one are reported") {
+TEST_CASE("load: an empty scene, a YAML resource in a scene file and a node a scene file lacks") {
   auto r = load_file(kData + "unsupported.body");
   auto empty = r.take("scene-empty");
   CHECK(file_name(empty.location) == "empty.scen");
   CHECK(pos(empty) == Pos{3, 8});
-  auto yaml = r.take("scene-unsupported");  // StdSceneLoader has no YAML reader to read it with
-  CHECK(file_name(yaml.location) == "names_yaml.scen");
-  CHECK(pos(yaml) == Pos{4, 27});
-  auto node = r.take("scene-unsupported");
+  // Choreonoid reads a YAML resource in a scene file (tests/data/body_choreonoid/
+  // scene_yaml_resource.ref.yaml, made by Choreonoid), and refuses a node: that names no node
+  // ("Fragment ... is not found"): primitives.scen has no BOX.
+  auto node = r.take("mesh-node-not-found");
   CHECK(file_name(node.location) == "unsupported.body");
   CHECK(pos(node) == Pos{12, 54});
   r.expect_clean();
-  // Only names_yaml.scen's sphere: neither the YAML part nor primitives.scen is read.
+  // names_yaml.scen's YAML part (parts.yaml's PART, a 1 m box) and its sphere.
   const bodyfmt::Link& base = r.link("BASE");
-  REQUIRE(base.shapes.size() == 1);
-  CHECK(bodyfmt::geometry_is<bodyfmt::Sphere>(base.shapes[0].geometry));
+  REQUIRE(base.shapes.size() == 2);
+  CHECK(bodyfmt::geometry_is<bodyfmt::Box>(base.shapes[0].geometry));
+  CHECK(bodyfmt::geometry_is<bodyfmt::Sphere>(base.shapes[1].geometry));
 }
 
 TEST_CASE("load: scene files naming themselves or each other stop at the repeated file") {
