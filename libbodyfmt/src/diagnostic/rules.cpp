@@ -147,6 +147,8 @@ std::vector<RuleInfo> make_table() {
       // Devices (§10)
       {"device-camera-dropped", W, "a Camera without a valid format", "Choreonoid silently drops the camera", ""},
       {"device-optical-frame", E, "an unknown optical frame", "Choreonoid refuses the file", ""},
+      {"device-marker-type", E, "a MarkerDevice marker_type other than cross, sphere or axes",
+       "Choreonoid refuses the file", ""},
       // Extra joints (§12)
       {"extra-joint-link", E, "an extra joint names no link", "Choreonoid refuses the file", ""},
       {"extra-joint-type", E, "an extra joint type is missing or unknown", "Choreonoid refuses the file", ""},
