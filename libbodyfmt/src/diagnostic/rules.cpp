@@ -149,6 +149,8 @@ std::vector<RuleInfo> make_table() {
       {"device-optical-frame", E, "an unknown optical frame", "Choreonoid refuses the file", ""},
       {"device-marker-type", E, "a MarkerDevice marker_type other than cross, sphere or axes",
        "Choreonoid refuses the file", ""},
+      {"device-scaled-frame", W, "a device under a scaled node",
+       "Choreonoid's device rotation includes the scale (not a rotation); bodyfmt keeps the pure rotation", ""},
       // Extra joints (§12)
       {"extra-joint-link", E, "an extra joint names no link", "Choreonoid refuses the file", ""},
       {"extra-joint-type", E, "an extra joint type is missing or unknown", "Choreonoid refuses the file", ""},
