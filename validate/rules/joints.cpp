@@ -23,7 +23,11 @@ void check_ids(const RuleContext& ctx) {
                  "remove joint_id, or give the link a joint_type; Choreonoid still counts the id in numJoints");
     }
     auto [it, inserted] = first.emplace(link.joint_id, i);
-    if (!inserted) {
+    // The links of one ContinuousTrack node (each the child of the one before, all read from
+    // that node) share its id as Choreonoid loads them; the loader says so
+    // (load-track-shared-joint).
+    const bool track_clone = link.parent >= 0 && ctx.model.links[link.parent].source == link.source;
+    if (!inserted && !track_clone) {
       const Link& other = ctx.model.links[it->second];
       ctx.report("joint-id-duplicate", at,
                  fmt::format("joint_id {} of link \"{}\" is already used by link \"{}\" (line {})", link.joint_id,

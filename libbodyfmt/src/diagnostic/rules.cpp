@@ -120,6 +120,11 @@ std::vector<RuleInfo> make_table() {
       {"load-visual-collision-conflict", E, "Visual inside Collision or the reverse", "Choreonoid refuses the file",
        ""},
       {"load-continuous-track", E, "an invalid ContinuousTrack node", "Choreonoid refuses the file", ""},
+      {"load-track-name", W, "a link names a ContinuousTrack by the node's own name",
+       "Choreonoid registers the name for the track's first link NAME0 too; no other reader knows it", ""},
+      {"load-track-shared-joint", W, "the links of a ContinuousTrack share the node's joint_name or joint_id",
+       "Choreonoid copies both into every link without a check; only the first link holds the id in the joint list",
+       ""},
       {"load-uri", E, "a URI cannot be resolved (scheme, package or path variable)", "the resource cannot be loaded",
        ""},
       {"units-radian-in-2.0", F, "`angle_unit: radian` in format 2.0", "Choreonoid refuses radian mode in 2.0", ""},
@@ -147,6 +152,10 @@ std::vector<RuleInfo> make_table() {
       // Devices (§10)
       {"device-camera-dropped", W, "a Camera without a valid format", "Choreonoid silently drops the camera", ""},
       {"device-optical-frame", E, "an unknown optical frame", "Choreonoid refuses the file", ""},
+      {"device-marker-type", E, "a MarkerDevice marker_type other than cross, sphere or axes",
+       "Choreonoid refuses the file", ""},
+      {"device-scaled-frame", W, "a device under a scaled node",
+       "Choreonoid's device rotation includes the scale (not a rotation); bodyfmt keeps the pure rotation", ""},
       // Extra joints (§12)
       {"extra-joint-link", E, "an extra joint names no link", "Choreonoid refuses the file", ""},
       {"extra-joint-type", E, "an extra joint type is missing or unknown", "Choreonoid refuses the file", ""},

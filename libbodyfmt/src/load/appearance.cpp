@@ -10,6 +10,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <filesystem>
+#include <system_error>
 
 namespace bodyfmt::detail {
 Appearance read_appearance(LoadContext& ctx, const yaml::NodeRef& appearance) {
@@ -79,6 +81,10 @@ Appearance read_appearance(LoadContext& ctx, const yaml::NodeRef& appearance) {
       result.material = material;
     }
   }
+  // StdSceneReader::readTexture reads `repeat` (with toBool, which throws) and then
+  // readAppearance the texture_transform only once the image has loaded. The image file
+  // being there is as near as bodyfmt gets to that (it does not decode images).
+  bool image_read = false;
   if (yaml::NodeRef t = r.take({"texture"})) {
     if (t->is_mapping()) {
       Texture texture;
@@ -86,17 +92,27 @@ Appearance read_appearance(LoadContext& ctx, const yaml::NodeRef& appearance) {
       if (auto uri = tr.take({"uri", "url"})) {
         texture.uri = uri->scalar();
         texture.resolved_path = resolve_uri(ctx, uri, texture.uri, uri->location.file);
+        std::error_code ec;
+        image_read = !texture.uri.empty() && !texture.resolved_path.empty() &&
+                     std::filesystem::is_regular_file(texture.resolved_path, ec);
       }
+      auto read_bool = [&](const yaml::NodeRef& v) {
+        return image_read ? required_bool(ctx, v) : optional_bool(ctx, v);
+      };
       if (auto repeat = tr.take({"repeat"})) {
         if (repeat->is_sequence() && repeat->items().size() == 2) {
-          assign_if(texture.repeat_s, optional_bool(ctx, repeat->items()[0]));
-          assign_if(texture.repeat_t, optional_bool(ctx, repeat->items()[1]));
-        } else if (repeat->is_scalar()) {
-          auto b = optional_bool(ctx, repeat);
+          assign_if(texture.repeat_s, read_bool(repeat.child(repeat->items()[0])));
+          assign_if(texture.repeat_t, read_bool(repeat.child(repeat->items()[1])));
+        } else if (repeat->is_sequence() && image_read) {
+          ctx.report("load-vector-size", repeat, "the number of the repeat elements must be two");
+        } else if (repeat->is_sequence()) {
+          ctx.report("load-ignored-value", repeat,
+                     "the number of the repeat elements must be two; Choreonoid reads repeat only once the texture "
+                     "image has loaded, and this one is not found");
+        } else {
+          auto b = read_bool(repeat);
           assign_if(texture.repeat_s, b);
           assign_if(texture.repeat_t, b);
-        } else {
-          ctx.report("load-vector-size", repeat, "the number of the repeat elements must be two");
         }
       } else {
         assign_if(texture.repeat_s, take_optional_bool(tr, {"repeat_s", "repeatS"}));
@@ -108,9 +124,18 @@ Appearance read_appearance(LoadContext& ctx, const yaml::NodeRef& appearance) {
       mapping_or_ignored(ctx, t, "texture");  // findMapping: warns and skips
     }
   }
-  if (yaml::NodeRef transform = r.take({"texture_transform", "textureTransform"}); transform && transform->is_mapping())
+  if (yaml::NodeRef transform = r.take({"texture_transform", "textureTransform"});
+      transform && transform->is_mapping()) {
     if (const yaml::MapEntry* rotation = transform->find("rotation"))
       ctx.note_angle(transform.child(rotation->value));  // a scalar angle (§8.7)
+    // readTextureTransform: Vector2 reads (findListing, then a fatal size check).
+    for (std::string_view key : {"center", "scale", "translation"}) {
+      const yaml::MapEntry* e = image_read ? transform->find(key) : nullptr;
+      if (!e) continue;
+      const yaml::NodeRef value = transform.child(e->value);
+      if (listing_or_ignored(ctx, value, key)) read_vector(ctx, value, 2);
+    }
+  }
   r.report_unknown(body_key_names("appearance"));
   return result;
 }

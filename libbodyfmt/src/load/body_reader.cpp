@@ -504,17 +504,28 @@ std::vector<LinkIndex> depth_first_order(LinkIndex root, const std::vector<std::
 
 }  // namespace
 
-BodyReader::LinkNames BodyReader::index_link_names(const Model& model) {
+BodyReader::LinkNames BodyReader::index_link_names(const Model& model, const std::vector<LinkEntry>& entries) {
   LinkNames names{NameIndex(model.links.size()), NameIndex()};
   for (LinkIndex i = 0; i < static_cast<LinkIndex>(model.links.size()); ++i) {
     const Link& link = model.links[at(i)];
+    // A ContinuousTrack's own name, registered before its first link's (as Choreonoid does).
+    if (const LinkEntry& entry = entries[at(i)]; !entry.alias.empty()) {
+      if (auto first = names.by_name.insert(entry.alias, i)) {
+        ctx_.report("structure-duplicate-link", entry.alias_site,
+                    "duplicated link name \"" + entry.alias + "\" (first defined at line " +
+                        std::to_string(model.links[at(*first)].sources.name().line) + ")");
+      }
+    }
     if (link.name.empty()) continue;
     if (auto first = names.by_name.insert(link.name, i)) {
       ctx_.report("structure-duplicate-link", link.sources.name(),
                   "duplicated link name \"" + link.name + "\" (first defined at line " +
                       std::to_string(model.links[at(*first)].sources.name().line) + ")");
     }
-    if (!link.joint_name.empty() && names.by_joint_name.insert(link.joint_name, i))
+    // The links of one ContinuousTrack node share its joint name (load-track-shared-joint).
+    if (link.joint_name.empty()) continue;
+    if (auto first = names.by_joint_name.insert(link.joint_name, i);
+        first && model.links[at(*first)].source != link.source)
       ctx_.report("structure-duplicate-joint-name", link.source, "duplicated joint name \"" + link.joint_name + "\"");
   }
   return names;
@@ -558,6 +569,7 @@ std::vector<LinkIndex> BodyReader::link_parents(const Model& model, const std::v
                   "adding \"" + link.name + "\" to link \"" + entry.parent_name + "\" would make a cycle");
       continue;
     }
+    if (model.links[at(*found)].name != entry.parent_name) track_name_used(model, *found, entry.parent_site);
     parent[at(i)] = *found;
     roots.attach(i, *found);
   }
@@ -624,8 +636,18 @@ void BodyReader::reorder_links(Model& model, const std::vector<LinkIndex>& order
   model.extra_joints = std::move(extra_joints);
 }
 
+void BodyReader::track_name_used(const Model& model, LinkIndex link, const SourceLocation& where) {
+  const std::string& name = model.links[at(link)].name;
+  ctx_.report("load-track-name", where,
+              "\"" + name.substr(0, name.size() - 1) +
+                  "\" names a ContinuousTrack node: Choreonoid takes it as its "
+                  "first link \"" +
+                  name + "\"",
+              "write " + name);
+}
+
 bool BodyReader::build_tree(Model& model, const std::vector<LinkEntry>& entries, const yaml::NodeRef& root_link) {
-  const LinkNames names = index_link_names(model);
+  const LinkNames names = index_link_names(model, entries);
   LinkIndex root = 0;
   if (root_link) {
     const std::optional<LinkIndex> found = names.by_name.find(root_link->scalar());
@@ -634,6 +656,7 @@ bool BodyReader::build_tree(Model& model, const std::vector<LinkEntry>& entries,
                   "link \"" + std::string(root_link->scalar()) + "\" specified in root_link is not defined");
       return false;
     }
+    if (model.links[at(*found)].name != root_link->scalar()) track_name_used(model, *found, root_link.use_site());
     root = *found;
   }
   const std::vector<LinkIndex> parent = link_parents(model, entries, names, root);

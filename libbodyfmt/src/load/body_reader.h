@@ -74,7 +74,10 @@ class BodyReader {
     NameIndex by_name;
     NameIndex by_joint_name;
   };
-  LinkNames index_link_names(const Model& model);
+  /// With the ContinuousTrack names of `entries` (LinkEntry::alias).
+  LinkNames index_link_names(const Model& model, const std::vector<struct LinkEntry>& entries);
+  /// load-track-name at `where`, a place that names `link` by its ContinuousTrack node's name.
+  void track_name_used(const Model& model, LinkIndex link, const SourceLocation& where);
   std::vector<LinkIndex> link_parents(const Model& model, const std::vector<struct LinkEntry>& entries,
                                       const LinkNames& names, LinkIndex root);
   void reorder_links(Model& model, const std::vector<LinkIndex>& order, const std::vector<LinkIndex>& parent,

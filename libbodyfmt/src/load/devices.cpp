@@ -57,7 +57,17 @@ bool read_camera(MappingReader& r, Device& d) {
     return false;
   }
   d.type = c.format == "COLOR" ? "Camera" : "RangeCamera";
-  c.lens_type = opt_string(r, {"lens_type", "lensType"}, c.lens_type);
+  if (yaml::NodeRef lens = r.take({"lens_type", "lensType"}); lens && lens->is_scalar()) {
+    // Camera::readSpecifications sets only the three lens types it knows: any other word
+    // leaves the constructor's NORMAL lens, without a word.
+    const std::string_view t = lens->scalar();
+    if (t == "NORMAL" || t == "FISHEYE" || t == "DUAL_FISHEYE")
+      c.lens_type = std::string(t);
+    else
+      ctx.report("load-ignored-value", lens,
+                 "unknown lens type \"" + std::string(t) + "\"; Choreonoid keeps the NORMAL lens",
+                 "use NORMAL, FISHEYE or DUAL_FISHEYE");
+  }
   if (auto w = r.take({"width"})) assign_if(c.width, std::optional<int>(optional_int(ctx, w)));
   if (auto h = r.take({"height"})) assign_if(c.height, std::optional<int>(optional_int(ctx, h)));
   assign_if(c.field_of_view, opt_angle(r, {"field_of_view", "fieldOfView"}));
@@ -204,6 +214,59 @@ void note_first_angle(MappingReader& r, KeyNames names, bool rotation) {
   }
 }
 
+namespace {
+
+/// A vector key read with EigenArchive's read(): skipped when it is no list, refused when the
+/// list has another size.
+void check_vector_key(MappingReader& r, std::string_view key, int size) {
+  const yaml::MapEntry* e = r.node()->find(key);
+  if (!e) return;
+  const yaml::NodeRef value = r.node().child(e->value);
+  if (listing_or_ignored(r.context(), value, key)) read_vector(r.context(), value, size);
+}
+
+// The checks of the devices bodyfmt keeps as key lists, where their Choreonoid readers
+// refuse the file. The keys themselves are kept by the caller.
+
+void check_marker(MappingReader& r) {
+  // MarkerDevice::readSpecifications: read({marker_type, markerType}) takes the first
+  // spelling that is a scalar; a type other than these three is "Unknown marker type".
+  for (std::string_view key : {"marker_type", "markerType"}) {
+    const yaml::MapEntry* e = r.node()->find(key);
+    if (!e || !e->value->is_scalar()) continue;
+    const std::string_view t = e->value->scalar();
+    if (t != "cross" && t != "sphere" && t != "axes")
+      r.context().report("device-marker-type", r.node().child(e->value),
+                         "unknown marker type \"" + std::string(t) + "\"", "use cross, sphere or axes");
+    break;
+  }
+  check_vector_key(r, "color", 3);
+  for (std::string_view key : {"offset_translation", "offsetTranslation"}) check_vector_key(r, key, 3);
+}
+
+void check_digital_io(MappingReader& r) {
+  // DigitalIoDevice::readInputToDeviceSwitchConnections: each item must be a list
+  // (toListing throws) of an input number (toInt) and a device name (toString).
+  LoadContext& ctx = r.context();
+  const yaml::MapEntry* e = r.node()->find("input_to_device_switch_connections");
+  if (!e) return;
+  const yaml::NodeRef list = r.node().child(e->value);
+  if (!listing_or_ignored(ctx, list, "input_to_device_switch_connections")) return;
+  for (const yaml::NodeRef& item : list->items()) {
+    const yaml::NodeRef pair = list.child(item);
+    if (!pair->is_sequence()) {
+      ctx.report("load-type", pair, "a connection must be a list [input number, device name]");
+    } else if (pair->items().size() != 2) {
+      ctx.report("load-vector-size", pair, "the element is not the pair of the input number and the target name");
+    } else {
+      required_int(ctx, pair.child(pair->items()[0]));
+      required_string(ctx, pair.child(pair->items()[1]));
+    }
+  }
+}
+
+}  // namespace
+
 bool is_core_device_type(std::string_view type) {
   const std::vector<std::string_view>& devices = device_type_names();
   return std::find(devices.begin(), devices.end(), type) != devices.end();
@@ -246,7 +309,14 @@ bool read_device_params(MappingReader& r, std::string_view t, Device& d) {
     d.type = std::string(t);
     for (const auto& [node, cls] : kClassNames)
       if (node == t) d.type = std::string(cls);
-    if (t == "MarkerDevice") note_first_angle(r, {"offset_rotation", "offsetRotation"}, true);
+    if (t == "MarkerDevice") {
+      note_first_angle(r, {"offset_rotation", "offsetRotation"}, true);
+      check_marker(r);
+    } else if (t == "Conveyor") {
+      check_vector_key(r, "axis", 3);  // ConveyorDevice::readSpecifications
+    } else if (t == "DigitalIO") {
+      check_digital_io(r);
+    }
     for (const yaml::MapEntry& e : r.node()->entries()) r.ignore(e.key);
   }
   return true;

@@ -343,9 +343,16 @@ void ElementReader::read_device(const yaml::NodeRef& node, const std::string& ty
   r.take({"is_optional", "isOptional"});
   ElementFrame inner = *enter(r, frame);
   // A device frame is rigid; scale on an enclosing node only affects its child shapes.
-  Eigen::Matrix3d R = inner.X_LF.rotation();
-  d.X_LD.linear() = R;
+  // Choreonoid's readDevice takes the whole linear part of the transform stack, scale
+  // included, as the device's "rotation": say where the two differ.
+  const Eigen::Matrix3d L = inner.X_LF.linear();
+  d.X_LD.linear() = inner.X_LF.rotation();
   d.X_LD.translation() = inner.X_LF.translation();
+  if ((L.transpose() * L - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-9)
+    ctx_.report("device-scaled-frame", node,
+                "this device is under a scaled node: Choreonoid's device rotation here is the scaled, "
+                "non-orthonormal matrix; bodyfmt keeps its pure rotation",
+                "move the device out of the scaled Transform, or scale the shapes only");
   yaml::NodeRef elements = r.take({"elements"});
   if (is_plugin_node_type(type)) {
     d.plugin = true;

@@ -14,6 +14,10 @@ struct LinkEntry {
   /// Where the parent is named (its alias use site, if any). A copy: the link's YAML may be
   /// gone by the time the tree is built (links are read while the file is parsed).
   SourceLocation parent_site;
+  /// A second name of the link: a ContinuousTrack's own NAME, which Choreonoid's link map
+  /// holds for the first link NAME0 as well (a parent or root_link may name it). Empty if none.
+  std::string alias;
+  SourceLocation alias_site;
 };
 
 /// Reads one link mapping, appending the link to `model.links` (in file order) and its

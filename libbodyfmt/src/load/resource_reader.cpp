@@ -319,14 +319,42 @@ class Resources final : public ResourceReader {
     const LinkIndex t = static_cast<LinkIndex>(model_.links.size()) - 1;
     const Link templ = model_.links[static_cast<std::size_t>(t)];
     const std::string base = templ.name;
-    model_.links[static_cast<std::size_t>(t)].name = base + "0";
-    model_.links[static_cast<std::size_t>(t)].joint_type = JointType::kFree;
+    Link& first_link = model_.links[static_cast<std::size_t>(t)];
+    first_link.name = base + "0";
+    first_link.joint_type = JointType::kFree;
+    // addTrackLink sets the first link's initial angle to 0 and each next one's from
+    // initialJointAngles: the node's own joint_angle / joint_displacement reaches no link.
+    first_link.initial_displacement = 0;
+    for (std::string_view key : {"joint_displacement", "jointDisplacement", "joint_angle", "jointAngle"}) {
+      const yaml::MapEntry* e = node->find(key);
+      if (!e || templ.initial_displacement == 0) continue;
+      ctx_.report("load-ignored-value", node.child(e->value),
+                  "Choreonoid starts the first link of a ContinuousTrack at 0 and the next ones at "
+                  "initialJointAngles: this value reaches no link",
+                  "write the angles in initialJointAngles");
+      break;
+    }
+    // readLinkContents registered the node's name before addTrackLink renamed the link.
+    if (!base.empty()) {
+      first.alias = base;
+      first.alias_site = templ.sources.name();
+    }
+    // The next links are clones: they keep the template's joint_name and joint_id, which
+    // Choreonoid neither checks nor changes there.
+    for (std::string_view key : {"joint_name", "joint_id", "jointId"}) {
+      const yaml::MapEntry* e = node->find(key);
+      if (!e || (key == "joint_name" ? templ.joint_name.empty() : templ.joint_id < 0)) continue;
+      ctx_.report("load-track-shared-joint", node.child(e->value),
+                  std::string("all ") + std::to_string(n) + " links of this ContinuousTrack have this " +
+                      (key == "joint_name" ? "joint name" : "joint id") +
+                      (key == "joint_name" ? "" : "; Choreonoid's joint list holds the first link only"),
+                  std::string("remove ") + std::string(key) + " from the ContinuousTrack node");
+    }
     entries.push_back(first);
     for (long i = 1; i < n; ++i) {
       Link link = templ;
       link.name = base + std::to_string(i);
       link.joint_type = JointType::kRevolute;
-      link.joint_id = -1;
       // Choreonoid clones the template link and sets only the translation of the clone's
       // offset (Link::setOffsetTranslation): the template's rotation stays in every link.
       link.X_PL.translation() = *joint_offset;

@@ -317,3 +317,35 @@ links:
   CHECK(pos(r.take("load-ignored-value")) == Pos{8, 108});
   r.expect_clean();
 }
+
+TEST_CASE("load: MarkerDevice, Conveyor and DigitalIO values Choreonoid refuses, and an unknown lens type") {
+  auto r = load_v2(R"(
+links:
+  - name: A
+    elements:
+      - {type: MarkerDevice, name: m1, marker_type: cube, color: [1, 0], offset_translation: [0, 0, 0]}
+      - {type: MarkerDevice, name: m2, markerType: axes, offsetTranslation: [1, 2], color: red}
+      - {type: Conveyor, name: c, axis: [1, 0]}
+      - {type: DigitalIO, name: io, input_to_device_switch_connections: [[0, m1], [1], lamp, [x, m2]]}
+      - {type: Camera, name: cam, format: COLOR, lens_type: PANORAMA}
+      - {type: Camera, name: fish, format: COLOR, lens_type: FISHEYE}
+)");
+  // MarkerDevice::readSpecifications: "Unknown marker type", and read() of a vector refuses a
+  // list of another size (a scalar is skipped). ConveyorDevice reads axis the same way.
+  // DigitalIoDevice: each connection is toListing()'d, must be a pair, toInt() its first item.
+  CHECK(pos(r.take("device-marker-type")) == Pos{6, 53});
+  CHECK(pos(r.take("load-vector-size")) == Pos{6, 66});    // color
+  CHECK(pos(r.take("load-vector-size")) == Pos{7, 77});    // offsetTranslation
+  CHECK(pos(r.take("load-ignored-value")) == Pos{7, 92});  // color: red
+  CHECK(pos(r.take("load-vector-size")) == Pos{8, 41});    // Conveyor axis
+  CHECK(pos(r.take("load-vector-size")) == Pos{9, 83});    // [1]
+  CHECK(pos(r.take("load-type")) == Pos{9, 88});           // lamp
+  CHECK(pos(r.take("load-number")) == Pos{9, 95});         // x
+  // Camera::readSpecifications keeps the NORMAL lens for a type it does not know.
+  CHECK(pos(r.take("load-ignored-value")) == Pos{10, 61});
+  const auto& devices = r.m().devices;
+  REQUIRE(devices.size() == 6);
+  CHECK(std::get<CameraParams>(devices[4].params).lens_type == "NORMAL");
+  CHECK(std::get<CameraParams>(devices[5].params).lens_type == "FISHEYE");
+  r.expect_clean();
+}

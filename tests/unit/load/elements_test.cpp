@@ -4,6 +4,8 @@
 
 #include "support/load_helpers.h"
 
+#include <cmath>
+
 using bodyfmt::Box;
 using bodyfmt::Sphere;
 using bodyfmt::test::load_v2;
@@ -382,5 +384,31 @@ links:
   CHECK(a.mass_contributions[0].mass == 2);
   CHECK(a.mass_contributions[0].center_of_mass.isZero());
   CHECK_FALSE(r.has("load-type"));
+  r.expect_clean();
+}
+
+TEST_CASE("load: a device under a scaled Transform keeps its pure rotation, with a warning") {
+  auto r = load_v2(R"(
+links:
+  - name: A
+    elements:
+      - type: Transform
+        scale: [2, 1, 1]
+        rotation: [0, 0, 1, 90]
+        elements:
+          - {type: ForceSensor, name: fs}
+      - type: Transform
+        rotation: [0, 0, 1, 90]
+        elements:
+          - {type: RateGyroSensor, name: gyro}
+)");
+  // StdBodyLoader::readDevice sets the device rotation to the transform stack's linear part,
+  // scale included: Rz(90) * diag(2, 1, 1) there. bodyfmt keeps Rz(90) and says so.
+  const Eigen::Matrix3d rz90 = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const auto& devices = r.m().devices;
+  REQUIRE(devices.size() == 2);
+  CHECK(devices[0].X_LD.linear().isApprox(rz90, 1e-15));
+  CHECK(devices[1].X_LD.linear().isApprox(rz90, 1e-15));
+  CHECK(pos(r.take("device-scaled-frame")) == Pos{10, 13});
   r.expect_clean();
 }

@@ -369,8 +369,8 @@ links:
   CHECK(s[3].appearance.texture->repeat_t);
   CHECK(pos(r.take("load-legacy-key")) == Pos{7, 69});  // url
   // "      - {type: Shape, geometry: {type: Box}, appearance: {texture: {uri: tex.png, repeat: "
-  // is 90 characters.
-  CHECK(pos(r.take("load-vector-size")) == Pos{9, 91});
+  // is 90 characters. tex.png is not there: Choreonoid never reads repeat (see below).
+  CHECK(pos(r.take("load-ignored-value")) == Pos{9, 91});
   r.expect_clean();
 }
 
@@ -397,5 +397,44 @@ links:
   CHECK(pos(r.take("load-ignored-value")) == Pos{11, 41});
   r.take("mesh-file-missing");
   r.take("load-legacy-shininess");
+  r.expect_clean();
+}
+
+TEST_CASE("load: texture repeat and texture_transform are checked where Choreonoid reads them, once the image loads") {
+  // A file beside tests/data/gltf/checker.png, so that the texture resolves to an image.
+  auto r = bodyfmt::test::load(R"(
+format: ChoreonoidBody
+format_version: 2.0
+links:
+  - name: A
+    elements:
+      - type: Shape
+        geometry: {type: Box}
+        appearance:
+          texture: {uri: checker.png, repeat: 1}
+      - type: Shape
+        geometry: {type: Box}
+        appearance:
+          texture: {uri: checker.png, repeat: [true, no please]}
+          texture_transform: {center: [0.5], scale: 2, translation: [0, 0, 0], rotation: 90}
+      - type: Shape
+        geometry: {type: Box}
+        appearance:
+          texture: {uri: missing.png, repeat: 1}
+          texture_transform: {center: [0.5]}
+)",
+                               std::string(BODYFMT_TEST_DATA_DIR) + "/gltf/texture_checks.body");
+  // StdSceneReader::readTexture: repeat goes through toBool (which throws) once the image has
+  // loaded; readTextureTransform reads Vector2s (a list of another size throws, a scalar is
+  // skipped). Without the image neither is read.
+  CHECK(pos(r.take("load-bool")) == Pos{9, 47});
+  CHECK(pos(r.take("load-bool")) == Pos{13, 54});
+  CHECK(pos(r.take("load-vector-size")) == Pos{14, 39});    // center
+  CHECK(pos(r.take("load-ignored-value")) == Pos{14, 53});  // scale: 2
+  CHECK(pos(r.take("load-vector-size")) == Pos{14, 69});    // translation
+  CHECK(pos(r.take("load-ignored-value")) == Pos{18, 47});  // missing.png: repeat is never read
+  const auto& s = r.link("A").shapes;
+  REQUIRE(s.size() == 3);
+  CHECK(s[1].appearance.texture->repeat_s);
   r.expect_clean();
 }

@@ -288,3 +288,61 @@ TEST_CASE("load: a YAML fragment that names itself is refused where it does, not
   r.expect_clean();
   CHECK(r.link("BASE").shapes.size() == 1);  // the sphere, read once
 }
+
+TEST_CASE("load: a ContinuousTrack is named as Choreonoid names it, and its links share the joint name and id") {
+  auto r = bodyfmt::test::load_v2(R"(
+links:
+  - name: BODY
+    joint_type: free
+  - type: ContinuousTrack
+    name: BELT
+    joint_name: BELT_JOINT
+    joint_id: 0
+    joint_angle: 15
+    parent: BODY
+    joint_axis: Y
+    numJoints: 3
+    joint_offset: [0.05, 0, 0]
+    initialJointAngles: [10]
+  - name: WHEEL
+    parent: BELT
+    joint_type: revolute
+    joint_axis: Y
+    joint_id: 1
+)");
+  // StdBodyLoader: readLinkContents registers BELT, addTrackLink then BELT0 for the same link,
+  // so `parent: BELT` is BELT0. The clones (Link's copy constructor) keep the joint name and
+  // id; addTrackLink gives BELT0 the angle 0 and the next ones initialJointAngles.
+  const bodyfmt::Model& m = r.m();
+  REQUIRE(m.links.size() == 5);
+  const bodyfmt::Link& wheel = r.link("WHEEL");
+  REQUIRE(wheel.parent >= 0);
+  CHECK(m.links[static_cast<std::size_t>(wheel.parent)].name == "BELT0");
+  for (const char* name : {"BELT0", "BELT1", "BELT2"}) {
+    CAPTURE(name);
+    CHECK(r.link(name).joint_name == "BELT_JOINT");
+    CHECK(r.link(name).joint_id == 0);
+  }
+  CHECK(r.link("BELT0").initial_displacement == 0);
+  CHECK(r.link("BELT1").initial_displacement == doctest::Approx(M_PI / 18));
+  CHECK(r.link("BELT2").initial_displacement == 0);
+  CHECK(pos(r.take("load-track-shared-joint")) == Pos{8, 17});  // joint_name
+  CHECK(pos(r.take("load-track-shared-joint")) == Pos{9, 15});  // joint_id
+  CHECK(pos(r.take("load-ignored-value")) == Pos{10, 18});      // joint_angle reaches no link
+  CHECK(pos(r.take("load-track-name")) == Pos{17, 13});         // parent: BELT
+  r.expect_clean();
+
+  // The node's name is taken: another link of that name is a duplicate, as in Choreonoid.
+  auto dup = bodyfmt::test::load_v2(R"(
+links:
+  - name: BODY
+  - type: ContinuousTrack
+    name: BELT
+    numJoints: 3
+    joint_offset: [0.05, 0, 0]
+    parent: BODY
+  - name: BELT
+    parent: BODY
+)");
+  CHECK(pos(dup.take("structure-duplicate-link")) == Pos{10, 11});
+}

@@ -138,6 +138,14 @@ TEST_CASE("validate: an inertia the loader refused is not judged (load-inertia-s
 // ---- Joints
 
 TEST_CASE("validate: joint-id-duplicate") { expect_finding("joint-id-duplicate.body", "joint-id-duplicate", {30, 15}); }
+TEST_CASE("validate: the links of a ContinuousTrack share its joint_id without joint-id-duplicate") {
+  // Choreonoid's clones keep the template's joint id (the loader warns, load-track-shared-joint);
+  // another link with that id is still a duplicate.
+  expect_finding("track-shared-joint-id.body", "joint-id-duplicate", {21, 15}, {"load-track-shared-joint"});
+  const auto result = bodyfmt::test::check_file(data("track-shared-joint-id.body"));
+  CHECK(std::count_if(result.diagnostics.begin(), result.diagnostics.end(),
+                      [](const Diagnostic& d) { return d.rule_id == "joint-id-duplicate"; }) == 1);
+}
 
 TEST_CASE("validate: joint-id-gap") {
   expect_finding("joint-id-gap.body", "joint-id-gap", {30, 15});
