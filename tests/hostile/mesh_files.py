@@ -8,7 +8,7 @@ here, at test time.
    with a located [mesh-file-unreadable] instead of blocking forever.
 2. A glTF buffer over --max-file-size: refused with a located [mesh-file-unreadable]; within
    the limit the same model is clean.
-3. Cubes of 1 µm and 1 m edge (tests/data/hostile/mesh_cube_1um): bodyinfo --mass-from-geometry
+3. Cubes of 0.1 µm, 1 µm and 1 m edge (tests/data/hostile/mesh_cube_1um): bodyinfo --mass-from-geometry
    and bodycheck --fix=geometry give the volume a³ and the inertia m a²/6 about the centre,
    computed by hand, within the float32 rounding of the OBJ's coordinates (1e-7 relative).
 """
@@ -113,7 +113,7 @@ def cubes(root):
     if code != 0:
         return
     links = {link["name"]: link for link in json.loads(text)["links"]}
-    for name, edge, mass in (("SMALL", 1e-6, 1e-15), ("LARGE", 1.0, 1000.0)):
+    for name, edge, mass in (("TINY", 1e-7, 1e-18), ("SMALL", 1e-6, 1e-15), ("LARGE", 1.0, 1000.0)):
         link = links[name]
         expect(f"{name}: volume {link['volume']}, expected {edge ** 3} (a³)", close(link["volume"], edge ** 3), text)
         inertia = link["computed_at_written_mass"]["inertia"]

@@ -185,40 +185,68 @@ long first_non_finite_vertex(const aiMesh& src) {
   return -1;
 }
 
-/// Converts a mesh, one vertex for each distinct (position, normal, texture coordinate), compared
-/// exactly. Not assimp's aiProcess_JoinIdenticalVertices: it merges vertices closer than 1e-5
-/// whatever the mesh's size, so a cube of 1 µm edge lost a sixth of its volume (OBJ) and smaller
-/// parts vanished; a file's exact duplicates (an STL's corner written once per triangle) are
-/// what it merged in meshes of ordinary size.
 MeshPart convert_mesh(const aiMesh& src) {
   MeshPart part;
   TriangleMesh& mesh = part.mesh;
-  const bool normals = src.HasNormals(), tex_coords = src.HasTextureCoords(0);
-  using Key = std::tuple<float, float, float, float, float, float, float, float>;
-  std::map<Key, int> index_of;
-  std::vector<int> joined(src.mNumVertices);
+  mesh.vertices.reserve(src.mNumVertices);
   for (unsigned i = 0; i < src.mNumVertices; ++i) {
     const aiVector3D& v = src.mVertices[i];
-    const aiVector3D n = normals ? src.mNormals[i] : aiVector3D();
-    const aiVector3D t = tex_coords ? src.mTextureCoords[0][i] : aiVector3D();
-    // + 0.0f: -0 and +0 are one coordinate.
-    const Key key{v.x + 0.0f, v.y + 0.0f, v.z + 0.0f, n.x + 0.0f, n.y + 0.0f, n.z + 0.0f, t.x + 0.0f, t.y + 0.0f};
-    const auto [it, added] = index_of.emplace(key, static_cast<int>(mesh.vertices.size()));
-    joined[i] = it->second;
-    if (!added) continue;
     mesh.vertices.emplace_back(v.x, v.y, v.z);
-    if (normals) mesh.normals.emplace_back(n.x, n.y, n.z);
-    if (tex_coords) mesh.tex_coords.emplace_back(t.x, t.y);
+  }
+  if (src.HasNormals()) {
+    for (unsigned i = 0; i < src.mNumVertices; ++i) {
+      const aiVector3D& n = src.mNormals[i];
+      mesh.normals.emplace_back(n.x, n.y, n.z);
+    }
+  }
+  if (src.HasTextureCoords(0)) {
+    for (unsigned i = 0; i < src.mNumVertices; ++i) {
+      const aiVector3D& t = src.mTextureCoords[0][i];
+      mesh.tex_coords.emplace_back(t.x, t.y);
+    }
   }
   for (unsigned f = 0; f < src.mNumFaces; ++f) {
     const aiFace& face = src.mFaces[f];
     if (face.mNumIndices != 3) continue;  // points and lines have no surface
-    if (face.mIndices[0] >= src.mNumVertices || face.mIndices[1] >= src.mNumVertices ||
-        face.mIndices[2] >= src.mNumVertices)
-      continue;
-    mesh.triangles.push_back({joined[face.mIndices[0]], joined[face.mIndices[1]], joined[face.mIndices[2]]});
+    mesh.triangles.push_back(
+        {static_cast<int>(face.mIndices[0]), static_cast<int>(face.mIndices[1]), static_cast<int>(face.mIndices[2])});
   }
   return part;
+}
+
+/// The power of two that brings a mesh of `extent` (its bounding box's largest edge) to at
+/// least kJoinExtent: aiProcess_JoinIdenticalVertices merges vertices closer than a fixed 1e-5,
+/// which for a cube of 1 um edge merged corners of the same face (a sixth of its volume lost,
+/// as OBJ); scaled, the merge distance is 1e-5 of kJoinExtent or less of the mesh's size, and a
+/// power of two scales every float exactly (and back), so a mesh as large as kJoinExtent is
+/// joined exactly as before.
+constexpr double kJoinExtent = 1.0;  // m
+
+int join_scale_exponent(const aiMesh& mesh) {
+  if (mesh.mNumVertices == 0) return 0;
+  aiVector3D lo = mesh.mVertices[0], hi = lo;
+  for (unsigned i = 1; i < mesh.mNumVertices; ++i) {
+    const aiVector3D& v = mesh.mVertices[i];
+    lo = aiVector3D(std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z));
+    hi = aiVector3D(std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z));
+  }
+  const double extent = std::max({double(hi.x) - lo.x, double(hi.y) - lo.y, double(hi.z) - lo.z});
+  if (!(extent > 0) || extent >= kJoinExtent) return 0;
+  // No scaled coordinate may leave float's range (3.4e38): a tiny mesh far from the origin is
+  // scaled less, so it is joined as before rather than turned infinite.
+  const double largest = std::max(
+      {std::abs(lo.x), std::abs(lo.y), std::abs(lo.z), std::abs(hi.x), std::abs(hi.y), std::abs(hi.z), 1e-30f});
+  const int wanted = static_cast<int>(std::ceil(std::log2(kJoinExtent / extent)));
+  const int room = static_cast<int>(std::floor(std::log2(1e30 / largest)));
+  return std::max(0, std::min(wanted, room));
+}
+
+void scale_vertices(aiMesh& mesh, int exponent) {
+  if (exponent == 0) return;
+  for (unsigned i = 0; i < mesh.mNumVertices; ++i) {
+    aiVector3D& v = mesh.mVertices[i];
+    v = aiVector3D(std::ldexp(v.x, exponent), std::ldexp(v.y, exponent), std::ldexp(v.z, exponent));
+  }
 }
 
 /// Whether every node transform of the tree is finite (a glTF matrix or scale may not be).
@@ -260,9 +288,20 @@ SceneTree read_with_assimp(const AssimpHost& host, const std::string& path, std:
   importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
   // Points and lines are dropped; no ValidateDataStructure: it rejects a corpus DAE with
   // duplicate camera names (toolchain.md, assimp).
-  // Vertices are joined in convert_mesh, exactly.
+  // Vertices are joined after the read, each mesh scaled to the size the join assumes.
   const unsigned flags = aiProcess_Triangulate | aiProcess_SortByPType;
   const aiScene* scene = importer.ReadFile(path, flags);
+  std::vector<int> exponents;
+  if (scene && files->refused.empty()) {
+    for (unsigned i = 0; i < scene->mNumMeshes; ++i) {
+      aiMesh& mesh = *scene->mMeshes[i];
+      exponents.push_back(first_non_finite_vertex(mesh) < 0 ? join_scale_exponent(mesh) : 0);
+      scale_vertices(mesh, exponents.back());
+    }
+    scene = importer.ApplyPostProcessing(aiProcess_JoinIdenticalVertices);
+    for (unsigned i = 0; scene && i < scene->mNumMeshes && i < exponents.size(); ++i)
+      scale_vertices(*scene->mMeshes[i], -exponents[i]);
+  }
   const auto report_refused = [&] {
     for (const BoundedIOSystem::Refusal& r : files->refused) host.report(sink, r.rule, where, r.message);
     return !files->refused.empty();
