@@ -205,6 +205,14 @@ std::vector<RuleInfo> make_table() {
       {"mesh-parse", E, "a mesh file is malformed", "its geometry is missing or partial", ""},
       {"mesh-node-not-found", E, "the selected node is not in the mesh file", "Choreonoid refuses the file", ""},
       {"mesh-inline-cycle", E, "VRML Inline files include each other", "loading would never end", ""},
+      {"mesh-reference-outside", E,
+       "a mesh file names a file outside its own folder (an absolute path, a `..` out of it, a symbolic link "
+       "leading out), such as a glTF buffer, an OBJ material library or a texture",
+       "the mesh could copy any readable file (a key, a password file) into every export and the bodyview page; "
+       "the mesh is not used",
+       ""},
+      {"mesh-vertex-not-finite", E, "a mesh file has a vertex or a node transform that is NaN or infinite",
+       "no exporter can write it and no geometry can be computed from it; the mesh is not used", ""},
       {"mesh-invalid-geometry", E, "a mesh file has invalid geometry", "part of it is dropped", ""},
       {"mesh-empty", W, "a mesh file or node has no triangles", "nothing is drawn or collides", ""},
       // Validator rules (validate/rules/, bodycheck). Inertia: shared/spec/anchors.md §2.

@@ -1,5 +1,6 @@
 #include "mesh_import/assimp_module.h"
 
+#include <bodyfmt/read_file.h>
 #include <bodyfmt/rules.h>
 #include "mesh_import/assimp_reader.h"  // the entry point's declaration, for its type
 #include "mesh_import/vrml_reader.h"    // resolve_relative, passed to the module
@@ -15,15 +16,16 @@ namespace {
 
 // The module's file name; libbodyfmt/CMakeLists.txt sets the same name on the module target.
 constexpr const char* kModuleName = "libbodyfmt_assimp.so";
-constexpr const char* kAssimpEntryPoint = "bodyfmt_assimp_read_v2";
+constexpr const char* kAssimpEntryPoint = "bodyfmt_assimp_read_v3";
 
-using EntryPoint = decltype(&bodyfmt_assimp_read_v2);
+using EntryPoint = decltype(&bodyfmt_assimp_read_v3);
 
 const AssimpHost kHost = {
     [](DiagnosticSink& sink, const char* rule_id, const SourceLocation& where, std::string message) {
       report_rule(sink, rule_id, where, std::move(message));
     },
     &resolve_relative,
+    &read_regular_file_bytes,
 };
 
 struct Module {
@@ -100,7 +102,8 @@ const Module& module() {
 
 }  // namespace
 
-SceneTree import_with_assimp(const std::string& path, DiagnosticSink& sink, const SourceLocation& where) {
+SceneTree import_with_assimp(const std::string& path, std::uintmax_t max_file_bytes, DiagnosticSink& sink,
+                             const SourceLocation& where) {
   const Module& m = module();
   if (!m.read) {
     report_rule(
@@ -110,7 +113,7 @@ SceneTree import_with_assimp(const std::string& path, DiagnosticSink& sink, cons
     return nullptr;
   }
   SceneTree tree;
-  m.read(&kHost, path.c_str(), &sink, &where, &tree);
+  m.read(&kHost, path.c_str(), max_file_bytes, &sink, &where, &tree);
   return tree;
 }
 

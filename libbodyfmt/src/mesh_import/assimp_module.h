@@ -8,13 +8,16 @@
 
 #include <bodyfmt/diagnostic.h>
 
+#include <cstdint>
 #include <string>
 
 namespace bodyfmt::mesh {
 
 /// Reads `path` with assimp through the module, loading it on the first call (thread-safe).
 /// When the module cannot be loaded, reports `mesh-importer-unavailable` at `where` (with the
-/// path tried and the loader's message) and returns nullptr; otherwise as read_with_assimp().
-SceneTree import_with_assimp(const std::string& path, DiagnosticSink& sink, const SourceLocation& where);
+/// path tried and the loader's message) and returns nullptr; otherwise as read_with_assimp(), every
+/// file it opens limited to `max_file_bytes`.
+SceneTree import_with_assimp(const std::string& path, std::uintmax_t max_file_bytes, DiagnosticSink& sink,
+                             const SourceLocation& where);
 
 }  // namespace bodyfmt::mesh

@@ -3,14 +3,127 @@
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <assimp/IOStream.hpp>
+#include <assimp/IOSystem.hpp>
 #include <assimp/Importer.hpp>
 
+#include <sys/stat.h>
+
 #include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <tuple>
 
 namespace bodyfmt::mesh {
 
 namespace {
+
+namespace fs = std::filesystem;
+
+/// A file's bytes, read whole by the bounded reader, as assimp reads a file.
+class BytesStream : public Assimp::IOStream {
+ public:
+  explicit BytesStream(FileBytes bytes) : bytes_(std::move(bytes)) {}
+  size_t Read(void* buffer, size_t size, size_t count) override {
+    if (size == 0) return 0;
+    const size_t whole = std::min(count, (bytes_.size - position_) / size);
+    std::memcpy(buffer, bytes_.data.get() + position_, whole * size);
+    position_ += whole * size;
+    return whole;
+  }
+  size_t Write(const void*, size_t, size_t) override { return 0; }
+  aiReturn Seek(size_t offset, aiOrigin origin) override {
+    const size_t base = origin == aiOrigin_SET ? 0 : origin == aiOrigin_CUR ? position_ : bytes_.size;
+    if (offset > bytes_.size - base) return aiReturn_FAILURE;
+    position_ = base + offset;
+    return aiReturn_SUCCESS;
+  }
+  size_t Tell() const override { return position_; }
+  size_t FileSize() const override { return bytes_.size; }
+  void Flush() override {}
+
+ private:
+  FileBytes bytes_;
+  size_t position_ = 0;
+};
+
+/// The files assimp opens, through the host's bounded reader (assimp's default one fopen()s
+/// whatever a mesh names: a FIFO blocks it forever, /dev/zero never ends, a buffer ignores
+/// --max-file-size). Only the mesh file itself and files inside its folder are opened, after
+/// symbolic links are resolved; what is refused is kept in `refused` for the caller to report.
+class BoundedIOSystem : public Assimp::IOSystem {
+ public:
+  struct Refusal {
+    const char* rule;
+    std::string message;
+  };
+
+  BoundedIOSystem(const AssimpHost& host, const std::string& mesh_path, std::uintmax_t max_file_bytes)
+      : host_(host), mesh_path_(mesh_path), max_file_bytes_(max_file_bytes) {
+    std::error_code ec;
+    const fs::path absolute = fs::absolute(fs::path(mesh_path), ec);
+    folder_ = fs::weakly_canonical(absolute.parent_path(), ec);
+    mesh_file_ = fs::weakly_canonical(absolute, ec);
+  }
+
+  std::vector<Refusal> refused;
+
+  /// Whether `path` may be opened: the mesh file, or a file inside its folder. Records a refusal.
+  bool allowed(const std::string& path) {
+    if (path == mesh_path_) return true;
+    std::error_code ec;
+    const fs::path resolved = fs::weakly_canonical(fs::absolute(fs::path(path), ec), ec);
+    if (!ec && resolved == mesh_file_) return true;  // the mesh file, however spelt
+    const fs::path relative = ec ? fs::path("..") : resolved.lexically_relative(folder_);
+    if (!relative.empty() && *relative.begin() != ".." && relative.is_relative()) return true;
+    if (!refused_paths_.insert(resolved.string()).second) return false;  // one finding per file
+    refuse("mesh-reference-outside", "mesh file \"" + mesh_path_ + "\" names \"" + path + "\"" +
+                                         (resolved.empty() ? std::string() : " (" + resolved.string() + ")") +
+                                         ", outside its folder \"" + folder_.string() + "\"; the mesh is not used");
+    return false;
+  }
+
+  bool Exists(const char* file) const override {
+    // stat, not fopen: opening a FIFO blocks until something writes to it.
+    struct stat st {};
+    return ::stat(file, &st) == 0;
+  }
+  char getOsSeparator() const override { return '/'; }
+
+  Assimp::IOStream* Open(const char* file, const char* mode) override {
+    if (std::strchr(mode, 'w') || std::strchr(mode, 'a') || std::strchr(mode, '+')) return nullptr;
+    const std::string path = file;
+    if (!allowed(path)) return nullptr;
+    std::string why;
+    std::optional<FileBytes> bytes = host_.read_file(path, max_file_bytes_, why);
+    if (!bytes) {
+      // A missing file stays assimp's to judge (an OBJ without its material library loads).
+      if (why != "no such file")
+        refuse("mesh-file-unreadable", "cannot read \"" + path + "\", named by mesh file \"" + mesh_path_ + "\": it " +
+                                           why + "; the mesh is not used");
+      return nullptr;
+    }
+    return new BytesStream(std::move(*bytes));
+  }
+  void Close(Assimp::IOStream* stream) override { delete stream; }
+
+ private:
+  void refuse(const char* rule, std::string message) {
+    for (const Refusal& r : refused)
+      if (r.message == message) return;
+    refused.push_back({rule, std::move(message)});
+  }
+
+  const AssimpHost& host_;
+  std::string mesh_path_;
+  std::uintmax_t max_file_bytes_;
+  std::set<std::string> refused_paths_;
+  fs::path folder_;     // the mesh file's folder, symbolic links resolved
+  fs::path mesh_file_;  // the mesh file, symbolic links resolved
+};
 
 Eigen::Affine3d to_eigen(const aiMatrix4x4& m) {
   Eigen::Matrix4d e;
@@ -46,7 +159,8 @@ std::optional<Material> convert_material(const aiMaterial& src) {
   return m;
 }
 
-std::optional<Texture> convert_texture(const AssimpHost& host, const aiMaterial& src, const std::string& path) {
+std::optional<Texture> convert_texture(const AssimpHost& host, const aiMaterial& src, const std::string& path,
+                                       BoundedIOSystem& files) {
   aiString uri;
   if (src.GetTextureCount(aiTextureType_DIFFUSE) == 0 || src.GetTexture(aiTextureType_DIFFUSE, 0, &uri) != AI_SUCCESS ||
       uri.length == 0) {
@@ -54,8 +168,21 @@ std::optional<Texture> convert_texture(const AssimpHost& host, const aiMaterial&
   }
   Texture texture;
   texture.uri = uri.C_Str();
-  if (texture.uri.front() != '*') texture.resolved_path = host.resolve_relative(path, texture.uri);  // '*n' = embedded
+  if (texture.uri.front() != '*') {  // '*n' = embedded
+    texture.resolved_path = host.resolve_relative(path, texture.uri);
+    // The exporters and bodyview copy the image: it must stay inside the mesh's folder too.
+    if (!texture.resolved_path.empty() && !files.allowed(texture.resolved_path)) return std::nullopt;
+  }
   return texture;
+}
+
+bool finite(const aiVector3D& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+/// The index of the first vertex of `src` that is not finite, or -1.
+long first_non_finite_vertex(const aiMesh& src) {
+  for (unsigned i = 0; i < src.mNumVertices; ++i)
+    if (!finite(src.mVertices[i])) return static_cast<long>(i);
+  return -1;
 }
 
 MeshPart convert_mesh(const aiMesh& src) {
@@ -87,6 +214,52 @@ MeshPart convert_mesh(const aiMesh& src) {
   return part;
 }
 
+/// The power of two that brings a mesh of `extent` (its bounding box's largest edge) to at
+/// least kJoinExtent: aiProcess_JoinIdenticalVertices merges vertices closer than a fixed 1e-5,
+/// which for a cube of 1 um edge merged corners of the same face (a sixth of its volume lost,
+/// as OBJ); scaled, the merge distance is 1e-5 of kJoinExtent or less of the mesh's size, and a
+/// power of two scales every float exactly (and back), so a mesh as large as kJoinExtent is
+/// joined exactly as before.
+constexpr double kJoinExtent = 1.0;  // m
+
+int join_scale_exponent(const aiMesh& mesh) {
+  if (mesh.mNumVertices == 0) return 0;
+  aiVector3D lo = mesh.mVertices[0], hi = lo;
+  for (unsigned i = 1; i < mesh.mNumVertices; ++i) {
+    const aiVector3D& v = mesh.mVertices[i];
+    lo = aiVector3D(std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z));
+    hi = aiVector3D(std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z));
+  }
+  const double extent = std::max({double(hi.x) - lo.x, double(hi.y) - lo.y, double(hi.z) - lo.z});
+  if (!(extent > 0) || extent >= kJoinExtent) return 0;
+  // No scaled coordinate may leave float's range (3.4e38): a tiny mesh far from the origin is
+  // scaled less, so it is joined as before rather than turned infinite.
+  const double largest = std::max(
+      {std::abs(lo.x), std::abs(lo.y), std::abs(lo.z), std::abs(hi.x), std::abs(hi.y), std::abs(hi.z), 1e-30f});
+  const int wanted = static_cast<int>(std::ceil(std::log2(kJoinExtent / extent)));
+  const int room = static_cast<int>(std::floor(std::log2(1e30 / largest)));
+  return std::max(0, std::min(wanted, room));
+}
+
+void scale_vertices(aiMesh& mesh, int exponent) {
+  if (exponent == 0) return;
+  for (unsigned i = 0; i < mesh.mNumVertices; ++i) {
+    aiVector3D& v = mesh.mVertices[i];
+    v = aiVector3D(std::ldexp(v.x, exponent), std::ldexp(v.y, exponent), std::ldexp(v.z, exponent));
+  }
+}
+
+/// Whether every node transform of the tree is finite (a glTF matrix or scale may not be).
+bool finite_transforms(const aiNode& node) {
+  const aiMatrix4x4& m = node.mTransformation;
+  for (unsigned r = 0; r < 4; ++r)
+    for (unsigned c = 0; c < 4; ++c)
+      if (!std::isfinite(m[r][c])) return false;
+  for (unsigned i = 0; i < node.mNumChildren; ++i)
+    if (node.mChildren[i] && !finite_transforms(*node.mChildren[i])) return false;
+  return true;
+}
+
 std::shared_ptr<SceneNode> convert_node(const aiScene& scene, const aiNode& src, const std::vector<MeshPart>& meshes) {
   auto node = std::make_shared<SceneNode>();
   node->name = src.mName.C_Str();
@@ -104,17 +277,36 @@ std::shared_ptr<SceneNode> convert_node(const aiScene& scene, const aiNode& src,
 
 }  // namespace
 
-SceneTree read_with_assimp(const AssimpHost& host, const std::string& path, DiagnosticSink& sink,
-                           const SourceLocation& where) {
+SceneTree read_with_assimp(const AssimpHost& host, const std::string& path, std::uintmax_t max_file_bytes,
+                           DiagnosticSink& sink, const SourceLocation& where) {
   Assimp::Importer importer;
+  auto* files = new BoundedIOSystem(host, path, max_file_bytes);
+  importer.SetIOHandler(files);  // the importer owns and deletes it
   // Keep COLLADA's <unit> scale and <up_axis> conversion off: Choreonoid's Assimp loader reads
   // the raw node transforms (assimp's Y-up conversion would turn Z-up robot parts sideways).
   // Measured against UR5's reference visual_bbox (tests/unit/mesh/mesh_import_test.cpp).
   importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
   // Points and lines are dropped; no ValidateDataStructure: it rejects a corpus DAE with
   // duplicate camera names (toolchain.md, assimp).
-  const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType;
+  // Vertices are joined after the read, each mesh scaled to the size the join assumes.
+  const unsigned flags = aiProcess_Triangulate | aiProcess_SortByPType;
   const aiScene* scene = importer.ReadFile(path, flags);
+  std::vector<int> exponents;
+  if (scene && files->refused.empty()) {
+    for (unsigned i = 0; i < scene->mNumMeshes; ++i) {
+      aiMesh& mesh = *scene->mMeshes[i];
+      exponents.push_back(first_non_finite_vertex(mesh) < 0 ? join_scale_exponent(mesh) : 0);
+      scale_vertices(mesh, exponents.back());
+    }
+    scene = importer.ApplyPostProcessing(aiProcess_JoinIdenticalVertices);
+    for (unsigned i = 0; scene && i < scene->mNumMeshes && i < exponents.size(); ++i)
+      scale_vertices(*scene->mMeshes[i], -exponents[i]);
+  }
+  const auto report_refused = [&] {
+    for (const BoundedIOSystem::Refusal& r : files->refused) host.report(sink, r.rule, where, r.message);
+    return !files->refused.empty();
+  };
+  if (report_refused()) return nullptr;
   if (!scene || !scene->mRootNode || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE)) {
     host.report(sink, "mesh-parse", where, "cannot read mesh file \"" + path + "\": " + importer.GetErrorString());
     return nullptr;
@@ -122,21 +314,33 @@ SceneTree read_with_assimp(const AssimpHost& host, const std::string& path, Diag
   std::vector<MeshPart> meshes;
   meshes.reserve(scene->mNumMeshes);
   for (unsigned i = 0; i < scene->mNumMeshes; ++i) {
+    if (const long bad = first_non_finite_vertex(*scene->mMeshes[i]); bad >= 0) {
+      host.report(sink, "mesh-vertex-not-finite", where,
+                  "mesh file \"" + path + "\" has a vertex that is not a finite number (mesh " + std::to_string(i) +
+                      ", vertex " + std::to_string(bad) + "); the mesh is not used");
+      return nullptr;
+    }
     MeshPart part = convert_mesh(*scene->mMeshes[i]);
     const unsigned material = scene->mMeshes[i]->mMaterialIndex;
     if (material < scene->mNumMaterials && scene->mMaterials[material]) {
       part.material = convert_material(*scene->mMaterials[material]);
-      part.texture = convert_texture(host, *scene->mMaterials[material], path);
+      part.texture = convert_texture(host, *scene->mMaterials[material], path, *files);
     }
     meshes.push_back(std::move(part));
+  }
+  if (report_refused()) return nullptr;
+  if (!finite_transforms(*scene->mRootNode)) {
+    host.report(sink, "mesh-vertex-not-finite", where,
+                "mesh file \"" + path + "\" has a node transform that is not finite; the mesh is not used");
+    return nullptr;
   }
   return convert_node(*scene, *scene->mRootNode, meshes);
 }
 
 }  // namespace bodyfmt::mesh
 
-extern "C" void bodyfmt_assimp_read_v2(const bodyfmt::mesh::AssimpHost* host, const char* path,
-                                       bodyfmt::DiagnosticSink* sink, const bodyfmt::SourceLocation* where,
-                                       bodyfmt::mesh::SceneTree* out) {
-  *out = bodyfmt::mesh::read_with_assimp(*host, path, *sink, *where);
+extern "C" void bodyfmt_assimp_read_v3(const bodyfmt::mesh::AssimpHost* host, const char* path,
+                                       std::uintmax_t max_file_bytes, bodyfmt::DiagnosticSink* sink,
+                                       const bodyfmt::SourceLocation* where, bodyfmt::mesh::SceneTree* out) {
+  *out = bodyfmt::mesh::read_with_assimp(*host, path, max_file_bytes, *sink, *where);
 }

@@ -13,7 +13,10 @@
 #include "mesh_import/scene_tree.h"
 
 #include <bodyfmt/diagnostic.h>
+#include <bodyfmt/read_file.h>
 
+#include <cstdint>
+#include <optional>
 #include <string>
 
 namespace bodyfmt::mesh {
@@ -24,19 +27,27 @@ struct AssimpHost {
   void (*report)(DiagnosticSink& sink, const char* rule_id, const SourceLocation& where, std::string message);
   /// resolve_relative(base_file, url) of mesh/vrml_reader.h.
   std::string (*resolve_relative)(const std::string& base_file, const std::string& url);
+  /// read_regular_file_bytes(path, max_bytes, why) of bodyfmt/read_file.h: the one bounded reader.
+  std::optional<FileBytes> (*read_file)(const std::string& path, std::uintmax_t max_bytes, std::string& why);
 };
 
-/// Reads `path` with assimp. On failure reports `mesh-parse` (with assimp's message) at `where`
-/// and returns nullptr.
-SceneTree read_with_assimp(const AssimpHost& host, const std::string& path, DiagnosticSink& sink,
-                           const SourceLocation& where);
+/// Reads `path` with assimp. Every file assimp opens (the mesh file and the files it names: an
+/// OBJ's material library, a glTF's buffers) is read through host.read_file within
+/// `max_file_bytes`; a named file outside the mesh file's folder (absolute, `..`, a symbolic
+/// link out of it) is refused with `mesh-reference-outside`, one that is not a readable regular
+/// file with `mesh-file-unreadable`, and a non-finite vertex or node transform is
+/// `mesh-vertex-not-finite`; in each case the mesh is not used (nullptr). On any other failure
+/// reports `mesh-parse` (with assimp's message) at `where` and returns nullptr.
+SceneTree read_with_assimp(const AssimpHost& host, const std::string& path, std::uintmax_t max_file_bytes,
+                           DiagnosticSink& sink, const SourceLocation& where);
 
 }  // namespace bodyfmt::mesh
 
 /// The module's entry point, looked up by name (kAssimpEntryPoint in assimp_module.cpp) so that
 /// dlsym() needs no C++ mangling: it calls read_with_assimp() and stores the result in `*out`.
 /// C++ types cross the boundary because the module and libbodyfmt are always built together
-/// with the same compiler and standard library. The "_v2" suffix changes if the signature does.
-extern "C" void bodyfmt_assimp_read_v2(const bodyfmt::mesh::AssimpHost* host, const char* path,
-                                       bodyfmt::DiagnosticSink* sink, const bodyfmt::SourceLocation* where,
-                                       bodyfmt::mesh::SceneTree* out);
+/// with the same compiler and standard library. The "_v3" suffix changes if the signature (or
+/// AssimpHost) does.
+extern "C" void bodyfmt_assimp_read_v3(const bodyfmt::mesh::AssimpHost* host, const char* path,
+                                       std::uintmax_t max_file_bytes, bodyfmt::DiagnosticSink* sink,
+                                       const bodyfmt::SourceLocation* where, bodyfmt::mesh::SceneTree* out);

@@ -163,7 +163,7 @@ struct MeshCache::Impl {
                "simplify the mesh, or raise --max-mesh-triangles (an import takes about 1.5 KB per triangle)");
         return nullptr;
       }
-      return mesh::import_with_assimp(path, sink, where);
+      return mesh::import_with_assimp(path, max_file_bytes, sink, where);
     }
 
     const std::optional<std::string> text = detail::read_regular_file(path, max_file_bytes, why);
