@@ -207,9 +207,15 @@ std::vector<RuleInfo> make_table() {
       {"mesh-inline-cycle", E, "VRML Inline files include each other", "loading would never end", ""},
       {"mesh-reference-outside", E,
        "a mesh file names a file outside its own folder (an absolute path, a `..` out of it, a symbolic link "
-       "leading out), such as a glTF buffer, an OBJ material library or a texture",
+       "leading out), such as a glTF buffer or an OBJ material library",
        "the mesh could copy any readable file (a key, a password file) into every export and the bodyview page; "
        "the mesh is not used",
+       ""},
+      {"mesh-texture-outside", W,
+       "a mesh file names a texture outside its own folder (an absolute path, a `..` out of it, a symbolic link "
+       "leading out)",
+       "the exporters and bodyview would copy any readable file as the picture; the texture is not used, the mesh "
+       "keeps its geometry",
        ""},
       {"mesh-vertex-not-finite", E, "a mesh file has a vertex or a node transform that is NaN or infinite",
        "no exporter can write it and no geometry can be computed from it; the mesh is not used", ""},

@@ -70,15 +70,38 @@ class BoundedIOSystem : public Assimp::IOSystem {
   }
 
   std::vector<Refusal> refused;
+  /// Textures outside the mesh's folder: not used, the mesh kept (its geometry is the model's).
+  std::vector<Refusal> dropped_textures;
+
+  /// Whether `path` is the mesh file or a file inside its folder, symbolic links resolved.
+  bool inside(const std::string& path, fs::path& resolved) const {
+    if (path == mesh_path_) return true;
+    std::error_code ec;
+    resolved = fs::weakly_canonical(fs::absolute(fs::path(path), ec), ec);
+    if (!ec && resolved == mesh_file_) return true;  // the mesh file, however spelt
+    const fs::path relative = ec ? fs::path("..") : resolved.lexically_relative(folder_);
+    return !relative.empty() && *relative.begin() != ".." && relative.is_relative();
+  }
+
+  /// A texture the exporters and bodyview would copy: used only inside the mesh's folder; one
+  /// outside is dropped with a warning, and the mesh keeps its geometry (a ROS-style DAE naming
+  /// ../textures/x.png still loads, without the picture).
+  bool texture_allowed(const std::string& path) {
+    fs::path resolved;
+    if (inside(path, resolved)) return true;
+    const std::string message = "mesh file \"" + mesh_path_ + "\" names the texture \"" + path + "\"" +
+                                (resolved.empty() ? std::string() : " (" + resolved.string() + ")") +
+                                ", outside its folder \"" + folder_.string() + "\"; the texture is not used";
+    for (const Refusal& r : dropped_textures)
+      if (r.message == message) return false;
+    dropped_textures.push_back({"mesh-texture-outside", message});
+    return false;
+  }
 
   /// Whether `path` may be opened: the mesh file, or a file inside its folder. Records a refusal.
   bool allowed(const std::string& path) {
-    if (path == mesh_path_) return true;
-    std::error_code ec;
-    const fs::path resolved = fs::weakly_canonical(fs::absolute(fs::path(path), ec), ec);
-    if (!ec && resolved == mesh_file_) return true;  // the mesh file, however spelt
-    const fs::path relative = ec ? fs::path("..") : resolved.lexically_relative(folder_);
-    if (!relative.empty() && *relative.begin() != ".." && relative.is_relative()) return true;
+    fs::path resolved;
+    if (inside(path, resolved)) return true;
     if (!refused_paths_.insert(resolved.string()).second) return false;  // one finding per file
     refuse("mesh-reference-outside", "mesh file \"" + mesh_path_ + "\" names \"" + path + "\"" +
                                          (resolved.empty() ? std::string() : " (" + resolved.string() + ")") +
@@ -171,7 +194,7 @@ std::optional<Texture> convert_texture(const AssimpHost& host, const aiMaterial&
   if (texture.uri.front() != '*') {  // '*n' = embedded
     texture.resolved_path = host.resolve_relative(path, texture.uri);
     // The exporters and bodyview copy the image: it must stay inside the mesh's folder too.
-    if (!texture.resolved_path.empty() && !files.allowed(texture.resolved_path)) return std::nullopt;
+    if (!texture.resolved_path.empty() && !files.texture_allowed(texture.resolved_path)) return std::nullopt;
   }
   return texture;
 }
@@ -329,6 +352,7 @@ SceneTree read_with_assimp(const AssimpHost& host, const std::string& path, std:
     meshes.push_back(std::move(part));
   }
   if (report_refused()) return nullptr;
+  for (const BoundedIOSystem::Refusal& r : files->dropped_textures) host.report(sink, r.rule, where, r.message);
   if (!finite_transforms(*scene->mRootNode)) {
     host.report(sink, "mesh-vertex-not-finite", where,
                 "mesh file \"" + path + "\" has a node transform that is not finite; the mesh is not used");
