@@ -137,6 +137,12 @@ Front::Front(std::string tool_name, CLI::App& app, Features features)
 }
 
 void Front::add_options() {
+  // Reports quote the files the loader read as model text, and no other (issue 45). Loads
+  // may run on worker threads.
+  load_options_.on_model_text = [this](const std::string& path) {
+    const std::lock_guard<std::mutex> lock(sources_mutex_);
+    sources_.add_file(path);
+  };
   app_.set_version_flag("--version", name_ + " " + BODYFMT_VERSION, "print the version and exit");
   if (features_.many_inputs) {
     app_.add_option("paths", inputs_,
