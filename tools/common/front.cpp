@@ -4,6 +4,7 @@
 #include "number_options.h"
 
 #include <bodyfmt/input_files.h>
+#include <bodyfmt/read_file.h>
 #include <bodyfmt/rules.h>
 
 #include <sys/stat.h>
@@ -250,7 +251,14 @@ std::optional<ModelInput> Front::open_input(const std::string& path, DiagnosticS
   // Standard input, a pipe (<(...)), or a device: read once, here, so that the text is also
   // there for the source lines of the report.
   struct stat st {};
-  if (path != "-" && ::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) {
+  if (path != "-" && ::stat(path.c_str(), &st) != 0) {
+    // Nothing to read (missing, a symbolic link loop...): the bounded reader says why.
+    std::string why;
+    readable_regular_file(path, load_options_.max_file_bytes, why);
+    report_rule(sink, "io-read", SourceLocation{path, 0, 0}, "cannot read \"" + path + "\": " + why);
+    return std::nullopt;
+  }
+  if (path != "-" && S_ISDIR(st.st_mode)) {
     report_rule(sink, "io-read", SourceLocation{path, 0, 0}, "\"" + path + "\" is a directory, not a .body file");
     return std::nullopt;
   }
