@@ -43,6 +43,25 @@ def request(port, head, timeout=5.0):
     return lines[0], headers, body, time.monotonic() - start
 
 
+def answers(port, text, timeout=5.0):
+    """Sends `text` (requests pipelined on one connection), reads to the end and splits what
+    came back at each answer's Content-Length: [(status line, body)]."""
+    with socket.create_connection(("127.0.0.1", port), timeout=timeout) as s:
+        s.sendall(text.encode())
+        data = b""
+        while chunk := s.recv(1 << 16):
+            data += chunk
+    out = []
+    while data:
+        top, _, rest = data.partition(b"\r\n\r\n")
+        lines = top.decode("latin-1").split("\r\n")
+        headers = dict(line.split(": ", 1) for line in lines[1:] if ": " in line)
+        size = int(headers.get("Content-Length", len(rest)))
+        out.append((lines[0], rest[:size]))
+        data = rest[size:]
+    return out
+
+
 def get(port, target="/", host=None, method="GET", timeout=5.0):
     host_line = "" if host == "" else f"Host: {host or f'127.0.0.1:{port}'}\r\n"
     return request(port, f"{method} {target} HTTP/1.1\r\n{host_line}\r\n", timeout)
@@ -139,6 +158,27 @@ def main():
         status, _, body, _ = request(port, f"GET / HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\nHost: evil.example\r\n\r\n")
         if " 421 " not in status:
             failures.append(f"two Host headers: {status}")
+        # Requests pipelined on one connection are parsed one at a time (issue 45): each is
+        # answered, each by its own Host header.
+        ok, evil = f"Host: 127.0.0.1:{port}\r\n", "Host: evil.example\r\n"
+        for requests, expected in (
+            ([f"GET / HTTP/1.1\r\n{ok}\r\n", f"GET /status HTTP/1.1\r\n{ok}\r\n"], ["200", "200"]),
+            ([f"GET / HTTP/1.1\r\n{ok}\r\n"] * 3, ["200", "200", "200"]),
+            ([f"GET / HTTP/1.1\r\n{ok}\r\n", f"GET / HTTP/1.1\r\n{evil}\r\n"], ["200", "421"]),
+            ([f"GET / HTTP/1.1\r\n{evil}\r\n", f"GET / HTTP/1.1\r\n{ok}\r\n"], ["421"]),
+            ([f"GET / HTTP/1.1\r\n{ok}\r\n", f"GET / HTTP/1.1\r\n{ok}{evil}\r\n"], ["200", "421"]),
+            # A request's body is no request: nothing after a POST is answered.
+            ([f"POST / HTTP/1.1\r\n{ok}Content-Length: 30\r\n\r\n", f"GET / HTTP/1.1\r\n{ok}\r\n"], ["405"]),
+            ([f"GET / HTTP/1.1\r\n{ok}Connection: close\r\n\r\n", f"GET / HTTP/1.1\r\n{ok}\r\n"], ["200"]),
+        ):
+            got = answers(port, "".join(requests))
+            statuses = [line.split(" ")[1] if " " in line else line for line, _ in got]
+            if statuses != expected:
+                failures.append(f"pipelined {len(requests)} requests: answered {statuses}, expected {expected}")
+            for (line, body), status in zip(got, statuses):
+                if status == "200" and b"bv-data" not in body and b"generation" not in body:
+                    failures.append(f"pipelined: a 200 answer without the page or the status ({len(body)} bytes)")
+        print(f"pipelined requests: {len(got)} answers on the last connection")
         status, headers, body, _ = get(port, method="HEAD")
         if not status.endswith("200 OK") or body or headers.get("Content-Length") != str(len(page)):
             failures.append(f"HEAD: {status}, {headers.get('Content-Length')} (page {len(page)}), body {len(body)}")

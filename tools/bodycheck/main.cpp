@@ -9,6 +9,7 @@
 #include "output_guard.h"
 #include "text_view.h"
 
+#include <bodyfmt/read_file.h>
 #include <bodyfmt/rules.h>
 #include <cstdio>
 
@@ -146,7 +147,10 @@ std::vector<std::string> expand_inputs(const tools::Front& front, std::vector<st
     } else if (fs::exists(input, ec)) {
       files.push_back(fs::path(input).lexically_normal().string());
     } else {
-      std::cerr << input << ": error: no such file or directory\n";
+      // Missing, or a symbolic link loop: the bounded reader's words, as every tool prints them.
+      std::string why;
+      readable_regular_file(input, front.load_options().max_file_bytes, why);
+      std::cerr << input << ": error: " << why << '\n';
       fatal = true;
     }
   }

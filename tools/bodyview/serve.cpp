@@ -36,6 +36,8 @@ constexpr auto kExchange = std::chrono::seconds(10);
 constexpr auto kWatchEvery = std::chrono::milliseconds(200);
 constexpr std::size_t kMaxConnections = 32;
 constexpr std::size_t kMaxRequest = 16384;
+// Pipelined requests answered on one connection (all within its kExchange).
+constexpr int kMaxRequestsPerConnection = 100;
 
 volatile std::sig_atomic_t g_stop = 0;
 void on_signal(int) { g_stop = 1; }
@@ -58,15 +60,18 @@ std::map<std::string, Stamp> stamps(const std::vector<std::string>& files) {
 struct Connection {
   int fd = -1;
   Clock::time_point deadline;
-  std::string request;                      // until the blank line that ends the headers
+  std::string request;                      // what the client sent and was not answered yet
   std::string head;                         // the answer's status line and headers
   std::shared_ptr<const std::string> body;  // shared: the page is not copied per client
   std::size_t sent = 0;                     // of head, then body
   bool answering = false;
+  bool keep_open = false;  // another request follows this answer on the connection
+  int answered = 0;
 };
 
 struct Request {
   std::string method, target, host;
+  bool close = false;  // Connection: close
 };
 
 std::string lower(std::string s) {
@@ -74,7 +79,8 @@ std::string lower(std::string s) {
   return s;
 }
 
-/// The request line and the Host header of a request's head (up to the blank line).
+/// The request line, the Host and the Connection header of one request's head (up to its
+/// blank line, without the requests pipelined after it).
 Request parse_request(const std::string& head) {
   Request r;
   const std::size_t line_end = head.find("\r\n");
@@ -93,6 +99,8 @@ Request parse_request(const std::string& head) {
       value.erase(value.find_last_not_of(" \t") + 1);
       r.host = r.host.empty() ? value : std::string("\n");  // two Host headers: none is trusted
     }
+    if (colon != std::string::npos && lower(field.substr(0, colon)) == "connection")
+      r.close = r.close || lower(field.substr(colon + 1)).find("close") != std::string::npos;
     at = end;
   }
   return r;
@@ -167,8 +175,13 @@ int serve(tools::Front& front, const tools::Front::FilePolicy& policy, const std
   if (page->empty()) return tools::kExitFatal;
   std::cout << "http://127.0.0.1:" << port_text << "/" << std::endl;
 
+  // Answers the first request of c.request and takes it out: requests pipelined after it are
+  // answered in turn, each parsed on its own (its own Host header), once this one is sent.
   auto answer = [&](Connection& c) {
-    const Request r = parse_request(c.request);
+    const std::size_t blank = c.request.find("\r\n\r\n");
+    const std::size_t head_size = blank == std::string::npos ? c.request.size() : blank + 4;
+    const Request r = parse_request(c.request.substr(0, head_size));
+    c.request.erase(0, head_size);
     std::string status = "200 OK", type = "text/plain; charset=utf-8", extra;
     std::shared_ptr<const std::string> body;
     const bool known_host = std::find(std::begin(hosts), std::end(hosts), lower(r.host)) != std::end(hosts);
@@ -194,11 +207,19 @@ int serve(tools::Front& front, const tools::Front::FilePolicy& policy, const std
       status = "404 Not Found";
       body = std::make_shared<const std::string>("not found\n");
     }
-    c.head = "HTTP/1.1 " + status + "\r\nContent-Type: " + type + "\r\n" + extra +
-             "Cache-Control: no-store\r\nConnection: close\r\nContent-Length: " + std::to_string(body->size()) +
+    // The connection stays open only for a request already sent after this one (pipelined), and
+    // only after a GET or HEAD from a loopback host: anything else may carry a body that is no request.
+    c.keep_open = blank != std::string::npos && (status.rfind("200", 0) == 0 || status.rfind("404", 0) == 0) &&
+                  !r.close && !c.request.empty() && ++c.answered < kMaxRequestsPerConnection;
+    c.head = "HTTP/1.1 " + status + "\r\nContent-Type: " + type + "\r\n" + extra + "Cache-Control: no-store\r\n" +
+             (c.keep_open ? "" : "Connection: close\r\n") + "Content-Length: " + std::to_string(body->size()) +
              "\r\n\r\n";
-    if (r.method != "HEAD") c.body = std::move(body);
+    c.body = r.method != "HEAD" ? std::move(body) : nullptr;
+    c.sent = 0;
     c.answering = true;
+  };
+  auto has_request = [](const Connection& c) {
+    return c.request.find("\r\n\r\n") != std::string::npos || c.request.size() > kMaxRequest;
   };
 
   std::list<Connection> connections;  // oldest first
@@ -223,7 +244,7 @@ int serve(tools::Front& front, const tools::Front::FilePolicy& policy, const std
           if (n == 0 || (errno != EAGAIN && errno != EINTR)) close_connection(c);
         } else {
           c.request.append(buffer, static_cast<std::size_t>(n));
-          if (c.request.find("\r\n\r\n") != std::string::npos || c.request.size() > kMaxRequest) answer(c);
+          if (has_request(c)) answer(c);
         }
       } else if (ready > 0 && c.answering && (events & POLLOUT)) {
         const std::string& part = c.sent < c.head.size() ? c.head : *c.body;
@@ -231,7 +252,14 @@ int serve(tools::Front& front, const tools::Front::FilePolicy& policy, const std
         const ssize_t n = ::send(c.fd, part.data() + from, part.size() - from, MSG_NOSIGNAL);
         if (n < 0 && errno != EAGAIN && errno != EINTR) close_connection(c);
         if (n > 0) c.sent += static_cast<std::size_t>(n);
-        if (c.sent == c.head.size() + (c.body ? c.body->size() : 0)) close_connection(c);
+        if (c.sent == c.head.size() + (c.body ? c.body->size() : 0)) {
+          if (!c.keep_open) {
+            close_connection(c);
+          } else {
+            c.answering = false;
+            if (has_request(c)) answer(c);
+          }
+        }
       }
       if (c.fd >= 0 && now > c.deadline) close_connection(c);  // slow to ask, or slow to read
     }

@@ -4,6 +4,7 @@
 #include "number_options.h"
 
 #include <bodyfmt/input_files.h>
+#include <bodyfmt/read_file.h>
 #include <bodyfmt/rules.h>
 
 #include <sys/stat.h>
@@ -137,6 +138,12 @@ Front::Front(std::string tool_name, CLI::App& app, Features features)
 }
 
 void Front::add_options() {
+  // Reports quote the files the loader read as model text, and no other (issue 45). Loads
+  // may run on worker threads.
+  load_options_.on_model_text = [this](const std::string& path) {
+    const std::lock_guard<std::mutex> lock(sources_mutex_);
+    sources_.add_file(path);
+  };
   app_.set_version_flag("--version", name_ + " " + BODYFMT_VERSION, "print the version and exit");
   if (features_.many_inputs) {
     app_.add_option("paths", inputs_,
@@ -244,7 +251,14 @@ std::optional<ModelInput> Front::open_input(const std::string& path, DiagnosticS
   // Standard input, a pipe (<(...)), or a device: read once, here, so that the text is also
   // there for the source lines of the report.
   struct stat st {};
-  if (path != "-" && ::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) {
+  if (path != "-" && ::stat(path.c_str(), &st) != 0) {
+    // Nothing to read (missing, a symbolic link loop...): the bounded reader says why.
+    std::string why;
+    readable_regular_file(path, load_options_.max_file_bytes, why);
+    report_rule(sink, "io-read", SourceLocation{path, 0, 0}, "cannot read \"" + path + "\": " + why);
+    return std::nullopt;
+  }
+  if (path != "-" && S_ISDIR(st.st_mode)) {
     report_rule(sink, "io-read", SourceLocation{path, 0, 0}, "\"" + path + "\" is a directory, not a .body file");
     return std::nullopt;
   }

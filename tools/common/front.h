@@ -18,6 +18,7 @@
 
 #include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -143,6 +144,7 @@ class Front {
   CLI::Option* werror_option_ = nullptr;
   std::map<std::string, std::optional<CheckConfig>> configs_;
   SourceLines sources_;
+  std::mutex sources_mutex_;  ///< loads on worker threads add to sources_
 };
 
 }  // namespace bodyfmt::tools

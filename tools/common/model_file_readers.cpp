@@ -19,6 +19,8 @@ void add_model_file_readers(LoadOptions& options) {
     // read through their resolved paths.
     import.output_folder = std::filesystem::path(path).parent_path();
     std::optional<Model> model = urdf_import::import_urdf(text, path, import, sink);
+    // Read as URDF: its findings may quote it. A file that gives no model is not quoted.
+    if (model && load.on_model_text) load.on_model_text(path);
     // Choreonoid names a joint after its link unless it has a name of its own; a loaded .body
     // (urdf2body's output) says so with an empty joint_name, and so does this model.
     if (model)

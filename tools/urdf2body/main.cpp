@@ -132,6 +132,8 @@ int main(int argc, char** argv) {
     auto text = read_text(input, front.load_options().max_file_bytes, sink);
     if (!text) return std::nullopt;
     urdf_name = input.name;
+    // The file asked for: its findings quote it (a load does this for a .body).
+    if (front.load_options().on_model_text) front.load_options().on_model_text(input.name);
     urdf_import::UrdfImportOptions options;
     options.package_paths = front.load_options().package_paths;
     options.use_ros_package_path = front.load_options().use_ros_package_path;

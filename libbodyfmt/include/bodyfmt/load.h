@@ -63,6 +63,14 @@ struct LoadOptions {
   /// Included files and parsed meshes kept across loads while their modification time and
   /// size stay the same (bodyfmt/file_cache.h); null: every load reads them.
   std::shared_ptr<FileCache> file_cache;
+  /// Called with the path of each file the loader read as model text: the body file, then
+  /// each sub-body and wrapper model file whose top level is a body's (or a wrapper's)
+  /// mapping, each YAML resource whose top level is elements, each scene file whose top level
+  /// is a mapping; a ModelFileReader calls it for a file it read as its format. A report
+  /// quotes source lines of these files only (SourceLines::add_file): a file that a hostile
+  /// model names (a SubBody `uri`, a wrapper's `model_file`) but that is no model is never
+  /// printed, not even its first line. May be called from the loading thread; null: nobody asks.
+  std::function<void(const std::string& path)> on_model_text;
 };
 
 /// Loads a .body file. Reports every problem it can find to `sink` and returns the model

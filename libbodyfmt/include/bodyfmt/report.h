@@ -10,6 +10,7 @@
 #include <iosfwd>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -32,10 +33,20 @@ struct Report {
 /// The lines of source files, each file read once, for carets and suppressions.
 class SourceLines {
  public:
+  /// Only the files given by add() and add_file() are quoted: a finding located in any other
+  /// file (one a hostile model names, which may be a credentials file) prints no source line.
+  SourceLines() = default;
+  /// Lines of any readable file, for what only measures a line and never prints it (SARIF's
+  /// code-point columns).
+  static SourceLines any_file_for_columns();
+
   /// Uses `text` as the contents of `file` (text that is not on disk: standard input).
   void add(const std::string& file, std::string_view text);
-  /// Line `line` (1-based) of `file` without its line break, or nullopt when the file cannot
-  /// be read or is shorter.
+  /// `file` was read as model text (LoadOptions::on_model_text): its lines may be quoted,
+  /// read from disk when first asked for. A file given to add() keeps that text.
+  void add_file(const std::string& file);
+  /// Line `line` (1-based) of `file` without its line break, or nullopt when the file was not
+  /// added, cannot be read or is shorter.
   std::optional<std::string_view> line(const std::string& file, int line);
 
  private:
@@ -43,8 +54,11 @@ class SourceLines {
     std::string text;
     std::vector<std::string_view> lines;  ///< into `text`
   };
-  /// Node-based: a Text never moves, so its line views stay valid.
+  /// Node-based: a Text never moves, so its line views stay valid. A file added by name and
+  /// not yet read is absent here and listed in `model_files_`.
   std::map<std::string, std::optional<Text>> files_;
+  std::set<std::string> model_files_;
+  bool any_file_ = false;
 };
 
 struct TextOptions {

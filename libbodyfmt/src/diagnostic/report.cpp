@@ -31,9 +31,18 @@ void SourceLines::add(const std::string& file, std::string_view text) {
   entry->lines = text::line_views(entry->text);
 }
 
+SourceLines SourceLines::any_file_for_columns() {
+  SourceLines lines;
+  lines.any_file_ = true;
+  return lines;
+}
+
+void SourceLines::add_file(const std::string& file) { model_files_.insert(file); }
+
 std::optional<std::string_view> SourceLines::line(const std::string& file, int line) {
   auto it = files_.find(file);
   if (it == files_.end()) {
+    if (!any_file_ && model_files_.count(file) == 0) return std::nullopt;
     it = files_.emplace(file, std::nullopt).first;
     try {
       // The loader's own reader: only a regular file, read at its size (a large model's text

@@ -153,7 +153,7 @@ std::string sarif_fix(const std::vector<FixIt>& fixes, const UriMaker& uris) {
 
 std::string format_sarif_report(const Report& report, const ToolInfo& tool, const std::string& base_dir) {
   const UriMaker uris(base_dir);
-  SourceLines sources;
+  SourceLines sources = SourceLines::any_file_for_columns();  // counts characters, quotes nothing
   const auto& rules = all_rules();
 
   std::string out = "{\n";

@@ -10,6 +10,7 @@
 #include <cerrno>
 #include <cstring>
 #include <limits>
+#include <string>
 
 namespace bodyfmt {
 
@@ -17,11 +18,21 @@ namespace {
 
 constexpr std::uintmax_t kLargestBuffer = std::numeric_limits<std::size_t>::max() / 2;
 
+/// Why stat() or open() failed, in the words every tool prints (issue 45: a symbolic link
+/// loop is not a missing file).
+std::string error_text(int error) {
+  switch (error) {
+    case ENOENT: return "no such file";
+    case ELOOP: return "too many levels of symbolic links (a symbolic link loop)";
+    default: return std::strerror(error);
+  }
+}
+
 /// The size of the regular file at `path` within `max_bytes`, or nullopt with `why` set.
 std::optional<std::uintmax_t> regular_file_size(const std::string& path, std::uintmax_t max_bytes, std::string& why) {
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0) {
-    why = errno == ENOENT ? std::string("no such file") : std::string(std::strerror(errno));
+    why = error_text(errno);
     return std::nullopt;
   }
   if (S_ISDIR(st.st_mode)) {
@@ -52,7 +63,7 @@ std::optional<FileBytes> read_regular_file_bytes(const std::string& path, std::u
   if (!size) return std::nullopt;
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) {
-    why = std::strerror(errno);
+    why = error_text(errno);
     return std::nullopt;
   }
   // Read at the size stat gave, into one buffer: a doubling buffer and its final copy would

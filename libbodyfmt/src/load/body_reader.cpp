@@ -215,6 +215,10 @@ std::optional<Model> BodyReader::read_once(std::string_view text, const std::str
     ctx_.report("load-top-level", root ? root.use_site() : at, "the top level of a body file must be a mapping");
     return std::nullopt;
   }
+  // The top-level file is the one asked for; an included one is a model once its mapping
+  // says so (a file of other keys that a SubBody or a wrapper names is not quoted).
+  if (top_level || is_wrapper(*root) || root->find("format") || root->find("links"))
+    note_model_text(options_, file_name);
   model.source = root->location;
   documents_.push_back(std::move(document));
   if (is_wrapper(*root)) {

@@ -3,6 +3,7 @@
 #include <bodyfmt/read_file.h>
 #include <bodyfmt/rules.h>
 #include "load/body_reader.h"
+#include "load/resource_reader.h"
 
 #include <fstream>
 #include <sstream>
@@ -14,6 +15,8 @@ namespace {
 std::optional<Model> load_body_text(std::string_view text, const std::string& file_name, const LoadOptions& options,
                                     DiagnosticSink& sink) {
   try {
+    // The file asked for is quoted even when it is not YAML: its syntax errors need the line.
+    detail::note_model_text(options, file_name);
     detail::LoadSession session;
     detail::BodyReader reader(options, sink, session);
     return reader.read(text, file_name);

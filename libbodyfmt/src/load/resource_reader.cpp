@@ -32,7 +32,19 @@ std::optional<std::string> read_included_file(const std::string& path, const Loa
   return read_regular_file(path, options.max_file_bytes, why);
 }
 
+void note_model_text(const LoadOptions& options, const std::string& path) {
+  if (options.on_model_text) options.on_model_text(path);
+}
+
 namespace {
+
+/// Whether a YAML resource is model text: elements (a list, or a node with a type) or a library
+/// of anchored nodes. Any other file a model names (a credentials file) is neither read nor
+/// quoted.
+bool is_model_text(const yaml::Document& doc) {
+  const yaml::NodeRef& root = doc.root;
+  return root && (root->is_sequence() || !doc.anchors.empty() || (root->is_mapping() && root->find("type")));
+}
 
 std::string lower_extension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
@@ -139,6 +151,7 @@ class Resources final : public ResourceReader {
     // body-format-spec §9.3: the resource sees the main body file's anchors.
     if (main_) po.imported_anchors = &main_->anchors;
     auto doc = yaml::parse_yaml(*text, path, po, ctx_.sink);
+    if (doc && is_model_text(*doc)) note_model_text(options_, path);
     const yaml::Document* result = doc.get();
     yaml_files_[path] = std::move(doc);
     return result;
@@ -148,6 +161,13 @@ class Resources final : public ResourceReader {
                           const yaml::NodeRef& fragment, const ElementFrame& frame) {
     const yaml::Document* doc = load_yaml_file(uri, path);
     if (!doc) return;
+    if (!fragment && doc->root && !is_model_text(*doc)) {
+      // Reported where the model names it: its own lines are not quoted, not even in a message.
+      ctx_.report("load-type", uri,
+                  "YAML resource \"" + std::string(uri->scalar()) +
+                      "\" is not model text (neither a list of elements nor a node with a type); it is not read");
+      return;
+    }
     if (!fragment) {
       read_nested_yaml(reader, uri, file_identity(path), doc->root, frame);
       return;

@@ -32,6 +32,10 @@ class ResourceReader : public ResourceHandler {
 /// LoadOptions::file_texts, else the regular file on disk within the size limit.
 std::optional<std::string> read_included_file(const std::string& path, const LoadOptions& options, std::string& why);
 
+/// Tells LoadOptions::on_model_text that `path` was read as model text, so a report may quote
+/// it. Called once the text turned out to be a model, never for a file merely named.
+void note_model_text(const LoadOptions& options, const std::string& path);
+
 struct LoadSession;
 std::unique_ptr<ResourceReader> make_resource_handler(const LoadOptions& options, LoadContext& ctx, Model& model,
                                                       LoadSession& session);

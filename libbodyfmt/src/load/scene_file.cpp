@@ -203,6 +203,7 @@ const SceneFiles::File& SceneFiles::load(const SourceLocation& uri, const std::s
   // which sees no anchor of the body file.
   file.document = yaml::parse_yaml(*text, path, po, ctx_.sink);
   if (file.document && file.document->root) {
+    if (file.document->root->is_mapping()) note_model_text(options_, path);
     file.depth = file.document->root->expanded_depth;
     read_header(file);
   }

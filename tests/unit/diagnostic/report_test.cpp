@@ -46,6 +46,7 @@ TEST_CASE("report: text format with source line, caret, via and hint (golden)") 
   d.via = SourceLocation{file.path, 1, 1};
   d.fix_hint = "use revolute";
   SourceLines sources;
+  sources.add_file(file.path);
   const std::string expected =
       "report_text_golden.body:3:14: error: illegal joint type \"hinge\" [load-joint-type]\n"
       "\tjoint_type: hinge\n"
@@ -55,9 +56,19 @@ TEST_CASE("report: text format with source line, caret, via and hint (golden)") 
   CHECK(format_text_diagnostic(d, sources) == expected);
 }
 
+TEST_CASE("report: only files added as model text are quoted (issue 45)") {
+  TempFile file("report_text_secret.body", "root:$6$secret-hash:19000:0:99999:7:::\n");
+  const Diagnostic d = make(file.path, 1, 1, Severity::kError, "load-top-level", "m");
+  SourceLines sources;
+  CHECK(format_text_diagnostic(d, sources) == "report_text_secret.body:1:1: error: m [load-top-level]\n");
+  sources.add_file(file.path);
+  CHECK(format_text_diagnostic(d, sources).find("secret-hash") != std::string::npos);
+}
+
 TEST_CASE("report: text caret counts UTF-8 characters and tolerates odd positions") {
   TempFile file("report_text_utf8.body", "name: \xC3\xA9t\xC3\xA9 x\n");
   SourceLines sources;
+  sources.add_file(file.path);
   // Byte column 12 is the `x` after two 2-byte characters: 9 characters precede it.
   CHECK(format_text_diagnostic(make(file.path, 1, 12, Severity::kWarning, "r", "m"), sources) ==
         "report_text_utf8.body:1:12: warning: m [r]\nname: \xC3\xA9t\xC3\xA9 x\n         ^\n");

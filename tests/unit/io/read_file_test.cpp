@@ -51,6 +51,19 @@ TEST_CASE("read_regular_file_bytes refuses a file over the limit, a folder and a
   CHECK(why == "no such file");
 }
 
+TEST_CASE("read_regular_file_bytes names a symbolic link loop as one, not as a missing file (issue 45)") {
+  const std::filesystem::path loop = std::filesystem::temp_directory_path() / "bodyfmt_read_file_loop.body";
+  std::error_code ec;
+  std::filesystem::remove(loop, ec);
+  std::filesystem::create_symlink(loop.filename(), loop);
+  std::string why;
+  CHECK_FALSE(bodyfmt::detail::read_regular_file_bytes(loop.string(), 100, why));
+  CHECK(why == "too many levels of symbolic links (a symbolic link loop)");
+  CHECK_FALSE(bodyfmt::readable_regular_file(loop.string(), 100, why));
+  CHECK(why == "too many levels of symbolic links (a symbolic link loop)");
+  std::filesystem::remove(loop, ec);
+}
+
 TEST_CASE("read_regular_file_bytes reads a file whose size stat reports as 0, within the limit") {
   // /proc files report a size of 0 and are read to their end, growing the buffer.
   std::string why;
