@@ -215,6 +215,33 @@ def cancel_request():
         c.kill()
 
 
+@case
+def duplicate_content_length():
+    # Two different lengths in one header: the frame is refused (one parse error, the message
+    # not handled) and the next message, in the same write, is read as itself, whichever
+    # length is first, whichever is right, in any letter case.
+    c = client()
+    try:
+        c.initialize()
+        refused = json.dumps({"jsonrpc": "2.0", "id": 901, "method": "bodyls/noSuchThing"}).encode()
+        n = len(refused)
+        for first, second in ((n, n + 30), (n + 30, n), (n, n - 7), (n - 7, n), (0, n), (n, 99999999)):
+            c.write_raw(b"Content-Length: %d\r\ncontent-length: %d\r\n\r\n" % (first, second) + refused +
+                        c.frame({"jsonrpc": "2.0", "id": 902, "method": "bodyls/noSuchThing"}))
+            expect_error(c.wait(lambda m: m.get("id") == 902), -32601)
+            errors = [m for m in c.backlog if "error" in m]
+            assert len(errors) == 1 and errors[0]["id"] is None and errors[0]["error"]["code"] == -32700, (
+                first, second, c.backlog)
+            assert not any(m.get("id") == 901 for m in c.backlog), c.backlog
+            c.backlog.clear()
+        # The same length twice is one length.
+        c.write_raw(b"Content-Length: %d\r\nContent-Length: %d\r\n\r\n" % (n, n) + refused)
+        expect_error(c.wait(lambda m: m.get("id") == 901), -32601)
+        assert c.finish() == 0
+    finally:
+        c.kill()
+
+
 # ---- documents and diagnostics ----------------------------------------------------------------
 
 @case
