@@ -242,6 +242,53 @@ def duplicate_content_length():
         c.kill()
 
 
+def read_frame(stream):
+    length = None
+    while True:
+        line = stream.readline().strip()
+        if not line:
+            break
+        name, _, value = line.partition(b":")
+        if name.strip().lower() == b"content-length":
+            length = int(value)
+    return json.loads(stream.read(length))
+
+
+@case
+def closed_output():
+    # The client closes the server's output: the next write, from the main thread (a reply)
+    # or from the checking thread (diagnostics), fails; the server says so once and exits 2,
+    # never killed by SIGPIPE.
+    folder = work_dir("closed_output")
+    path = os.path.join(folder, "small.body")
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(SMALL)
+    init = Client.frame({"jsonrpc": "2.0", "id": 1, "method": "initialize", "params": {"capabilities": {}}})
+    opened = Client.frame({"jsonrpc": "2.0", "method": "initialized", "params": {}}) + Client.frame(
+        {"jsonrpc": "2.0", "method": "textDocument/didOpen",
+         "params": {"textDocument": {"uri": uri_of(path), "languageId": "body", "version": 1, "text": SMALL}}})
+    for writer in ("reply", "diagnostics"):
+        proc = subprocess.Popen([BODYLS], stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        try:
+            if writer == "diagnostics":
+                proc.stdin.write(init)
+                proc.stdin.flush()
+                assert read_frame(proc.stdout)["id"] == 1
+            proc.stdout.close()
+            proc.stdin.write(init if writer == "reply" else opened)
+            proc.stdin.flush()
+            time.sleep(1.0 * float(os.environ.get("BODYFMT_TIME_SCALE", "1")))  # the check runs and publishes
+            proc.stdin.close()
+            code = proc.wait(timeout=30)
+            stderr = proc.stderr.read().decode(errors="replace")
+            assert code == 2, (writer, code, stderr)
+            assert stderr.count("cannot write to standard output") == 1, (writer, stderr)
+        finally:
+            if proc.poll() is None:
+                proc.kill()
+                proc.wait()
+
+
 # ---- documents and diagnostics ----------------------------------------------------------------
 
 @case

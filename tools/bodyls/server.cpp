@@ -15,6 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -622,6 +623,10 @@ int run_server(int argc, char** argv) {
                   "an edit made while the findings are up to date is checked at once")
       ->check(CLI::Range(0, 10000));
   if (auto code = front.parse(argc, argv)) return *code;
+  // A client that closes its end of the pipe would kill the process by SIGPIPE at the next
+  // write, before it says anything or ends its viewers: with the signal ignored, the write
+  // fails with EPIPE and takes the path below.
+  ::signal(SIGPIPE, SIG_IGN);
   // A failed write (the client is gone, a full disk) ends the session with exit 2 and says why
   // once, as every tool does when standard output fails; called from the worker thread too.
   std::atomic<int> write_error{0};
