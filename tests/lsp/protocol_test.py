@@ -500,6 +500,66 @@ def language_features():
         c.kill()
 
 
+RENAMED = ("format: ChoreonoidBody\nformat_version: 2.0\nangle_unit: degree\nname: T\nroot_link: BASE\n"
+           "links:\n  - name: BASE\n    joint_type: free\n    mass: 1\n    inertia: [1,0,0,0,1,0,0,0,1]\n"
+           "  - { name: ARM, parent: BASE, joint_type: fixed, mass: 1, inertia: [1,0,0,0,1,0,0,0,1] }\n")
+
+
+def apply_edits(text, edits):
+    """`edits` (LSP, UTF-16 positions) applied to `text`, here and not by bodyls."""
+    lines = text.split("\n")
+
+    def offset(p):
+        line = lines[p["line"]]
+        units, chars = 0, 0
+        while units < p["character"]:
+            units += 2 if ord(line[chars]) > 0xFFFF else 1
+            chars += 1
+        return sum(len(l) + 1 for l in lines[:p["line"]]) + chars
+    for e in sorted(edits, key=lambda e: offset(e["range"]["start"]), reverse=True):
+        text = text[:offset(e["range"]["start"])] + e["newText"] + text[offset(e["range"]["end"]):]
+    return text
+
+
+@case
+def rename_quotes_names():
+    # A new name with characters YAML reads as line breaks (NEL, U+2028, U+2029), outside its
+    # printable set (U+FFFE, U+FFFF, a BOM inside), or with YAML's indicators, in a block and in
+    # a flow mapping: after the rename the file reads back (PyYAML, and bodycheck) with that
+    # name in each of the three places. Names no file can hold are refused.
+    import yaml
+    folder = work_dir("rename_quotes_names")
+    names = ["A\u2028B", "A\u2029B", "A\u0085B", "A\ufffeB", "A\uffffB", "A\ufeffB", "\u2028", "\u00e9t\u00e9",
+             "\U0001F600", "yes", "null", "~", "1.5", "a: b", "#x", "x #y", "- x", "'q'", "\"q\"", "back\\slash",
+             "[x]", "{x}", "a, b", "*x", "&x", "!x", "%x", "@x", "`x", "? x", "|", ">", "A\u00a0B"]
+    c = client()
+    try:
+        c.initialize()
+        for i, name in enumerate(names):
+            path = os.path.join(folder, "m%d.body" % i)
+            uri = uri_of(path)
+            c.open(uri, RENAMED)
+            c.diagnostics(uri, 1)
+            line = RENAMED.split("\n")[10]
+            at = {"line": 10, "character": line.index("BASE") + 1}
+            reply = c.request("textDocument/rename", {"textDocument": {"uri": uri}, "position": at, "newName": name})
+            assert "result" in reply, (name, reply)
+            text = apply_edits(RENAMED, reply["result"]["changes"][uri])
+            with open(path, "w", encoding="utf-8") as f:
+                f.write(text)
+            doc = yaml.safe_load(text)
+            assert (doc["root_link"], doc["links"][0]["name"], doc["links"][1]["parent"]) == (name, name, name), (
+                name, text)
+            errors = [f for f in bodycheck_json(path) if f["severity"] in ("error", "fatal")]
+            assert not errors, (name, text, errors)
+        for name in ("a\tb", "a\nb", "a\x01b", " a", "a ", ""):
+            reply = c.request("textDocument/rename", {"textDocument": {"uri": uri}, "position": at, "newName": name})
+            assert "error" in reply, (name, reply)
+        assert c.finish() == 0
+    finally:
+        c.kill()
+
+
 # A robot composed of SubBody files: main.body includes parts/arm.body with a prefix and a
 # suffix, which includes parts/hand.body with a prefix of its own. The expected positions
 # below were counted by hand from these texts (0-based lines, UTF-16 characters).
