@@ -215,6 +215,45 @@ def cancel_request():
         c.kill()
 
 
+def deep(n, inner=b"0"):
+    return b"[" * n + inner + b"]" * n
+
+
+@case
+def deep_nesting_refused():
+    # Every way a body reaches the JSON parser: a request's params, its id, a notification, a
+    # cancellation read in the same batch as its request, objects as well as arrays. Each is
+    # answered with an error (no id can be read from it) and the session goes on.
+    objects = b'{"a":' * 200000 + b"0" + b"}" * 200000
+    bodies = [
+        b'{"jsonrpc":"2.0","id":5,"method":"textDocument/hover","params":' + deep(200000) + b"}",
+        b'{"jsonrpc":"2.0","id":5,"method":"textDocument/hover","params":' + objects + b"}",
+        b'{"jsonrpc":"2.0","id":' + deep(200000) + b',"method":"shutdown"}',
+        b'{"jsonrpc":"2.0","method":"textDocument/didChange","params":{"x":' + deep(200000) + b"}}",
+        deep(200000, b""),
+    ]
+    c = client()
+    try:
+        c.initialize()
+        for body in bodies:
+            c.write_raw(b"Content-Length: %d\r\n\r\n" % len(body) + body)
+            reply = c.wait(lambda m: "error" in m, timeout=30)
+            expect_error(reply, -32600)
+            assert reply["id"] is None, reply
+        # A cancellation nested deep, after the request it names, in one read.
+        hover = {"jsonrpc": "2.0", "id": 78, "method": "bodyls/noSuchThing", "params": {}}
+        cancel = b'{"jsonrpc":"2.0","method":"$/cancelRequest","params":{"id":78,"x":' + deep(200000) + b"}}"
+        c.write_raw(c.frame(hover) + b"Content-Length: %d\r\n\r\n" % len(cancel) + cancel)
+        expect_error(c.wait(lambda m: m.get("id") == 78, timeout=30), -32601)  # not cancelled: not read
+        expect_error(c.wait(lambda m: "error" in m and m["id"] is None, timeout=30), -32600)
+        # Nesting that LSP messages have is read; brackets inside strings are text, not nesting.
+        for params in (json.loads(deep(100).decode()), {"s": "[" * 200000, "t": "{\\\"[" * 1000}):
+            expect_error(c.request("bodyls/noSuchThing", {"p": params}), -32601)
+        assert c.finish() == 0
+    finally:
+        c.kill()
+
+
 @case
 def duplicate_content_length():
     # Two different lengths in one header: the frame is refused (one parse error, the message

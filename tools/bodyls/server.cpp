@@ -4,6 +4,7 @@
 #include "feature_requests.h"
 #include "framing.h"
 #include "lsp_convert.h"
+#include "message_json.h"
 #include "model_check.h"
 #include "text_positions.h"
 #include "uri.h"
@@ -137,8 +138,13 @@ struct Server::Impl {
   // ---- messages -------------------------------------------------------------------------
 
   void handle(const std::string& body) {
-    json message = json::parse(body, nullptr, false);
-    if (message.is_discarded()) return respond_error(nullptr, kParseError, "the message is not JSON");
+    json message;
+    const MessageParse parsed = parse_message(body, message);
+    // Too deep to read safely: answered as a message that is not a request, whatever it holds.
+    if (parsed == MessageParse::kTooDeep)
+      return respond_error(nullptr, kInvalidRequest,
+                           "the message nests more than " + std::to_string(kMostMessageDepth) + " arrays and objects");
+    if (parsed == MessageParse::kNotJson) return respond_error(nullptr, kParseError, "the message is not JSON");
     if (!message.is_object()) return respond_error(nullptr, kInvalidRequest, "a message is a JSON object");
     const auto id_it = message.find("id");
     const bool has_id = id_it != message.end();
@@ -569,14 +575,16 @@ void Server::handle_batch(const std::vector<std::string>& bodies) {
   } hold(*impl_);
   // Cancellations first: a request cancelled in the same read is answered as cancelled.
   for (const std::string& body : bodies) {
-    const json message = json::parse(body, nullptr, false);
+    json message;
+    parse_message(body, message);
     if (message.is_object() && message.value("method", json()) == "$/cancelRequest" && message.contains("params") &&
         message["params"].is_object() && message["params"].contains("id")) {
       const json& id = message["params"]["id"];
       bool earlier = false;  // only a request before the cancellation in this batch
       for (const std::string& other : bodies) {
         if (&other == &body) break;
-        const json m = json::parse(other, nullptr, false);
+        json m;
+        parse_message(other, m);
         earlier = earlier || (m.is_object() && m.contains("id") && m["id"] == id && m.contains("method"));
       }
       if (earlier) impl_->cancelled.insert(dump(id));
