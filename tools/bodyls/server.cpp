@@ -137,9 +137,8 @@ struct Server::Impl {
 
   // ---- messages -------------------------------------------------------------------------
 
-  void handle(const std::string& body) {
-    json message;
-    const MessageParse parsed = parse_message(body, message);
+  /// One message, as parse_message read it.
+  void handle(MessageParse parsed, const json& message) {
     // Too deep to read safely: answered as a message that is not a request, whatever it holds.
     if (parsed == MessageParse::kTooDeep)
       return respond_error(nullptr, kInvalidRequest,
@@ -573,26 +572,26 @@ void Server::handle_batch(const std::vector<std::string>& bodies) {
       if (!hold) impl.wake.notify_all();
     }
   } hold(*impl_);
-  // Cancellations first: a request cancelled in the same read is answered as cancelled.
-  for (const std::string& body : bodies) {
-    json message;
-    parse_message(body, message);
-    if (message.is_object() && message.value("method", json()) == "$/cancelRequest" && message.contains("params") &&
-        message["params"].is_object() && message["params"].contains("id")) {
-      const json& id = message["params"]["id"];
-      bool earlier = false;  // only a request before the cancellation in this batch
-      for (const std::string& other : bodies) {
-        if (&other == &body) break;
-        json m;
-        parse_message(other, m);
-        earlier = earlier || (m.is_object() && m.contains("id") && m["id"] == id && m.contains("method"));
-      }
-      if (earlier) impl_->cancelled.insert(dump(id));
+  // Each body is parsed once, here (parse_message bounds its depth).
+  std::vector<std::pair<MessageParse, json>> messages(bodies.size());
+  for (std::size_t i = 0; i < bodies.size(); ++i) messages[i].first = parse_message(bodies[i], messages[i].second);
+  // Cancellations first: a request cancelled in the same read, after it, is answered as
+  // cancelled. One pass with the ids of the requests read so far: linear in the batch.
+  std::set<std::string> requested;
+  for (const auto& [parsed, message] : messages) {
+    if (parsed != MessageParse::kOk || !message.is_object() || !message.contains("method")) continue;
+    if (message["method"] == "$/cancelRequest") {
+      const auto params = message.find("params");
+      if (params != message.end() && params->is_object() && params->contains("id") &&
+          requested.count(dump((*params)["id"])) > 0)
+        impl_->cancelled.insert(dump((*params)["id"]));
+    } else if (message.contains("id")) {
+      requested.insert(dump(message["id"]));
     }
   }
-  for (const std::string& body : bodies) {
+  for (const auto& [parsed, message] : messages) {
     if (exited()) return;
-    impl_->handle(body);
+    impl_->handle(parsed, message);
   }
   impl_->cancelled.clear();
 }
