@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <poll.h>
 #include <signal.h>
 #include <unistd.h>
 
@@ -654,6 +655,12 @@ int run_server(int argc, char** argv) {
   MessageReader reader;
   std::vector<char> buffer(1 << 16);
   while (!server.exited() && !write_error.load()) {
+    // A write that fails on the checking thread ends the session too, without waiting for the
+    // client's next message: the input is read when it has bytes, the write error looked at
+    // every 200 ms.
+    pollfd input{STDIN_FILENO, POLLIN, 0};
+    const int ready = ::poll(&input, 1, 200);
+    if (ready == 0 || (ready < 0 && errno == EINTR)) continue;
     const ssize_t n = ::read(STDIN_FILENO, buffer.data(), buffer.size());
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) break;
