@@ -2,6 +2,7 @@
 // UTF-8, every line break), the features' 1-based byte points, file URIs, and the framing.
 #include "feature_requests.h"
 #include "framing.h"
+#include "message_json.h"
 #include "text_positions.h"
 #include "uri.h"
 
@@ -142,4 +143,35 @@ TEST_CASE("lsp framing: messages split anywhere, bad headers resynchronised, hug
   reader.feed(huge.data() + 30, huge.size() - 30);
   CHECK(reader.next(body, error) == MessageReader::Status::kMessage);
   CHECK(body == "2");
+}
+
+TEST_CASE("lsp framing: two different Content-Length headers refuse the frame, the next one is read") {
+  for (const std::string lengths : {"2\r\ncontent-length: 9", "9\r\nContent-Length: 2", "1\r\nContent-Length: 2"}) {
+    MessageReader reader(100);
+    const std::string stream = "Content-Length: " + lengths + "\r\n\r\n{}Content-Length: 3\r\n\r\n[1]";
+    reader.feed(stream.data(), stream.size());
+    std::string body, error;
+    CHECK(reader.next(body, error) == MessageReader::Status::kBadFrame);
+    CHECK(reader.next(body, error) == MessageReader::Status::kMessage);
+    CHECK(body == "[1]");
+  }
+  MessageReader reader(100);
+  const std::string same = "Content-Length: 2\r\nContent-Length: 2\r\n\r\n{}";
+  reader.feed(same.data(), same.size());
+  std::string body, error;
+  CHECK(reader.next(body, error) == MessageReader::Status::kMessage);
+  CHECK(body == "{}");
+}
+
+TEST_CASE("lsp message depth: arrays and objects are counted outside strings, escapes included") {
+  using bodyfmt::lsp::nests_deeper_than;
+  CHECK_FALSE(nests_deeper_than("[[[]]]", 3));
+  CHECK(nests_deeper_than("[[[[]]]]", 3));
+  CHECK(nests_deeper_than("[{\"a\":[{}]}]", 3));
+  CHECK_FALSE(nests_deeper_than("[][][][]", 1));        // siblings are not nested
+  CHECK_FALSE(nests_deeper_than("[\"[[[[{{\"]", 1));    // brackets in a string
+  CHECK_FALSE(nests_deeper_than("[\"\\\"[[[[\"]", 1));  // an escaped quote does not end the string
+  CHECK(nests_deeper_than("[\"\\\\\"[[]]]", 2));        // an escaped backslash does not escape the quote
+  CHECK_FALSE(nests_deeper_than("]]]][[", 2));          // stray closers make no room
+  CHECK(nests_deeper_than(std::string(100000, '[') + std::string(100000, ']'), 256));
 }

@@ -16,9 +16,9 @@ std::string lower(std::string s) {
 }
 
 /// Where the next header may start after a bad one: the next "content-length" in `buffer`
-/// after its first byte, else `fallback`.
-std::size_t resync_point(const std::string& buffer, std::size_t fallback) {
-  const std::size_t next = lower(buffer).find("content-length", 1);
+/// from `from` on, else `fallback`.
+std::size_t resync_point(const std::string& buffer, std::size_t fallback, std::size_t from = 1) {
+  const std::size_t next = lower(buffer).find("content-length", from);
   return next != std::string::npos ? next : fallback;
 }
 
@@ -58,6 +58,7 @@ MessageReader::Status MessageReader::next(std::string& body, std::string& error)
   const std::string header = buffer_.substr(0, end);
   std::optional<std::size_t> length;
   std::string problem;
+  bool lengths_differ = false;
   for (std::size_t begin = 0; begin <= header.size();) {
     std::size_t stop = header.find('\n', begin);
     if (stop == std::string::npos) stop = header.size();
@@ -79,12 +80,23 @@ MessageReader::Status MessageReader::next(std::string& body, std::string& error)
       problem = "Content-Length is not a number";
       break;
     }
-    length = std::stoull(value);
+    const std::size_t this_length = std::stoull(value);
+    // Two lengths: either may be the one the body has, and taking the wrong one would read
+    // the next message into this one (or this one's tail as the next). The same length twice
+    // is one length, as HTTP reads it.
+    if (length && *length != this_length) {
+      problem = "two different Content-Length headers";
+      lengths_differ = true;
+      break;
+    }
+    length = this_length;
   }
   if (problem.empty() && !length) problem = "no Content-Length header";
   if (!problem.empty()) {
     error = problem;
-    buffer_.erase(0, resync_point(buffer_, end + separator));
+    // The next header after this one's block, not the second length inside it.
+    buffer_.erase(0, lengths_differ ? resync_point(buffer_, end + separator, end + separator)
+                                    : resync_point(buffer_, end + separator));
     return Status::kBadFrame;
   }
   buffer_.erase(0, end + separator);

@@ -4,6 +4,7 @@
 #include "feature_requests.h"
 #include "framing.h"
 #include "lsp_convert.h"
+#include "message_json.h"
 #include "model_check.h"
 #include "text_positions.h"
 #include "uri.h"
@@ -15,6 +16,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <poll.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -135,9 +138,13 @@ struct Server::Impl {
 
   // ---- messages -------------------------------------------------------------------------
 
-  void handle(const std::string& body) {
-    json message = json::parse(body, nullptr, false);
-    if (message.is_discarded()) return respond_error(nullptr, kParseError, "the message is not JSON");
+  /// One message, as parse_message read it.
+  void handle(MessageParse parsed, const json& message) {
+    // Too deep to read safely: answered as a message that is not a request, whatever it holds.
+    if (parsed == MessageParse::kTooDeep)
+      return respond_error(nullptr, kInvalidRequest,
+                           "the message nests more than " + std::to_string(kMostMessageDepth) + " arrays and objects");
+    if (parsed == MessageParse::kNotJson) return respond_error(nullptr, kParseError, "the message is not JSON");
     if (!message.is_object()) return respond_error(nullptr, kInvalidRequest, "a message is a JSON object");
     const auto id_it = message.find("id");
     const bool has_id = id_it != message.end();
@@ -566,24 +573,26 @@ void Server::handle_batch(const std::vector<std::string>& bodies) {
       if (!hold) impl.wake.notify_all();
     }
   } hold(*impl_);
-  // Cancellations first: a request cancelled in the same read is answered as cancelled.
-  for (const std::string& body : bodies) {
-    const json message = json::parse(body, nullptr, false);
-    if (message.is_object() && message.value("method", json()) == "$/cancelRequest" && message.contains("params") &&
-        message["params"].is_object() && message["params"].contains("id")) {
-      const json& id = message["params"]["id"];
-      bool earlier = false;  // only a request before the cancellation in this batch
-      for (const std::string& other : bodies) {
-        if (&other == &body) break;
-        const json m = json::parse(other, nullptr, false);
-        earlier = earlier || (m.is_object() && m.contains("id") && m["id"] == id && m.contains("method"));
-      }
-      if (earlier) impl_->cancelled.insert(dump(id));
+  // Each body is parsed once, here (parse_message bounds its depth).
+  std::vector<std::pair<MessageParse, json>> messages(bodies.size());
+  for (std::size_t i = 0; i < bodies.size(); ++i) messages[i].first = parse_message(bodies[i], messages[i].second);
+  // Cancellations first: a request cancelled in the same read, after it, is answered as
+  // cancelled. One pass with the ids of the requests read so far: linear in the batch.
+  std::set<std::string> requested;
+  for (const auto& [parsed, message] : messages) {
+    if (parsed != MessageParse::kOk || !message.is_object() || !message.contains("method")) continue;
+    if (message["method"] == "$/cancelRequest") {
+      const auto params = message.find("params");
+      if (params != message.end() && params->is_object() && params->contains("id") &&
+          requested.count(dump((*params)["id"])) > 0)
+        impl_->cancelled.insert(dump((*params)["id"]));
+    } else if (message.contains("id")) {
+      requested.insert(dump(message["id"]));
     }
   }
-  for (const std::string& body : bodies) {
+  for (const auto& [parsed, message] : messages) {
     if (exited()) return;
-    impl_->handle(body);
+    impl_->handle(parsed, message);
   }
   impl_->cancelled.clear();
 }
@@ -622,6 +631,10 @@ int run_server(int argc, char** argv) {
                   "an edit made while the findings are up to date is checked at once")
       ->check(CLI::Range(0, 10000));
   if (auto code = front.parse(argc, argv)) return *code;
+  // A client that closes its end of the pipe would kill the process by SIGPIPE at the next
+  // write, before it says anything or ends its viewers: with the signal ignored, the write
+  // fails with EPIPE and takes the path below.
+  ::signal(SIGPIPE, SIG_IGN);
   // A failed write (the client is gone, a full disk) ends the session with exit 2 and says why
   // once, as every tool does when standard output fails; called from the worker thread too.
   std::atomic<int> write_error{0};
@@ -642,6 +655,12 @@ int run_server(int argc, char** argv) {
   MessageReader reader;
   std::vector<char> buffer(1 << 16);
   while (!server.exited() && !write_error.load()) {
+    // A write that fails on the checking thread ends the session too, without waiting for the
+    // client's next message: the input is read when it has bytes, the write error looked at
+    // every 200 ms.
+    pollfd input{STDIN_FILENO, POLLIN, 0};
+    const int ready = ::poll(&input, 1, 200);
+    if (ready == 0 || (ready < 0 && errno == EINTR)) continue;
     const ssize_t n = ::read(STDIN_FILENO, buffer.data(), buffer.size());
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) break;

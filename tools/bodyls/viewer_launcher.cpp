@@ -84,6 +84,7 @@ std::optional<std::string> ViewerLauncher::url_for(const std::string& path, std:
   if (pid == 0) {
     ::dup2(out[1], STDOUT_FILENO);
     if (null_in >= 0) ::dup2(null_in, STDIN_FILENO);  // the editor's messages are not for it
+    ::signal(SIGPIPE, SIG_DFL);                       // bodyls ignores it (run_server); an ignored signal survives exec
     ::execv(argv[0], argv.data());
     ::_exit(127);
   }

@@ -8,8 +8,9 @@
 #include "outline.h"
 #include "schema.h"
 
+#include <bodyfmt/body_writer.h>
+
 #include <algorithm>
-#include <cctype>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -130,23 +131,6 @@ bool acceptable_name(const std::string& name, std::string& why) {
   return true;
 }
 
-/// `name` as a YAML scalar: plain when it reads back unchanged, else double-quoted.
-std::string as_scalar(const std::string& name) {
-  bool plain =
-      !name.empty() && name.front() != '-' && name != "~" && name != "null" && name != "Null" && name != "NULL";
-  for (char c : name)
-    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.' || c == '/' ||
-          static_cast<unsigned char>(c) >= 0x80))
-      plain = false;
-  if (plain) return name;
-  std::string quoted = "\"";
-  for (char c : name) {
-    if (c == '"' || c == '\\') quoted += '\\';
-    quoted += c;
-  }
-  return quoted + "\"";
-}
-
 }  // namespace
 
 std::vector<FileRange> definition(const Document& document, TextPoint point) {
@@ -240,7 +224,10 @@ std::optional<std::vector<TextEdit>> rename_link(const Document& document, TextP
     return std::nullopt;
   }
   std::vector<TextEdit> edits;
-  const std::string text = as_scalar(new_name);
+  // The .body writer's scalar: plain only where no YAML reader takes it for anything else,
+  // else double-quoted with the escapes that keep every character (NEL, U+2028, U+2029 and
+  // U+FFFE too) what it was.
+  const std::string text = body_string(new_name);
   for (int d : declarations(c.outline, name)) edits.push_back({c.here(d), text});
   for (int n : naming_scalars(c.outline, name)) edits.push_back({c.here(n), text});
   return edits;
