@@ -94,34 +94,39 @@ void ElementReader::read_elements(const yaml::NodeRef& elements, const ElementFr
   ctx_.report("load-type", elements, "a value of the \"elements\" key must be a sequence or a mapping");
 }
 
+Eigen::Affine3d read_node_transform(LoadContext& ctx, const yaml::NodeRef& translation, const yaml::NodeRef& rotation,
+                                    const yaml::NodeRef& scale, const yaml::NodeRef& scale_orientation) {
+  Eigen::Affine3d X = Eigen::Affine3d::Identity();
+  if (translation)
+    if (auto v = read_translation(ctx, translation)) X.translation() = *v;
+  if (rotation)
+    if (auto R = read_rotation(ctx, rotation)) X.linear() = *R;
+  if (scale) {
+    if (!scale->is_sequence()) {
+      // body-format-spec §4.4: a scalar scale is silently ignored by Choreonoid.
+      ctx.report("load-ignored-value", scale, "scale must be a 3-element sequence; Choreonoid ignores a scalar",
+                 "write [sx, sy, sz]");
+    } else if (auto v = read_vec3(ctx, scale)) {
+      Eigen::Matrix3d S = v->asDiagonal();
+      // A scene file's Transform scales along the axes of its scale_orientation (SgScaleTransform).
+      if (scale_orientation)
+        if (auto R = read_rotation(ctx, scale_orientation)) S = *R * S * R->transpose();
+      X.linear() = X.linear() * S;
+    }
+  } else if (scale_orientation) {
+    ctx.report("load-ignored-key", scale_orientation.use_site(),
+               "scale_orientation without scale has no effect; Choreonoid does not read it");
+  }
+  return X;
+}
+
 std::optional<ElementFrame> ElementReader::enter(MappingReader& r, const ElementFrame& frame, bool allow_scale,
                                                  const yaml::NodeRef& scale_orientation) {
-  Eigen::Affine3d X = Eigen::Affine3d::Identity();
-  if (auto t = r.take({"translation"})) {
-    if (auto v = read_translation(ctx_, t)) X.translation() = *v;
-  }
-  if (auto rot = r.take({"rotation"})) {
-    if (auto R = read_rotation(ctx_, rot)) X.linear() = *R;
-  }
-  if (allow_scale) {
-    if (auto s = r.take({"scale"})) {
-      if (!s->is_sequence()) {
-        // body-format-spec §4.4: a scalar scale is silently ignored by Choreonoid.
-        ctx_.report("load-ignored-value", s, "scale must be a 3-element sequence; Choreonoid ignores a scalar",
-                    "write [sx, sy, sz]");
-      } else if (auto v = read_vec3(ctx_, s)) {
-        Eigen::Matrix3d S = v->asDiagonal();
-        // A scene file's Transform scales along the axes of its scale_orientation (SgScaleTransform).
-        if (scale_orientation)
-          if (auto R = read_rotation(ctx_, scale_orientation)) S = *R * S * R->transpose();
-        X.linear() = X.linear() * S;
-      }
-    } else if (scale_orientation) {
-      ctx_.report("load-ignored-key", scale_orientation.use_site(),
-                  "scale_orientation without scale has no effect; Choreonoid does not read it");
-    }
-  }
-  return push_frame(frame, X);
+  const yaml::NodeRef translation = r.take({"translation"});
+  const yaml::NodeRef rotation = r.take({"rotation"});
+  const yaml::NodeRef scale = allow_scale ? r.take({"scale"}) : yaml::NodeRef{};
+  return push_frame(frame, read_node_transform(ctx_, translation, rotation, scale,
+                                               allow_scale ? scale_orientation : yaml::NodeRef{}));
 }
 
 ElementFrame ElementReader::push_frame(const ElementFrame& frame, const Eigen::Affine3d& X_PF) {

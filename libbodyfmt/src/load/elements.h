@@ -14,6 +14,13 @@ namespace bodyfmt::detail {
 
 enum class ModelPart { kBoth, kVisual, kCollision };
 
+/// A node's own transform from its `translation`, `rotation` and `scale` values (each may be
+/// absent): scale first, then rotation, then translation (body-format-spec §4.4); a scene file
+/// Transform's `scale_orientation` turns the axes the scale acts along. The one reading of this
+/// rule, for the element reader and for a scene file's node lookup alike; problems are reported.
+Eigen::Affine3d read_node_transform(LoadContext& ctx, const yaml::NodeRef& translation, const yaml::NodeRef& rotation,
+                                    const yaml::NodeRef& scale, const yaml::NodeRef& scale_orientation);
+
 struct ElementFrame {
   Eigen::Affine3d X_LF = Eigen::Affine3d::Identity();  ///< accumulated transform, may scale
   int frame = -1;                                      ///< Link::frames index of the innermost transform node

@@ -6,7 +6,6 @@
 #include "load/resource_reader.h"
 #include "load/scalar.h"
 #include "load/uri.h"
-#include "load/values.h"
 #include "mesh_import/scene_tree.h"
 
 #include <algorithm>
@@ -14,19 +13,9 @@
 
 namespace bodyfmt::detail {
 
-Eigen::Matrix3d SceneFiles::transform_linear(const yaml::NodeRef& node) {
-  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
-  if (const yaml::MapEntry* rotation = node->find("rotation"))
-    if (auto r = read_rotation(ctx_, node.child(rotation->value))) R = *r;
-  if (const yaml::MapEntry* scale = node->find("scale")) {
-    if (auto s = read_optional_vec3(ctx_, node.child(scale->value))) {
-      Eigen::Matrix3d O = Eigen::Matrix3d::Identity();  // scale_orientation: O diag(s) O^T
-      if (const yaml::MapEntry* orientation = node->find("scale_orientation"))
-        if (auto o = read_rotation(ctx_, node.child(orientation->value))) O = *o;
-      R = R * O * s->asDiagonal() * O.transpose();
-    }
-  }
-  return R;
+yaml::NodeRef SceneFiles::value_of(const yaml::NodeRef& node, std::string_view key) {
+  const yaml::MapEntry* entry = node->find(key);
+  return entry ? node.child(entry->value) : yaml::NodeRef{};
 }
 
 bool SceneFiles::find_named(const yaml::NodeRef& elements, std::string_view name, const Eigen::Matrix3d& above,
@@ -60,7 +49,12 @@ bool SceneFiles::find_named(const yaml::NodeRef& elements, std::string_view name
       return true;
     }
     if (const yaml::MapEntry* children = node->find("elements")) {
-      const Eigen::Matrix3d inner = type == "Transform" ? Eigen::Matrix3d(above * transform_linear(node)) : above;
+      // Only a Transform turns or scales what is under it (its translation is dropped here).
+      Eigen::Matrix3d inner = above;
+      if (type == "Transform")
+        inner = above * read_node_transform(ctx_, {}, value_of(node, "rotation"), value_of(node, "scale"),
+                                            value_of(node, "scale_orientation"))
+                            .linear();
       if (find_named(node.child(children->value), name, inner, found, found_above)) return true;
     }
   }
@@ -138,9 +132,8 @@ void SceneFiles::read(ElementReader& reader, const SourceLocation& uri, const st
       Eigen::Affine3d X = Eigen::Affine3d::Identity();
       X.linear() = above;
       const yaml::MapEntry* type = named->find("type");
-      if (const yaml::MapEntry* t = named->find("translation");
-          t && type && type->value->is_scalar() && type->value->scalar() == "Transform")
-        if (auto v = read_translation(ctx_, named.child(t->value))) X.translate(-*v);
+      if (type && type->value->is_scalar() && type->value->scalar() == "Transform")
+        X.translate(-read_node_transform(ctx_, value_of(named, "translation"), {}, {}, {}).translation());
       inner = reader.push_frame(inner, X);
       inner.scene_top = true;
       scene = named;

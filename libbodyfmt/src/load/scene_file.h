@@ -57,8 +57,8 @@ class SceneFiles {
   /// and scale) of the Transform nodes above it; false when there is none.
   bool find_named(const yaml::NodeRef& elements, std::string_view name, const Eigen::Matrix3d& above,
                   yaml::NodeRef& found, Eigen::Matrix3d& found_above);
-  /// The rotation and scale of a Transform node (its translation aside).
-  Eigen::Matrix3d transform_linear(const yaml::NodeRef& node);
+  /// The value of `key` in mapping `node`, as a reader sees it (empty when absent).
+  static yaml::NodeRef value_of(const yaml::NodeRef& node, std::string_view key);
 
   const LoadOptions& options_;
   LoadContext& ctx_;
