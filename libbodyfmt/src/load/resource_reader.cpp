@@ -197,10 +197,8 @@ class Resources final : public ResourceReader {
   void read_nested_yaml(ElementReader& reader, const yaml::NodeRef& at, const std::string& key,
                         const yaml::NodeRef& elements, const ElementFrame& frame) {
     if (std::find(yaml_chain_.begin(), yaml_chain_.end(), key) != yaml_chain_.end()) {
-      std::string chain;
-      for (const std::string& k : yaml_chain_) chain += std::filesystem::path(k).filename().string() + " -> ";
-      chain += std::filesystem::path(key).filename().string();
-      ctx_.report("resource-recursion", at, "YAML resources include each other: " + chain);
+      ctx_.report("resource-recursion", at,
+                  "YAML resources include each other: " + include_chain_text(yaml_chain_, key));
       return;
     }
     const int depth = elements->expanded_depth;
@@ -224,10 +222,8 @@ class Resources final : public ResourceReader {
   std::shared_ptr<const Model> load_subbody(const yaml::NodeRef& uri, const std::string& path) {
     const std::string canonical = file_identity(path);
     if (std::find(session_.chain.begin(), session_.chain.end(), canonical) != session_.chain.end()) {
-      std::string chain;
-      for (const std::string& file : session_.chain) chain += std::filesystem::path(file).filename().string() + " -> ";
-      chain += std::filesystem::path(canonical).filename().string();
-      ctx_.report("subbody-recursion", uri, "recursive sub-body include: " + chain);
+      ctx_.report("subbody-recursion", uri,
+                  "recursive sub-body include: " + include_chain_text(session_.chain, canonical));
       return nullptr;
     }
     if (auto it = session_.subbodies.find(canonical); it != session_.subbodies.end()) return it->second;

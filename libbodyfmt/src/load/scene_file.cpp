@@ -65,10 +65,7 @@ void SceneFiles::read(ElementReader& reader, const SourceLocation& uri, const st
                       const MeshResource& resource, const ElementFrame& frame, const yaml::NodeRef& node) {
   const std::string identity = file_identity(path);
   if (std::find(chain_.begin(), chain_.end(), identity) != chain_.end()) {
-    std::string chain;
-    for (const std::string& file : chain_) chain += std::filesystem::path(file).filename().string() + " -> ";
-    chain += std::filesystem::path(identity).filename().string();
-    ctx_.report("scene-recursion", uri, "scene files include each other: " + chain);
+    ctx_.report("scene-recursion", uri, "scene files include each other: " + include_chain_text(chain_, identity));
     return;
   }
   if (chain_.size() >= kMaxNesting) {

@@ -100,4 +100,10 @@ std::string file_identity(const std::string& path) {
   return (ec ? std::filesystem::path(path) : absolute).lexically_normal().string();
 }
 
+std::string include_chain_text(const std::vector<std::string>& chain, const std::string& last) {
+  std::string text;
+  for (const std::string& file : chain) text += std::filesystem::path(file).filename().string() + " -> ";
+  return text + std::filesystem::path(last).filename().string();
+}
+
 }  // namespace bodyfmt::detail

@@ -6,6 +6,7 @@
 #include "load/load_context.h"
 
 #include <string>
+#include <vector>
 
 namespace bodyfmt::detail {
 
@@ -20,6 +21,10 @@ std::string resolve_uri(LoadContext& ctx, const yaml::NodeRef& at, const std::st
 /// or, where that cannot be made (a pipe such as /dev/fd/63, a name given for standard
 /// input), the absolute, lexically normal path. Never throws.
 std::string file_identity(const std::string& path);
+
+/// An include chain for a message, file names only: "a.body -> b.body -> a.body" for the files
+/// being read (outermost first) and `last`, the one that closes or would deepen it.
+std::string include_chain_text(const std::vector<std::string>& chain, const std::string& last);
 
 /// Reads `metadata` (length_unit, upper_axis, legacy string form) into `mesh`.
 void read_mesh_metadata(LoadContext& ctx, const yaml::NodeRef& metadata, MeshResource& mesh);

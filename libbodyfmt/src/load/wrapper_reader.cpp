@@ -78,12 +78,6 @@ std::string format_name(const std::string& extension) {
   return "";
 }
 
-std::string chain_text(const std::vector<std::string>& chain, const std::string& last) {
-  std::string text;
-  for (const std::string& file : chain) text += fs::path(file).filename().string() + " -> ";
-  return text + fs::path(last).filename().string();
-}
-
 // Nesting of wrappers and sub-bodies beyond this is refused: each level is a reader on the stack.
 constexpr std::size_t kMaxNesting = 64;
 
@@ -174,13 +168,13 @@ class WrapperReader {
     const std::string identity = file_identity(resolved);
     if (std::find(session_.chain.begin(), session_.chain.end(), identity) != session_.chain.end()) {
       ctx_.report("wrapper-recursion", model_file,
-                  "the wrapper includes itself: " + chain_text(session_.chain, identity));
+                  "the wrapper includes itself: " + include_chain_text(session_.chain, identity));
       return std::nullopt;
     }
     if (session_.chain.size() >= kMaxNesting) {
       ctx_.report("wrapper-recursion", model_file,
                   "model files nest more than " + std::to_string(kMaxNesting) +
-                      " levels deep: " + chain_text(session_.chain, identity));
+                      " levels deep: " + include_chain_text(session_.chain, identity));
       return std::nullopt;
     }
     std::string why;
