@@ -50,6 +50,14 @@ Eigen::Matrix3d symmetrised_contribution(const Link& link, const PhysicalFinding
   return symmetrized_inertia(link.mass_contributions[f.contribution].inertia);
 }
 
+void report_asymmetric_inertia_refused(DiagnosticSink& sink, const Link& link, const PhysicalFinding& f,
+                                       std::string_view holds) {
+  report_physical(sink, f,
+                  asymmetric_inertia_text(link, f) + "; " + std::string(holds) + ", so the model is not written",
+                  "write the 6-element form [Ixx, Ixy, Ixz, Iyy, Iyz, Izz] with the values you mean; "
+                  "--balance-inertia writes the mean of each off-diagonal pair");
+}
+
 std::string symmetrised_inertia_text(const Link& link, const PhysicalFinding& f) {
   return asymmetric_inertia_text(link, f) +
          fmt::format("; written symmetrised (--balance-inertia, the mean of each off-diagonal pair) as {}",

@@ -209,11 +209,7 @@ bool Writer::prepare_inertials() {
         changed(i, f.at, converters::symmetrised_inertia_text(link, f));
       } else {
         writable = false;
-        report_physical(sink_, f,
-                        converters::asymmetric_inertia_text(link, f) +
-                            "; MuJoCo holds a symmetric tensor, so the model is not written",
-                        "write the 6-element form [Ixx, Ixy, Ixz, Iyy, Iyz, Izz] with the values you mean; "
-                        "--balance-inertia writes the mean of each off-diagonal pair");
+        converters::report_asymmetric_inertia_refused(sink_, link, f, "MuJoCo holds a symmetric tensor");
       }
       continue;
     }

@@ -203,11 +203,7 @@ bool Writer::assess_inertias() {
                                                                       converters::symmetrised_inertia_text(link, f));
       } else {
         writable = false;
-        report_physical(sink_, f,
-                        converters::asymmetric_inertia_text(link, f) +
-                            "; URDF holds a symmetric tensor (six numbers), so the model is not written",
-                        "write the 6-element form [Ixx, Ixy, Ixz, Iyy, Iyz, Izz] with the values you mean; "
-                        "--balance-inertia writes the mean of each off-diagonal pair");
+        converters::report_asymmetric_inertia_refused(sink_, link, f, "URDF holds a symmetric tensor (six numbers)");
       }
       continue;
     }

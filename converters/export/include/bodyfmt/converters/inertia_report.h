@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include <string>
+#include <string_view>
 
 namespace bodyfmt::converters {
 
@@ -37,5 +38,10 @@ Eigen::Matrix3d symmetrised_contribution(const Link& link, const PhysicalFinding
 /// export-value-changed report: asymmetric_inertia_text(), then "; written symmetrised
 /// (--balance-inertia, the mean of each off-diagonal pair) as [...]".
 std::string symmetrised_inertia_text(const Link& link, const PhysicalFinding& finding);
+/// An XML writer's refusal of an asymmetric tensor without --balance-inertia: bodycheck's
+/// inertia-asymmetric error at the gate's place, "...; `holds`, so the model is not written",
+/// with the hint both writers give (the 6-element form, or --balance-inertia).
+void report_asymmetric_inertia_refused(DiagnosticSink& sink, const Link& link, const PhysicalFinding& finding,
+                                       std::string_view holds);
 
 }  // namespace bodyfmt::converters
