@@ -2,7 +2,7 @@
 # Opt-in conformance of wrapper body files around URDFs (issue 44): wraps each URDF in a one-line
 # body file (`model_file: X.urdf`), makes a reference of that wrapper with Choreonoid's own loaders
 # (choreonoid_dump built with Choreonoid's URDF loader, see choreonoid_dump/README.md), and
-# compares bodyinfo on the same wrapper with it, every field (../wrapper/choreonoid_urdf_refs.py).
+# compares bodyinfo on the same wrapper with it, every field (choreonoid_refs.py).
 # Run by hand: it needs a Choreonoid build, so it is not registered in ctest and never runs in CI.
 #
 # usage: choreonoid_urdf.sh CHOREONOID_DUMP BODYINFO OUT_DIR [PATH...]
@@ -86,7 +86,7 @@ for urdf in "${urdfs[@]}"; do
 done
 
 status=0
-python3 "$here/../wrapper/choreonoid_urdf_refs.py" "$bodyinfo" "$out/models" "$out/ref" "${wrappers[@]}" \
+python3 "$here/choreonoid_refs.py" "$bodyinfo" "$out/models" "$out/ref" "${wrappers[@]}" \
   >"$out/outcomes.txt" || status=$?
 cat "$out/outcomes.txt"
 echo "Choreonoid loads $loaded of ${#wrappers[@]} wrappers; output: $out"

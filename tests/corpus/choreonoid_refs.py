@@ -4,7 +4,7 @@
 shared/corpus/README.md): wrappers around URDFs (`model_file: X.urdf`, tests/data/urdf_choreonoid)
 and small body files of the value forms of docs/format-notes.md (tests/data/body_choreonoid).
 
-usage: choreonoid_urdf_refs.py BODYINFO MODEL_ROOT REF_ROOT [WRAPPER...]
+usage: choreonoid_refs.py BODYINFO MODEL_ROOT REF_ROOT [WRAPPER...]
 For each REF_ROOT/**/W.ref.yaml (or only the WRAPPER paths given, relative to MODEL_ROOT), runs
 BODYINFO --format yaml on MODEL_ROOT/**/W.body and sorts the pair into one outcome:
   match            Choreonoid loads it; bodyinfo exits 0 with every field of the schema equal
@@ -103,7 +103,7 @@ def main():
         print(f"{wrapper.relative_to(model_root)}: {outcome}")
         for line in details:
             print(f"    {line}")
-    print("choreonoid_urdf_refs: " + ", ".join(f"{n} {o}" for o, n in counts.items()))
+    print("choreonoid_refs: " + ", ".join(f"{n} {o}" for o, n in counts.items()))
     passed = counts["match"] + counts["both refuse"] + counts["known difference"]
     sys.exit(0 if passed == len(pairs) and pairs else 1)
 
