@@ -1020,6 +1020,200 @@ def open_viewer():
         c.kill()
 
 
+# ---- a large model, a client that stops reading, a client that dies (issue 45) -----------------
+
+def large_model(links):
+    """A model of `links` links with two findings each (a misspelt key, an inertia that is not
+    positive definite), written here: about 150 bytes a link."""
+    out = ["format: ChoreonoidBody\nformat_version: 2.0\nname: LARGE\nroot_link: BASE\nlinks:\n",
+           "  - { name: BASE, joint_type: free, mass: 1, inertia: [1,0,0,0,1,0,0,0,1] }\n"]
+    for i in range(links):
+        out.append("  - { name: L%d, parent: BASE, joint_type: revolute, joint_axis: [0, 0, 1], joint_id: %d, "
+                   "mas: 1, mass: 1, inertia: [1,0,0,0,1,0,0,0,-1] }\n" % (i, i))
+    return "".join(out)
+
+
+def peak_rss_kb(pid):
+    with open("/proc/%d/status" % pid) as f:
+        for line in f:
+            if line.startswith("VmHWM:"):
+                return int(line.split()[1])
+    raise AssertionError("no VmHWM for %d" % pid)
+
+
+def bodycheck_peak(path):
+    """bodycheck's findings on `path` and its peak resident size in KiB (wait4's, not bodyls's)."""
+    proc = subprocess.Popen([BODYCHECK, "--format", "json", path], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL)
+    out = proc.stdout.read()
+    _, _, usage = os.wait4(proc.pid, 0)
+    proc.returncode = 1
+    return json.loads(out)["diagnostics"], usage.ru_maxrss
+
+
+LARGE_LINKS = 25000
+
+
+@case
+def large_model_memory_and_limit():
+    # A 4 MB model with 50,000 findings: bodyls's peak resident size stays within a small factor
+    # of bodycheck's on the same file (today's main: ~14 times, gigabytes at 10 MB); it publishes
+    # at most maxDiagnostics findings, errors first, and one more that names bodycheck's total.
+    folder = work_dir("large_model_memory")
+    path = os.path.join(folder, "large.body")
+    text = large_model(LARGE_LINKS)
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(text)
+    findings, bodycheck_kb = bodycheck_peak(path)
+    assert len(findings) >= 2 * LARGE_LINKS, len(findings)
+    errors = [f for f in findings if f["severity"] in ("error", "fatal")]
+    scale = float(os.environ.get("BODYFMT_TIME_SCALE", "1"))
+    # Sanitized builds (BODYFMT_TIME_SCALE > 1) add a quarantine of freed memory to each.
+    bound_kb = 3 * bodycheck_kb + (64 if scale == 1 else 512) * 1024
+    # Every finding published (no limit): the memory is still bodycheck's order.
+    c = client()
+    try:
+        c.initialize(options={"maxDiagnostics": 1000000})
+        c.open(uri_of(path), text)
+        assert len(c.diagnostics(uri_of(path), 1, timeout=240)) == len(findings)
+        unlimited_kb = peak_rss_kb(c.proc.pid)
+        print("bodycheck peak %d MiB, bodyls peak %d MiB publishing all %d findings" %
+              (bodycheck_kb // 1024, unlimited_kb // 1024, len(findings)))
+        assert unlimited_kb <= bound_kb, (unlimited_kb, bodycheck_kb)
+        assert c.finish(timeout=30) == 0
+    finally:
+        c.kill()
+    c = client()
+    try:
+        c.initialize(options={"maxDiagnostics": 500})
+        c.open(uri_of(path), text)
+        published_list = c.diagnostics(uri_of(path), 1, timeout=240)
+        limited_kb = peak_rss_kb(c.proc.pid)
+        print("bodyls peak %d MiB publishing 500" % (limited_kb // 1024))
+        assert limited_kb <= bound_kb, (limited_kb, bodycheck_kb)
+        limited = [d for d in published_list if d["code"] == "lsp-findings-limited"]
+        assert len(limited) == 1 and len(published_list) == 501, (len(published_list), limited)
+        assert "%d more findings" % (len(findings) - 500) in limited[0]["message"], limited[0]["message"]
+        assert "lists all %d" % len(findings) in limited[0]["message"], limited[0]["message"]
+        shown_errors = sum(1 for d in published_list if d["severity"] == 1)
+        assert shown_errors == min(500, len(errors)), (shown_errors, len(errors))
+        assert c.finish(timeout=30) == 0
+    finally:
+        c.kill()
+
+
+@case
+def requests_answered_while_checking():
+    # While a large model is checked and its findings published, a hover is answered at once
+    # (today's main: tens of seconds, the state locked while the findings were converted and
+    # written), and `exit` ends the process at once, a check still running.
+    folder = work_dir("requests_while_checking")
+    path = os.path.join(folder, "large.body")
+    text = large_model(LARGE_LINKS)
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(text)
+    small = os.path.join(folder, "small.body")
+    with open(small, "w", encoding="utf-8") as f:
+        f.write(SMALL)
+    c = client()
+    try:
+        # The default limit: a publication of every finding would be a message the client must
+        # read before any reply behind it, whatever the server does.
+        c.initialize()
+        c.open(uri_of(small), SMALL)
+        c.diagnostics(uri_of(small), 1)
+        c.open(uri_of(path), text)
+        # A hover in the small document costs next to nothing: its time is the wait for the state.
+        slowest = 0.0
+        position = {"textDocument": {"uri": uri_of(small)}, "position": {"line": 6, "character": 20}}
+        done = False
+        while not done:
+            started = time.time()
+            rid = c.request_async("textDocument/hover", position)
+            reply = c.wait(lambda m: m.get("id") == rid, timeout=240)
+            assert "result" in reply, reply
+            slowest = max(slowest, time.time() - started)
+            done = any(m.get("method") == "textDocument/publishDiagnostics" and m["params"]["uri"] == uri_of(path)
+                       for m in c.backlog)
+            time.sleep(0.05)
+        print("slowest hover while checking: %.2f s" % slowest)
+        assert slowest < 5 * float(os.environ.get("BODYFMT_TIME_SCALE", "1")), slowest
+        # An edit starts another check of the large model; exit does not wait for it.
+        c.change(uri_of(path), 2, [{"text": text + "# edited\n"}])
+        time.sleep(0.2)
+        c.request("shutdown", timeout=10)
+        started = time.time()
+        c.notify("exit")
+        assert c.proc.wait(timeout=5 * float(os.environ.get("BODYFMT_TIME_SCALE", "1"))) == 0
+        print("exit took %.2f s with a check running" % (time.time() - started))
+    finally:
+        c.kill()
+
+
+@case
+def client_stops_reading():
+    # A client that stops reading (the server's output pipe full) and then closes its end of
+    # the server's input: the session ends (today's main: blocked in write() forever). Its
+    # requests ask for more output than a pipe holds.
+    folder = work_dir("client_stops_reading")
+    path = os.path.join(folder, "large.body")
+    text = large_model(2000)
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(text)
+    proc = subprocess.Popen([BODYLS], stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    try:
+        messages = [{"jsonrpc": "2.0", "id": 1, "method": "initialize", "params": {"capabilities": {}}},
+                    {"jsonrpc": "2.0", "method": "initialized", "params": {}},
+                    {"jsonrpc": "2.0", "method": "textDocument/didOpen",
+                     "params": {"textDocument": {"uri": uri_of(path), "languageId": "body", "version": 1,
+                                                 "text": text}}}]
+        messages += [{"jsonrpc": "2.0", "id": 10 + i, "method": "textDocument/documentSymbol",
+                      "params": {"textDocument": {"uri": uri_of(path)}}} for i in range(20)]
+        proc.stdin.write(b"".join(Client.frame(m) for m in messages))
+        proc.stdin.flush()
+        time.sleep(3 * float(os.environ.get("BODYFMT_TIME_SCALE", "1")))  # the replies fill the pipe
+        proc.stdin.close()
+        code = proc.wait(timeout=10 * float(os.environ.get("BODYFMT_TIME_SCALE", "1")))
+        assert code == 1, code  # the end of input without shutdown and exit
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
+            raise AssertionError("bodyls did not end after its client stopped reading and closed its input")
+
+
+@case
+def client_process_watched():
+    # initialize's processId is watched: when that process dies the server ends, its input
+    # still open (the protocol asks it to). A processId this server cannot see at initialize
+    # (another namespace, a stale number) is not taken for a dead client.
+    def start(pid):
+        c = client()
+        reply = c.request("initialize", {"processId": pid, "rootUri": None, "capabilities": {}})
+        assert "result" in reply, reply
+        c.notify("initialized", {})
+        return c
+
+    scale = float(os.environ.get("BODYFMT_TIME_SCALE", "1"))
+    parent = subprocess.Popen(["sleep", "600"])
+    c = start(parent.pid)
+    c2 = start(2 ** 22 + 12345)  # above Linux's largest pid: never alive
+    try:
+        parent.kill()
+        parent.wait()
+        code = c.proc.wait(timeout=5 * scale)
+        assert code == 1, code  # ended without shutdown and exit
+        time.sleep(0.5)
+        assert "has ended" in c.stderr.decode(errors="replace"), c.stderr
+        time.sleep(1.5 * scale)
+        assert c2.proc.poll() is None, "a processId not alive at initialize ended the session"
+        assert c2.finish() == 0
+    finally:
+        c.kill()
+        c2.kill()
+        if parent.poll() is None:
+            parent.kill()
+
+
 if __name__ == "__main__":
     CASES[sys.argv[5]]()
     print("ok")

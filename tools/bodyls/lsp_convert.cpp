@@ -124,18 +124,4 @@ json diagnostic_to_json(const Diagnostic& d, FileTexts& texts) {
   return out;
 }
 
-std::map<std::string, json> diagnostics_by_uri(const std::vector<Diagnostic>& findings,
-                                               const std::string& document_path, const std::string& document_uri,
-                                               const std::string& document_text,
-                                               const std::map<std::string, std::string>& other_texts) {
-  FileTexts texts(document_path, document_uri, document_text, other_texts);
-  std::map<std::string, json> by_uri;
-  for (const Diagnostic& d : findings) {
-    json& list = by_uri[texts.uri(d.location.file.str())];
-    if (list.is_null()) list = json::array();
-    list.push_back(diagnostic_to_json(d, texts));
-  }
-  return by_uri;
-}
-
 }  // namespace bodyfmt::lsp

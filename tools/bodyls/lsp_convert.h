@@ -58,11 +58,4 @@ class FileTexts {
 /// information.
 nlohmann::json diagnostic_to_json(const Diagnostic& d, FileTexts& texts);
 
-/// The findings of one check as publishDiagnostics lists, by the URI of the file each is in.
-std::map<std::string, nlohmann::json> diagnostics_by_uri(const std::vector<Diagnostic>& findings,
-                                                         const std::string& document_path,
-                                                         const std::string& document_uri,
-                                                         const std::string& document_text,
-                                                         const std::map<std::string, std::string>& other_texts);
-
 }  // namespace bodyfmt::lsp

@@ -6,6 +6,7 @@
 #include "lsp_convert.h"
 #include "message_json.h"
 #include "model_check.h"
+#include "output_queue.h"
 #include "text_positions.h"
 #include "uri.h"
 #include "viewer_launcher.h"
@@ -25,9 +26,11 @@
 #include <cerrno>
 #include <chrono>
 #include <condition_variable>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <set>
@@ -56,6 +59,8 @@ constexpr int kRequestCancelled = -32800;
 constexpr int kRequestFailed = -32803;
 
 std::string dump(const json& j) { return j.dump(-1, ' ', false, json::error_handler_t::replace); }
+
+bool process_alive(int pid) { return ::kill(pid, 0) == 0 || errno == EPERM; }
 
 std::string canonical(const std::string& path) {
   std::error_code ec;
@@ -93,8 +98,10 @@ struct Server::Impl {
   std::condition_variable wake;
   std::mutex send_mutex;
   std::map<std::string, Document> documents;  // by URI
-  /// Diagnostics published on a URI, by the document whose check found them.
-  std::map<std::string, std::map<std::string, json>> contributions;
+  /// Diagnostics published on a URI, by the document whose check found them, each as its JSON
+  /// text: a check's findings are converted once, and a publication is their concatenation, not
+  /// a tree of JSON values copied for each step (280k findings cost gigabytes that way).
+  std::map<std::string, std::map<std::string, std::vector<std::string>>> contributions;
   bool initialized = false;
   bool shutdown = false;
   bool exited = false;
@@ -107,6 +114,8 @@ struct Server::Impl {
   bool client_disabled_actions = false;
   bool client_show_document = false;
   int next_request_id = 1;
+  /// The client's process (initialize's processId), watched while it was alive at initialize.
+  std::optional<int> client_process;
   std::set<std::string> cancelled;  // ids (dumped) of requests cancelled before they were handled
   Clock::time_point next_poll = Clock::now();
   std::thread worker;
@@ -117,8 +126,8 @@ struct Server::Impl {
   Impl(tools::Front& f, ServerOptions o, Send s)
       : front(f), options(std::move(o)), send_raw(std::move(s)), viewers(options.bodyview_path) {}
 
-  void send(const json& message) {
-    const std::string body = dump(message);
+  void send(const json& message) { send_text(dump(message)); }
+  void send_text(const std::string& body) {
     std::lock_guard<std::mutex> lock(send_mutex);
     send_raw(body);
   }
@@ -234,6 +243,15 @@ struct Server::Impl {
     client_show_document = flag({"window", "showDocument", "support"});
     if (init.is_object() && init.contains("debounceMs") && init["debounceMs"].is_number_integer())
       options.debounce_ms = std::clamp(init["debounceMs"].get<int>(), 0, 10000);
+    if (init.is_object() && init.contains("maxDiagnostics") && init["maxDiagnostics"].is_number_integer())
+      options.max_published = std::clamp<long long>(init["maxDiagnostics"].get<long long>(), 1, 1000000);
+    // A client in another process namespace names a process this one cannot see: only a process
+    // alive now is watched, so that such a client is not taken for dead.
+    if (params.contains("processId") && params["processId"].is_number_integer()) {
+      const long long pid = params["processId"].get<long long>();
+      if (pid > 0 && pid <= std::numeric_limits<int>::max() && process_alive(static_cast<int>(pid)))
+        client_process = static_cast<int>(pid);
+    }
     initialized = true;
     json sync = {{"openClose", true}, {"change", 2}, {"save", {{"includeText", false}}}};
     json capabilities_out = {
@@ -401,6 +419,10 @@ struct Server::Impl {
     tools::sort_unique_findings(result.diagnostics);
     std::vector<std::string> dependencies;
     for (const InputFile& f : result.inputs) dependencies.push_back(canonical(f.path));
+    // Converted before the lock is taken: requests are answered while a large check's findings
+    // are turned into the protocol's terms.
+    std::map<std::string, std::vector<std::string>> by_uri =
+        published_by_uri(result.diagnostics, s, options.max_published);
 
     std::lock_guard<std::mutex> lock(mutex);
     auto it = documents.find(s.uri);
@@ -424,7 +446,6 @@ struct Server::Impl {
         if (path != canonical(d.path)) d.dependency_times[path] = fs::last_write_time(path, ec);
       }
     }
-    std::map<std::string, json> by_uri = diagnostics_by_uri(result.diagnostics, d.path, d.uri, s.text, s.other_texts);
     d.findings = std::move(result.diagnostics);
     std::set<std::string> uris = d.published_uris;
     for (const auto& [uri, list] : by_uri) uris.insert(uri);
@@ -433,7 +454,7 @@ struct Server::Impl {
     for (const std::string& uri : uris) {
       auto found = by_uri.find(uri);
       if (found != by_uri.end()) {
-        contributions[uri][d.uri] = found->second;
+        contributions[uri][d.uri] = std::move(found->second);
         d.published_uris.insert(uri);
       } else {
         contributions[uri].erase(d.uri);
@@ -442,16 +463,57 @@ struct Server::Impl {
     }
   }
 
+  /// The findings of one check as JSON texts by the URI of their file, at most `most` of them:
+  /// beyond it, errors are kept before warnings and warnings before notes, and the document gets
+  /// one more finding that says how many are not shown and where to see them all. An editor
+  /// cannot show 280,000 findings usefully, and a message of that size holds the client up.
+  std::map<std::string, std::vector<std::string>> published_by_uri(const std::vector<Diagnostic>& findings,
+                                                                   const Snapshot& s, std::size_t most) const {
+    std::vector<const Diagnostic*> shown;
+    shown.reserve(std::min(findings.size(), most));
+    if (findings.size() <= most) {
+      for (const Diagnostic& f : findings) shown.push_back(&f);
+    } else {
+      for (const Severity level : {Severity::kFatal, Severity::kError, Severity::kWarning, Severity::kNote})
+        for (const Diagnostic& f : findings)
+          if (f.severity == level && shown.size() < most) shown.push_back(&f);
+      std::sort(shown.begin(), shown.end());  // back in the findings' order (they are one vector)
+    }
+    FileTexts texts(s.path, s.uri, s.text, s.other_texts);
+    std::map<std::string, std::vector<std::string>> by_uri;
+    for (const Diagnostic* f : shown)
+      by_uri[texts.uri(f->location.file.str())].push_back(dump(diagnostic_to_json(*f, texts)));
+    if (shown.size() < findings.size()) {
+      const std::size_t hidden = findings.size() - shown.size();
+      Diagnostic more = make_diagnostic("lsp-findings-limited", SourceLocation{s.path, 1, 1},
+                                        std::to_string(hidden) +
+                                            " more findings of this check are not shown (the server shows at most " +
+                                            std::to_string(most) + ", errors first); `bodycheck " + s.path +
+                                            "` lists all " + std::to_string(findings.size()));
+      by_uri[s.uri].push_back(dump(diagnostic_to_json(more, texts)));
+    }
+    return by_uri;
+  }
+
+  /// Publishes the union of what every open document found in `uri` (the lock held). The
+  /// message is queued, never written here: the lock is never held while the client reads.
   void publish_union(const std::string& uri, std::optional<int> version) {
-    json all = json::array();
-    std::set<std::string> seen;  // a file included by two open models reports a finding once
-    for (const auto& [from, list] : contributions[uri])
-      for (const json& d : list)
-        if (seen.insert(dump(d)).second) all.push_back(d);
-    if (contributions[uri].empty()) contributions.erase(uri);
-    json params = {{"uri", uri}, {"diagnostics", all}};
-    if (version) params["version"] = *version;
-    notify("textDocument/publishDiagnostics", params);
+    std::string list;
+    std::set<std::string_view> seen;  // a file included by two open models reports a finding once
+    auto& from_documents = contributions[uri];
+    for (const auto& [from, texts] : from_documents)
+      for (const std::string& d : texts)
+        if (seen.insert(d).second) {
+          if (!list.empty()) list += ',';
+          list += d;
+        }
+    std::string message = R"({"jsonrpc":"2.0","method":"textDocument/publishDiagnostics","params":{"diagnostics":[)";
+    message += list;
+    message += R"(],"uri":)" + dump(json(uri));
+    if (version) message += R"(,"version":)" + std::to_string(*version);
+    message += "}}";
+    if (from_documents.empty()) contributions.erase(uri);
+    send_text(message);
   }
 
   void run_pending_checks() {
@@ -605,6 +667,13 @@ void Server::bad_frame(const std::string& why) {
 
 void Server::run_pending_checks() { impl_->run_pending_checks(); }
 
+std::optional<int> Server::client_process() const {
+  std::lock_guard<std::mutex> lock(impl_->mutex);
+  return impl_->client_process;
+}
+
+void Server::end_viewers() { impl_->viewers.end_all(); }
+
 bool Server::exited() const {
   std::lock_guard<std::mutex> lock(impl_->mutex);
   return impl_->exited;
@@ -635,29 +704,30 @@ int run_server(int argc, char** argv) {
   // write, before it says anything or ends its viewers: with the signal ignored, the write
   // fails with EPIPE and takes the path below.
   ::signal(SIGPIPE, SIG_IGN);
-  // A failed write (the client is gone, a full disk) ends the session with exit 2 and says why
-  // once, as every tool does when standard output fails; called from the worker thread too.
-  std::atomic<int> write_error{0};
-  const auto write_all = [&write_error](const std::string& body) {
-    if (write_error.load()) return;
-    const std::string framed = frame(body);
-    for (std::size_t done = 0; done < framed.size();) {
-      const ssize_t n = ::write(STDOUT_FILENO, framed.data() + done, framed.size() - done);
-      if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) {
-        write_error.store(n < 0 ? errno : EIO);
-        return;
-      }
-      done += static_cast<std::size_t>(n);
-    }
-  };
-  Server server(front, options, write_all);
+  // Every message goes through the writer's queue: neither this thread nor the checking one
+  // ever waits for the client to read (output_queue.h).
+  OutputQueue output(STDOUT_FILENO);
+  Server server(front, options, [&output](const std::string& body) { output.push(frame(body)); });
+  // While the client has not read this much, its next messages wait: its requests would only
+  // queue more replies. The session still ends when its input ends or it dies.
+  constexpr std::size_t kMostUnread = std::size_t{64} << 20;
   MessageReader reader;
   std::vector<char> buffer(1 << 16);
-  while (!server.exited() && !write_error.load()) {
-    // A write that fails on the checking thread ends the session too, without waiting for the
-    // client's next message: the input is read when it has bytes, the write error looked at
-    // every 200 ms.
+  bool client_gone = false;
+  while (!server.exited() && !output.error()) {
+    // Woken every 200 ms: a write that failed on the writer thread, or a client process that
+    // died without closing the pipe, ends the session without waiting for another message.
+    if (const std::optional<int> pid = server.client_process(); pid && !process_alive(*pid)) {
+      client_gone = true;
+      break;
+    }
+    if (output.pending_bytes() >= kMostUnread) {
+      // Only whether the client closed its end is looked at, not its messages.
+      pollfd input{STDIN_FILENO, 0, 0};
+      if (::poll(&input, 1, 0) > 0 && (input.revents & (POLLHUP | POLLERR | POLLNVAL))) break;
+      output.wait_below(kMostUnread, 200);
+      continue;
+    }
     pollfd input{STDIN_FILENO, POLLIN, 0};
     const int ready = ::poll(&input, 1, 200);
     if (ready == 0 || (ready < 0 && errno == EINTR)) continue;
@@ -680,12 +750,23 @@ int run_server(int argc, char** argv) {
     }
     server.handle_batch(bodies);
   }
-  if (const int error = write_error.load()) {
+  int code = server.exited() ? server.exit_code() : 1;  // the end of input: an exit without shutdown
+  if (const int error = output.error()) {
     front.print_error(std::string("cannot write to standard output: ") + std::strerror(error));
-    return tools::kExitFatal;
+    code = tools::kExitFatal;
+  } else if (client_gone) {
+    front.print_error("the client's process " + std::to_string(*server.client_process()) +
+                      " has ended; so does this session");
+  } else {
+    // What is queued is the session's last word (the reply to `shutdown`, the findings of the
+    // last check): given a second to be read, never waited for longer.
+    output.wait_below(1, 1000);
   }
-  // The end of input without `exit` ends the session as an `exit` without `shutdown` would.
-  return server.exited() ? server.exit_code() : 1;
+  server.end_viewers();
+  // A check still running (a large model takes seconds) and a writer blocked on a client that
+  // stopped reading are not waited for: the process ends here, with the session's code.
+  std::cerr.flush();
+  std::_Exit(code);
 }
 
 }  // namespace bodyfmt::lsp

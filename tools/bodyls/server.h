@@ -7,8 +7,10 @@
 
 #include "front.h"
 
+#include <cstddef>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,6 +23,9 @@ struct ServerOptions {
   bool threaded = true;
   int poll_ms = 1000;         ///< the server's own watch of dependency files, when the client has none
   std::string bodyview_path;  ///< bodyview for bodyls.openViewer (empty: beside this program)
+  /// The most findings of one check published (initializationOptions.maxDiagnostics): errors
+  /// first, then a finding that says how many more bodycheck lists.
+  std::size_t max_published = 1000;
 };
 
 class Server {
@@ -40,6 +45,12 @@ class Server {
   void handle(const std::string& body);
   /// A frame that is not the protocol's: the parse error, with a null id.
   void bad_frame(const std::string& why);
+
+  /// The client's process id from `initialize`, when it was alive then (the server ends when
+  /// it dies, as the protocol asks).
+  std::optional<int> client_process() const;
+  /// Ends the viewers the session started; the process is about to end.
+  void end_viewers();
 
   /// Synchronous mode: checks every document with an edit not yet checked, now.
   void run_pending_checks();

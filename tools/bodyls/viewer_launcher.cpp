@@ -52,11 +52,15 @@ std::optional<std::string> first_line(int fd, int seconds) {
 ViewerLauncher::ViewerLauncher(std::string bodyview)
     : bodyview_(bodyview.empty() ? beside_this_program("bodyview") : std::move(bodyview)) {}
 
-ViewerLauncher::~ViewerLauncher() {
+ViewerLauncher::~ViewerLauncher() { end_all(); }
+
+void ViewerLauncher::end_all() {
+  std::lock_guard<std::mutex> lock(mutex_);
   for (auto& [path, viewer] : viewers_) {
     ::kill(viewer.pid, SIGTERM);
     ::waitpid(viewer.pid, nullptr, 0);
   }
+  viewers_.clear();
 }
 
 std::optional<std::string> ViewerLauncher::url_for(const std::string& path, std::string& why) {

@@ -16,6 +16,8 @@ class ViewerLauncher {
   /// `bodyview`: its path (empty: `bodyview` beside this program).
   explicit ViewerLauncher(std::string bodyview);
   ~ViewerLauncher();  ///< ends every viewer it started
+  /// Ends every viewer it started, now.
+  void end_all();
   ViewerLauncher(const ViewerLauncher&) = delete;
   ViewerLauncher& operator=(const ViewerLauncher&) = delete;
 

@@ -17,6 +17,10 @@ std::vector<RuleInfo> make_table() {
       {"config-invalid", E, "a .bodycheck.yaml is malformed (syntax, unknown key, bad value or rule id)",
        "bodycheck cannot know how strict to be, so it checks nothing under it", ""},
       {"internal-error", F, "an unexpected internal failure", "a bug in bodyfmt; please report it with the file", ""},
+      {"lsp-findings-limited", N, "the language server shows only the first findings of a large check",
+       "an editor cannot show hundreds of thousands of findings usefully, and one message of that size holds "
+       "the editor up; bodycheck lists them all",
+       "initializationOptions.maxDiagnostics (default 1000)"},
       // YAML layer (body-format-spec §1)
       {"yaml-syntax", F, "the text is not valid YAML", "Choreonoid's libyaml reader refuses the file", ""},
       {"yaml-duplicate-key", W, "a mapping repeats a key; the last one wins",
