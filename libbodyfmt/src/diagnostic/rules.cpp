@@ -430,6 +430,7 @@ std::vector<RuleInfo> make_table() {
       {"load-format-upgrade", "upgrade: format_version 2.0, angle_unit degree, radian values in degrees (spec §3)"},
       {"load-unknown-key", "unsafe: the did-you-mean key (the value is then read, so the model changes)"},
       {"load-unknown-model-key", "unsafe: the did-you-mean key (the value is then read, so the model changes)"},
+      {"structure-unknown-parent", "unsafe: the nearest link name, when one is nearest (the link is then attached)"},
   };
   for (RuleInfo& rule : rules)
     for (const auto& [id, fix] : fixes)
