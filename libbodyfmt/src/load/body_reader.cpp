@@ -180,6 +180,14 @@ std::optional<Model> BodyReader::read_once(std::string_view text, const std::str
     ChainEntry(std::vector<std::string>& c, std::string path) : chain(c) { chain.push_back(std::move(path)); }
     ~ChainEntry() { chain.pop_back(); }
   } chain_entry(session_.chain, file_identity(file_name));
+  struct TextInReach {  // LoadContext::text, for as long as `text` is alive
+    LoadContext& ctx;
+    TextInReach(LoadContext& c, std::string_view text, const std::string& file) : ctx(c) {
+      ctx.text = text;
+      ctx.text_file = file;
+    }
+    ~TextInReach() { ctx.text = {}; }
+  } text_in_reach(ctx_, text, file_name);
   Model model;
   model.source_file = file_name;
   model.name = session_.default_model_name.empty() ? std::filesystem::path(file_name).stem().string()
