@@ -84,6 +84,9 @@ std::vector<RuleInfo> make_table() {
        "Choreonoid reads the first spelling of its list (snake_case) and ignores the other, so one of the two values "
        "is silently lost",
        ""},
+      {"load-misplaced-key", W,
+       "a key written one level too deep where it means nothing: `appearance` under a Shape's `geometry`",
+       "Choreonoid ignores it there, so the shape gets the default material; it belongs to the Shape node", ""},
       {"load-ignored-key", W, "a key Choreonoid reads under another name or not at all", "its value has no effect", ""},
       {"load-ignored-value", W, "a value Choreonoid ignores (wrong type for an optional key)",
        "the default is used instead, silently in Choreonoid", ""},
@@ -438,6 +441,9 @@ std::vector<RuleInfo> make_table() {
       {"load-key-written-twice",
        "unsafe: removes the lines of the ignored spelling (where a value does not convert, Choreonoid's Mapping::read "
        "goes on to the next spelling, so the model may change)"},
+      {"load-misplaced-key",
+       "unsafe: moves the lines one level up, when the key is the last of geometry and the Shape has no appearance "
+       "(the material is then read, so the model changes)"},
       {"structure-unknown-parent", "unsafe: the nearest link name, when one is nearest (the link is then attached)"},
   };
   for (RuleInfo& rule : rules)
