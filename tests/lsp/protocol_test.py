@@ -918,29 +918,53 @@ def code_actions_safety_classes():
         c.kill()
 
 
+# Two unsafe fix-its: a did-you-mean key (`mas`) and the nearest link name for a parent (CHASIS).
+UNSAFE = ("format: ChoreonoidBody\nformat_version: 2.0\nname: T\nroot_link: CHASSIS\nlinks:\n"
+          "  - { name: CHASSIS, joint_type: free, mas: 2, inertia: [1,0,0,0,1,0,0,0,1] }\n"
+          "  - name: TURRET\n    parent: CHASIS\n    jointType: fixed\n    joint_type: fixed\n"
+          "    mass: 1\n    inertia: [1,0,0,0,1,0,0,0,1]\n")
+
+
 @case
-def code_actions_unsafe_never_applied():
+def code_actions_unsafe_user_chosen():
+    # Issue 47: an unsafe fix-it changes the model, so bodycheck --fix never applies it; a
+    # quick fix the user picks from the menu is consent, so bodyls offers it with its edit (to
+    # clients with and without disabledSupport), never as the preferred fix and never under a
+    # bulk kind such as source.fixAll. Before, the did-you-mean was disabled or left out.
     folder = work_dir("code_actions_unsafe")
     path = os.path.join(folder, "small.body")
     with open(path, "w", encoding="utf-8") as f:
-        f.write(SMALL)
+        f.write(UNSAFE)
     uri = uri_of(path)
-    assert fix_edits(bodycheck_json(path), "unsafe", {}), "the test needs an unsafe fix-it"
-    ask = {"textDocument": {"uri": uri}, "range": whole(SMALL), "context": {"diagnostics": []}}
+    findings = bodycheck_json(path)
+    unsafe = fix_edits(findings, "unsafe", {})
+    assert {e[3] for e in unsafe} >= {"mass", "CHASSIS"}, "the test needs both unsafe fix-its: %s" % unsafe
+    ask = {"textDocument": {"uri": uri}, "range": whole(UNSAFE), "context": {"diagnostics": []}}
     for disabled_support in (False, True):
         c = client()
         try:
             c.initialize({"textDocument": {"codeAction": {"disabledSupport": disabled_support}}})
-            c.open(uri, SMALL)
+            c.open(uri, UNSAFE)
             c.diagnostics(uri, 1)
-            actions = c.request("textDocument/codeAction", ask)["result"]
-            assert not action_edits(actions), actions
-            if disabled_support:
-                assert actions and all("disabled" in a and "edit" not in a for a in actions), actions
-            else:
-                assert actions == [], actions
+            fixes = [a for a in c.request("textDocument/codeAction", ask)["result"] if "diagnostics" in a]
+            chosen = [a for a in fixes if not a.get("isPreferred")]
+            assert all(a["kind"] == "quickfix" and "disabled" not in a for a in fixes), fixes
+            assert action_edits(chosen) == unsafe, "\n got %s\nwant %s" % (sorted(action_edits(chosen)), sorted(unsafe))
+            assert not action_edits(a for a in fixes if a.get("isPreferred")) & unsafe
+            ask["context"]["only"] = ["quickfix"]
+            assert action_edits(c.request("textDocument/codeAction", ask)["result"]) >= unsafe
+            for bulk in (["source.fixAll"], ["source"], [UPGRADE_KIND]):
+                ask["context"]["only"] = bulk
+                assert not action_edits(c.request("textDocument/codeAction", ask)["result"]) & unsafe, bulk
+            del ask["context"]["only"]
         finally:
             c.kill()
+    # The edits do what they say: applied here, bodycheck finds neither the typo nor the parent.
+    edits = [{"range": {"start": {"line": s[0], "character": s[1]}, "end": {"line": e[0], "character": e[1]}},
+              "newText": t} for (_, s, e, t) in unsafe]
+    fixed = apply_edits(UNSAFE, edits)
+    rules = {f["rule"] for f in bodycheck_json(path, fixed)}
+    assert not rules & {"load-unknown-model-key", "structure-unknown-parent", "load-key-written-twice"}, rules
 
 
 # ---- watching and the viewer ------------------------------------------------------------------

@@ -89,14 +89,17 @@ json code_actions_for(const std::string& uri, const std::string& path, const std
                            {"diagnostics", json::array({diagnostic})},
                            {"isPreferred", true},
                            {"edit", std::move(edit)}});
-      } else if (f.safety == FixSafety::kUnsafe && quickfixes && query.disabled_support) {
-        actions.push_back({{"title", "Fix " + d.rule_id + ": " + what},
+      } else if (f.safety == FixSafety::kUnsafe && quickfixes) {
+        // An edit that changes the model Choreonoid loads (a did-you-mean key, a parent's
+        // name): choosing it from the menu is the user's consent, so it is offered with its
+        // edit, but never as the preferred fix (clients apply those without asking, e.g. on
+        // save) and under "quickfix" only, never in a bulk kind such as source.fixAll.
+        json edit = workspace_edit({f}, texts);
+        if (edit.is_null()) continue;
+        actions.push_back({{"title", "Fix " + d.rule_id + ": " + what + " (changes the model)"},
                            {"kind", "quickfix"},
                            {"diagnostics", json::array({diagnostic})},
-                           {"disabled",
-                            {{"reason",
-                              "unsafe: this edit changes the model Choreonoid loads, so bodycheck --fix "
-                              "never applies it; make it by hand if it is what you mean"}}}});
+                           {"edit", std::move(edit)}});
       }
     }
     if (!upgrade_fixes.empty() && upgrade) {

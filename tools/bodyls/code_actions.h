@@ -1,10 +1,10 @@
 #pragma once
 /// textDocument/codeAction: the fix-its of the findings in a range as quick fixes, with
-/// `bodycheck --fix`'s safety classes. Safe fix-its are offered as `quickfix` edits; the
-/// format 1.0 -> 2.0 upgrade (all of its edits together, as `--fix --upgrade` applies them)
+/// `bodycheck --fix`'s safety classes. Safe fix-its are offered as preferred `quickfix` edits;
+/// the format 1.0 -> 2.0 upgrade (all of its edits together, as `--fix --upgrade` applies them)
 /// only when the client asks for kUpgradeActionKind (or "quickfix.bodyfmt") in
-/// `context.only`; an unsafe fix-it is never an edit: it is shown disabled, with the reason,
-/// to clients that support disabled actions, and left out for the others.
+/// `context.only`; an unsafe fix-it (one that changes the model, which `bodycheck --fix` never
+/// applies) is a `quickfix` edit the user may choose, never preferred and never of a bulk kind.
 
 #include <bodyfmt/diagnostic.h>
 
