@@ -967,6 +967,87 @@ def code_actions_unsafe_user_chosen():
     assert not rules & {"load-unknown-model-key", "structure-unknown-parent", "load-key-written-twice"}, rules
 
 
+# The tutorial's first two links (Choreonoid's Body File Tutorial, SimpleTank), inertias as it
+# gives them: CHASSIS's is flagged by an inertia rule, TURRET_Y's is not.
+TANK = ("format: ChoreonoidBody\nformat_version: 2.0\nname: SimpleTank\nlinks:\n"
+        "  -\n    name: CHASSIS\n    translation: [ 0, 0, 0.1 ]\n    joint_type: free\n"
+        "    center_of_mass: [ 0, 0, 0 ]\n    mass: 8.0\n"
+        "    inertia: [\n      0.1, 0,   0,\n      0,   0.1, 0,\n      0,   0,   0.5 ]\n"
+        "    elements:\n      Shape:\n        geometry:\n          type: Box\n          size: [ 0.45, 0.3, 0.1 ]\n"
+        "  -\n    name: TURRET_Y\n    parent: CHASSIS\n    translation: [ -0.04, 0, 0.1 ]\n"
+        "    joint_type: revolute\n    joint_axis: -Z\n    center_of_mass: [ 0, 0, 0.025 ]\n    mass: 4.0\n"
+        "    inertia: [\n      0.1, 0,   0,\n      0,   0.1, 0,\n      0,   0,   0.1 ]\n"
+        "    elements:\n      Shape:\n        geometry:\n          type: Box\n          size: [ 0.2, 0.2, 0.1 ]\n"
+        "  -\n    name: TURRET_P\n    parent: TURRET_Y\n    joint_type: revolute\n    joint_axis: -Y\n"
+        "    elements:\n      - type: RigidBody\n        mass: 3.0\n        inertia: [ 0.1, 0, 0, 0.1, 0, 0.1 ]\n"
+        "        elements:\n          Shape:\n            geometry: { type: Cylinder, height: 0.1, radius: 0.1 }\n")
+MASS_KIND = "refactor.rewrite.bodyfmt.massFromShapes"
+
+
+def box_inertia(m, x, y, z):
+    return [m / 12 * (y * y + z * z), m / 12 * (x * x + z * z), m / 12 * (x * x + y * y)]
+
+
+@case
+def code_actions_mass_from_shapes():
+    # Issue 47: "compute this link's mass properties from its shapes" on the link at the cursor,
+    # the link's mass kept: a quickfix where an inertia rule flags the link, a refactoring
+    # elsewhere. The numbers are checked against a box's inertia worked out here.
+    import yaml
+    folder = work_dir("code_actions_mass")
+    path = os.path.join(folder, "tank.body")
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(TANK)
+    uri = uri_of(path)
+    c = client()
+    try:
+        c.initialize()
+        c.open(uri, TANK)
+        c.diagnostics(uri, 1)
+        lines = TANK.split("\n")
+        cases = (("CHASSIS", "quickfix", box_inertia(8.0, 0.45, 0.3, 0.1)),
+                 ("TURRET_Y", MASS_KIND, box_inertia(4.0, 0.2, 0.2, 0.1)))
+        for index, (name, kind, diagonal) in enumerate(cases):
+            line = lines.index("    name: %s" % name) + 3  # inside the link, below its name
+            ask = {"textDocument": {"uri": uri}, "context": {"diagnostics": []},
+                   "range": {"start": {"line": line, "character": 4}, "end": {"line": line, "character": 4}}}
+            actions = [a for a in c.request("textDocument/codeAction", ask)["result"] if name in a["title"]]
+            assert len(actions) == 1, (name, actions)
+            action = actions[0]
+            assert action["kind"] == kind and not action.get("isPreferred"), action
+            assert "mass 8 kg" in action["title"] if name == "CHASSIS" else "mass 4 kg" in action["title"], action
+            edits = action["edit"]["changes"][uri]
+            link = yaml.safe_load(apply_edits(TANK, edits))["links"][index]
+            assert link["mass"] == (8.0 if name == "CHASSIS" else 4.0), link
+            assert all(abs(v) < 1e-9 for v in link["center_of_mass"]), link
+            inertia = link["inertia"]
+            want = [diagonal[0], 0, 0, 0, diagonal[1], 0, 0, 0, diagonal[2]] if len(inertia) == 9 else \
+                [diagonal[0], 0, 0, diagonal[1], 0, diagonal[2]]
+            assert all(abs(a - b) <= 1e-7 * max(1, abs(b)) for a, b in zip(inertia, want)), (name, inertia, want)
+            # Asked for quick fixes only, the refactoring of an unflagged link stays out.
+            ask["context"]["only"] = ["quickfix"]
+            only = [a for a in c.request("textDocument/codeAction", ask)["result"] if name in a["title"]]
+            assert len(only) == (1 if kind == "quickfix" else 0), (name, only)
+        # TURRET_P's mass is a RigidBody's, not the link's: no edit. A client that shows disabled
+        # actions is told why; the others get nothing.
+        line = lines.index("    name: TURRET_P") + 2
+        ask = {"textDocument": {"uri": uri}, "context": {"diagnostics": []},
+               "range": {"start": {"line": line, "character": 4}, "end": {"line": line, "character": 4}}}
+        assert not [a for a in c.request("textDocument/codeAction", ask)["result"] if "TURRET_P" in a["title"]]
+    finally:
+        c.kill()
+    c = client()
+    try:
+        c.initialize({"textDocument": {"codeAction": {"disabledSupport": True}}})
+        c.open(uri, TANK)
+        c.diagnostics(uri, 1)
+        actions = [a for a in c.request("textDocument/codeAction", ask)["result"] if "TURRET_P" in a["title"]]
+        assert len(actions) == 1 and "edit" not in actions[0], actions
+        assert "mass key" in actions[0]["disabled"]["reason"], actions
+    finally:
+        c.kill()
+
+
 # ---- watching and the viewer ------------------------------------------------------------------
 
 SUB_BAD = ("format: ChoreonoidBody\nformat_version: 2.0\nname: S\nroot_link: S0\nlinks:\n"

@@ -1,6 +1,7 @@
 #include "code_actions.h"
 
 #include "lsp_convert.h"
+#include "mass_action.h"
 
 #include <algorithm>
 #include <map>
@@ -110,6 +111,19 @@ json code_actions_for(const std::string& uri, const std::string& path, const std
                          {"kind", kUpgradeActionKind},
                          {"diagnostics", json::array({diagnostic})},
                          {"edit", std::move(edit)}});
+    }
+  }
+  // The shapes are integrated only when one of the action's two kinds is wanted.
+  if (query.model && (quickfixes || wanted(query.only, kMassFromShapesKind))) {
+    const std::optional<MassFromShapes> mass =
+        mass_from_shapes(*query.model, path, text, findings, query.range.start.line + 1);
+    const char* kind = mass && mass->flagged ? "quickfix" : kMassFromShapesKind;
+    if (mass && wanted(query.only, kind)) {
+      json edit = mass->fixes.empty() ? json() : workspace_edit(mass->fixes, texts);
+      if (!edit.is_null())
+        actions.push_back({{"title", mass->title}, {"kind", kind}, {"edit", std::move(edit)}});
+      else if (query.disabled_support)
+        actions.push_back({{"title", mass->title}, {"kind", kind}, {"disabled", {{"reason", mass->unavailable}}}});
     }
   }
   return actions;

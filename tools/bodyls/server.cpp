@@ -498,13 +498,18 @@ struct Server::Impl {
     query.range = range_from_json(params.at("range"));
     const json context = params.value("context", json::object());
     if (context.contains("only")) query.only = context["only"].get<std::vector<std::string>>();
-    std::lock_guard<std::mutex> lock(mutex);
+    std::unique_lock<std::mutex> lock(mutex);
     query.disabled_support = client_disabled_actions;
     auto it = documents.find(uri);
     // Fix-its are byte offsets in the text checked: none for a text not checked yet.
     if (it == documents.end() || it->second.checked_version != it->second.version) return json::array();
     const Document& d = it->second;
-    return code_actions_for(d.uri, d.path, d.text, d.findings, query);
+    if (d.model && d.model_version == d.version) query.model = d.model;
+    // A copy, so that the actions (a link's shapes integrated) never hold up the checks.
+    const std::string path = d.path, text = d.text;
+    const std::vector<Diagnostic> findings = d.findings;
+    lock.unlock();
+    return code_actions_for(uri, path, text, findings, query);
   }
 
   std::optional<json> feature_request(const std::string& method, const json& params) {
