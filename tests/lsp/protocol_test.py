@@ -918,29 +918,134 @@ def code_actions_safety_classes():
         c.kill()
 
 
+# Two unsafe fix-its: a did-you-mean key (`mas`) and the nearest link name for a parent (CHASIS).
+UNSAFE = ("format: ChoreonoidBody\nformat_version: 2.0\nname: T\nroot_link: CHASSIS\nlinks:\n"
+          "  - { name: CHASSIS, joint_type: free, mas: 2, inertia: [1,0,0,0,1,0,0,0,1] }\n"
+          "  - name: TURRET\n    parent: CHASIS\n    jointType: fixed\n    joint_type: fixed\n"
+          "    mass: 1\n    inertia: [1,0,0,0,1,0,0,0,1]\n")
+
+
 @case
-def code_actions_unsafe_never_applied():
+def code_actions_unsafe_user_chosen():
+    # Issue 47: an unsafe fix-it changes the model, so bodycheck --fix never applies it; a
+    # quick fix the user picks from the menu is consent, so bodyls offers it with its edit (to
+    # clients with and without disabledSupport), never as the preferred fix and never under a
+    # bulk kind such as source.fixAll. Before, the did-you-mean was disabled or left out.
     folder = work_dir("code_actions_unsafe")
     path = os.path.join(folder, "small.body")
     with open(path, "w", encoding="utf-8") as f:
-        f.write(SMALL)
+        f.write(UNSAFE)
     uri = uri_of(path)
-    assert fix_edits(bodycheck_json(path), "unsafe", {}), "the test needs an unsafe fix-it"
-    ask = {"textDocument": {"uri": uri}, "range": whole(SMALL), "context": {"diagnostics": []}}
+    findings = bodycheck_json(path)
+    unsafe = fix_edits(findings, "unsafe", {})
+    assert {e[3] for e in unsafe} >= {"mass", "CHASSIS"}, "the test needs both unsafe fix-its: %s" % unsafe
+    ask = {"textDocument": {"uri": uri}, "range": whole(UNSAFE), "context": {"diagnostics": []}}
     for disabled_support in (False, True):
         c = client()
         try:
             c.initialize({"textDocument": {"codeAction": {"disabledSupport": disabled_support}}})
-            c.open(uri, SMALL)
+            c.open(uri, UNSAFE)
             c.diagnostics(uri, 1)
-            actions = c.request("textDocument/codeAction", ask)["result"]
-            assert not action_edits(actions), actions
-            if disabled_support:
-                assert actions and all("disabled" in a and "edit" not in a for a in actions), actions
-            else:
-                assert actions == [], actions
+            fixes = [a for a in c.request("textDocument/codeAction", ask)["result"] if "diagnostics" in a]
+            chosen = [a for a in fixes if not a.get("isPreferred")]
+            assert all(a["kind"] == "quickfix" and "disabled" not in a for a in fixes), fixes
+            assert action_edits(chosen) == unsafe, "\n got %s\nwant %s" % (sorted(action_edits(chosen)), sorted(unsafe))
+            assert not action_edits(a for a in fixes if a.get("isPreferred")) & unsafe
+            ask["context"]["only"] = ["quickfix"]
+            assert action_edits(c.request("textDocument/codeAction", ask)["result"]) >= unsafe
+            for bulk in (["source.fixAll"], ["source"], [UPGRADE_KIND]):
+                ask["context"]["only"] = bulk
+                assert not action_edits(c.request("textDocument/codeAction", ask)["result"]) & unsafe, bulk
+            del ask["context"]["only"]
         finally:
             c.kill()
+    # The edits do what they say: applied here, bodycheck finds neither the typo nor the parent.
+    edits = [{"range": {"start": {"line": s[0], "character": s[1]}, "end": {"line": e[0], "character": e[1]}},
+              "newText": t} for (_, s, e, t) in unsafe]
+    fixed = apply_edits(UNSAFE, edits)
+    rules = {f["rule"] for f in bodycheck_json(path, fixed)}
+    assert not rules & {"load-unknown-model-key", "structure-unknown-parent", "load-key-written-twice"}, rules
+
+
+# The tutorial's first two links (Choreonoid's Body File Tutorial, SimpleTank), inertias as it
+# gives them: CHASSIS's is flagged by an inertia rule, TURRET_Y's is not.
+TANK = ("format: ChoreonoidBody\nformat_version: 2.0\nname: SimpleTank\nlinks:\n"
+        "  -\n    name: CHASSIS\n    translation: [ 0, 0, 0.1 ]\n    joint_type: free\n"
+        "    center_of_mass: [ 0, 0, 0 ]\n    mass: 8.0\n"
+        "    inertia: [\n      0.1, 0,   0,\n      0,   0.1, 0,\n      0,   0,   0.5 ]\n"
+        "    elements:\n      Shape:\n        geometry:\n          type: Box\n          size: [ 0.45, 0.3, 0.1 ]\n"
+        "  -\n    name: TURRET_Y\n    parent: CHASSIS\n    translation: [ -0.04, 0, 0.1 ]\n"
+        "    joint_type: revolute\n    joint_axis: -Z\n    center_of_mass: [ 0, 0, 0.025 ]\n    mass: 4.0\n"
+        "    inertia: [\n      0.1, 0,   0,\n      0,   0.1, 0,\n      0,   0,   0.1 ]\n"
+        "    elements:\n      Shape:\n        geometry:\n          type: Box\n          size: [ 0.2, 0.2, 0.1 ]\n"
+        "  -\n    name: TURRET_P\n    parent: TURRET_Y\n    joint_type: revolute\n    joint_axis: -Y\n"
+        "    elements:\n      - type: RigidBody\n        mass: 3.0\n        inertia: [ 0.1, 0, 0, 0.1, 0, 0.1 ]\n"
+        "        elements:\n          Shape:\n            geometry: { type: Cylinder, height: 0.1, radius: 0.1 }\n")
+MASS_KIND = "refactor.rewrite.bodyfmt.massFromShapes"
+
+
+def box_inertia(m, x, y, z):
+    return [m / 12 * (y * y + z * z), m / 12 * (x * x + z * z), m / 12 * (x * x + y * y)]
+
+
+@case
+def code_actions_mass_from_shapes():
+    # Issue 47: "compute this link's mass properties from its shapes" on the link at the cursor,
+    # the link's mass kept: a quickfix where an inertia rule flags the link, a refactoring
+    # elsewhere. The numbers are checked against a box's inertia worked out here.
+    import yaml
+    folder = work_dir("code_actions_mass")
+    path = os.path.join(folder, "tank.body")
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(TANK)
+    uri = uri_of(path)
+    c = client()
+    try:
+        c.initialize()
+        c.open(uri, TANK)
+        c.diagnostics(uri, 1)
+        lines = TANK.split("\n")
+        cases = (("CHASSIS", "quickfix", box_inertia(8.0, 0.45, 0.3, 0.1)),
+                 ("TURRET_Y", MASS_KIND, box_inertia(4.0, 0.2, 0.2, 0.1)))
+        for index, (name, kind, diagonal) in enumerate(cases):
+            line = lines.index("    name: %s" % name) + 3  # inside the link, below its name
+            ask = {"textDocument": {"uri": uri}, "context": {"diagnostics": []},
+                   "range": {"start": {"line": line, "character": 4}, "end": {"line": line, "character": 4}}}
+            actions = [a for a in c.request("textDocument/codeAction", ask)["result"] if name in a["title"]]
+            assert len(actions) == 1, (name, actions)
+            action = actions[0]
+            assert action["kind"] == kind and not action.get("isPreferred"), action
+            assert "mass 8 kg" in action["title"] if name == "CHASSIS" else "mass 4 kg" in action["title"], action
+            edits = action["edit"]["changes"][uri]
+            link = yaml.safe_load(apply_edits(TANK, edits))["links"][index]
+            assert link["mass"] == (8.0 if name == "CHASSIS" else 4.0), link
+            assert all(abs(v) < 1e-9 for v in link["center_of_mass"]), link
+            inertia = link["inertia"]
+            want = [diagonal[0], 0, 0, 0, diagonal[1], 0, 0, 0, diagonal[2]] if len(inertia) == 9 else \
+                [diagonal[0], 0, 0, diagonal[1], 0, diagonal[2]]
+            assert all(abs(a - b) <= 1e-7 * max(1, abs(b)) for a, b in zip(inertia, want)), (name, inertia, want)
+            # Asked for quick fixes only, the refactoring of an unflagged link stays out.
+            ask["context"]["only"] = ["quickfix"]
+            only = [a for a in c.request("textDocument/codeAction", ask)["result"] if name in a["title"]]
+            assert len(only) == (1 if kind == "quickfix" else 0), (name, only)
+        # TURRET_P's mass is a RigidBody's, not the link's: no edit. A client that shows disabled
+        # actions is told why; the others get nothing.
+        line = lines.index("    name: TURRET_P") + 2
+        ask = {"textDocument": {"uri": uri}, "context": {"diagnostics": []},
+               "range": {"start": {"line": line, "character": 4}, "end": {"line": line, "character": 4}}}
+        assert not [a for a in c.request("textDocument/codeAction", ask)["result"] if "TURRET_P" in a["title"]]
+    finally:
+        c.kill()
+    c = client()
+    try:
+        c.initialize({"textDocument": {"codeAction": {"disabledSupport": True}}})
+        c.open(uri, TANK)
+        c.diagnostics(uri, 1)
+        actions = [a for a in c.request("textDocument/codeAction", ask)["result"] if "TURRET_P" in a["title"]]
+        assert len(actions) == 1 and "edit" not in actions[0], actions
+        assert "mass key" in actions[0]["disabled"]["reason"], actions
+    finally:
+        c.kill()
 
 
 # ---- watching and the viewer ------------------------------------------------------------------

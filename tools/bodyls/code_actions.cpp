@@ -1,6 +1,7 @@
 #include "code_actions.h"
 
 #include "lsp_convert.h"
+#include "mass_action.h"
 
 #include <algorithm>
 #include <map>
@@ -89,14 +90,17 @@ json code_actions_for(const std::string& uri, const std::string& path, const std
                            {"diagnostics", json::array({diagnostic})},
                            {"isPreferred", true},
                            {"edit", std::move(edit)}});
-      } else if (f.safety == FixSafety::kUnsafe && quickfixes && query.disabled_support) {
-        actions.push_back({{"title", "Fix " + d.rule_id + ": " + what},
+      } else if (f.safety == FixSafety::kUnsafe && quickfixes) {
+        // An edit that changes the model Choreonoid loads (a did-you-mean key, a parent's
+        // name): choosing it from the menu is the user's consent, so it is offered with its
+        // edit, but never as the preferred fix (clients apply those without asking, e.g. on
+        // save) and under "quickfix" only, never in a bulk kind such as source.fixAll.
+        json edit = workspace_edit({f}, texts);
+        if (edit.is_null()) continue;
+        actions.push_back({{"title", "Fix " + d.rule_id + ": " + what + " (changes the model)"},
                            {"kind", "quickfix"},
                            {"diagnostics", json::array({diagnostic})},
-                           {"disabled",
-                            {{"reason",
-                              "unsafe: this edit changes the model Choreonoid loads, so bodycheck --fix "
-                              "never applies it; make it by hand if it is what you mean"}}}});
+                           {"edit", std::move(edit)}});
       }
     }
     if (!upgrade_fixes.empty() && upgrade) {
@@ -107,6 +111,19 @@ json code_actions_for(const std::string& uri, const std::string& path, const std
                          {"kind", kUpgradeActionKind},
                          {"diagnostics", json::array({diagnostic})},
                          {"edit", std::move(edit)}});
+    }
+  }
+  // The shapes are integrated only when one of the action's two kinds is wanted.
+  if (query.model && (quickfixes || wanted(query.only, kMassFromShapesKind))) {
+    const std::optional<MassFromShapes> mass =
+        mass_from_shapes(*query.model, path, text, findings, query.range.start.line + 1);
+    const char* kind = mass && mass->flagged ? "quickfix" : kMassFromShapesKind;
+    if (mass && wanted(query.only, kind)) {
+      json edit = mass->fixes.empty() ? json() : workspace_edit(mass->fixes, texts);
+      if (!edit.is_null())
+        actions.push_back({{"title", mass->title}, {"kind", kind}, {"edit", std::move(edit)}});
+      else if (query.disabled_support)
+        actions.push_back({{"title", mass->title}, {"kind", kind}, {"disabled", {{"reason", mass->unavailable}}}});
     }
   }
   return actions;

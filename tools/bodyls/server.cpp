@@ -80,7 +80,9 @@ struct Server::Impl {
     Clock::time_point due;
     // The last check published.
     int checked_version = -1;
-    std::vector<Diagnostic> findings;
+    /// Shared, never copied: a request for code actions takes it out of the lock, and a large
+    /// model's findings are hundreds of megabytes.
+    std::shared_ptr<const std::vector<Diagnostic>> findings = std::make_shared<std::vector<Diagnostic>>();
     std::shared_ptr<const Model> model;  ///< of the last text that loaded
     int model_version = -1;
     /// The other open buffers that model read as its included files, by canonical path.
@@ -446,7 +448,7 @@ struct Server::Impl {
         if (path != canonical(d.path)) d.dependency_times[path] = fs::last_write_time(path, ec);
       }
     }
-    d.findings = std::move(result.diagnostics);
+    d.findings = std::make_shared<const std::vector<Diagnostic>>(std::move(result.diagnostics));
     std::set<std::string> uris = d.published_uris;
     for (const auto& [uri, list] : by_uri) uris.insert(uri);
     uris.insert(d.uri);
@@ -560,13 +562,18 @@ struct Server::Impl {
     query.range = range_from_json(params.at("range"));
     const json context = params.value("context", json::object());
     if (context.contains("only")) query.only = context["only"].get<std::vector<std::string>>();
-    std::lock_guard<std::mutex> lock(mutex);
+    std::unique_lock<std::mutex> lock(mutex);
     query.disabled_support = client_disabled_actions;
     auto it = documents.find(uri);
     // Fix-its are byte offsets in the text checked: none for a text not checked yet.
     if (it == documents.end() || it->second.checked_version != it->second.version) return json::array();
     const Document& d = it->second;
-    return code_actions_for(d.uri, d.path, d.text, d.findings, query);
+    if (d.model && d.model_version == d.version) query.model = d.model;
+    // Out of the lock, so that the actions (a link's shapes integrated) never hold up the checks.
+    const std::string path = d.path, text = d.text;
+    const std::shared_ptr<const std::vector<Diagnostic>> findings = d.findings;
+    lock.unlock();
+    return code_actions_for(uri, path, text, *findings, query);
   }
 
   std::optional<json> feature_request(const std::string& method, const json& params) {

@@ -66,7 +66,8 @@ std::string rules_markdown() {
       "SARIF `fixes`) and how `bodycheck --fix` treats them: *safe* fixes keep the model Choreonoid\n"
       "loads and are applied by `--fix`; *upgrade* fixes rewrite a format 1.0 file as 2.0 and are\n"
       "applied only with `--fix --upgrade`; *unsafe* fixes change what is loaded and are never\n"
-      "applied. Every fixed file is re-loaded before it is written and must give the same model.\n";
+      "applied by `--fix` (bodyls offers them as quick fixes the user picks, never preferred).\n"
+      "Every fixed file is re-loaded before it is written and must give the same model.\n";
   std::vector<std::string> order;
   for (const auto& [key, title] : kFamilies) order.push_back(key);
   for (const auto& [key, rules] : by_family)

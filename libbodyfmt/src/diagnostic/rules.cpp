@@ -83,6 +83,14 @@ std::vector<RuleInfo> make_table() {
        "an unlimited joint)",
        "as load-unknown-key; snake_case and camelCase spellings are both candidates"},
       {"load-info-key", N, "a key the format does not define", "Choreonoid keeps it as info for other subsystems", ""},
+      {"load-key-written-twice", W,
+       "a key written in two of its spellings in one mapping (`jointType` beside `joint_type`, body-format-spec §14)",
+       "Choreonoid reads the first spelling of its list (snake_case) and ignores the other, so one of the two values "
+       "is silently lost",
+       ""},
+      {"load-misplaced-key", W,
+       "a key written one level too deep where it means nothing: `appearance` under a Shape's `geometry`",
+       "Choreonoid ignores it there, so the shape gets the default material; it belongs to the Shape node", ""},
       {"load-ignored-key", W, "a key Choreonoid reads under another name or not at all", "its value has no effect", ""},
       {"load-ignored-value", W, "a value Choreonoid ignores (wrong type for an optional key)",
        "the default is used instead, silently in Choreonoid", ""},
@@ -434,6 +442,13 @@ std::vector<RuleInfo> make_table() {
       {"load-format-upgrade", "upgrade: format_version 2.0, angle_unit degree, radian values in degrees (spec §3)"},
       {"load-unknown-key", "unsafe: the did-you-mean key (the value is then read, so the model changes)"},
       {"load-unknown-model-key", "unsafe: the did-you-mean key (the value is then read, so the model changes)"},
+      {"load-key-written-twice",
+       "unsafe: removes the lines of the ignored spelling (where a value does not convert, Choreonoid's Mapping::read "
+       "goes on to the next spelling, so the model may change)"},
+      {"load-misplaced-key",
+       "unsafe: moves the lines one level up, when the key is the last of geometry and the Shape has no appearance "
+       "(the material is then read, so the model changes)"},
+      {"structure-unknown-parent", "unsafe: the nearest link name, when one is nearest (the link is then attached)"},
   };
   for (RuleInfo& rule : rules)
     for (const auto& [id, fix] : fixes)

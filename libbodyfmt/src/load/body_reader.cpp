@@ -12,6 +12,7 @@
 #include "text/text_util.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -179,6 +180,14 @@ std::optional<Model> BodyReader::read_once(std::string_view text, const std::str
     ChainEntry(std::vector<std::string>& c, std::string path) : chain(c) { chain.push_back(std::move(path)); }
     ~ChainEntry() { chain.pop_back(); }
   } chain_entry(session_.chain, file_identity(file_name));
+  struct TextInReach {  // LoadContext::text, for as long as `text` is alive
+    LoadContext& ctx;
+    TextInReach(LoadContext& c, std::string_view text, const std::string& file) : ctx(c) {
+      ctx.text = text;
+      ctx.text_file = file;
+    }
+    ~TextInReach() { ctx.text = {}; }
+  } text_in_reach(ctx_, text, file_name);
   Model model;
   model.source_file = file_name;
   model.name = session_.default_model_name.empty() ? std::filesystem::path(file_name).stem().string()
@@ -492,6 +501,25 @@ class TreeRoots {
   std::vector<LinkIndex> root_;
 };
 
+/// `"A"`, `"A" or "B"`, `"A", "B" or "C"`: the first three names, for a did-you-mean.
+std::string quoted_alternatives(const std::vector<std::string_view>& names) {
+  const std::size_t n = std::min<std::size_t>(names.size(), 3);
+  std::string out;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (k > 0) out += k + 1 == n ? " or " : ", ";
+    out += "\"" + std::string(names[k]) + "\"";
+  }
+  return out;
+}
+
+/// A name that reads back the same written in place of a plain or a quoted scalar.
+bool writable_in_place(std::string_view name) {
+  if (name.empty() || !(std::isalnum(static_cast<unsigned char>(name.front())) || name.front() == '_')) return false;
+  return std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+  });
+}
+
 /// Depth-first pre-order from the root, children in definition order (§5.2).
 std::vector<LinkIndex> depth_first_order(LinkIndex root, const std::vector<std::vector<LinkIndex>>& children) {
   std::vector<LinkIndex> order;
@@ -561,10 +589,27 @@ std::vector<LinkIndex> BodyReader::link_parents(const Model& model, const std::v
         known = names.by_name.names();
         std::sort(known.begin(), known.end());
       }
-      std::string_view guess = text::suggest(entry.parent_name, known);
+      // Every name as near as the nearest is offered; the rename is a fix-it when one is.
+      // It is unsafe: the link is then attached, so the model changes.
+      const std::vector<std::string_view> nearest = text::nearest(entry.parent_name, known);
+      const std::string names = quoted_alternatives(nearest);
+      std::vector<FixIt> fixes;
+      if (nearest.size() == 1 && entry.parent_span.editable() && writable_in_place(nearest.front())) {
+        FixIt fix;
+        fix.file = entry.parent_site.file;
+        fix.begin = entry.parent_span.begin;
+        fix.end = entry.parent_span.end;
+        fix.line = entry.parent_site.line;
+        fix.column = entry.parent_span.column;
+        fix.original = entry.parent_name;
+        fix.replacement = std::string(nearest.front());
+        fix.safety = FixSafety::kUnsafe;
+        fixes.push_back(std::move(fix));
+      }
       ctx_.report("structure-unknown-parent", entry.parent_site,
-                  "parent link \"" + entry.parent_name + "\" of \"" + link.name + "\" is not defined",
-                  guess.empty() ? std::string() : "did you mean \"" + std::string(guess) + "\"?");
+                  "parent link \"" + entry.parent_name + "\" of \"" + link.name + "\" is not defined" +
+                      (nearest.empty() ? std::string() : "; did you mean " + names + "?"),
+                  nearest.empty() ? std::string() : "name a link that is defined: " + names, std::move(fixes));
       continue;
     }
     // A parent chain that comes back to this link is a cycle (§5.2).

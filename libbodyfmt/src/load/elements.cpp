@@ -33,6 +33,52 @@ bool is_scene_file_type(std::string_view t) {
   return std::find(types.begin(), types.end(), t) != types.end();
 }
 
+/// `appearance` written under a Shape's `geometry` (one level too deep, where Choreonoid
+/// ignores it): a warning that says where it belongs and, when it is the last key of the
+/// geometry written in block style and the Shape has no appearance of its own, the fix-it
+/// that moves its lines up to the Shape's indentation (unsafe: the material is then read).
+void report_misplaced_appearance(LoadContext& ctx, const yaml::NodeRef& shape, const yaml::NodeRef& geometry) {
+  if (!geometry->is_mapping()) return;
+  const yaml::MapEntry* appearance = geometry->find("appearance");
+  const yaml::MapEntry* geometry_key = shape->find("geometry");
+  if (!appearance || !geometry_key) return;
+  const yaml::MapEntry* own = shape->find("appearance");
+  std::vector<FixIt> fixes;
+  const std::optional<EntryLines> lines =
+      own || &geometry->entries().back() != appearance ? std::nullopt : entry_lines(ctx, geometry, *appearance);
+  const std::size_t shape_indent = static_cast<std::size_t>(std::max(geometry_key->key_location.column - 1, 0));
+  if (lines && lines->indent > shape_indent) {
+    const std::string_view text = ctx.text.substr(lines->begin, lines->end - lines->begin);
+    const std::size_t up = lines->indent - shape_indent;
+    std::string moved;
+    for (std::size_t at = 0; at < text.size();) {
+      std::size_t next = text.find('\n', at);
+      next = next == std::string_view::npos ? text.size() : next + 1;
+      std::size_t spaces = 0;
+      while (spaces < up && at + spaces < next && text[at + spaces] == ' ') ++spaces;
+      moved.append(text.substr(at + spaces, next - at - spaces));
+      at = next;
+    }
+    FixIt fix;
+    fix.file = appearance->key_location.file;
+    fix.begin = lines->begin;
+    fix.end = lines->end;
+    fix.line = appearance->key_location.line;
+    fix.column = 1;
+    fix.original = std::string(text);
+    fix.replacement = std::move(moved);
+    fix.safety = FixSafety::kUnsafe;
+    fixes.push_back(std::move(fix));
+  }
+  ctx.report("load-misplaced-key", appearance->key_location,
+             "\"appearance\" is written inside geometry, where Choreonoid ignores it (the shape gets the default "
+             "material); it belongs to the Shape node, one level up, beside \"geometry\"",
+             own ? "the Shape has an appearance already (line " + std::to_string(own->key_location.line) +
+                       "): keep the one you mean there and remove this one"
+                 : "move it one level up: indent it as geometry is indented",
+             std::move(fixes));
+}
+
 }  // namespace
 
 ElementReader::ElementReader(LoadContext& ctx, Model& model, LinkIndex link, ResourceHandler* resources)
@@ -301,6 +347,7 @@ void ElementReader::read_shape(const yaml::NodeRef& node, const ElementFrame& fr
   ElementFrame inner = *enter(r, frame);
   shape.source = node.use_site();
   if (auto geometry = r.take({"geometry"})) {
+    report_misplaced_appearance(ctx_, node, geometry);
     auto g = read_geometry(ctx_, geometry, shape.division_number);
     if (!g) return;
     shape.geometry = std::move(*g);

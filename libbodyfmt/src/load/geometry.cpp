@@ -273,6 +273,7 @@ std::optional<Geometry> read_geometry(LoadContext& ctx, const yaml::NodeRef& geo
   }
   r.take({"extra_division_number"});
   r.take({"extra_division_mode"});
+  r.ignore("appearance");  // a Shape's key one level too deep: read_shape reports it (load-misplaced-key)
   const std::string_view t = type->scalar();
   if (t == "Box") return read_box(ctx, r);
   if (t == "Sphere") return read_sphere(ctx, r);

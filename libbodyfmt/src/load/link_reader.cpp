@@ -174,6 +174,7 @@ LinkEntry read_link(LoadContext& ctx, const yaml::NodeRef& node, Model& model, R
     link().sources.set(LinkSources::kParent, parent.use_site());
     entry.parent_name = required_string(ctx, parent).value_or("");
     entry.parent_site = parent.use_site();
+    if (!parent.alias_site && !parent.enclosing_alias) entry.parent_span = parent->span;
   }
   if (auto joint_name = r.take({"joint_name"})) link().joint_name = joint_name->scalar();
   if (auto t = r.take({"translation"})) {

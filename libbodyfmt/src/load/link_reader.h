@@ -14,6 +14,9 @@ struct LinkEntry {
   /// Where the parent is named (its alias use site, if any). A copy: the link's YAML may be
   /// gone by the time the tree is built (links are read while the file is parsed).
   SourceLocation parent_site;
+  /// Where the parent's name is written byte for byte, when a fix-it may edit it there (not
+  /// through an alias, which other uses share).
+  yaml::TextSpan parent_span;
   /// A second name of the link: a ContinuousTrack's own NAME, which Choreonoid's link map
   /// holds for the first link NAME0 as well (a parent or root_link may name it). Empty if none.
   std::string alias;

@@ -39,6 +39,59 @@ std::optional<FixIt> edit_key(const yaml::MapEntry& entry, std::string replaceme
   return edit_span(entry.key_location, entry.key_span, entry.key, std::move(replacement), safety);
 }
 
+std::optional<EntryLines> entry_lines(const LoadContext& ctx, const yaml::NodeRef& mapping,
+                                      const yaml::MapEntry& entry) {
+  if (entry.merged || mapping.alias_site || mapping.enclosing_alias || !entry.key_span.editable()) return std::nullopt;
+  const std::string_view text = ctx.text;
+  if (text.empty() || entry.key_location.file != ctx.text_file || entry.key_span.end > text.size()) return std::nullopt;
+  EntryLines lines;
+  const std::size_t key = entry.key_span.begin;
+  lines.begin = key == 0 ? 0 : text.rfind('\n', key - 1) + 1;  // npos + 1 == 0: the first line
+  for (std::size_t i = lines.begin; i < key; ++i)
+    if (text[i] != ' ') return std::nullopt;
+  lines.indent = key - lines.begin;
+  auto line_end = [&](std::size_t from) {
+    const std::size_t eol = text.find('\n', from);
+    return eol == std::string_view::npos ? text.size() : eol + 1;
+  };
+  lines.end = line_end(key);
+  int depth = 0;   // flow brackets open on the lines so far: a flow value may go on less indented
+  char quote = 0;  // a quoted scalar open (a plain scalar's apostrophe counts too: no fix-it then)
+  auto count_brackets = [&](std::size_t from, std::size_t to) {
+    for (std::size_t i = from; i < to; ++i) {
+      const char c = text[i];
+      if (quote) {
+        if (c == quote) quote = 0;
+      } else if (c == '"' || c == '\'') {
+        quote = c;
+      } else if (c == '#' && (i == from || text[i - 1] == ' ')) {
+        break;  // a comment to the end of the line
+      } else if (c == '[' || c == '{') {
+        ++depth;
+      } else if (c == ']' || c == '}') {
+        --depth;
+      }
+    }
+  };
+  count_brackets(key, lines.end);
+  for (std::size_t at = lines.end; at < text.size();) {
+    const std::size_t next = line_end(at);
+    std::size_t first = at;
+    while (first < next && text[first] == ' ') ++first;
+    const bool blank = first == next || text[first] == '\n' || text[first] == '\r' || text[first] == '#';
+    if (!blank && depth <= 0 && first - at <= lines.indent) break;
+    if (!blank) {
+      count_brackets(first, next);
+      lines.end = next;
+    }
+    at = next;
+  }
+  // A quote or a bracket left open (a multi-line quoted scalar, a flow value ending further
+  // down): the extent is not known for sure.
+  if (depth != 0 || quote != 0) return std::nullopt;
+  return lines;
+}
+
 std::string number_text(double value) {
   if (value == 0) return "0";  // no "-0"
   return fmt::format("{}", value);

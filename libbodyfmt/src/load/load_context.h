@@ -22,6 +22,22 @@ std::optional<FixIt> edit_key(const yaml::MapEntry& entry, std::string replaceme
 /// Shortest text that reads back as `value` (fmt's "{}"), for rewritten numbers.
 std::string number_text(double value);
 
+struct LoadContext;
+
+/// The lines a block mapping entry is written on: from the start of its key's line to the end
+/// of the last line below it indented deeper than the key (its value); blank and comment lines
+/// after the value are not part of it. `indent` is the key's column - 1.
+struct EntryLines {
+  std::size_t begin = 0;
+  std::size_t end = 0;
+  std::size_t indent = 0;
+};
+/// nullopt when the key does not start its line (a flow mapping, the first key of `- key:`),
+/// when the entry was merged in or `mapping` reached through an alias (other uses share the
+/// text), or when the text of the entry's file is not at hand (LoadContext::text).
+std::optional<EntryLines> entry_lines(const LoadContext& ctx, const yaml::NodeRef& mapping,
+                                      const yaml::MapEntry& entry);
+
 struct LoadContext {
   DiagnosticSink& sink;
   bool degrees = true;  ///< the file's angle unit (body-format-spec §3)
@@ -39,6 +55,11 @@ struct LoadContext {
   /// (rule, file, line, column, message) of every diagnostic so far: text shared through
   /// aliases is read once per use, but a problem in it is reported once.
   std::set<std::tuple<std::string, std::string, int, int, std::string>> reported;
+
+  /// The text of the body file being read (named `text_file`), while it is read: fix-its that
+  /// move or delete an entry's lines need the bytes around it (entry_lines). Empty otherwise.
+  std::string_view text;
+  FileName text_file;
 
   explicit LoadContext(DiagnosticSink& s) : sink(s) {}
 

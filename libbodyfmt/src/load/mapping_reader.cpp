@@ -162,14 +162,14 @@ void MappingReader::report_unknown(const std::vector<std::string_view>& known) {
     const std::string_view match = closest_key(entry.key, candidates);
     std::string_view guess = match;
     if (std::string_view modern = modern_of(guess); !modern.empty()) guess = modern;
-    if (!guess.empty()) {
+    if (match == entry.key && guess != match) {
+      report_second_spelling(entry, guess);
+    } else if (!guess.empty()) {
       // The rename is a fix-it only when the guess is the one candidate that close and no
       // spelling of it is in the mapping already; it is unsafe: the value is then read.
       std::vector<FixIt> fixes;
       if (unique_guess(entry.key, candidates, guess) && !mapping_->find(guess) && !has_spelling_of(guess))
         if (auto fix = edit_key(entry, std::string(guess), FixSafety::kUnsafe)) fixes.push_back(std::move(*fix));
-      // A second spelling of a key read under another (`jointType` beside `joint_type`) is no
-      // typo: the value read is the one written, so it stays a warning.
       const bool physical = changes_model(guess) && entry.key != match;
       ctx_.report(physical ? "load-unknown-model-key" : "load-unknown-key", entry.key_location,
                   "unknown key \"" + std::string(entry.key) + "\" in " + what_ + "; did you mean \"" +
@@ -182,6 +182,45 @@ void MappingReader::report_unknown(const std::vector<std::string_view>& known) {
                   "key \"" + std::string(entry.key) + "\" is not part of the " + what_ + " format; it is kept as info");
     }
   }
+}
+
+void MappingReader::report_second_spelling(const yaml::MapEntry& entry, std::string_view modern) {
+  // take() consumed the first spelling of its list that is present, as Choreonoid's
+  // Mapping::extract and Mapping::read try their key lists in order (src/Util/ValueTree.cpp):
+  // the modern snake_case spelling wins over a camelCase one. The entry read is the consumed
+  // one among the spellings of `modern`.
+  const yaml::MapEntry* read = nullptr;
+  for (std::size_t j = 0; j < mapping_->entries().size() && !read; ++j) {
+    const yaml::MapEntry& other = mapping_->entries()[j];
+    if (consumed(j) && (other.key == modern || modern_of(other.key) == modern)) read = &other;
+  }
+  if (!read) return;  // cannot be: this spelling was only left because another was taken
+  // Removing the ignored spelling is unsafe: Mapping::read (shapes, devices, gear_ratio) goes
+  // on to the next spelling when a value does not convert, so the one ignored here may be read
+  // after all; `bodycheck --fix` leaves it to the user. A value that defines an anchor stays.
+  std::vector<FixIt> fixes;
+  if (const std::optional<EntryLines> lines = entry_lines(ctx_, mapping_, entry)) {
+    const std::string_view text = ctx_.text.substr(lines->begin, lines->end - lines->begin);
+    if (text.find('&') == std::string_view::npos) {
+      FixIt fix;
+      fix.file = entry.key_location.file;
+      fix.begin = lines->begin;
+      fix.end = lines->end;
+      fix.line = entry.key_location.line;
+      fix.column = 1;
+      fix.original = std::string(text);
+      fix.safety = FixSafety::kUnsafe;
+      fixes.push_back(std::move(fix));
+    }
+  }
+  const std::string where = read->key_location.file == entry.key_location.file
+                                ? "line " + std::to_string(read->key_location.line)
+                                : read->key_location.file.str() + ":" + std::to_string(read->key_location.line);
+  ctx_.report("load-key-written-twice", entry.key_location,
+              "key \"" + std::string(entry.key) + "\" is \"" + std::string(read->key) + "\" (" + where +
+                  ") written a second time in this " + what_ + ", in another spelling; Choreonoid reads \"" +
+                  std::string(read->key) + "\" and ignores this one",
+              "remove one of them (this one is ignored)", std::move(fixes));
 }
 
 std::optional<double> take_optional_double(MappingReader& r, KeyNames names) {

@@ -31,7 +31,8 @@ class MappingReader {
 
   /// Reports every key that was neither taken nor ignored. A key close to one of `known`
   /// (edit distance) is a probable typo: `load-unknown-key` warning with a did-you-mean hint.
-  /// Other keys are kept as info by Choreonoid: `load-info-key` note.
+  /// A second spelling of a key read under another (`jointType` beside `joint_type`):
+  /// `load-key-written-twice`. Other keys are kept as info by Choreonoid: `load-info-key` note.
   void report_unknown(const std::vector<std::string_view>& known);
   /// The same; the list is copied only when there is something to report.
   void report_unknown(std::initializer_list<std::string_view> known) {
@@ -48,6 +49,9 @@ class MappingReader {
                     std::string_view guess) const;
   /// A key of the mapping was neither taken nor ignored (nor merged).
   bool has_unknown() const;
+  /// `load-key-written-twice` for `entry`, a spelling of `modern` left because another
+  /// spelling of it was read.
+  void report_second_spelling(const yaml::MapEntry& entry, std::string_view modern);
   /// A legacy spelling of `modern` is a key of the mapping.
   bool has_spelling_of(std::string_view modern) const;
 

@@ -52,6 +52,19 @@ std::string_view suggest(std::string_view word, const std::vector<std::string_vi
   return best_distance <= allowed ? best : std::string_view{};
 }
 
+std::vector<std::string_view> nearest(std::string_view word, const std::vector<std::string_view>& candidates) {
+  std::vector<std::string_view> best;
+  int best_distance = word.size() >= 8 ? 2 : (word.size() >= 4 ? 1 : 0);  // as suggest()
+  for (std::string_view candidate : candidates) {
+    const int d = edit_distance(word, candidate);
+    if (d > best_distance) continue;
+    if (d < best_distance) best.clear();
+    best_distance = d;
+    best.push_back(candidate);
+  }
+  return best;
+}
+
 std::optional<bool> parse_bool_word(std::string_view word) {
   static constexpr std::array<std::string_view, 11> kTrue = {"y",    "Y",    "yes", "Yes", "YES", "true",
                                                              "True", "TRUE", "on",  "On",  "ON"};

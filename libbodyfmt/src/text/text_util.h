@@ -18,6 +18,9 @@ int edit_distance(std::string_view a, std::string_view b);
 
 /// The closest of `candidates` to `word` if it is a plausible typo, else empty.
 std::string_view suggest(std::string_view word, const std::vector<std::string_view>& candidates);
+/// Every candidate as close to `word` as the closest, in the order given, if that is a
+/// plausible typo (suggest's distance), else none: a did-you-mean may have more than one answer.
+std::vector<std::string_view> nearest(std::string_view word, const std::vector<std::string_view>& candidates);
 
 /// The boolean words of body-format-spec §1.3 (YAML 1.1: y/yes/true/on and n/no/false/off in
 /// three cases), exactly; nullopt for anything else.

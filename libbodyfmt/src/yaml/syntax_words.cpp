@@ -98,4 +98,54 @@ std::optional<SyntaxWords> syntax_in_words(std::string_view text, int line_numbe
   return words;
 }
 
+std::optional<SyntaxWords> colon_in_value(std::string_view text, int line_number, int column) {
+  const std::vector<std::string_view> views = text::line_views(text);
+  if (line_number < 1 || static_cast<std::size_t>(line_number) > views.size() || column < 1) return std::nullopt;
+  std::string_view line = views[static_cast<std::size_t>(line_number - 1)];
+  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  const std::size_t colon = static_cast<std::size_t>(column - 1);
+  if (colon >= line.size() || line[colon] != ':') return std::nullopt;
+  // The line's own key: after the indentation and any "- " of list items.
+  std::size_t key = 0;
+  while (key < line.size() && line[key] == ' ') ++key;
+  while (key + 1 < line.size() && line[key] == '-' && line[key + 1] == ' ') {
+    key += 2;
+    while (key < line.size() && line[key] == ' ') ++key;
+  }
+  const std::size_t separator = line.find(": ", key);
+  if (separator == std::string_view::npos || separator >= colon) return std::nullopt;
+  const std::string_view name = line.substr(key, separator - key);
+  if (name.empty() || name.find_first_of("\"'{}[],#&*!|>%@`") != std::string_view::npos) return std::nullopt;
+  std::size_t value_begin = separator + 2;
+  while (value_begin < colon && line[value_begin] == ' ') ++value_begin;
+  if (value_begin >= colon) return std::nullopt;
+  // Only a plain value: a quoted or flow one, an anchor, alias or tag is another matter.
+  if (std::string_view("\"'{}[]&*!|>%@`#").find(line[value_begin]) != std::string_view::npos) return std::nullopt;
+  const std::string_view before = line.substr(value_begin, colon - value_begin);
+  std::size_t after = colon + 1;
+  while (after < line.size() && line[after] == ' ') ++after;
+  const bool ends = after == line.size() || line[after] == '#';
+  const std::size_t line_start = static_cast<std::size_t>(line.data() - text.data());
+  SyntaxWords words{line_number, column, ""};
+  if (ends) {
+    std::string_view meant = before;
+    while (!meant.empty() && meant.back() == ' ') meant.remove_suffix(1);
+    words.message = "a value cannot end with ':': YAML reads \"" + std::string(before) +
+                    ":\" as the key of a new mapping, which cannot stand where the value of \"" + std::string(name) +
+                    "\" is; write \"" + std::string(name) + ": " + std::string(meant) + "\"";
+    words.hint = "remove the ':' after " + std::string(meant);
+    words.edit = SyntaxWords::Edit{line_start + colon, line_start + colon + 1, ""};
+  } else {
+    std::size_t value_end = after;
+    while (value_end < line.size() && !(line[value_end] == '#' && line[value_end - 1] == ' ')) ++value_end;
+    while (value_end > after && line[value_end - 1] == ' ') --value_end;
+    const std::string_view value = line.substr(value_begin, value_end - value_begin);
+    words.message = "the value of \"" + std::string(name) + "\" holds \": \", which YAML reads as the start of a " +
+                    "mapping where a value must be; quote the value: " + std::string(name) + ": \"" +
+                    std::string(value) + "\"";
+    words.hint = "quote the value";
+  }
+  return words;
+}
+
 }  // namespace bodyfmt::yaml

@@ -230,6 +230,29 @@ class TreeBuilder {
     // The user's terms first (a tab, a line indented unlike its neighbours); libyaml's words,
     // which name the parser's state, stay as the note.
     if (parser.error != YAML_READER_ERROR && utf8_) {
+      // `type: RigidBody:` (a typo of Choreonoid's own tutorial): libyaml stops at the colon.
+      if (parser.problem && std::string_view(parser.problem) == "mapping values are not allowed in this context") {
+        if (std::optional<SyntaxWords> words = colon_in_value(text_, where.line, where.column)) {
+          Diagnostic d = make_diagnostic("yaml-syntax", SourceLocation{file_, words->line, words->column},
+                                         std::move(words->message), words->hint + " (libyaml: " + message + ")");
+          if (words->edit) {
+            // Unsafe: the file does not load as it is, so no model stays the same.
+            FixIt fix;
+            fix.file = file_;
+            fix.begin = words->edit->begin;
+            fix.end = words->edit->end;
+            fix.line = words->line;
+            fix.column = words->column;
+            fix.original = std::string(text_.substr(fix.begin, fix.end - fix.begin));
+            fix.replacement = words->edit->replacement;
+            fix.safety = FixSafety::kUnsafe;
+            d.fixes.push_back(std::move(fix));
+          }
+          diagnostics_.push_back(std::move(d));
+          failed_ = true;
+          throw ParseAborted{};
+        }
+      }
       if (std::optional<SyntaxWords> words = syntax_in_words(text_, where.line)) {
         report("yaml-syntax", SourceLocation{file_, words->line, words->column}, std::move(words->message),
                "libyaml: " + message);

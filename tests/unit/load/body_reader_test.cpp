@@ -277,6 +277,61 @@ links:
   r.expect_clean();
 }
 
+// Issue 47: the tutorial's `parent: CHASIS` had a did-you-mean only in the hint, which editors
+// hide, and no edit. The nearest name is now in the message, and the rename is an unsafe fix-it
+// (the link is then attached) when one name is nearest.
+TEST_CASE("load: an unknown parent names the nearest link in its message, with the rename as a fix-it") {
+  const std::string text =
+      "format: ChoreonoidBody\nformat_version: 2.0\nlinks:\n  - name: CHASSIS\n  - name: TURRET_Y\n"
+      "    parent: CHASIS\n";
+  auto r = load(text);
+  auto d = r.take("structure-unknown-parent");
+  CHECK(pos(d) == Pos{6, 13});
+  CHECK(d.message.find("did you mean \"CHASSIS\"?") != std::string::npos);
+  REQUIRE(d.fixes.size() == 1);
+  const FixIt& fix = d.fixes[0];
+  CHECK(fix.safety == FixSafety::kUnsafe);
+  CHECK(text.substr(fix.begin, fix.end - fix.begin) == "CHASIS");
+  CHECK(fix.original == "CHASIS");
+  CHECK(fix.replacement == "CHASSIS");
+  CHECK(fix.line == 6);
+  CHECK(fix.column == 13);
+  r.expect_clean();
+}
+
+TEST_CASE("load: an unknown parent as near to two links lists both and has no fix-it") {
+  auto r = load_v2(R"(
+links:
+  - name: ARM_L
+  - name: ARM_R
+    parent: ARM_L
+  - name: HAND
+    parent: "ARM_X"
+)");
+  auto d = r.take("structure-unknown-parent");
+  CHECK(d.message.find("did you mean \"ARM_L\" or \"ARM_R\"?") != std::string::npos);
+  CHECK(d.fixes.empty());
+  r.expect_clean();
+  // Through an alias the name is shared text: no edit. Quoted, the edit is inside the quotes.
+  auto aliased = load_v2(R"(
+definitions: { p: &P BAES }
+links:
+  - name: BASE
+  - name: ARM
+    parent: *P
+  - name: LEG
+    parent: "BSAE"
+)");
+  auto a = aliased.take("structure-unknown-parent");
+  CHECK(a.fixes.empty());
+  auto q = aliased.take("structure-unknown-parent");
+  REQUIRE(q.fixes.size() == 1);
+  CHECK(q.fixes[0].column == 14);
+  CHECK(q.fixes[0].replacement == "BASE");
+  aliased.drop_notes("load-info-key");
+  aliased.expect_clean();
+}
+
 TEST_CASE("load: duplicate link name is structure-duplicate-link at the second name") {
   auto r = load_v2(R"(
 links:

@@ -4,6 +4,8 @@
 
 #include "support/load_helpers.h"
 
+#include <bodyfmt/fix.h>
+
 #include <cmath>
 
 using bodyfmt::Box;
@@ -411,4 +413,76 @@ links:
   CHECK(devices[1].X_LD.linear().isApprox(rz90, 1e-15));
   CHECK(pos(r.take("device-scaled-frame")) == Pos{10, 13});
   r.expect_clean();
+}
+
+// Issue 47: `appearance` one level too deep was a note (load-info-key) and the material was
+// lost without a word. It is a warning naming where it belongs, with the edit that moves it up.
+TEST_CASE("load: appearance under geometry is load-misplaced-key, and its fix-it moves it to the Shape") {
+  const std::string text =
+      "format: ChoreonoidBody\nformat_version: 2.0\nlinks:\n  - name: A\n    elements:\n      Shape:\n"
+      "        geometry:\n          type: Box\n          size: [ 1, 2, 3 ]\n          appearance:\n"
+      "            material:\n              # green\n              diffuse: [ 0, 0.6, 0 ]\n\n"
+      "    mass: 1\n";
+  auto r = bodyfmt::test::load(text);
+  REQUIRE(r.link("A").shapes.size() == 1);
+  CHECK_FALSE(r.link("A").shapes[0].appearance.material.has_value());  // Choreonoid ignores it there
+  auto d = r.take("load-misplaced-key");
+  CHECK(d.severity == bodyfmt::Severity::kWarning);
+  CHECK(pos(d) == Pos{10, 11});
+  CHECK(d.message.find("Shape node") != std::string::npos);
+  REQUIRE(d.fixes.size() == 1);
+  CHECK(d.fixes[0].safety == bodyfmt::FixSafety::kUnsafe);
+  r.expect_clean();  // and no load-info-key note for the same key
+  CHECK_FALSE(r.has("load-info-key"));
+  std::string why;
+  const std::optional<std::string> fixed = bodyfmt::apply_fixes(text, d.fixes, why);
+  REQUIRE(fixed);
+  CHECK(*fixed ==
+        "format: ChoreonoidBody\nformat_version: 2.0\nlinks:\n  - name: A\n    elements:\n      Shape:\n"
+        "        geometry:\n          type: Box\n          size: [ 1, 2, 3 ]\n        appearance:\n"
+        "          material:\n            # green\n            diffuse: [ 0, 0.6, 0 ]\n\n"
+        "    mass: 1\n");
+  auto again = bodyfmt::test::load(*fixed);
+  REQUIRE(again.link("A").shapes.size() == 1);
+  REQUIRE(again.link("A").shapes[0].appearance.material.has_value());
+  CHECK(again.link("A").shapes[0].appearance.material->diffuse_color == Eigen::Vector3d(0, 0.6, 0));
+  again.expect_clean();
+}
+
+TEST_CASE("load: misplaced appearance has no fix-it when it is not geometry's last key or the Shape has one") {
+  auto middle = load_v2(R"(
+links:
+  - name: A
+    elements:
+      - type: Shape
+        geometry:
+          type: Box
+          appearance: { material: { diffuse: [1, 0, 0] } }
+          size: [1, 1, 1]
+)");
+  auto d = middle.take("load-misplaced-key");
+  CHECK(pos(d) == Pos{9, 11});
+  CHECK(d.fixes.empty());  // moving it up would carry size out of the geometry
+  middle.expect_clean();
+  auto both = load_v2(R"(
+links:
+  - name: A
+    elements:
+      - type: Shape
+        appearance: { material: { diffuse: [0, 0, 1] } }
+        geometry:
+          type: Box
+          appearance: { material: { diffuse: [1, 0, 0] } }
+)");
+  auto b = both.take("load-misplaced-key");
+  CHECK(b.fixes.empty());  // a second appearance key in the Shape
+  CHECK(b.fix_hint.find("line 7") != std::string::npos);
+  both.expect_clean();
+  auto flow = load_v2(R"(
+links:
+  - name: A
+    elements: { Shape: { geometry: { type: Box, appearance: { material: { diffuse: [1, 0, 0] } } } } }
+)");
+  CHECK(flow.take("load-misplaced-key").fixes.empty());
+  flow.expect_clean();
 }

@@ -23,6 +23,16 @@ TEST_CASE("text: suggest allows 1 edit from 4 characters and 2 from 8, nothing b
   CHECK(suggest("colour", keys).empty());
 }
 
+TEST_CASE("text: nearest gives every candidate at the smallest plausible distance, in order") {
+  const std::vector<std::string_view> links = {"ARM_R", "CHASSIS", "ARM_L", "chassis2", "TURRET"};
+  CHECK(nearest("CHASIS", links) == std::vector<std::string_view>{"CHASSIS"});
+  CHECK(nearest("ARM_X", links) == std::vector<std::string_view>{"ARM_R", "ARM_L"});
+  CHECK(nearest("arm_l", links) == std::vector<std::string_view>{"ARM_L"});  // 0 beats 1
+  CHECK(nearest("TURET", links) == std::vector<std::string_view>{"TURRET"});
+  CHECK(nearest("BASE", links).empty());
+  CHECK(nearest("ARM", {"ARX", "ARM_L"}).empty());  // 3 characters: too ambiguous
+}
+
 TEST_CASE("text: the boolean words are exactly YAML 1.1's, in three cases") {
   for (const char* word : {"y", "Y", "yes", "Yes", "YES", "true", "True", "TRUE", "on", "On", "ON"})
     CHECK(parse_bool_word(word) == true);

@@ -10,6 +10,7 @@
 
 using bodyfmt::CollectingSink;
 using bodyfmt::Diagnostic;
+using bodyfmt::FixSafety;
 using bodyfmt::Severity;
 using bodyfmt::SourceLocation;
 using namespace bodyfmt::yaml;
@@ -678,8 +679,49 @@ TEST_CASE("yaml: a tab in an indentation is named at the tab") {
 
 TEST_CASE("yaml: an error that is not about indentation keeps libyaml's words") {
   CollectingSink sink;
-  CHECK(parse("a: 1\nb: c: d\n", sink) == nullptr);
+  CHECK(parse("a: 1\nb: [c, d\ne: f\n", sink) == nullptr);
   const Diagnostic& d = only_diagnostic(sink, "yaml-syntax");
-  CHECK(d.message.find("mapping values are not allowed") != std::string::npos);
+  CHECK(d.message.find("did not find expected") != std::string::npos);
   CHECK(d.fix_hint.empty());
+  CHECK(d.fixes.empty());
+}
+
+// Issue 47: the typo of Choreonoid's own tutorial, `type: RigidBody:`, gave libyaml's "mapping
+// values are not allowed in this context". It is explained at the colon, with its removal as
+// an (unsafe) fix-it; libyaml's words stay in the hint.
+TEST_CASE("yaml: a value ending with ':' is explained at the colon, with the edit that removes it") {
+  const std::string text = "links:\n  - name: A\n    elements:\n      -\n        type: RigidBody:\n        mass: 1\n";
+  CollectingSink sink;
+  CHECK(parse(text, sink) == nullptr);
+  const Diagnostic& d = only_diagnostic(sink, "yaml-syntax");
+  CHECK(d.severity == Severity::kFatal);
+  CHECK(d.location == at(5, 24));  // the colon
+  CHECK(d.message.find("a value cannot end with ':'") != std::string::npos);
+  CHECK(d.message.find("write \"type: RigidBody\"") != std::string::npos);
+  CHECK(d.fix_hint.find("libyaml: mapping values are not allowed") != std::string::npos);
+  REQUIRE(d.fixes.size() == 1);
+  CHECK(d.fixes[0].safety == FixSafety::kUnsafe);
+  CHECK(d.fixes[0].original == ":");
+  CHECK(text.substr(d.fixes[0].begin, d.fixes[0].end - d.fixes[0].begin) == ":");
+  CHECK(d.fixes[0].begin == text.find("RigidBody:") + 9);
+  CHECK(d.fixes[0].replacement.empty());
+  // After a list item's dash, with a comment after the colon, and with CRLF line ends.
+  for (const char* variant : {"links:\n  - type: RigidBody:   # note\n", "links:\r\n  - type: RigidBody:\r\n"}) {
+    CAPTURE(variant);
+    CollectingSink other;
+    CHECK(parse(variant, other) == nullptr);
+    const Diagnostic& o = only_diagnostic(other, "yaml-syntax");
+    CHECK(o.location == at(2, 20));
+    CHECK(o.message.find("a value cannot end with ':'") != std::string::npos);
+    CHECK(o.fixes.size() == 1);
+  }
+}
+
+TEST_CASE("yaml: a plain value holding ': ' is explained: quote it") {
+  CollectingSink sink;
+  CHECK(parse("a: 1\nb: c: d  # x\n", sink) == nullptr);
+  const Diagnostic& d = only_diagnostic(sink, "yaml-syntax");
+  CHECK(d.location == at(2, 5));
+  CHECK(d.message.find("quote the value: b: \"c: d\"") != std::string::npos);
+  CHECK(d.fixes.empty());
 }

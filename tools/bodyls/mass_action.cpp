@@ -1,0 +1,49 @@
+#include "mass_action.h"
+
+#include <bodyfmt/geometry_fix.h>
+#include <bodyfmt/geometry_mass.h>
+
+#include <fmt/format.h>
+
+namespace bodyfmt::lsp {
+
+std::optional<MassFromShapes> mass_from_shapes(const Model& model, const std::string& path, const std::string& text,
+                                               const std::vector<Diagnostic>& findings, int line) {
+  // Links are in tree order, not in the order of the text: the one written last before the line.
+  const Link* at = nullptr;
+  std::size_t index = 0;
+  for (std::size_t i = 0; i < model.links.size(); ++i) {
+    const Link& link = model.links[i];
+    if (link.source.file != path || !link.source.known() || link.source.line > line) continue;
+    if (!at || link.source.line > at->source.line) {
+      at = &link;
+      index = i;
+    }
+  }
+  if (!at) return std::nullopt;
+  const Link& link = *at;
+  MassFromShapes action;
+  action.flagged = links_for_geometry_fix(model, findings)[index];
+  CollectingSink shapes;  // a shape that is no solid is counted in left_out; the check reports it
+  const LinkGeometryMass geometry = link_geometry_mass(model, link, shapes);
+  const std::optional<GeometryAtWrittenMass> keys = geometry_at_written_mass(link, geometry);
+  action.title = fmt::format("Compute the centre of mass and inertia of link \"{}\" from its shapes", link.name);
+  if (geometry.empty()) {
+    action.unavailable =
+        fmt::format("link \"{}\" has no solid {} geometry", link.name, geometry.from_visual ? "visual" : "collision");
+  } else if (geometry.left_out > 0) {
+    // A tensor from some of the shapes would be wrong without a word: none at all.
+    action.unavailable = fmt::format("{} of the link's shapes {} no solid (see mass-geometry-not-solid)",
+                                     geometry.left_out, geometry.left_out == 1 ? "is" : "are");
+  } else if (!keys) {
+    action.unavailable = "the link has no link-level mass key (the density would be a guess)";
+  } else if (link.sources.mass().file != path) {
+    action.unavailable = "its mass keys are written in another file: \"" + link.sources.mass().file.str() + "\"";
+  } else {
+    action.title += fmt::format(" (mass {:g} kg kept)", keys->link_keys.mass);
+    action.fixes = link_mass_fixes(text, path, link, keys->link_keys, action.unavailable);
+  }
+  return action;
+}
+
+}  // namespace bodyfmt::lsp
