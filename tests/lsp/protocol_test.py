@@ -1020,6 +1020,65 @@ def open_viewer():
         c.kill()
 
 
+# ---- the file cache holds what the open documents use ------------------------------------------
+
+MESH_MODEL = ("format: ChoreonoidBody\nformat_version: 2.0\nname: M\nroot_link: BASE\nlinks:\n"
+              "  - name: BASE\n    joint_type: free\n    mass: 1\n    inertia: [1,0,0,0,1,0,0,0,1]\n"
+              "    elements:\n      - type: Resource\n        uri: mesh_%d.stl\n")
+
+
+def binary_stl(path, triangles, seed):
+    """A binary STL of `triangles` distinct triangles (a strip of slivers), 50 bytes each."""
+    import struct
+    with open(path, "wb") as f:
+        f.write(b"\0" * 80 + struct.pack("<I", triangles))
+        for t in range(triangles):
+            x = t * 0.001 + seed * 1e-6
+            f.write(struct.pack("<12fH", 0, 0, 1, x, 0, 0, x + 0.001, 0, 0, x, 0.001, (t % 7) * 0.001, 0))
+
+
+def rss_mb(pid):
+    with open("/proc/%d/status" % pid) as f:
+        for line in f:
+            if line.startswith("VmRSS:"):
+                return int(line.split()[1]) / 1024
+    raise AssertionError("no VmRSS for %d" % pid)
+
+
+@case
+def closed_documents_release_files():
+    # 60 documents opened, checked and closed in turn, each with a mesh of its own (20,000
+    # triangles, 1 MB): what bodyls holds afterwards must not grow with them. Before, it kept
+    # every mesh it ever read (about 3 MB each here).
+    folder = work_dir("closed_documents_release_files")
+    count, triangles = 60, 20000
+    env = dict(os.environ)
+    # AddressSanitizer keeps freed memory aside (256 MB by default) to catch its reuse: a small
+    # quarantine lets the sanitized run measure what bodyls holds, not what it freed.
+    env["ASAN_OPTIONS"] = env.get("ASAN_OPTIONS", "") + ":quarantine_size_mb=4:thread_local_quarantine_size_kb=64"
+    c = Client(BODYLS, (), env=env)
+    try:
+        c.initialize()
+        after = {}
+        for i in range(count):
+            binary_stl(os.path.join(folder, "mesh_%d.stl" % i), triangles, i)
+            path = os.path.join(folder, "m%d.body" % i)
+            with open(path, "w") as f:
+                f.write(MESH_MODEL % i)
+            c.open(uri_of(path), MESH_MODEL % i)
+            c.diagnostics(uri_of(path), 1, timeout=60)
+            c.notify("textDocument/didClose", {"textDocument": {"uri": uri_of(path)}})
+            c.diagnostics(uri_of(path), timeout=60)
+            if i + 1 in (10, count):
+                after[i + 1] = rss_mb(c.proc.pid)
+        growth = after[count] - after[10]
+        assert growth < 40, "RSS grew by %.0f MB from 10 to %d closed documents (%.0f MB, then %.0f MB)" % (
+            growth, count, after[10], after[count])
+        assert c.finish() == 0
+    finally:
+        c.kill()
+
+
 if __name__ == "__main__":
     CASES[sys.argv[5]]()
     print("ok")

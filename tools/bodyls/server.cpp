@@ -83,6 +83,8 @@ struct Server::Impl {
     std::vector<std::string> dependencies;  ///< canonical paths of the files the model was read from
     std::map<std::string, fs::file_time_type> dependency_times;
     std::set<std::string> published_uris;
+    /// The files its last check read: shared with the other documents', let go when it closes.
+    std::shared_ptr<FileCache> file_cache;
   };
 
   tools::Front& front;
@@ -111,6 +113,7 @@ struct Server::Impl {
   Clock::time_point next_poll = Clock::now();
   std::thread worker;
   /// Meshes and included files as last read, while unchanged: a keystroke re-reads only the buffer.
+  /// Each document has a cache that shares with this one and holds what its latest check used.
   std::shared_ptr<FileCache> file_cache = std::make_shared<FileCache>();
   ViewerLauncher viewers;
 
@@ -288,6 +291,7 @@ struct Server::Impl {
     d.path = path_from_uri(uri).value_or(uri);
     d.version = item.value("version", 0);
     d.text = item.at("text").get<std::string>();
+    d.file_cache = file_cache->make_sharing();
     schedule(d, Clock::now());  // the first check without a debounce
     schedule_dependents(canonical(d.path), uri);
   }
@@ -366,6 +370,7 @@ struct Server::Impl {
     std::string uri, path, text;
     int version = 0;
     std::map<std::string, std::string> other_texts;  // canonical path -> buffer
+    std::shared_ptr<FileCache> file_cache;           // the document's
   };
 
   /// Takes the next due document (the lock held); nullopt when none is due by `now`.
@@ -375,7 +380,7 @@ struct Server::Impl {
       if (d.pending && (ignore_due || d.due <= now) && (!next || d.due < next->due)) next = &d;
     if (!next) return std::nullopt;
     next->pending = false;
-    Snapshot s{next->uri, next->path, next->text, next->version, {}};
+    Snapshot s{next->uri, next->path, next->text, next->version, {}, next->file_cache};
     for (const auto& [uri, d] : documents)
       if (&d != next && d.path != d.uri) s.other_texts[canonical(d.path)] = d.text;
     return s;
@@ -391,8 +396,10 @@ struct Server::Impl {
     if (auto policy = front.policy_for(s.path)) {
       LoadOptions load = front.load_options();
       load.file_texts = s.other_texts;
-      load.file_cache = file_cache;
+      load.file_cache = s.file_cache;
       result = tools::check_model_input(load, input, policy->options, {true, true});
+      // A text that did not load read less than the document uses: its cache keeps what it had.
+      if (result.loaded) s.file_cache->forget_unused();
     } else {
       result.diagnostics.push_back(make_diagnostic(
           "config-invalid", SourceLocation{s.path, 1, 1},
