@@ -12,9 +12,9 @@ TIME_SCALE = float(os.environ.get("BODYFMT_TIME_SCALE", "1"))
 
 
 class Client:
-    def __init__(self, bodyls, args=(), cwd=None):
+    def __init__(self, bodyls, args=(), cwd=None, env=None):
         self.proc = subprocess.Popen([bodyls, *args], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                                     stderr=subprocess.PIPE, cwd=cwd)
+                                     stderr=subprocess.PIPE, cwd=cwd, env=env)
         self.messages = queue.Queue()
         self.next_id = 1
         self.backlog = []

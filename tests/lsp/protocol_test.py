@@ -9,6 +9,7 @@ and against bodycheck's own output (expected values never come from bodyls)."""
 import json
 import os
 import shutil
+import signal
 import subprocess
 import sys
 import time
@@ -1317,6 +1318,330 @@ def client_process_watched():
         c2.kill()
         if parent.poll() is None:
             parent.kill()
+
+
+# ---- viewers: started without holding the server, one per file, at most 8, ended with it ------
+
+TIME_SCALE = float(os.environ.get("BODYFMT_TIME_SCALE", "1"))
+VIEWER_MODEL = ("format: ChoreonoidBody\nformat_version: 2.0\nname: %s\nroot_link: BASE\nlinks:\n"
+                "  - { name: BASE, joint_type: free, mass: 1, inertia: [1,0,0,0,1,0,0,0,1] }\n")
+# A stand-in for bodyview: notes its process id, waits as long as its folder's fake_delay says,
+# prints a URL naming the model, then lives until its lifeline ends (or an hour without one).
+FAKE_BODYVIEW = r"""#!/usr/bin/env python3
+import os, sys, time
+args = sys.argv[1:]
+model = args[args.index("--serve") + 1]
+folder = os.path.dirname(model)
+with open(os.path.join(folder, "fake_pids"), "a") as f:
+    f.write("%d\n" % os.getpid())
+with open(os.path.join(folder, "fake_delay")) as f:
+    time.sleep(float(f.read()))
+print("http://127.0.0.1:9/" + os.path.basename(model), flush=True)
+if "--lifeline" in args:
+    fd = int(args[args.index("--lifeline") + 1])
+    while os.read(fd, 256):
+        pass
+else:
+    time.sleep(3600)
+"""
+
+
+def open_viewer_request(c, uri):
+    return c.request_async("workspace/executeCommand", {"command": "bodyls.openViewer", "arguments": [uri]})
+
+
+def reply_to(c, rid, timeout):
+    return c.wait(lambda m: m.get("id") == rid and "method" not in m, timeout)
+
+
+def alive(pid):
+    """True while `pid` runs (a zombie, ended and not yet reaped by whoever adopted it, has not)."""
+    try:
+        with open("/proc/%d/stat" % pid) as f:
+            return f.read().rsplit(")", 1)[1].split()[0] != "Z"
+    except OSError:
+        return False
+
+
+def viewer_pids(parent):
+    """The bodyview processes (real or fake) that `parent` started and that still run."""
+    pids = []
+    for entry in os.listdir("/proc"):
+        if not entry.isdigit():
+            continue
+        try:
+            with open("/proc/%s/stat" % entry) as f:
+                fields = f.read().rsplit(")", 1)[1].split()
+            with open("/proc/%s/cmdline" % entry, "rb") as f:
+                argv = f.read().split(b"\0")
+        except OSError:
+            continue
+        if int(fields[1]) == parent and fields[0] != "Z" and b"--serve" in argv:
+            pids.append(int(entry))
+    return sorted(pids)
+
+
+def serves(url):
+    import urllib.request
+    try:
+        urllib.request.urlopen(url, timeout=5).read()
+        return True
+    except OSError:
+        return False
+
+
+def eventually(predicate, seconds):
+    deadline = time.time() + seconds * TIME_SCALE
+    while time.time() < deadline:
+        if predicate():
+            return True
+        time.sleep(0.05)
+    return predicate()
+
+
+def viewer_models(folder, count):
+    paths = []
+    for i in range(count):
+        path = os.path.join(folder, "model_%d.body" % i)
+        with open(path, "w") as f:
+            f.write(VIEWER_MODEL % ("M%d" % i))
+        paths.append(path)
+    return paths
+
+
+def bodyls_beside(folder, bodyview):
+    """A copy of bodyls with `bodyview` beside it, where bodyls looks for it by default."""
+    bindir = os.path.join(folder, "bin")
+    os.makedirs(bindir, exist_ok=True)
+    shutil.copy2(BODYLS, os.path.join(bindir, "bodyls"))
+    shutil.copy2(bodyview, os.path.join(bindir, "bodyview"))
+    return os.path.join(bindir, "bodyls")
+
+
+@case
+def open_viewer_async():
+    folder = work_dir("open_viewer_async")
+    fake = os.path.join(folder, "fake_bodyview")
+    with open(fake, "w") as f:
+        f.write(FAKE_BODYVIEW)
+    os.chmod(fake, 0o755)
+    model = viewer_models(folder, 1)[0]
+    uri = uri_of(model)
+    delay_file, pids_file = os.path.join(folder, "fake_delay"), os.path.join(folder, "fake_pids")
+    hover = {"textDocument": {"uri": uri}, "position": {"line": 3, "character": 7}}
+
+    def fake_pids():
+        with open(pids_file) as f:
+            return [int(line) for line in f.read().split()]
+    c = Client(bodyls_beside(folder, fake))
+    started = []
+    try:
+        c.initialize()
+        c.open(uri, VIEWER_MODEL % "M0")
+        c.diagnostics(uri, 1)
+        # A viewer that takes 3 s: a hover sent after the command is answered first, and the
+        # command when the viewer serves, with its URL.
+        with open(delay_file, "w") as f:
+            f.write(str(3 * TIME_SCALE))
+        sent = time.time()
+        rid = open_viewer_request(c, uri)
+        hid = c.request_async("textDocument/hover", hover)
+        first = c.wait(lambda m: m.get("id") in (rid, hid) and "method" not in m, timeout=60)
+        assert first["id"] == hid, "bodyls.openViewer was answered before a hover sent after it: %s" % first
+        opened = reply_to(c, rid, 60)
+        assert opened.get("result", {}).get("url") == "http://127.0.0.1:9/model_0.body", opened
+        assert time.time() - sent >= 3 * TIME_SCALE, "answered before the viewer printed its URL"
+        started += fake_pids()
+        # Another file whose viewer would take 10 minutes: every other request is answered
+        # meanwhile, and shutdown and exit neither wait for it nor leave it running.
+        other = os.path.join(folder, "other.body")
+        with open(other, "w") as f:
+            f.write(VIEWER_MODEL % "O")
+        with open(delay_file, "w") as f:
+            f.write("600")
+        rid = open_viewer_request(c, uri_of(other))
+        assert eventually(lambda: len(fake_pids()) == 2, 10), "the second viewer did not start"
+        started = fake_pids()
+        asked = time.time()
+        assert "result" in c.request("textDocument/hover", hover, timeout=60)
+        assert time.time() - asked < 5 * TIME_SCALE, "a hover waited %.1f s for a viewer" % (time.time() - asked)
+        asked = time.time()
+        assert c.request("shutdown", timeout=60).get("result", 1) is None
+        assert "error" in reply_to(c, rid, 10), "the viewer still starting was not refused at shutdown"
+        c.notify("exit")
+        assert c.proc.wait(timeout=60 * TIME_SCALE) == 0
+        assert time.time() - asked < 5 * TIME_SCALE, "shutdown and exit took %.1f s" % (time.time() - asked)
+        assert eventually(lambda: not any(alive(p) for p in started), 5), "a viewer outlived bodyls's exit"
+    finally:
+        c.kill()
+        for pid in started:
+            if alive(pid):
+                os.kill(pid, signal.SIGKILL)
+    # --bodyview names the program (the stand-in here, without a copy of bodyls beside it).
+    with open(delay_file, "w") as f:
+        f.write("0")
+    c = client(["--bodyview", fake])
+    try:
+        c.initialize()
+        rid = open_viewer_request(c, uri)
+        assert reply_to(c, rid, 60).get("result", {}).get("url") == "http://127.0.0.1:9/model_0.body"
+        assert c.finish() == 0
+    finally:
+        c.kill()
+
+
+@case
+def viewers_end_with_server():
+    # However bodyls ends, its viewers end with it: each watches a pipe only bodyls writes.
+    folder = work_dir("viewers_end_with_server")
+    models = viewer_models(folder, 2)
+    for sig in (signal.SIGTERM, signal.SIGHUP, signal.SIGINT, signal.SIGKILL):
+        c = client()
+        pids = []
+        try:
+            c.initialize()
+            urls = []
+            for model in models:
+                reply = reply_to(c, open_viewer_request(c, uri_of(model)), 60)
+                urls.append(reply["result"]["url"])
+            pids = viewer_pids(c.proc.pid)
+            assert len(pids) == 2 and all(serves(u) for u in urls), (pids, urls)
+            c.proc.send_signal(sig)
+            c.proc.wait(timeout=30 * TIME_SCALE)
+            assert eventually(lambda: not any(alive(p) for p in pids), 5), \
+                "after %s, viewers %s still run" % (sig.name, [p for p in pids if alive(p)])
+            assert not any(serves(u) for u in urls), "after %s, a viewer still serves" % sig.name
+        finally:
+            c.kill()
+            for pid in pids:
+                if alive(pid):
+                    os.kill(pid, signal.SIGKILL)
+
+
+@case
+def one_viewer_per_file():
+    folder = work_dir("one_viewer_per_file")
+    model = viewer_models(folder, 1)[0]
+    os.makedirs(os.path.join(folder, "sub"))
+    os.symlink("model_0.body", os.path.join(folder, "link.body"))
+    base = uri_of(folder)
+    spellings = [base + "/model_0.body", base + "/./model_0.body", base + "//model_0.body",
+                 base + "/sub/../model_0.body", base + "/link.body", base + "/%6Dodel_0.body",
+                 base.replace("file://", "file://localhost") + "/model_0.body"]
+    c = client()
+    pids = []
+    try:
+        c.initialize()
+        # All at once, while the first is starting, then each again once it serves.
+        ids = [open_viewer_request(c, u) for u in spellings]
+        urls = {reply_to(c, rid, 60)["result"]["url"] for rid in ids}
+        urls |= {reply_to(c, open_viewer_request(c, u), 60)["result"]["url"] for u in spellings}
+        pids = viewer_pids(c.proc.pid)
+        assert len(urls) == 1 and len(pids) == 1, "%d spellings of one file: URLs %s, processes %s" % (
+            len(spellings), sorted(urls), pids)
+        assert serves(urls.pop())
+        assert c.finish() == 0
+    finally:
+        c.kill()
+        for pid in pids:
+            if alive(pid):
+                os.kill(pid, signal.SIGKILL)
+
+
+@case
+def viewer_cap():
+    # At most 8 viewers (docs/tools/bodyls.md): the ninth ends the least recently requested.
+    cap = 8
+    folder = work_dir("viewer_cap")
+    models = viewer_models(folder, cap + 2)
+    c = client()
+    seen = set()
+    try:
+        c.initialize()
+        urls = {}
+
+        def open_one(i):
+            urls[i] = reply_to(c, open_viewer_request(c, uri_of(models[i])), 60)["result"]["url"]
+            seen.update(viewer_pids(c.proc.pid))
+        for i in range(cap):
+            open_one(i)
+        assert len(viewer_pids(c.proc.pid)) == cap
+        open_one(0)  # asked for again: model_1's is now the least recently requested
+        open_one(cap)
+        assert eventually(lambda: len(viewer_pids(c.proc.pid)) == cap, 5), viewer_pids(c.proc.pid)
+        note = c.wait(lambda m: m.get("method") == "window/showMessage" and "at most" in m["params"]["message"])
+        assert "model_1.body" in note["params"]["message"] and str(cap) in note["params"]["message"], note
+        assert serves(urls[0]) and serves(urls[cap]) and not serves(urls[1])
+        open_one(cap + 1)  # model_2's goes next
+        assert eventually(lambda: len(viewer_pids(c.proc.pid)) == cap, 5), viewer_pids(c.proc.pid)
+        assert not serves(urls[2]) and serves(urls[cap + 1])
+        open_one(1)  # an ended viewer starts again on request
+        assert serves(urls[1]) and eventually(lambda: len(viewer_pids(c.proc.pid)) == cap, 5)
+        assert c.finish() == 0
+    finally:
+        c.kill()
+        for pid in seen:
+            if alive(pid):
+                os.kill(pid, signal.SIGKILL)
+
+
+# ---- the file cache holds what the open documents use ------------------------------------------
+
+MESH_MODEL = ("format: ChoreonoidBody\nformat_version: 2.0\nname: M\nroot_link: BASE\nlinks:\n"
+              "  - name: BASE\n    joint_type: free\n    mass: 1\n    inertia: [1,0,0,0,1,0,0,0,1]\n"
+              "    elements:\n      - type: Resource\n        uri: mesh_%d.stl\n")
+
+
+def binary_stl(path, triangles, seed):
+    """A binary STL of `triangles` distinct triangles (a strip of slivers), 50 bytes each."""
+    import struct
+    with open(path, "wb") as f:
+        f.write(b"\0" * 80 + struct.pack("<I", triangles))
+        for t in range(triangles):
+            x = t * 0.001 + seed * 1e-6
+            f.write(struct.pack("<12fH", 0, 0, 1, x, 0, 0, x + 0.001, 0, 0, x, 0.001, (t % 7) * 0.001, 0))
+
+
+def rss_mb(pid):
+    with open("/proc/%d/status" % pid) as f:
+        for line in f:
+            if line.startswith("VmRSS:"):
+                return int(line.split()[1]) / 1024
+    raise AssertionError("no VmRSS for %d" % pid)
+
+
+@case
+def closed_documents_release_files():
+    # 60 documents opened, checked and closed in turn, each with a mesh of its own (20,000
+    # triangles, 1 MB): what bodyls holds afterwards must not grow with them. Before, it kept
+    # every mesh it ever read (about 3 MB each here).
+    folder = work_dir("closed_documents_release_files")
+    count, triangles = 60, 20000
+    env = dict(os.environ)
+    # AddressSanitizer keeps freed memory aside (256 MB by default) to catch its reuse: a small
+    # quarantine lets the sanitized run measure what bodyls holds, not what it freed.
+    env["ASAN_OPTIONS"] = env.get("ASAN_OPTIONS", "") + ":quarantine_size_mb=4:thread_local_quarantine_size_kb=64"
+    c = Client(BODYLS, (), env=env)
+    try:
+        c.initialize()
+        after = {}
+        for i in range(count):
+            binary_stl(os.path.join(folder, "mesh_%d.stl" % i), triangles, i)
+            path = os.path.join(folder, "m%d.body" % i)
+            with open(path, "w") as f:
+                f.write(MESH_MODEL % i)
+            c.open(uri_of(path), MESH_MODEL % i)
+            c.diagnostics(uri_of(path), 1, timeout=60)
+            c.notify("textDocument/didClose", {"textDocument": {"uri": uri_of(path)}})
+            c.diagnostics(uri_of(path), timeout=60)
+            if i + 1 in (10, count):
+                after[i + 1] = rss_mb(c.proc.pid)
+        growth = after[count] - after[10]
+        assert growth < 40, "RSS grew by %.0f MB from 10 to %d closed documents (%.0f MB, then %.0f MB)" % (
+            growth, count, after[10], after[count])
+        assert c.finish() == 0
+    finally:
+        c.kill()
 
 
 if __name__ == "__main__":

@@ -68,3 +68,46 @@ TEST_CASE("lsp file cache: unchanged meshes and included files are read once, wi
   CHECK(findings(model(""), file, cache) == findings(model(""), file, nullptr));
   CHECK(cache->files_read() == read + 1);
 }
+
+TEST_CASE("lsp file cache: caches that share read a file once and hold it while one of them uses it") {
+  const fs::path dir = bodyfmt::test::fresh_dir("lsp_file_cache_shared");
+  for (const char* name : {"square.obj", "square.mtl", "not_a_mesh.xyz"})
+    fs::copy_file(fs::path(BODYFMT_TEST_DATA_DIR) / "mesh" / name, dir / name);
+  write(dir / "sub.body", kSub);
+  const fs::path file = dir / "main.body";
+  const std::string no_meshes =
+      "format: ChoreonoidBody\nformat_version: 2.0\nname: M\nroot_link: BASE\nlinks:\n"
+      "  - name: BASE\n    joint_type: free\n    mass: 1\n    inertia: [1,0,0,0,1,0,0,0,1]\n"
+      "  - type: SubBody\n    uri: sub.body\n    parent: BASE\n";
+  const auto root = std::make_shared<bodyfmt::FileCache>();  // holds nothing: no load goes through it
+  auto a = root->make_sharing();
+  auto b = root->make_sharing();
+
+  const std::vector<std::string> first = findings(model(""), file, a);
+  CHECK(a->files_read() == 3);
+  CHECK(findings(model(""), file, b) == first);
+  CHECK(b->files_read() == 0);  // all three found in what `a` read
+  CHECK(root->entries_held() == 0);
+  b->forget_unused();  // as bodyls does after each load: this one used all it holds
+  CHECK(b->entries_held() == a->entries_held());
+
+  // `b`'s latest load names no mesh: after forget_unused it holds sub.body's text alone.
+  const std::vector<std::string> without = findings(no_meshes, file, b);
+  b->forget_unused();
+  CHECK(b->entries_held() == 1);
+  CHECK(findings(no_meshes, file, b) == without);
+  CHECK(b->files_read() == 0);
+
+  // Once `a` is gone, nobody holds the meshes: they are read again, sub.body is not.
+  a.reset();
+  CHECK(findings(model(""), file, b) == first);
+  CHECK(b->files_read() == 2);
+  // forget_unused keeps what the loads since the last call used.
+  b->forget_unused();
+  CHECK(findings(model(""), file, b) == first);
+  CHECK(b->files_read() == 2);
+  // Without forget_unused a cache keeps every file it read.
+  CHECK(findings(no_meshes, file, b) == without);
+  CHECK(findings(model(""), file, b) == first);
+  CHECK(b->files_read() == 2);
+}

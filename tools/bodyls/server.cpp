@@ -90,6 +90,8 @@ struct Server::Impl {
     std::vector<std::string> dependencies;  ///< canonical paths of the files the model was read from
     std::map<std::string, fs::file_time_type> dependency_times;
     std::set<std::string> published_uris;
+    /// The files its last check read: shared with the other documents', let go when it closes.
+    std::shared_ptr<FileCache> file_cache;
   };
 
   tools::Front& front;
@@ -115,13 +117,15 @@ struct Server::Impl {
   bool client_watches = false;
   bool client_disabled_actions = false;
   bool client_show_document = false;
-  int next_request_id = 1;
+  // Requests are sent from the viewers' threads too.
+  std::atomic<int> next_request_id{1};
   /// The client's process (initialize's processId), watched while it was alive at initialize.
   std::optional<int> client_process;
   std::set<std::string> cancelled;  // ids (dumped) of requests cancelled before they were handled
   Clock::time_point next_poll = Clock::now();
   std::thread worker;
   /// Meshes and included files as last read, while unchanged: a keystroke re-reads only the buffer.
+  /// Each document has a cache that shares with this one and holds what its latest check used.
   std::shared_ptr<FileCache> file_cache = std::make_shared<FileCache>();
   ViewerLauncher viewers;
 
@@ -183,6 +187,7 @@ struct Server::Impl {
       try {
         std::optional<json> result = handle_request(method, params, id);
         if (!result) return respond_error(id, kMethodNotFound, "no method " + method);
+        if (result->is_discarded()) return;  // answered later (answered_later)
         respond(id, std::move(*result));
       } catch (const std::invalid_argument& e) {
         respond_error(id, kRequestFailed, e.what());
@@ -202,18 +207,20 @@ struct Server::Impl {
   }
 
   std::optional<json> handle_request(const std::string& method, const json& params, const json& id) {
-    (void)id;
     if (method == "initialize") {
       if (initialized) throw std::runtime_error("initialize was already called");
       return initialize(params);
     }
     if (method == "shutdown") {
-      std::lock_guard<std::mutex> lock(mutex);
-      shutdown = true;
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        shutdown = true;
+      }
+      viewers.end_all("bodyls is shutting down");
       return json(nullptr);
     }
     if (method == "textDocument/codeAction") return code_actions(params);
-    if (method == "workspace/executeCommand") return execute_command(params);
+    if (method == "workspace/executeCommand") return execute_command(params, id);
     if (is_feature_method(method)) return feature_request(method, params);
     return std::nullopt;
   }
@@ -308,6 +315,7 @@ struct Server::Impl {
     d.path = path_from_uri(uri).value_or(uri);
     d.version = item.value("version", 0);
     d.text = item.at("text").get<std::string>();
+    d.file_cache = file_cache->make_sharing();
     schedule(d, Clock::now());  // the first check without a debounce
     schedule_dependents(canonical(d.path), uri);
   }
@@ -386,6 +394,7 @@ struct Server::Impl {
     std::string uri, path, text;
     int version = 0;
     std::map<std::string, std::string> other_texts;  // canonical path -> buffer
+    std::shared_ptr<FileCache> file_cache;           // the document's
   };
 
   /// Takes the next due document (the lock held); nullopt when none is due by `now`.
@@ -395,7 +404,7 @@ struct Server::Impl {
       if (d.pending && (ignore_due || d.due <= now) && (!next || d.due < next->due)) next = &d;
     if (!next) return std::nullopt;
     next->pending = false;
-    Snapshot s{next->uri, next->path, next->text, next->version, {}};
+    Snapshot s{next->uri, next->path, next->text, next->version, {}, next->file_cache};
     for (const auto& [uri, d] : documents)
       if (&d != next && d.path != d.uri) s.other_texts[canonical(d.path)] = d.text;
     return s;
@@ -411,8 +420,10 @@ struct Server::Impl {
     if (auto policy = front.policy_for(s.path)) {
       LoadOptions load = front.load_options();
       load.file_texts = s.other_texts;
-      load.file_cache = file_cache;
+      load.file_cache = s.file_cache;
       result = tools::check_model_input(load, input, policy->options, {true, true});
+      // A text that did not load read less than the document uses: its cache keeps what it had.
+      if (result.loaded) s.file_cache->forget_unused();
     } else {
       result.diagnostics.push_back(make_diagnostic(
           "config-invalid", SourceLocation{s.path, 1, 1},
@@ -589,10 +600,12 @@ struct Server::Impl {
     return answer_feature(method, params, document);
   }
 
-  json execute_command(const json& params);
+  /// A request's result that says its answer is sent later, from another thread.
+  static json answered_later() { return json(json::value_t::discarded); }
+  json execute_command(const json& params, const json& id);
 };
 
-json Server::Impl::execute_command(const json& params) {
+json Server::Impl::execute_command(const json& params, const json& id) {
   const std::string command = params.at("command");
   if (command != "bodyls.openViewer") throw std::invalid_argument("no command " + command);
   // arguments: [the document's URI]
@@ -602,19 +615,29 @@ json Server::Impl::execute_command(const json& params) {
   const std::string uri = arguments[0];
   const std::optional<std::string> path = path_from_uri(uri);
   if (!path) throw std::invalid_argument("bodyls.openViewer: not a file: " + uri);
-  std::string why;
-  const std::optional<std::string> url = viewers.url_for(*path, why);
-  if (!url) throw std::invalid_argument("bodyls.openViewer: " + why);
-  bool show = false;
-  {
-    std::lock_guard<std::mutex> lock(mutex);
-    show = client_show_document;
-  }
-  if (show)
-    request("window/showDocument", {{"uri", *url}, {"external", true}});
-  else
-    notify("window/showMessage", {{"type", 3}, {"message", "bodyview serves " + *path + " at " + *url}});
-  return json{{"url", *url}};
+  // A viewer takes seconds to start (a minute at most): it is answered when it serves, from the
+  // thread that waits for it, and every other message is handled meanwhile.
+  const auto answer = [this, id, file = *path](const std::optional<std::string>& url, const std::string& why) {
+    if (!url) return respond_error(id, kRequestFailed, "bodyls.openViewer: " + why);
+    bool show = false;
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      show = client_show_document;
+    }
+    if (show)
+      request("window/showDocument", {{"uri", *url}, {"external", true}});
+    else
+      notify("window/showMessage", {{"type", 3}, {"message", "bodyview serves " + file + " at " + *url}});
+    respond(id, json{{"url", *url}});
+  };
+  std::string ended;
+  viewers.open(*path, answer, ended);
+  if (!ended.empty())
+    notify("window/showMessage", {{"type", 3},
+                                  {"message", "bodyls ended the viewer of " + ended + ": at most " +
+                                                  std::to_string(ViewerLauncher::kMostViewers) +
+                                                  " run at once, and it was the least recently opened"}});
+  return answered_later();
 }
 
 Server::Server(tools::Front& front, ServerOptions options, Send send)
@@ -623,6 +646,7 @@ Server::Server(tools::Front& front, ServerOptions options, Send send)
 }
 
 Server::~Server() {
+  impl_->viewers.end_all("");  // at once: the check under way may take a while to end
   {
     std::lock_guard<std::mutex> lock(impl_->mutex);
     impl_->stopping = true;
@@ -679,7 +703,7 @@ std::optional<int> Server::client_process() const {
   return impl_->client_process;
 }
 
-void Server::end_viewers() { impl_->viewers.end_all(); }
+void Server::end_viewers() { impl_->viewers.end_all("bodyls is exiting"); }
 
 bool Server::exited() const {
   std::lock_guard<std::mutex> lock(impl_->mutex);
@@ -706,6 +730,8 @@ int run_server(int argc, char** argv) {
                   "an edit made while a check is pending or running is checked this long after it (default 50); "
                   "an edit made while the findings are up to date is checked at once")
       ->check(CLI::Range(0, 10000));
+  front.app().add_option("--bodyview", options.bodyview_path,
+                         "the bodyview program that bodyls.openViewer starts (default: the one beside bodyls)");
   if (auto code = front.parse(argc, argv)) return *code;
   // A client that closes its end of the pipe would kill the process by SIGPIPE at the next
   // write, before it says anything or ends its viewers: with the signal ignored, the write

@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   bool serve = false;
   bool verbose = false;
   int port = 0;
+  int lifeline = -1;
   CLI::App& app = front.app();
   auto* o = app.add_option("-o,--output", output,
                            "the .html file to write ('-': standard output; default: MODEL.html in the current folder)");
@@ -30,11 +31,23 @@ int main(int argc, char** argv) {
                          "serve the page on 127.0.0.1 and rebuild it when the model, a file it includes or a mesh "
                          "changes (until interrupted)");
   app.add_option("--port", port, "the port for --serve (default: any free one)")->check(CLI::Range(0, 65535))->needs(s);
+  app.add_option("--lifeline", lifeline,
+                 "with --serve: exit at once when file descriptor FD (the read end of a pipe) reaches its end, "
+                 "that is when every writer has closed it; the program that starts bodyview holds the write end, "
+                 "so bodyview ends with it however it ends (bodyls does this)")
+      ->check(CLI::Range(0, 1 << 20))
+      ->needs(s)
+      ->type_name("FD");
   s->excludes(o);
   app.add_flag("--verbose", verbose,
                "print every finding (default: one summary line, as the page lists them; findings are printed "
                "in full when no page is written)");
   if (auto code = front.parse(argc, argv)) return *code;
+  // First of all: a model that takes long to load (or never does) must not outlive its starter.
+  if (lifeline >= 0 && !bodyview::exit_with_lifeline(lifeline)) {
+    front.print_error("--lifeline " + std::to_string(lifeline) + ": not an open file descriptor");
+    return tools::kExitFatal;
+  }
   // Without -o the page goes to the current folder, named after the model, as a download
   // would: the model's own folder may be read-only or shared (a package, a corpus), and a
   // generated page beside it would be mixed into the sources. Over the model itself (a model

@@ -23,6 +23,7 @@
 #include <list>
 #include <map>
 #include <memory>
+#include <thread>
 
 namespace bodyfmt::bodyview {
 namespace {
@@ -112,6 +113,22 @@ void close_connection(Connection& c) {
 }
 
 }  // namespace
+
+bool exit_with_lifeline(int fd) {
+  if (::fcntl(fd, F_GETFD) < 0) return false;
+  ::fcntl(fd, F_SETFD, FD_CLOEXEC);  // not for any program this one might start
+  // A thread, not the serving loop's poll(): the first load may block (a slow disk, a FIFO)
+  // before the loop runs. _exit rather than exit: the loop's state is the main thread's, and a
+  // server that writes no file has nothing to flush.
+  std::thread([fd] {
+    char buffer[256];
+    for (;;) {
+      const ssize_t n = ::read(fd, buffer, sizeof buffer);
+      if (n == 0 || (n < 0 && errno != EINTR)) ::_exit(tools::kExitClean);
+    }
+  }).detach();
+  return true;
+}
 
 int serve(tools::Front& front, const tools::Front::FilePolicy& policy, const std::string& path,
           const std::filesystem::path& assets, int port, bool verbose) {

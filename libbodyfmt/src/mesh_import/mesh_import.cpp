@@ -89,9 +89,9 @@ struct MeshCache::Impl {
     if (file_cache) {
       stamp = FileCache::Impl::stamp_of(std::get<0>(key));
       std::lock_guard<std::mutex> lock(file_cache->impl().mutex);
-      auto& cached = file_cache->impl().assets;
-      if (auto it = cached.find(key); stamp && it != cached.end() && it->second.stamp == *stamp)
-        return it->second.asset;
+      const auto fresh = [&](const FileCache::Impl::Asset& a) { return a.stamp == *stamp; };
+      if (stamp)
+        if (auto cached = file_cache->impl().assets.find(key, fresh)) return cached->asset;
     }
     auto asset = std::make_shared<MeshAsset>();
     asset->path = std::get<0>(key);
@@ -102,7 +102,8 @@ struct MeshCache::Impl {
       result = nullptr;
     if (stamp) {
       std::lock_guard<std::mutex> lock(file_cache->impl().mutex);
-      file_cache->impl().assets[key] = FileCache::Impl::Asset{*stamp, result};
+      file_cache->impl().assets.put(
+          key, std::make_shared<const FileCache::Impl::Asset>(FileCache::Impl::Asset{*stamp, result}));
     }
     return result;
   }
@@ -114,16 +115,16 @@ struct MeshCache::Impl {
     const std::optional<FileCache::Impl::Stamp> stamp = FileCache::Impl::stamp_of(path);
     if (stamp) {
       std::unique_lock<std::mutex> lock(cache.mutex);
-      auto it = cache.meshes.find(path);
-      if (it != cache.meshes.end() && it->second.stamp == *stamp && it->second.max_file_bytes == max_file_bytes &&
-          it->second.max_triangles == max_triangles) {
-        const FileCache::Impl::Mesh entry = it->second;
+      const auto fresh = [&](const FileCache::Impl::Mesh& m) {
+        return m.stamp == *stamp && m.max_file_bytes == max_file_bytes && m.max_triangles == max_triangles;
+      };
+      if (std::shared_ptr<const FileCache::Impl::Mesh> entry = cache.meshes.find(path, fresh)) {
         lock.unlock();
-        for (Diagnostic d : entry.reported) {
-          if (d.location == entry.where) d.location = where;
+        for (Diagnostic d : entry->reported) {
+          if (d.location == entry->where) d.location = where;
           sink.report(std::move(d));
         }
-        return entry.tree;
+        return entry->tree;
       }
     }
     CollectingSink reported;
@@ -132,8 +133,9 @@ struct MeshCache::Impl {
     std::lock_guard<std::mutex> lock(cache.mutex);
     ++cache.files_read;
     if (stamp)
-      cache.meshes[path] =
-          FileCache::Impl::Mesh{*stamp, max_file_bytes, max_triangles, tree, std::move(reported.diagnostics()), where};
+      cache.meshes.put(path,
+                       std::make_shared<const FileCache::Impl::Mesh>(FileCache::Impl::Mesh{
+                           *stamp, max_file_bytes, max_triangles, tree, std::move(reported.diagnostics()), where}));
     return tree;
   }
 
