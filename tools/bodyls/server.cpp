@@ -106,6 +106,7 @@ struct Server::Impl {
   bool client_watches = false;
   bool client_disabled_actions = false;
   bool client_show_document = false;
+  bool client_hover_plain_text = false;  ///< the client prefers plain text to Markdown in a hover
   int next_request_id = 1;
   std::set<std::string> cancelled;  // ids (dumped) of requests cancelled before they were handled
   Clock::time_point next_poll = Clock::now();
@@ -232,6 +233,7 @@ struct Server::Impl {
     client_watches = flag({"workspace", "didChangeWatchedFiles", "dynamicRegistration"});
     client_disabled_actions = flag({"textDocument", "codeAction", "disabledSupport"});
     client_show_document = flag({"window", "showDocument", "support"});
+    client_hover_plain_text = prefers_plain_text(capabilities, "hover");
     if (init.is_object() && init.contains("debounceMs") && init["debounceMs"].is_number_integer())
       options.debounce_ms = std::clamp(init["debounceMs"].get<int>(), 0, 10000);
     initialized = true;
@@ -516,6 +518,7 @@ struct Server::Impl {
       const Document& d = it->second;
       document =
           FeatureDocument{d.uri, d.path, d.text, d.model, d.model && d.model_version == d.version, d.model_texts};
+      document.plain_text = client_hover_plain_text;
     }
     return answer_feature(method, params, document);
   }
