@@ -618,11 +618,17 @@ int Server::exit_code() const {
   return impl_->exit_code;
 }
 
+// Where a user finds the set-ups that start bodyls (CMake installs editors/ there).
+const char* const kEditorSetups =
+    "Editor set-ups (Neovim, Emacs, VS Code, Kate; how to load each: docs/tools/bodyls.md, \"Editors\"): "
+    "editors/ in the source tree, share/bodyfmt/editors where bodyfmt is installed. They start the bodyls on PATH.";
+
 int run_server(int argc, char** argv) {
   tools::Front front("bodyls",
                      "The language server for Choreonoid .body files (LSP over standard input and output); the "
                      "options are bodycheck's",
                      {true, false});
+  front.app().footer(kEditorSetups);
   // The editor sends the files: no positional paths (the front's are bodycheck's).
   front.app().remove_option(front.app().get_option("paths"));
   ServerOptions options;
