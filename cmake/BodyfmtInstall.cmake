@@ -61,3 +61,5 @@ install(FILES
 install(FILES ${PROJECT_SOURCE_DIR}/LICENSE ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DATADIR}/doc/bodyfmt)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/ DESTINATION ${CMAKE_INSTALL_DATADIR}/doc/bodyfmt/docs)
 install(FILES ${PROJECT_SOURCE_DIR}/dynamics/README.md DESTINATION ${CMAKE_INSTALL_DATADIR}/doc/bodyfmt/dynamics)
+# The editor set-ups that start bodyls (bodyls --help names this folder).
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/editors/ DESTINATION ${CMAKE_INSTALL_DATADIR}/bodyfmt/editors)

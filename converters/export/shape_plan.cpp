@@ -69,8 +69,9 @@ class Planner {
   ShapePlan plan();
 
  private:
-  void loss(LossKind kind, std::string what, std::string hint = {}) {
-    plan_.losses.push_back({kind, shape_.source, std::move(what), std::move(hint)});
+  void loss(LossKind kind, std::string what, std::string hint = {}) { loss_at(shape_.source, kind, what, hint); }
+  void loss_at(const SourceLocation& at, LossKind kind, std::string what, std::string hint = {}) {
+    plan_.losses.push_back({kind, at.known() ? at : shape_.source, std::move(what), std::move(hint)});
   }
   void geometry();
   void mesh_resource(const MeshResource& res);
@@ -105,7 +106,8 @@ ShapePlan Planner::plan() {
   if (appearance.texture)
     loss(LossKind::kTextures, fmt::format("the texture '{}'", appearance.texture->uri), "colours are kept");
   if (!target_.emissive_color && appearance.material && !appearance.material->emissive_color.isZero(0))
-    loss(LossKind::kMaterials, "an emissive colour", fmt::format("{} materials have one rgba colour", target_.name));
+    loss_at(appearance.material->emissive_source, LossKind::kMaterials, "an emissive colour",
+            fmt::format("{} materials have one rgba colour", target_.name));
   if (shape_.visual || shape_.collision) geometry();
   return std::move(plan_);
 }

@@ -148,6 +148,22 @@ def simpletank(browser, tool, model, out, failures):
             break
     else:
         failures.append(f"SimpleTank: no finding names a link: {findings}")
+    # Each finding starts with its file's name and line:col, in the side bar's width whatever the
+    # folders (issue 47: a long path pushed line:col out of sight); the full path is its tooltip.
+    shown = browser.evaluate("""[...document.querySelectorAll('#findings li')].map((li) => {
+        const at = li.firstElementChild, side = document.getElementById('side').getBoundingClientRect();
+        return { text: li.textContent, title: at ? at.title : null,
+                 inside: at ? at.getBoundingClientRect().right <= side.right : false }; })""")
+    for f, li in zip(findings, shown):
+        placed = re.match(r"^(.*):(\d+):(\d+)$", f["where"])
+        name = pathlib.Path(placed.group(1) if placed else f["where"]).name
+        start = (f"{name}:{placed.group(2)}:{placed.group(3)}" if placed else name) + f": {f['severity']}:"
+        if not li["text"].startswith(start) or li["title"] != f["where"] or not li["inside"]:
+            failures.append(f"SimpleTank: finding {f['rule']} shows {li['text'][:120]!r} (tooltip {li['title']!r}, "
+                            f"in the side bar: {li['inside']}), not {start!r} first with the path as tooltip")
+            break
+    if len(shown) != len(findings):
+        failures.append(f"SimpleTank: {len(shown)} findings listed, {len(findings)} on the page")
     bodycheck_rules = sorted(f["rule"] for f in findings)
     print(f"SimpleTank findings on the page: {bodycheck_rules}")
 

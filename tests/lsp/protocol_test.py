@@ -565,6 +565,87 @@ def language_features():
         c.kill()
 
 
+def hover_value(c, uri, text, needle, offset=1):
+    reply = c.request("textDocument/hover", {"textDocument": {"uri": uri}, "position": position_of(text, needle, 0, offset)})
+    return reply["result"]["contents"]
+
+
+@case
+def hover_content_formats():
+    """A hover comes in the format the client prefers among those it declares
+    (textDocument.hover.contentFormat, most preferred first): plain text for Emacs 28's eglot
+    without markdown-mode (["plaintext"]), Markdown otherwise; with no markup in plain text."""
+    folder = work_dir("hover_content_formats")
+    path = os.path.join(folder, "features.body")
+    uri = uri_of(path)
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(FEATURES)
+    cases = [(["plaintext"], "plaintext"), (["plaintext", "markdown"], "plaintext"),
+             (["markdown", "plaintext"], "markdown"), (None, "markdown")]
+    for formats, kind in cases:
+        capabilities = {} if formats is None else {"textDocument": {"hover": {"contentFormat": formats}}}
+        c = client()
+        try:
+            c.initialize(capabilities)
+            c.open(uri, FEATURES)
+            c.diagnostics(uri, 1)
+            for needle in ("joint_range", EMOJI + "BASE", "-90"):
+                contents = hover_value(c, uri, FEATURES, needle)
+                assert contents["kind"] == kind, (formats, needle, contents)
+                value = contents["value"]
+                if kind == "plaintext":
+                    assert "**" not in value and "`" not in value, (formats, needle, value)
+                else:
+                    assert "**" in value, (formats, needle, value)
+            # The key's own words in both: its name and its meaning.
+            assert "joint_range" in hover_value(c, uri, FEATURES, "joint_range")["value"]
+        finally:
+            c.kill()
+
+
+# The same joint in three files: format 2.0 (degrees), format 1.0 with angle_unit: radian, and
+# format 1.0 with no angle_unit (degrees, Choreonoid's default).
+UNITS = ("format: ChoreonoidBody\nformat_version: %s\n%sname: U\nlinks:\n"
+         "  - { name: B, joint_type: free, mass: 1, inertia: [1,0,0,0,1,0,0,0,1] }\n"
+         "  - { name: A, parent: B, joint_type: revolute, joint_axis: Z, joint_range: [ -1, 1 ], "
+         "rotation: [ 0, 0, 1, 0 ], mass: 1, inertia: [1,0,0,0,1,0,0,0,1] }\n")
+KEYS_DOC = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "docs", "keys.md")
+
+
+@case
+def hover_units_and_reference():
+    """A key's hover gives an angle's unit as the file reads it (not "angle"), and cites the
+    section of docs/keys.md (installed with the manual) that lists the key, not the
+    specification's sections, which are not installed."""
+    folder = work_dir("hover_units_and_reference")
+    with open(KEYS_DOC, encoding="utf-8") as f:
+        headings = [line[3:].strip() for line in f if line.startswith("## ")]
+    for version, header, unit in (("2.0", "", "degree"), ("1.0", "angle_unit: radian\n", "radian"),
+                                  ("1.0", "", "degree")):
+        text = UNITS % (version, header)
+        path = os.path.join(folder, "u%s%s.body" % (version, "r" if header else ""))
+        uri = uri_of(path)
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(text)
+        c = client()
+        try:
+            c.initialize()
+            c.open(uri, text)
+            c.diagnostics(uri, 1)
+            joint_range = hover_value(c, uri, text, "joint_range")["value"]
+            assert "unit: %s if revolute, else m" % unit in joint_range, (version, header, joint_range)
+            rotation = hover_value(c, uri, text, "rotation")["value"]
+            assert "unit: %s (4th number)" % unit in rotation, (version, header, rotation)
+            for value in (joint_range, rotation):
+                assert "§" not in value, value
+                cited = value.split("docs/keys.md, \"", 1)
+                assert len(cited) == 2, ("no docs/keys.md section cited", value)
+                section = cited[1].split("\"", 1)[0]
+                assert section in headings, (section, headings)
+        finally:
+            c.kill()
+
+
 RENAMED = ("format: ChoreonoidBody\nformat_version: 2.0\nangle_unit: degree\nname: T\nroot_link: BASE\n"
            "links:\n  - name: BASE\n    joint_type: free\n    mass: 1\n    inertia: [1,0,0,0,1,0,0,0,1]\n"
            "  - { name: ARM, parent: BASE, joint_type: fixed, mass: 1, inertia: [1,0,0,0,1,0,0,0,1] }\n")

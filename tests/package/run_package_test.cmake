@@ -54,7 +54,7 @@ foreach(tool IN LISTS installed_tools)
       continue()
     endif()
     execute_process(COMMAND "${tool}" ${sub} --help OUTPUT_VARIABLE help ERROR_QUIET RESULT_VARIABLE rc)
-    string(REGEX MATCHALL "[A-Za-z_-]+/[A-Za-z_.-]+\\.md" docs "${help}")
+    string(REGEX MATCHALL "[A-Za-z_-]+(/[A-Za-z_.-]+)+\\.md" docs "${help}")
     foreach(doc IN LISTS docs)
       math(EXPR named_docs "${named_docs} + 1")
       if(NOT EXISTS "${doc_dir}/${doc}")
@@ -65,6 +65,14 @@ foreach(tool IN LISTS installed_tools)
 endforeach()
 if(named_docs LESS 3 OR NOT EXISTS "${doc_dir}/README.md" OR NOT EXISTS "${doc_dir}/docs/rules.md")
   message(FATAL_ERROR "package test: the manual is not installed in ${doc_dir} (${named_docs} documents named by --help)")
+endif()
+
+# bodyls --help names where the editor set-ups are installed, and they are there (issue 47).
+execute_process(COMMAND "${prefix}/bin/bodyls" --help OUTPUT_VARIABLE help ERROR_QUIET)
+if(NOT help MATCHES "share/bodyfmt/editors" OR NOT EXISTS "${prefix}/share/bodyfmt/editors/nvim/lua/bodyls.lua"
+   OR NOT EXISTS "${prefix}/share/bodyfmt/editors/emacs/bodyls.el")
+  message(FATAL_ERROR "package test: bodyls --help does not name share/bodyfmt/editors, or the set-ups are not "
+                      "installed there:\n${help}")
 endif()
 
 run("run" "${consumer_build}/package_consumer" "${SOURCE_DIR}/examples/simpletank.body")

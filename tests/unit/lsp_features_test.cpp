@@ -131,6 +131,48 @@ TEST_CASE("lsp features: hover on a key gives its meaning, unit and default from
   CHECK(h->markdown.find("default: [1, 1, 1]") != std::string::npos);
 }
 
+TEST_CASE("lsp features: a key's hover gives an angle's unit as the file reads it and cites docs/keys.md") {
+  // body-format-spec §3: format 2.0 reads degrees; format 1.0 reads radians with
+  // angle_unit: radian. The unit named is the file's, not the word "angle" (issue 47).
+  auto h = hover(doc(kSmall), point_of(kSmall, "joint_range"));
+  REQUIRE(h);
+  CHECK(h->markdown.find("unit: degree if revolute, else m") != std::string::npos);
+  CHECK(h->markdown.find("unit: angle") == std::string::npos);
+  const std::string radian =
+      "format: ChoreonoidBody\nformatVersion: 1.0\nangleUnit: radian\nlinks:\n  - name: a\n    jointType: revolute\n"
+      "    jointRange: [ -1.5, 1.5 ]\n";
+  h = hover(doc(radian), point_of(radian, "jointRange"));
+  REQUIRE(h);
+  CHECK(h->markdown.find("unit: radian if revolute, else m") != std::string::npos);
+  // The spec's sections are not installed; docs/keys.md is, under the heading named.
+  CHECK(h->markdown.find("§") == std::string::npos);
+  CHECK(h->markdown.find("docs/keys.md, \"Link\"") != std::string::npos);
+  CHECK(read(fs::path(BODYFMT_EXAMPLES_DIR).parent_path() / "docs" / "keys.md").find("\n## Link\n") !=
+        std::string::npos);
+}
+
+TEST_CASE("lsp features: a hover's plain text is its Markdown without markup, names kept as written") {
+  // A link name with Markdown's characters: escaped in Markdown, verbatim in plain text.
+  const std::string text =
+      "format: ChoreonoidBody\nformat_version: 2.0\nlinks:\n"
+      "  - { name: \"*arm_1*\", joint_type: free, mass: 2, inertia: [1,0,0,0,1,0,0,0,1] }\n";
+  bodyfmt::CollectingSink sink;
+  const auto model = bodyfmt::load_body_string(text, "/tmp/names.body", {}, sink);
+  REQUIRE(model);
+  Document d = doc(text);
+  d.model = &*model;
+  d.model_is_current = true;
+  const auto h = hover(d, point_of(text, "*arm_1*", 1));
+  REQUIRE(h);
+  CHECK(h->plain_text.find("link *arm_1* — joint free") != std::string::npos);
+  CHECK(h->markdown.find("**link \\*arm_1\\*** — joint free") != std::string::npos);
+  CHECK(h->plain_text.find("**") == std::string::npos);
+  const auto key = hover(d, point_of(text, "joint_type"));
+  REQUIRE(key);
+  CHECK(key->plain_text.rfind("joint_type (also jointType) — Link\n\n", 0) == 0);
+  CHECK(key->markdown.rfind("**joint_type** (also `jointType`) — Link\n\n", 0) == 0);
+}
+
 TEST_CASE("lsp features: hover on a misspelt key names the key it is probably") {
   const std::string text = "format: ChoreonoidBody\nformat_version: 2.0\nlinks:\n  - name: a\n    jiont_type: free\n";
   const auto h = hover(doc(text), point_of(text, "jiont_type"));

@@ -359,9 +359,11 @@ int main(int argc, char** argv) {
   CLI::Option* fix_option =
       app.add_flag("--fix{safe}", settings.fix_class,
                    "apply the safe fix-its in place (docs/rules.md), after re-loading the result to prove the model "
-                   "is unchanged; then report what remains. --fix=geometry instead replaces the centre of mass and "
+                   "is unchanged; then report what remains (KIND safe, the default). --fix=geometry instead replaces "
+                   "the centre of mass and "
                    "inertia of the links an inertia rule flags with those of their shapes at their written mass")
           ->check(CLI::IsMember({"safe", "geometry"}))
+          ->option_text("[=KIND]")
           ->group(fixing);
   app.add_flag("--dry-run", settings.fixing.dry_run, "with --fix: print a unified diff instead of writing")
       ->needs(fix_option)

@@ -33,6 +33,7 @@ int main(int argc, char** argv) {
                       "elements, and the tensor at the written mass")
           ->expected(0, 1)
           ->type_name("DENSITY")
+          ->option_text("[=DENSITY]")
           ->check(tools::number_above_zero(false));
   std::string pose_text;
   CLI::Option* pose_option =

@@ -77,6 +77,20 @@ Utf16Range utf16_range_of(const TextLines& lines, const TextRange& range) {
           lines.position_of(lines.offset_of_column(range.end.line, range.end.column))};
 }
 
+bool prefers_plain_text(const json& capabilities, const char* feature) {
+  const json* formats = &capabilities;
+  for (const char* key : {"textDocument", feature, "contentFormat"}) {
+    if (!formats->is_object() || !formats->contains(key)) return false;
+    formats = &(*formats)[key];
+  }
+  if (!formats->is_array()) return false;
+  for (const json& kind : *formats) {
+    if (kind == "markdown") return false;
+    if (kind == "plaintext") return true;
+  }
+  return false;  // neither: the protocol's other kinds are none bodyls writes
+}
+
 bool is_feature_method(const std::string& method) {
   return std::find(std::begin(kMethods), std::end(kMethods), method) != std::end(kMethods);
 }
@@ -101,8 +115,9 @@ std::optional<json> answer_feature(const std::string& method, const json& params
   if (method == "textDocument/hover") {
     const std::optional<Hover> h = hover(doc, at);
     if (!h) return json(nullptr);
-    return json{{"contents", {{"kind", "markdown"}, {"value", h->markdown}}},
-                {"range", range_json(texts, document.path, h->range)}};
+    const json contents = document.plain_text ? json{{"kind", "plaintext"}, {"value", h->plain_text}}
+                                              : json{{"kind", "markdown"}, {"value", h->markdown}};
+    return json{{"contents", contents}, {"range", range_json(texts, document.path, h->range)}};
   }
   if (method == "textDocument/completion") {
     json items = json::array();

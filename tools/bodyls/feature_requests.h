@@ -26,7 +26,14 @@ struct FeatureDocument {
   /// The open buffers the model read in place of its included files (by canonical path): the
   /// model's positions in them are converted with those texts; other files are read from disk.
   std::shared_ptr<const std::map<std::string, std::string>> model_texts;
+  /// The client asked for plain text, not Markdown (prefers_plain_text): hovers are sent so.
+  bool plain_text = false;
 };
+
+/// Whether the client's `textDocument.<feature>.contentFormat` (its MarkupKinds, the one it
+/// prefers first) puts "plaintext" before "markdown", or lists plain text and not Markdown.
+/// A client that declares no formats gets Markdown.
+bool prefers_plain_text(const nlohmann::json& capabilities, const char* feature);
 
 /// The answer to `method` (textDocument/hover, completion, definition, references,
 /// prepareRename, rename, documentSymbol), or nullopt when `method` is none of these.

@@ -117,6 +117,7 @@ struct Server::Impl {
   bool client_watches = false;
   bool client_disabled_actions = false;
   bool client_show_document = false;
+  bool client_hover_plain_text = false;  ///< the client prefers plain text to Markdown in a hover
   // Requests are sent from the viewers' threads too.
   std::atomic<int> next_request_id{1};
   /// The client's process (initialize's processId), watched while it was alive at initialize.
@@ -250,6 +251,7 @@ struct Server::Impl {
     client_watches = flag({"workspace", "didChangeWatchedFiles", "dynamicRegistration"});
     client_disabled_actions = flag({"textDocument", "codeAction", "disabledSupport"});
     client_show_document = flag({"window", "showDocument", "support"});
+    client_hover_plain_text = prefers_plain_text(capabilities, "hover");
     if (init.is_object() && init.contains("debounceMs") && init["debounceMs"].is_number_integer())
       options.debounce_ms = std::clamp(init["debounceMs"].get<int>(), 0, 10000);
     if (init.is_object() && init.contains("maxDiagnostics") && init["maxDiagnostics"].is_number_integer())
@@ -596,6 +598,7 @@ struct Server::Impl {
       const Document& d = it->second;
       document =
           FeatureDocument{d.uri, d.path, d.text, d.model, d.model && d.model_version == d.version, d.model_texts};
+      document.plain_text = client_hover_plain_text;
     }
     return answer_feature(method, params, document);
   }
@@ -715,11 +718,17 @@ int Server::exit_code() const {
   return impl_->exit_code;
 }
 
+// Where a user finds the set-ups that start bodyls (CMake installs editors/ there).
+const char* const kEditorSetups =
+    "Editor set-ups (Neovim, Emacs, VS Code, Kate; how to load each: docs/tools/bodyls.md, \"Editors\"): "
+    "editors/ in the source tree, share/bodyfmt/editors where bodyfmt is installed. They start the bodyls on PATH.";
+
 int run_server(int argc, char** argv) {
   tools::Front front("bodyls",
                      "The language server for Choreonoid .body files (LSP over standard input and output); the "
                      "options are bodycheck's",
                      {true, false});
+  front.app().footer(kEditorSetups);
   // The editor sends the files: no positional paths (the front's are bodycheck's).
   front.app().remove_option(front.app().get_option("paths"));
   ServerOptions options;

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <filesystem>
 #include <map>
 
 #ifndef BODYVIEW_ASSETS_FROM_BINDIR
@@ -139,6 +140,13 @@ int link_of(const Model& model, const SourceLocation& at) {
   return best;
 }
 
+/// A finding's place as the list shows it: the file's name (not its folders, which would push
+/// line:col out of the narrow side bar) with line and column.
+std::string short_where(const SourceLocation& at) {
+  const std::string name = std::filesystem::path(at.file.str()).filename().string();
+  return at.known() ? fmt::format("{}:{}:{}", name, at.line, at.column) : name;
+}
+
 std::string findings_json(const PageInput& input) {
   std::string out = "[";
   TextOptions plain;
@@ -146,12 +154,12 @@ std::string findings_json(const PageInput& input) {
   for (std::size_t i = 0; i < input.findings.size(); ++i) {
     const Diagnostic& d = input.findings[i];
     const SourceLocation& at = d.location;
-    out +=
-        (i ? ",\n" : "\n") + std::string("{\"severity\":") + text::json_quote(severity_name(d.severity)) +
-        ",\"rule\":" + text::json_quote(d.rule_id) + ",\"message\":" + text::json_quote(d.message) + ",\"where\":" +
-        text::json_quote(at.known() ? fmt::format("{}:{}:{}", at.file.str(), at.line, at.column) : at.file.str()) +
-        ",\"text\":" + text::json_quote(input.sources ? format_text_diagnostic(d, *input.sources, plain) : d.message) +
-        ",\"link\":" + std::to_string(input.model ? link_of(*input.model, at) : -1) + "}";
+    out += (i ? ",\n" : "\n") + std::string("{\"severity\":") + text::json_quote(severity_name(d.severity)) +
+           ",\"rule\":" + text::json_quote(d.rule_id) + ",\"message\":" + text::json_quote(d.message) + ",\"where\":" +
+           text::json_quote(at.known() ? fmt::format("{}:{}:{}", at.file.str(), at.line, at.column) : at.file.str()) +
+           ",\"at\":" + text::json_quote(short_where(at)) + ",\"text\":" +
+           text::json_quote(input.sources ? format_text_diagnostic(d, *input.sources, plain) : d.message) +
+           ",\"link\":" + std::to_string(input.model ? link_of(*input.model, at) : -1) + "}";
   }
   return out + "]";
 }

@@ -1,5 +1,6 @@
 #include "front.h"
 
+#include "help_formatter.h"
 #include "model_file_readers.h"
 #include "number_options.h"
 
@@ -144,6 +145,7 @@ void Front::add_options() {
     const std::lock_guard<std::mutex> lock(sources_mutex_);
     sources_.add_file(path);
   };
+  app_.formatter(help_formatter());
   app_.set_version_flag("--version", name_ + " " + BODYFMT_VERSION, "print the version and exit");
   if (features_.many_inputs) {
     app_.add_option("paths", inputs_,

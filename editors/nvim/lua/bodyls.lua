@@ -9,6 +9,12 @@
 -- the client as they are (flags = {debounce_text_changes = N}: Neovim 0.7 waits 150 ms before it
 -- sends an edit).
 -- Works on Neovim 0.7 (Debian 12), which has no vim.lsp.start, and on later versions.
+--
+-- The editor's own keys then ask bodyls: <C-x><C-o> completes (omnifunc), K shows the hover
+-- (a buffer-local mapping, as Neovim 0.10 makes one), <C-]> goes to the definition (tagfunc).
+-- Neovim 0.7 sets none of them for a language server, and its vim.lsp.buf.completion()
+-- replaces the line from column 1 (it reads the text after the cursor as the word): use
+-- <C-x><C-o>, which completes from the start of the server's replace range.
 local M = {}
 
 M.config = { cmd = { "bodyls" }, name = "bodyls" }
@@ -72,6 +78,17 @@ function M.open_viewer(bufnr, on_url)
   end)
 end
 
+-- Completion, hover and go to definition on the editor's own keys, for the buffer only. A
+-- K the user mapped for the buffer stays theirs.
+function M.set_keys(bufnr)
+  local bo = vim.bo[bufnr]
+  bo.omnifunc = "v:lua.vim.lsp.omnifunc"
+  bo.tagfunc = "v:lua.vim.lsp.tagfunc"
+  if vim.fn.maparg("K", "n", false, true).buffer ~= 1 then
+    vim.keymap.set("n", "K", vim.lsp.buf.hover, { buffer = bufnr, desc = "bodyls: hover" })
+  end
+end
+
 function M.setup(opts)
   M.config = vim.tbl_extend("force", M.config, opts or {})
   local group = vim.api.nvim_create_augroup("bodyls", { clear = true })
@@ -92,6 +109,7 @@ function M.setup(opts)
       bo.expandtab = true
       bo.shiftwidth = 2
       bo.softtabstop = 2
+      M.set_keys(args.buf)
       vim.api.nvim_buf_create_user_command(args.buf, "BodyView", function()
         M.open_viewer(args.buf)
       end, { desc = "Open this model in bodyview" })

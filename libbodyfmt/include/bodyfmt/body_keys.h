@@ -59,8 +59,9 @@ const std::vector<std::string_view>& element_type_names();
 const std::vector<std::string_view>& geometry_type_names();
 const std::vector<std::string_view>& device_type_names();
 
-/// One key as a line of Markdown: meaning, unit, default, values.
-std::string describe_body_key(const BodyKey& key);
+/// One key as a line of Markdown: meaning, unit, default, values. `angle_unit` ("degree",
+/// "radian") stands for the word "angle" in the unit, as a file that names its unit reads it.
+std::string describe_body_key(const BodyKey& key, std::string_view angle_unit = "angle");
 /// docs/keys.md: every node's keys as Markdown tables.
 std::string body_keys_markdown();
 

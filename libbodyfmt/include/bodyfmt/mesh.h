@@ -2,6 +2,7 @@
 /// Triangle meshes: what the tessellator and the mesh importers produce, and what the
 /// exporters and the dynamics checker consume.
 
+#include <bodyfmt/diagnostic.h>
 #include <bodyfmt/export.h>
 
 #include <Eigen/Geometry>
@@ -22,6 +23,10 @@ struct Material {
   Eigen::Vector3d specular_color{0, 0, 0};
   double specular_exponent = 25.0;
   double transparency = 0.0;  ///< 0 = opaque, 1 = invisible (alpha = 1 - transparency)
+  /// Where a body file wrote the emissive colour (its key), for an exporter that cannot
+  /// write one; unknown when the colour comes from a mesh file or was not written. Not part
+  /// of the material's value: == ignores it.
+  SourceLocation emissive_source;
 
   friend bool operator==(const Material& a, const Material& b) {
     return a.ambient_intensity == b.ambient_intensity && a.diffuse_color == b.diffuse_color &&

@@ -52,7 +52,12 @@ Appearance read_appearance(LoadContext& ctx, const yaml::NodeRef& appearance) {
         }
       };
       if (auto v = mr.take({"diffuse", "diffuseColor"})) colour(v, "diffuse", material.diffuse_color);
-      if (auto v = mr.take({"emissive", "emissiveColor"})) colour(v, "emissive", material.emissive_color);
+      if (auto v = mr.take({"emissive", "emissiveColor"})) {
+        colour(v, "emissive", material.emissive_color);
+        // An exporter that cannot write the colour names this key (its spelling's entry).
+        const yaml::MapEntry* entry = m->find("emissive");
+        material.emissive_source = (entry ? entry : m->find("emissiveColor"))->key_location;
+      }
       if (auto v = mr.take({"specular", "specularColor"})) colour(v, "specular", material.specular_color);
       // Choreonoid falls back to shininess whenever specular_exponent does not read as a number.
       yaml::NodeRef exponent_node = mr.take({"specular_exponent"});

@@ -15,6 +15,10 @@ its own, from the text. EDIT_LINE puts non-ASCII text and a surrogate pair befor
 a column counted in bytes, code points or UTF-16 units differs.
 
 Severities compare as LSP's: bodycheck's fatal and error are 1, warning 2, note 3 (or 4).
+Then the editor's own keys on a small model (KEYS_MODEL): in Neovim, <C-x><C-o> completes a
+key at the typed line's indentation, K shows the key's hover, and <C-]> on Tank.body's
+`parent: CHASSIS` lands where go to definition does; in Emacs, eldoc shows the hover without
+Markdown markup (eglot renders none without markdown-mode).
 With --viewer (a build with bodyview, which bodyls runs from beside itself), the set-up's viewer
 command (:BodyView, C-c C-v) then opens the first model in bodyview: its page must be served.
 Prints the editor's wall time and the median time from opening a model to its diagnostics.
@@ -159,6 +163,122 @@ def definition_failures(got, plan):
     return [] if landed == want else [f"definition: landed at {landed}, expected {want}"]
 
 
+# A model for the editor's own keys (Neovim): the typed line below its last one completes to a
+# key of ARM at ARM's indentation; K on `mass` shows the key's unit.
+KEYS_MODEL = """format: ChoreonoidBody
+format_version: 2.0
+angle_unit: degree
+name: keys
+root_link: BASE
+links:
+  -
+    name: BASE
+    joint_type: free
+    mass: 2.5
+    inertia: [ 1, 0, 0, 0, 1, 0, 0, 0, 1 ]
+  -
+    name: ARM
+    parent: BASE
+    joint_type: revolute
+    joint_axis: Z
+    joint_id: 0
+    mass: 1
+    inertia: [ 1, 0, 0, 0, 1, 0, 0, 0, 1 ]
+"""
+KEYS_TYPED = "    joint_ra"
+
+
+def keys_plan(work, bodycheck):
+    path = os.path.realpath(os.path.join(work, "keys.body"))
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(KEYS_MODEL)
+    lines = KEYS_MODEL.split("\n")
+    hover_line = lines.index("    mass: 2.5") + 1
+    return {"path": path, "counts": counts_by_file(expected_keys(bodycheck_findings(bodycheck, path))),
+            "typed": KEYS_TYPED, "hover_line": hover_line, "hover_column": 5}
+
+
+def keys_failures(editor, got):
+    """Neovim: <C-x><C-o> completes `joint_ra` to the key joint_range at the typed line's
+    indentation (Neovim 0.7's vim.lsp.buf.completion() loses it); K shows the hover of `mass`
+    (kilograms), not a man page. Emacs: eldoc shows that hover as text, without the Markdown
+    markup Emacs 28's eglot cannot render without markdown-mode (it asks for plain text)."""
+    if not got:
+        return ["keys: no result"]
+    failures = []
+    hover = got.get("hover") or ""
+    if editor != "nvim":
+        if "mass" not in hover or "kg" not in hover or "**" in hover or "`" in hover:
+            failures.append(f"hover: eldoc showed {hover!r}, not the hover of `mass` (unit kg) without markup")
+        return failures
+    completed = (got.get("completed") or "").rstrip()
+    if completed != "    joint_range:":
+        failures.append(f"keys: <C-x><C-o> after {KEYS_TYPED!r} left {got.get('completed')!r}, expected "
+                        f"'    joint_range: ' (error: {got.get('completion_error')})")
+    if "mass" not in hover or "kg" not in hover:
+        failures.append(f"keys: K on `mass` showed {hover!r}, not the key's hover with its unit kg "
+                        f"(error: {got.get('hover_error')})")
+    return failures
+
+
+# Choreonoid's Body File Tutorial builds SimpleTank in stages: the chassis, the turret's yaw
+# link, its pitch link (the turret, then the gun), the tracks, the spot light, the camera. The
+# stages are cut here from the corpus's final SimpleTank.body: each adds a block to the last.
+# What each stage must get, as judged by hand (rule, the text of the line it points at):
+# CHASSIS's inertia diag(0.1, 0.1, 0.5) breaks the triangle inequality (0.1 + 0.1 < 0.5), and
+# the tracks write the legacy `centerOfMass` in a format 2.0 file (a safe rename, which the
+# editor must offer as a code action). Nothing else is wrong in the tutorial's model.
+TUTORIAL_STAGES = ("chassis", "turret yaw link", "turret pitch link", "gun", "tracks", "spot light", "camera")
+TUTORIAL_RIGHT = {"inertia-triangle": "    inertia: [", "load-legacy-key": "    centerOfMass: [ 0, 0, 0 ]"}
+
+
+def tutorial_texts(root):
+    with open(os.path.join(root, "Tank", "SimpleTank.body"), encoding="utf-8") as f:
+        lines = f.read().rstrip("\n").split("\n")
+    link = {lines[i + 1].split(": ")[1].strip(): i for i in range(len(lines) - 1)
+            if lines[i].strip() == "-" and lines[i + 1].startswith("    name: ")}
+    item = {}  # the TURRET_P element items: the line of the `-` before the comment or type
+    for i, line in enumerate(lines):
+        for name, mark in (("gun", "# Gun"), ("light", "type: SpotLight"), ("camera", "type: Camera")):
+            if line.strip() == mark:
+                item[name] = i - 1
+    end = len(lines)
+
+    def without(*ranges):
+        return "\n".join(l for i, l in enumerate(lines) if not any(a <= i < b for a, b in ranges)) + "\n"
+    tracks = (link["TRACK_L"], end)
+    return [without((link["TURRET_Y"], end)), without((link["TURRET_P"], end)),
+            without((item["gun"], link["TRACK_L"]), tracks), without((item["light"], link["TRACK_L"]), tracks),
+            without((item["light"], link["TRACK_L"])), without((item["camera"], link["TRACK_L"])),
+            "\n".join(lines) + "\n"]
+
+
+def tutorial_failures(texts, findings):
+    """bodycheck's findings on each stage are the judged ones (TUTORIAL_RIGHT), no more."""
+    failures = []
+    for n, (text, found) in enumerate(zip(texts, findings)):
+        lines = text.split("\n")
+        wrong = [f for f in found if not (f["rule"] in TUTORIAL_RIGHT and 0 < f["line"] <= len(lines)
+                                          and lines[f["line"] - 1].startswith(TUTORIAL_RIGHT[f["rule"]]))]
+        failures += [f"tutorial stage {n + 1} ({TUTORIAL_STAGES[n]}): a wrong finding {f['line']}:{f['column']} "
+                     f"[{f['rule']}] {f['message'][:100]}" for f in wrong]
+        rules = sorted(f["rule"] for f in found)
+        want = ["inertia-triangle"] + (["load-legacy-key"] * 2 if n >= 4 else [])
+        if rules != sorted(want):
+            failures.append(f"tutorial stage {n + 1} ({TUTORIAL_STAGES[n]}): findings {rules}, expected {sorted(want)}")
+    return failures
+
+
+def stage_action_failures(editor, stages):
+    """Each stage's diagnostics offer the actions that exist: the legacy key's rename."""
+    failures = []
+    for n, entry in enumerate(stages or []):
+        for a in entry.get("actions") or []:
+            if a.get("code") == "load-legacy-key" and not a.get("titles"):
+                failures.append(f"tutorial stage {n + 1} ({editor}): no code action on the legacy key at line {a['line']}")
+    return failures
+
+
 def run_editor(editor, program, plan_path, result_path, work, here):
     env = dict(os.environ, BODYLS_PLAN=plan_path, BODYLS_RESULT=result_path, HOME=work, XDG_CONFIG_HOME=work,
                XDG_DATA_HOME=work, XDG_STATE_HOME=work, XDG_CACHE_HOME=work)
@@ -214,6 +334,15 @@ def main():
             plan["definition"] = definition
         else:
             failures.append("no Tank/Tank.body with `parent: CHASSIS` in the corpus for go to definition")
+    plan["keys"] = keys_plan(work, bodycheck)
+    stage_texts = tutorial_texts(root)
+    stage_path = os.path.realpath(os.path.join(work, "tutorial", "SimpleTank.body"))
+    os.makedirs(os.path.dirname(stage_path), exist_ok=True)
+    open(stage_path, "w").close()  # the user's new, empty file
+    stage_findings = [bodycheck_findings(bodycheck, stage_path, t) for t in stage_texts]
+    failures += tutorial_failures(stage_texts, stage_findings)
+    plan["stages"] = {"path": stage_path, "steps": [{"text": t, "counts": counts_by_file(expected_keys(f))}
+                                                    for t, f in zip(stage_texts, stage_findings)]}
     viewer = "--viewer" in sys.argv[8:]
     if viewer:
         plan["viewer"] = models[0]
@@ -254,6 +383,15 @@ def main():
 
     if definition:
         failures += definition_failures(result.get("definition"), definition)
+        failures += ["<C-]>: " + f for f in definition_failures(result.get("tag_definition"), definition)]
+    failures += keys_failures(editor, result.get("keys"))
+    got_stages = result.get("stages") or []
+    if len(got_stages) != len(stage_texts):
+        failures.append(f"{editor} typed {len(got_stages)} of {len(stage_texts)} tutorial stages")
+    for n, (entry, text, found) in enumerate(zip(got_stages, stage_texts, stage_findings)):
+        shown, raw = editor_keys(entry.get("shown") or {}, {stage_path: text})
+        failures += differences(f"tutorial stage {n + 1} ({editor})", shown, expected_keys(found))
+    failures += stage_action_failures(editor, got_stages)
     if viewer:
         failures += viewer_failures(result.get("viewer"))
 

@@ -4,7 +4,8 @@
 ;;
 ;; Loads editors/emacs/bodyls.el (the set-up users load), opens each model of the plan in turn
 ;; (body-mode, eglot), waits for bodyls's diagnostics, makes the plan's edit, waits, undoes it,
-;; waits, and writes what flymake holds after each step as JSON.  The comparison with bodycheck
+;; waits, and writes what flymake holds after each step as JSON; then the hover eldoc shows on
+;; the plan's `keys' model, and the plan's `stages' typed one after another into one buffer.  The comparison with bodycheck
 ;; is editor_diagnostics.py's.  Batch Emacs runs no idle timers, so what they do in an editor is
 ;; done here in their place: sending the edit (eglot's `eglot-send-changes-idle-time') and
 ;; starting flymake's backends once a buffer is managed (its display-deferred start).
@@ -192,13 +193,71 @@ the page there."
     (accept-process-output nil 0.1)  ; the message the server sends beside its answer
     `((url . ,url) (message . ,bodyls-test--message) (page . ,page))))
 
+(defun bodyls-test--hover (keys)
+  "The hover eldoc shows (eglot's own rendering) at the plan's place in the KEYS model."
+  (let* ((path (alist-get 'path keys))
+         (uri (eglot--path-to-uri path))
+         (before (bodyls-test--count uri))
+         (shown nil))
+    (find-file path)
+    (run-hooks 'post-command-hook)
+    (flymake-start)
+    (bodyls-test--wait uri before (alist-get 'counts keys) (concat path ": open for hover"))
+    (goto-char (point-min))
+    (forward-line (1- (alist-get 'hover_line keys)))
+    (forward-char (1- (alist-get 'hover_column keys)))
+    (eglot-hover-eldoc-function (lambda (info &rest _) (setq shown (or info ""))))
+    (let ((deadline (+ (float-time) (/ (bodyls-test--get 'timeout_ms) 1000.0))))
+      (while (and (not shown) (< (float-time) deadline))
+        (accept-process-output nil 0.005)))
+    (set-buffer-modified-p nil)
+    (kill-buffer)
+    `((hover . ,(and shown (substring-no-properties shown))))))
+
+(defun bodyls-test--stages (stages)
+  "The model of STAGES typed stage by stage: each step's text replaces the buffer's; once its
+diagnostics settle, what flymake shows and the code actions offered on each diagnostic the
+server published (their titles, as `eglot-code-actions' offers them)."
+  (let* ((path (alist-get 'path stages))
+         (uri (eglot--path-to-uri path))
+         (entries nil))
+    (find-file path)
+    (run-hooks 'post-command-hook)
+    (flymake-start)
+    (dolist (step (alist-get 'steps stages))
+      (let ((before (bodyls-test--count uri))
+            (actions nil))
+        (erase-buffer)
+        (insert (alist-get 'text step))
+        (eglot--signal-textDocument/didChange)
+        (bodyls-test--wait uri before (alist-get 'counts step) (format "%s: stage %d" path (1+ (length entries))))
+        (seq-doseq (d (plist-get (gethash uri bodyls-test--published) :raw))
+          (let* ((reply (jsonrpc-request (eglot--current-server-or-lose) :textDocument/codeAction
+                                         (list :textDocument (list :uri uri) :range (plist-get d :range)
+                                               :context (list :diagnostics (vector d)))))
+                 (titles (cl-loop for a across reply unless (plist-get a :disabled) collect (plist-get a :title))))
+            (push `((line . ,(1+ (plist-get (plist-get (plist-get d :range) :start) :line)))
+                    (code . ,(plist-get d :code))
+                    (titles . ,(vconcat titles)))
+                  actions)))
+        (push `((shown . ,(bodyls-test--snapshot)) (actions . ,(vconcat (nreverse actions)))) entries)))
+    (set-buffer-modified-p nil)
+    (kill-buffer)
+    (vconcat (nreverse entries))))
+
 (defvar bodyls-test--viewer nil)
+(defvar bodyls-test--keys nil)
+(defvar bodyls-test--stages nil)
 
 (let ((result nil))
   (condition-case failure
       (progn
         (dolist (model (bodyls-test--get 'models))
           (push (bodyls-test--model model) result))
+        (when (bodyls-test--get 'keys)
+          (setq bodyls-test--keys (bodyls-test--hover (bodyls-test--get 'keys))))
+        (when (bodyls-test--get 'stages)
+          (setq bodyls-test--stages (bodyls-test--stages (bodyls-test--get 'stages))))
         (when (bodyls-test--get 'viewer)
           (setq bodyls-test--viewer (bodyls-test--viewer (bodyls-test--get 'viewer)))))
     (error (setq result (cons `((error . ,(error-message-string failure))) result))))
@@ -208,6 +267,8 @@ the page there."
                `((models . ,(vconcat (nreverse (cl-remove-if (lambda (e) (alist-get 'error e)) result))))
                  (notes . ,(vconcat (reverse bodyls-test--notes)))
                  (viewer . ,bodyls-test--viewer)
+                 (keys . ,bodyls-test--keys)
+                 (stages . ,bodyls-test--stages)
                  (error . ,(and error-entry (alist-get 'error error-entry)))))))))
 
 (kill-emacs 0)

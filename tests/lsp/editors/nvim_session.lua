@@ -6,11 +6,20 @@
 --   BODYLS_PLAN=plan.json BODYLS_RESULT=out.json nvim --headless -u NONE -i NONE -n -c "luafile nvim_session.lua"
 --
 -- The plan: {server, editors_dir, root_dir, timeout_ms, edit_line, models: [{path, opened, edited}],
--- definition, viewer}, `opened` and `edited` the number of bodycheck's findings by file, before and
+-- definition, keys, viewer}, `opened` and `edited` the number of bodycheck's findings by file, before and
 -- after the edit; `definition` {path, line, column, counts}: where to go to definition at the end
--- (1-based line and byte column); `viewer` a model to open in bodyview with :BodyView at the end.
+-- (1-based line and byte column), with vim.lsp.buf.definition() and then with <C-]>; `keys`
+-- {path, counts, typed, hover_line, hover_column}: the editor's own keys on a model, <C-x><C-o>
+-- at the end of the line `typed` appended to it and K at the hover place (1-based line and byte
+-- column); `stages` {path, steps: [{text, counts}]}: a model typed stage by stage into one
+-- buffer (each step's text replaces the last), its diagnostics and the code actions offered on
+-- each; `viewer` a model to open in bodyview with :BodyView at the end.
 local plan = vim.fn.json_decode(table.concat(vim.fn.readfile(os.getenv("BODYLS_PLAN")), "\n"))
 local result = { models = {}, notes = {} }
+
+local function termcodes(keys)
+  return vim.api.nvim_replace_termcodes(keys, true, false, true)
+end
 
 local function write_result()
   vim.fn.writefile({ vim.fn.json_encode(result) }, os.getenv("BODYLS_RESULT"))
@@ -146,6 +155,44 @@ local function run_model(model)
   vim.cmd("bwipeout!")
 end
 
+-- A model typed stage by stage (the Choreonoid tutorial's SimpleTank): each step's text replaces
+-- the buffer's, and once its diagnostics settle, the code actions offered on each diagnostic
+-- (the titles, as a user picks them from vim.lsp.buf.code_action()).
+local function run_stages(stages)
+  vim.cmd("silent! %bwipeout!")
+  local entries = {}
+  result.stages = entries
+  local uri = vim.uri_from_fname(stages.path)
+  local before = count(uri)
+  vim.cmd("edit " .. vim.fn.fnameescape(stages.path))
+  local buf = vim.api.nvim_get_current_buf()
+  for i, step in ipairs(stages.steps) do
+    local entry = { actions = {} }
+    table.insert(entries, entry)
+    before = count(uri)
+    vim.api.nvim_buf_set_lines(buf, 0, -1, false, vim.split(step.text, "\n", { plain = true }))
+    wait_for(buf, uri, before, step.counts, stages.path .. ": stage " .. i)
+    entry.shown = snapshot()
+    -- As vim.lsp.buf.code_action() asks, with each diagnostic as the server sent it.
+    for _, d in ipairs(published[uri] and published[uri].raw or {}) do
+      local params = { textDocument = { uri = uri }, range = d.range, context = { diagnostics = { d } } }
+      local titles = {}
+      local replies, request_error = vim.lsp.buf_request_sync(buf, "textDocument/codeAction", params, plan.timeout_ms)
+      entry.error = entry.error or request_error
+      for _, reply in pairs(replies or {}) do
+        entry.error = entry.error or (reply.err and vim.inspect(reply.err))
+        for _, action in ipairs(reply.result or {}) do
+          if not action.disabled then
+            table.insert(titles, action.title)
+          end
+        end
+      end
+      table.insert(entry.actions, { line = d.range.start.line + 1, code = d.code, titles = titles })
+    end
+  end
+  vim.cmd("bwipeout!")
+end
+
 -- The first bytes of the answer to GET / at `url` (an http://127.0.0.1:PORT/ address).
 local function http_get(url)
   local host, port = url:match("^http://([%d%.]+):(%d+)/")
@@ -223,6 +270,78 @@ local function check_definition(def)
   entry.file = vim.api.nvim_buf_get_name(0)
   entry.line = cursor[1]
   entry.column = cursor[2] + 1
+
+  -- The same with the editor's own key: <C-]> jumps to the tag the set-up's tagfunc finds.
+  local tag = {}
+  result.tag_definition = tag
+  vim.cmd("buffer " .. buf)
+  vim.api.nvim_win_set_cursor(0, { def.line, def.column - 1 })
+  local ok, failure = pcall(vim.api.nvim_feedkeys, termcodes("<C-]>"), "x", false)
+  tag.error = not ok and tostring(failure) or nil
+  cursor = vim.api.nvim_win_get_cursor(0)
+  tag.file = vim.api.nvim_buf_get_name(0)
+  tag.line = cursor[1]
+  tag.column = cursor[2] + 1
+end
+
+-- The editor's own keys on a model: <C-x><C-o> (omnifunc) at the end of a line typed below the
+-- model's last one, and K (hover) on a key. What each shows, for editor_diagnostics.py to judge.
+local function check_keys(plan_keys)
+  local entry = {}
+  result.keys = entry
+  -- The models opened before are closed: their files' diagnostics are cleared, as a wait expects.
+  vim.cmd("silent! %bwipeout!")
+  local uri = vim.uri_from_fname(plan_keys.path)
+  local before = count(uri)
+  vim.cmd("edit " .. vim.fn.fnameescape(plan_keys.path))
+  local buf = vim.api.nvim_get_current_buf()
+  wait_for(buf, uri, before, plan_keys.counts, plan_keys.path .. ": open for the keys")
+
+  -- Completion: Insert mode stays on until a timer sees the completion (or gives up) and
+  -- leaves it (the one match is inserted as it is; <C-y> without a menu would copy the
+  -- character above); feedkeys with "x!" returns when Insert mode ends.
+  local last = vim.api.nvim_buf_line_count(buf)
+  vim.api.nvim_buf_set_lines(buf, last, last, false, { plan_keys.typed })
+  vim.api.nvim_win_set_cursor(0, { last + 1, 0 })
+  local started = vim.loop.now()
+  local timer = vim.loop.new_timer()
+  timer:start(10, 10, vim.schedule_wrap(function()
+    local shown = #vim.fn.complete_info({ "items" }).items > 0
+    if shown or vim.loop.now() - started > plan.timeout_ms then
+      entry.completion_shown = shown
+      timer:stop()
+      timer:close()
+      vim.api.nvim_feedkeys(termcodes("<Esc>"), "n", false)
+    end
+  end))
+  local ok, failure = pcall(vim.api.nvim_feedkeys, termcodes("A<C-x><C-o>"), "x!", false)
+  entry.completion_error = not ok and tostring(failure) or nil
+  entry.completed = vim.api.nvim_buf_get_lines(buf, last, last + 1, false)[1]
+  vim.cmd("silent undo")
+
+  -- Hover: K opens a floating window with the server's text.
+  local function floats()
+    local found = {}
+    for _, win in ipairs(vim.api.nvim_list_wins()) do
+      if vim.api.nvim_win_get_config(win).relative ~= "" then
+        table.insert(found, win)
+      end
+    end
+    return found
+  end
+  vim.api.nvim_win_set_cursor(0, { plan_keys.hover_line, plan_keys.hover_column - 1 })
+  ok, failure = pcall(vim.api.nvim_feedkeys, "K", "x", false)
+  entry.hover_error = not ok and tostring(failure) or nil
+  vim.wait(plan.timeout_ms, function()
+    return #floats() > 0
+  end, 5)
+  local shown = {}
+  for _, win in ipairs(floats()) do
+    vim.list_extend(shown, vim.api.nvim_buf_get_lines(vim.api.nvim_win_get_buf(win), 0, -1, false))
+    vim.api.nvim_win_close(win, true)
+  end
+  entry.hover = table.concat(shown, "\n")
+  vim.cmd("bwipeout!")
 end
 
 local ok, failure = pcall(function()
@@ -243,6 +362,12 @@ local ok, failure = pcall(function()
   end
   if plan.definition then
     check_definition(plan.definition)
+  end
+  if plan.keys then
+    check_keys(plan.keys)
+  end
+  if plan.stages then
+    run_stages(plan.stages)
   end
   if plan.viewer then
     check_viewer(plan.viewer)

@@ -82,12 +82,13 @@ void key_items(const Outline& o, int mapping, TextRange replace, std::vector<Com
       out.push_back(item("type", "type: ", "the node's type", CompletionKind::kKey, replace));
     return;
   }
+  const std::string angle_unit = angle_unit_word(angle_mode(o));
   for (const BodyKey& key : node->keys) {
     bool taken = false;
     for (const std::string& p : present)
       if (const BodyKey* k = find_body_key(*node, p); k == &key) taken = true;
     if (taken) continue;
-    out.push_back(item(std::string(key.name), std::string(key.name) + ": ", describe_body_key(key),
+    out.push_back(item(std::string(key.name), std::string(key.name) + ": ", describe_body_key(key, angle_unit),
                        CompletionKind::kKey, replace));
   }
 }

@@ -48,10 +48,12 @@ struct Document {
 
 struct Hover {
   std::string markdown;
-  TextRange range;  ///< the key or value hovered
+  std::string plain_text;  ///< the same without markup, for a client that renders no Markdown
+  TextRange range;         ///< the key or value hovered
 };
 
-/// On a key: what it means, its unit and its default. On a number under an angle key: its
+/// On a key: what it means, its unit (an angle's as the file reads it: degree or radian), its
+/// default and where docs/keys.md lists it. On a number under an angle key: its
 /// value in degrees and in radians as the file's format reads it. On a link's name: its mass,
 /// its subtree's combined mass, its joint type and its world frame at the initial pose.
 std::optional<Hover> hover(const Document& document, TextPoint at);

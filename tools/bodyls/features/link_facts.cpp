@@ -10,7 +10,7 @@
 
 namespace bodyfmt::lsp {
 
-std::optional<std::string> link_markdown(const Document& document, std::string_view name) {
+std::optional<HoverText> link_hover(const Document& document, std::string_view name) {
   const Model* model = document.model;
   if (!model || model->links.empty()) return std::nullopt;
   const LinkIndex index = model->find_link(name);
@@ -45,14 +45,16 @@ std::optional<std::string> link_markdown(const Document& document, std::string_v
   };
   const Eigen::Vector3d p = clean(X.translation());
   const Eigen::Vector3d a = clean(rotation.axis());
-  std::string md = fmt::format("**link {}** — joint {}", link.name, joint_type_name(link.joint_type));
-  if (link.parent >= 0) md += fmt::format(", parent {}", model->links[static_cast<std::size_t>(link.parent)].name);
-  md += fmt::format(
-      "\n\nmass {:.6g} kg; with its subtree {:.6g} kg\n\nworld frame at the initial pose: position [{:.6g}, {:.6g}, "
-      "{:.6g}] m, rotation [{:.6g}, {:.6g}, {:.6g}, {:.6g}°]",
-      mass, subtree_mass, p.x(), p.y(), p.z(), a.x(), a.y(), a.z(), rotation.angle() * 180 / kPi);
-  if (!document.model_is_current) md += "\n\n(from the last text that loaded)";
-  return md;
+  HoverText out;
+  out.bold("link " + link.name).text(fmt::format(" — joint {}", joint_type_name(link.joint_type)));
+  if (link.parent >= 0) out.text(", parent " + model->links[static_cast<std::size_t>(link.parent)].name);
+  out.paragraph().text(fmt::format("mass {:.6g} kg; with its subtree {:.6g} kg", mass, subtree_mass)).paragraph();
+  out.text(
+      fmt::format("world frame at the initial pose: position [{:.6g}, {:.6g}, {:.6g}] m, rotation [{:.6g}, "
+                  "{:.6g}, {:.6g}, {:.6g}°]",
+                  p.x(), p.y(), p.z(), a.x(), a.y(), a.z(), rotation.angle() * 180 / kPi));
+  if (!document.model_is_current) out.paragraph().text("(from the last text that loaded)");
+  return out;
 }
 
 }  // namespace bodyfmt::lsp

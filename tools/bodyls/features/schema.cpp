@@ -114,6 +114,11 @@ AngleMode angle_mode(const Outline& o) {
   return mode;
 }
 
+std::string angle_unit_word(const AngleMode& mode) {
+  if (mode.refused) return "angle";
+  return mode.degrees ? "degree" : "radian";
+}
+
 bool reads_as_angle(const Outline& o, int scalar, const BodyKey& key, int mapping, std::string& why) {
   switch (key.angle) {
     case AngleRule::kNone: why = "not an angle"; return false;

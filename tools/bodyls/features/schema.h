@@ -40,6 +40,9 @@ struct AngleMode {
   std::string why;       ///< "format 2.0", "format 1.0, angle_unit: radian", ...
 };
 AngleMode angle_mode(const Outline& outline);
+/// The word for "angle" in a key's unit as the file reads its angles: "degree", "radian", or
+/// "angle" when the file does not load.
+std::string angle_unit_word(const AngleMode& mode);
 
 /// Whether the number `scalar` (a node of the outline) is read as an angle, given the key it
 /// is under, that key's rule and the mapping that holds the key. Why not, in `why`.

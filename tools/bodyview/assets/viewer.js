@@ -515,12 +515,14 @@
     });
     }
 
-    // Findings: clicking one selects its link and shows the diagnostic with its caret.
+    // Findings: clicking one selects its link and shows the diagnostic with its caret. Each
+    // starts with its file's name and line:col; the full path is the name's tooltip.
     function buildFindings() {
     const findingList = document.getElementById('findings');
     document.getElementById('finding-count').textContent = '(' + data.findings.length + ')';
     data.findings.forEach((f) => {
-      const li = el('li', { class: f.severity, title: f.text }, f.where + ': ' + f.severity + ': ' + f.message + ' [' + f.rule + ']');
+      const at = el('span', { class: 'at', title: f.where }, f.at);
+      const li = el('li', { class: f.severity, title: f.text }, at, ': ' + f.severity + ': ' + f.message + ' [' + f.rule + ']');
       li.addEventListener('click', () => {
         for (const x of findingList.children) x.classList.remove('selected');
         li.classList.add('selected');

@@ -270,13 +270,33 @@ TEST_CASE("shape plan: appearance losses follow the target: textures everywhere,
   CHECK(urdf.plan.losses[0].kind == LossKind::kTextures);
   CHECK(urdf.plan.losses[1].kind == LossKind::kMaterials);
   CHECK(urdf.plan.losses[1].hint == "URDF materials have one rgba colour");
-  for (const PlannedLoss& loss : urdf.plan.losses) check_at_shape(loss);
+  check_at_shape(urdf.plan.losses[0]);
+  // The emissive colour is named at its own key (line 12: the shape's 4th line), not at the
+  // shape (issue 47).
+  CHECK(urdf.plan.losses[1].at.line == 12);
+  CHECK(urdf.plan.losses[1].at.column == int(std::string("          material: {diffuse: [1, 0, 0], ").size()) + 1);
   REQUIRE(urdf.only_piece().material.has_value());
   CHECK(urdf.only_piece().material->diffuse_color.x() == 1.0);
 
   Planned mjcf(shape, mjcf_like());
   REQUIRE(mjcf.plan.losses.size() == 1);
   CHECK(mjcf.plan.losses[0].kind == LossKind::kTextures);
+}
+
+TEST_CASE("shape plan: a lost emissive colour is named at its key, in the legacy spelling too") {
+  const std::string shape = R"(      - type: Shape
+        geometry: {type: Box, size: [1, 1, 1]}
+        appearance:
+          material:
+            diffuseColor: [1, 0, 0]
+            emissiveColor: [0, 1, 0]
+)";
+  Planned urdf(shape, urdf_like());
+  INFO(urdf.losses());
+  REQUIRE(urdf.plan.losses.size() == 1);
+  CHECK(urdf.plan.losses[0].kind == LossKind::kMaterials);
+  CHECK(urdf.plan.losses[0].at.line == 14);  // the shape's 6th line
+  CHECK(urdf.plan.losses[0].at.column == 13);
 }
 
 TEST_CASE("shape plan: a shape that is neither visual nor collision has no pieces, and its losses stay") {
