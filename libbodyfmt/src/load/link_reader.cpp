@@ -236,6 +236,9 @@ void apply_subbody_overrides(LoadContext& ctx, MappingReader& r, Model& model, L
     ctx.report("load-mass-ignored", after.mass_contributions[contributions].source,
                "RigidBody nodes of a SubBody node are ignored by Choreonoid");
     after.mass_contributions.resize(contributions);
+    // Their shapes stay, as plain shapes: no ignored RigidBody stands for them.
+    for (SceneFrame& f : after.frames)
+      if (f.rigid_body >= static_cast<int>(contributions)) f.rigid_body = -1;
   }
 }
 
