@@ -238,10 +238,10 @@ std::vector<RuleInfo> make_table() {
        "MuJoCo, Drake and gz-math refuse it; the dynamics are unphysical",
        "smallest eigenvalue < -16*DBL_EPSILON*max(1, trace/2) (Drake's); exactly < 0 for a diagonal tensor"},
       {"inertia-triangle", E, "the principal moments violate the triangle inequality (A + B < C)",
-       "no rigid body has such moments; MuJoCo (no tolerance), Drake (16*eps*max(1, tr/2)) and gz-math (10*eps*tr/2) "
-       "refuse the model",
+       "no rigid body has such moments; MuJoCo refuses any violation, Drake one beyond 16*eps*max(1, tr/2), gz-math "
+       "one beyond 10*eps*tr/2; `bodycheck --fix=geometry` computes the tensor from the link's shapes",
        "A + B - C < 0 exactly for a diagonal tensor (MuJoCo); < -4*DBL_EPSILON*trace otherwise (eigen-solver "
-       "rounding); the message says which engines refuse"},
+       "rounding)"},
       {"inertia-nonpositive-mass", E, "a negative mass, or zero mass on a moving link",
        "MuJoCo clamps negative mass to 0 and refuses massless moving bodies; Drake and gz-math refuse negative mass",
        "moving = revolute, prismatic or free joint; zero mass passes when a fixed descendant carries mass (MuJoCo's "

@@ -218,3 +218,17 @@ TEST_CASE("bodycheck --fix=geometry --all-links recomputes every link, RigidBody
   const Run again = bodycheck_in(dir, "--fix=geometry --all-links --dry-run tank.body");
   CHECK(again.status == 0);
 }
+
+// The tutorial's CHASSIS inertia: one sentence that says what is wrong, a hint that names the
+// fix; the engines and their tolerances are the rule's documentation.
+TEST_CASE("bodycheck: the triangle inequality in one sentence, with --fix=geometry as the hint") {
+  const Run run = bodycheck_in(BODYFMT_EXAMPLES_DIR, "simpletank.body");
+  CHECK(contains(run.output,
+                 "error: inertia of link \"CHASSIS\" is impossible for a rigid body: principal moments "
+                 "(0.1, 0.1, 0.5) break the triangle inequality (0.1 + 0.1 < 0.5) [inertia-triangle]\n"));
+  CHECK(contains(run.output, "note: compute it from the link's shapes with bodycheck --fix=geometry"));
+  CHECK_FALSE(contains(run.output, "Drake"));
+  const Run explain = bodycheck_in(".", "--explain inertia-triangle");
+  CHECK(contains(explain.output, "Drake one beyond 16*eps*max(1, tr/2)"));
+  CHECK(contains(explain.output, "gz-math one beyond 10*eps*tr/2"));
+}
