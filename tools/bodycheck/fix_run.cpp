@@ -135,6 +135,11 @@ class ModelFixer {
       return fail(file, "the file does not load (see the errors above); nothing is written");
     }
 
+    if (settings_.upgrade) {
+      const std::string refused = degree_values_refusal(collected.diagnostics());
+      if (!refused.empty()) return fail(file, refused);
+    }
+
     // Units of edits that stand or fall together: each safe fix-it alone, the upgrade whole
     // (its angles only mean the same model with its new header).
     std::vector<Unit> units;
@@ -161,6 +166,39 @@ class ModelFixer {
   }
 
  private:
+  /// Why the format upgrade is refused, or "": a value of a file to upgrade that a finding still
+  /// calls degrees would be converted as radians (-10 to -572.958), and the finding, which judges
+  /// radian files only, would be gone. The user decides first: reinterpret it, or suppress the
+  /// finding if it is radians after all.
+  std::string degree_values_refusal(const std::vector<Diagnostic>& findings) const {
+    std::vector<const FixIt*> conversions;
+    for (const Diagnostic& d : findings)
+      if (d.rule_id == "load-format-upgrade" && allowed(d.location.file))
+        for (const FixIt& f : d.fixes) conversions.push_back(&f);
+    if (conversions.empty()) return "";
+    std::vector<const Diagnostic*> standing;
+    for (const Diagnostic& d : findings)
+      if ((d.rule_id == "units-range-looks-degree" || d.rule_id == "units-velocity-looks-degree") &&
+          allowed(d.location.file))
+        standing.push_back(&d);
+    if (standing.empty()) return "";
+    const Diagnostic& d = *standing.front();
+    // The upgrade's edits of the value: on its line, from its column on (a flow pair or a scalar).
+    std::vector<std::string> converted;
+    for (const FixIt* f : conversions)
+      if (f->file == d.location.file && f->line == d.location.line && f->column >= d.location.column)
+        converted.push_back(f->original + " -> " + f->replacement);
+    return fmt::format(
+        "cannot upgrade while {} value{} look{} like degrees: {}:{}:{}: {} [{}]. The upgrade converts {} as "
+        "radians{}{}, and the finding would be gone. If they are degrees, apply the finding's fix-it (reinterpret as "
+        "degrees; a quick fix in the editor) or write them in radians; if they are radians, suppress the finding "
+        "(# bodycheck: disable={}); then upgrade",
+        standing.size(), standing.size() == 1 ? "" : "s", standing.size() == 1 ? "s" : "", d.location.file.str(),
+        d.location.line, d.location.column, d.message, d.rule_id, standing.size() == 1 ? "it" : "them",
+        converted.empty() ? "" : " (", converted.empty() ? "" : fmt::format("{})", fmt::join(converted, ", ")),
+        d.rule_id);
+  }
+
   /// Edits that stand or fall together, and where to point when they are left out.
   struct Unit {
     std::vector<FixIt> fixes;
