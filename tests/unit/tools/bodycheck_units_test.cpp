@@ -8,6 +8,11 @@
 #include "support/load_helpers.h"
 #include "support/run_command.h"
 
+#include "load/load_context.h"
+
+#include <bodyfmt/angles.h>
+
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -147,4 +152,17 @@ TEST_CASE("units-rotation-looks-radian: a rotation angle in a degree file that l
     CHECK(d.fixes[0].replacement == c.meant);
     CHECK(d.fixes[0].safety == bodyfmt::FixSafety::kUnsafe);
   }
+}
+
+// The upgrade's degrees read back as the very radians (the loader computes d * kPi / 180.0), in the
+// shortest such text: pi/3 is 60, where the shortest form of the product is 59.99999999999999.
+TEST_CASE("load: the format upgrade writes the shortest degrees that read back as the same radians") {
+  using bodyfmt::kPi;
+  using bodyfmt::detail::degrees_text;
+  CHECK(degrees_text(60 * kPi / 180.0) == "60");
+  CHECK(degrees_text(-10 * kPi / 180.0) == "-10");
+  CHECK(degrees_text(0.5) == "28.64788975654116");
+  CHECK(degrees_text(0) == "0");
+  for (double r : {1.5708, 1.0, -3.0, 1e-9, 6.283185307179586})
+    CHECK(std::strtod(degrees_text(r).c_str(), nullptr) * kPi / 180.0 == doctest::Approx(r).epsilon(1e-15));
 }
