@@ -918,6 +918,41 @@ def code_actions_safety_classes():
         c.kill()
 
 
+RADIAN_DEGREES = ("format: ChoreonoidBody\nformat_version: 1.0\nangle_unit: radian\nlinks:\n"
+                  "  - name: BASE\n    joint_type: free\n"
+                  "  - name: TURRET\n    parent: BASE\n    joint_type: revolute\n    joint_range: [-10, 45]\n")
+
+
+@case
+def code_actions_upgrade_waits_for_degree_findings():
+    """The upgrade would convert [-10, 45] as radians and the finding that calls it degrees would be
+    gone (issue 47): while it stands, the upgrade action is disabled with the reason, or left out."""
+    folder = work_dir("code_actions_degrees")
+    path = os.path.join(folder, "radian.body")
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(RADIAN_DEGREES)
+    uri = uri_of(path)
+    findings = bodycheck_json(path)
+    assert any(f["rule"] == "units-range-looks-degree" for f in findings), findings
+    assert fix_edits(findings, "upgrade", {}), "the test needs the upgrade fix-its"
+    ask = {"textDocument": {"uri": uri}, "range": whole(RADIAN_DEGREES),
+           "context": {"diagnostics": [], "only": [UPGRADE_KIND]}}
+    for disabled_support in (False, True):
+        c = client()
+        try:
+            c.initialize({"textDocument": {"codeAction": {"disabledSupport": disabled_support}}})
+            c.open(uri, RADIAN_DEGREES)
+            c.diagnostics(uri, 1)
+            actions = c.request("textDocument/codeAction", ask)["result"]
+            assert not action_edits(actions), actions
+            if disabled_support:
+                assert len(actions) == 1 and "units-range-looks-degree" in actions[0]["disabled"]["reason"], actions
+            else:
+                assert actions == [], actions
+        finally:
+            c.kill()
+
+
 @case
 def code_actions_unsafe_never_applied():
     folder = work_dir("code_actions_unsafe")
