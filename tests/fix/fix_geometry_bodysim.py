@@ -7,9 +7,9 @@ In a fresh writable copy of the corpus, each model is fixed in one command (`bod
 --fix=geometry --fix-includes`) and `bodysim check` (no --balance-inertia) runs on the fixed
 file: it must exit 0, every check passed or skipped, free roots and fixed roots alike (a fixed
 root gets the checks that apply to it: mass matrix, zero-g, joint ranges, gravity load, belt
-speed, determinism). Where the fix has no tensor to write (a link whose mass only RigidBody
-elements carry: fix-geometry-unavailable), bodysim must still refuse the model for its written
-tensor, naming the rule at its line; those models are listed in UNAVAILABLE. A model in
+speed, determinism). Where the fix has no tensor to write (fix-geometry-unavailable: a RigidBody
+element or link with no solid shape to compute it from), bodysim must still refuse the model for
+its written tensor, naming the rule at its line; those models are listed in UNAVAILABLE. A model in
 KNOWN_FAILURES may fail only the checks listed there (false alarms of the kind issue 36
 describes); one in KNOWN_STIFF_CONTACT must stop at bodysim's step budget on the floor contact of
 the link named there (issue 36: a stiff contact is not found before the run), whatever the fix
@@ -31,8 +31,10 @@ from fix_geometry import writable_copy  # the same writable corpus copy as fix.g
 SAMPLE = ["Tank/SimpleTank.body", "Tank/Tank.body", "misc/ellipsoid1.body", "misc/crawler.body",
           "UniversalRobots/UR5.body"]
 
-# model -> the rule bodysim refuses it with: the fix cannot replace a tensor only a RigidBody carries.
-UNAVAILABLE = {"misc/crawler.body": "inertia-triangle"}
+# model -> the rule bodysim refuses it with: the fix has no shape to compute its tensor from. The
+# crawler, whose body's tensor a RigidBody carries, was here until the fix recomputed RigidBody
+# elements from the shapes below them (issue 47).
+UNAVAILABLE = {}
 
 # model -> {failing check (its text in bodysim's report): reason}; issue 36's false alarms.
 KNOWN_FAILURES = {}

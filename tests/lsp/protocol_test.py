@@ -1000,6 +1000,41 @@ def code_actions_safety_classes():
         c.kill()
 
 
+RADIAN_DEGREES = ("format: ChoreonoidBody\nformat_version: 1.0\nangle_unit: radian\nlinks:\n"
+                  "  - name: BASE\n    joint_type: free\n"
+                  "  - name: TURRET\n    parent: BASE\n    joint_type: revolute\n    joint_range: [-10, 45]\n")
+
+
+@case
+def code_actions_upgrade_waits_for_degree_findings():
+    """The upgrade would convert [-10, 45] as radians and the finding that calls it degrees would be
+    gone (issue 47): while it stands, the upgrade action is disabled with the reason, or left out."""
+    folder = work_dir("code_actions_degrees")
+    path = os.path.join(folder, "radian.body")
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(RADIAN_DEGREES)
+    uri = uri_of(path)
+    findings = bodycheck_json(path)
+    assert any(f["rule"] == "units-range-looks-degree" for f in findings), findings
+    assert fix_edits(findings, "upgrade", {}), "the test needs the upgrade fix-its"
+    ask = {"textDocument": {"uri": uri}, "range": whole(RADIAN_DEGREES),
+           "context": {"diagnostics": [], "only": [UPGRADE_KIND]}}
+    for disabled_support in (False, True):
+        c = client()
+        try:
+            c.initialize({"textDocument": {"codeAction": {"disabledSupport": disabled_support}}})
+            c.open(uri, RADIAN_DEGREES)
+            c.diagnostics(uri, 1)
+            actions = c.request("textDocument/codeAction", ask)["result"]
+            assert not action_edits(actions), actions
+            if disabled_support:
+                assert len(actions) == 1 and "units-range-looks-degree" in actions[0]["disabled"]["reason"], actions
+            else:
+                assert actions == [], actions
+        finally:
+            c.kill()
+
+
 # Two unsafe fix-its: a did-you-mean key (`mas`) and the nearest link name for a parent (CHASIS).
 UNSAFE = ("format: ChoreonoidBody\nformat_version: 2.0\nname: T\nroot_link: CHASSIS\nlinks:\n"
           "  - { name: CHASSIS, joint_type: free, mas: 2, inertia: [1,0,0,0,1,0,0,0,1] }\n"
@@ -1110,24 +1145,41 @@ def code_actions_mass_from_shapes():
             ask["context"]["only"] = ["quickfix"]
             only = [a for a in c.request("textDocument/codeAction", ask)["result"] if name in a["title"]]
             assert len(only) == (1 if kind == "quickfix" else 0), (name, only)
-        # TURRET_P's mass is a RigidBody's, not the link's: no edit. A client that shows disabled
-        # actions is told why; the others get nothing.
+        # TURRET_P's mass is a RigidBody's, not the link's: the element's inertia is recomputed from
+        # the cylinder below it (axis Y, as Choreonoid's cylinders), at its mass, in its frame.
         line = lines.index("    name: TURRET_P") + 2
         ask = {"textDocument": {"uri": uri}, "context": {"diagnostics": []},
                "range": {"start": {"line": line, "character": 4}, "end": {"line": line, "character": 4}}}
-        assert not [a for a in c.request("textDocument/codeAction", ask)["result"] if "TURRET_P" in a["title"]]
-    finally:
-        c.kill()
-    c = client()
-    try:
-        c.initialize({"textDocument": {"codeAction": {"disabledSupport": True}}})
-        c.open(uri, TANK)
-        c.diagnostics(uri, 1)
         actions = [a for a in c.request("textDocument/codeAction", ask)["result"] if "TURRET_P" in a["title"]]
-        assert len(actions) == 1 and "edit" not in actions[0], actions
-        assert "mass key" in actions[0]["disabled"]["reason"], actions
+        assert len(actions) == 1 and "mass 3 kg" in actions[0]["title"], actions
+        body = yaml.safe_load(apply_edits(TANK, actions[0]["edit"]["changes"][uri]))["links"][2]["elements"][0]
+        m, r, h = 3.0, 0.1, 0.1
+        across, along = m * (3 * r * r + h * h) / 12, m * r * r / 2
+        want = [across, 0, 0, along, 0, across]
+        assert body["mass"] == 3.0, body
+        assert all(abs(a - b) <= 1e-7 for a, b in zip(body["inertia"], want)), (body, want)
     finally:
         c.kill()
+    # Without a mass anywhere (the RigidBody's removed), there is no edit: a client that shows
+    # disabled actions is told why; the others get nothing.
+    massless = TANK.replace("        mass: 3.0\n", "")
+    assert massless != TANK
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(massless)
+    for disabled_support in (False, True):
+        c = client()
+        try:
+            c.initialize({"textDocument": {"codeAction": {"disabledSupport": disabled_support}}})
+            c.open(uri, massless)
+            c.diagnostics(uri, 1)
+            actions = [a for a in c.request("textDocument/codeAction", ask)["result"] if "TURRET_P" in a["title"]]
+            if not disabled_support:
+                assert actions == [], actions
+                continue
+            assert len(actions) == 1 and "edit" not in actions[0], actions
+            assert "mass key" in actions[0]["disabled"]["reason"], actions
+        finally:
+            c.kill()
 
 
 # ---- watching and the viewer ------------------------------------------------------------------

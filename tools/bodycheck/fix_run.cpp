@@ -135,6 +135,11 @@ class ModelFixer {
       return fail(file, "the file does not load (see the errors above); nothing is written");
     }
 
+    if (settings_.upgrade) {
+      const std::string refused = degree_values_refusal(collected.diagnostics());
+      if (!refused.empty()) return fail(file, refused);
+    }
+
     // Units of edits that stand or fall together: each safe fix-it alone, the upgrade whole
     // (its angles only mean the same model with its new header).
     std::vector<Unit> units;
@@ -161,6 +166,39 @@ class ModelFixer {
   }
 
  private:
+  /// Why the format upgrade is refused, or "": a value of a file to upgrade that a finding still
+  /// calls degrees would be converted as radians (-10 to -572.958), and the finding, which judges
+  /// radian files only, would be gone. The user decides first: reinterpret it, or suppress the
+  /// finding if it is radians after all.
+  std::string degree_values_refusal(const std::vector<Diagnostic>& findings) const {
+    std::vector<const FixIt*> conversions;
+    for (const Diagnostic& d : findings)
+      if (d.rule_id == "load-format-upgrade" && allowed(d.location.file))
+        for (const FixIt& f : d.fixes) conversions.push_back(&f);
+    if (conversions.empty()) return "";
+    std::vector<const Diagnostic*> standing;
+    for (const Diagnostic& d : findings)
+      if ((d.rule_id == "units-range-looks-degree" || d.rule_id == "units-velocity-looks-degree") &&
+          allowed(d.location.file))
+        standing.push_back(&d);
+    if (standing.empty()) return "";
+    const Diagnostic& d = *standing.front();
+    // The upgrade's edits of the value: on its line, from its column on (a flow pair or a scalar).
+    std::vector<std::string> converted;
+    for (const FixIt* f : conversions)
+      if (f->file == d.location.file && f->line == d.location.line && f->column >= d.location.column)
+        converted.push_back(f->original + " -> " + f->replacement);
+    return fmt::format(
+        "cannot upgrade while {} value{} look{} like degrees: {}:{}:{}: {} [{}]. The upgrade converts {} as "
+        "radians{}{}, and the finding would be gone. If they are degrees, apply the finding's fix-it (reinterpret as "
+        "degrees; a quick fix in the editor) or write them in radians; if they are radians, suppress the finding "
+        "(# bodycheck: disable={}); then upgrade",
+        standing.size(), standing.size() == 1 ? "" : "s", standing.size() == 1 ? "s" : "", d.location.file.str(),
+        d.location.line, d.location.column, d.message, d.rule_id, standing.size() == 1 ? "it" : "them",
+        converted.empty() ? "" : " (", converted.empty() ? "" : fmt::format("{})", fmt::join(converted, ", ")),
+        d.rule_id);
+  }
+
   /// Edits that stand or fall together, and where to point when they are left out.
   struct Unit {
     std::vector<FixIt> fixes;
@@ -168,9 +206,11 @@ class ModelFixer {
     bool upgrade = false;
   };
 
-  /// `--fix=geometry`: the links an inertia rule flags get the centre of mass and inertia of
-  /// their shapes at their written mass. The proof is the same re-load, compared with the
-  /// original model whose link-level centre of mass and inertia are the written numbers.
+  /// `--fix=geometry`: the links an inertia rule flags (with `--all-links`: every link) get
+  /// their mass data recomputed from their shapes, each part at its written mass: the link-level
+  /// centre of mass and inertia from the shapes below no RigidBody element, each RigidBody
+  /// element's from the shapes below it. The proof is the same re-load, compared with the
+  /// original model whose recomputed parts hold the written numbers.
   void fix_geometry(const std::string& file, const Front::FilePolicy& policy) {
     CollectingSink collected;
     DiagnosticPolicy filter(collected, policy.options);
@@ -181,52 +221,89 @@ class ModelFixer {
       front_.print(collected.diagnostics());
       return fail(file, "the file does not load (see the errors above); nothing is written");
     }
-    const Derived derived = compute_derived(*original, filter);
-    CollectingSink checked;
-    DiagnosticPolicy check_filter(checked, policy.options);
-    validate::check_model(*original, derived, {}, check_filter);
-    const std::vector<bool> flagged = links_for_geometry_fix(*original, checked.diagnostics());
+    std::vector<bool> chosen(original->links.size(), true);
+    if (!settings_.all_links) {
+      const Derived derived = compute_derived(*original, filter);
+      CollectingSink checked;
+      DiagnosticPolicy check_filter(checked, policy.options);
+      validate::check_model(*original, derived, {}, check_filter);
+      chosen = links_for_geometry_fix(*original, checked.diagnostics());
+    }
 
     Model expected = *original;
     std::vector<Unit> units;
     std::vector<Diagnostic> notes;
     CollectingSink shapes;
     for (std::size_t i = 0; i < original->links.size(); ++i) {
-      if (!flagged[i]) continue;
+      if (!chosen[i]) continue;
       const Link& link = original->links[i];
+      // A link without mass data (a massless frame) has nothing to recompute.
+      if (settings_.all_links && link.mass_contributions.empty()) continue;
       const LinkGeometryMass geometry = link_geometry_mass(*original, link, shapes);
       const std::optional<GeometryAtWrittenMass> at = geometry_at_written_mass(link, geometry);
       const SourceLocation where = first_known({link.sources.inertia(), link.sources.mass(), link.source});
-      std::string why;
-      if (!at) {
-        why = geometry.empty() ? fmt::format("link \"{}\" has no solid {} geometry", link.name,
-                                             geometry.from_visual ? "visual" : "collision")
-                               : fmt::format("link \"{}\" has no link-level mass key", link.name);
-      }
-      std::vector<FixIt> fixes;
-      if (at) {
-        const std::string mass_file = link.sources.mass().file.str();
-        if (const std::optional<std::string> text = read_text(mass_file, why))
-          fixes = link_mass_fixes(*text, mass_file, link, at->link_keys, why);
-        if (!fixes.empty() && !allowed(mass_file)) {
-          why = "its keys are written in \"" + mass_file +
-                "\"; name that file on the command line too, or use "
-                "--fix-includes";
-          fixes.clear();
-        }
-      }
-      if (fixes.empty()) {
-        notes.push_back(make_diagnostic("fix-geometry-unavailable", where,
+      const auto unavailable = [&](const SourceLocation& at_place, const std::string& why) {
+        notes.push_back(make_diagnostic("fix-geometry-unavailable", at_place,
                                         "no centre of mass and inertia from the geometry: " + why));
+      };
+      if (!at) {
+        unavailable(where, geometry.no_solid()
+                               ? fmt::format("link \"{}\" has no solid {} geometry", link.name,
+                                             geometry.from_visual ? "visual" : "collision")
+                               : fmt::format("link \"{}\" has no link-level mass key, and no RigidBody element "
+                                             "with a mass around its shapes",
+                                             link.name));
         continue;
       }
-      const MassProperties written = written_mass_keys(at->link_keys);
-      for (MassContribution& c : expected.links[i].mass_contributions) {
-        if (!c.from_link_keys) continue;
-        c.center_of_mass = written.center_of_mass;
-        c.inertia = written.inertia;
+      // Each part is a unit of its own: one written behind an alias leaves the others fixable.
+      if (at->link_keys) {
+        std::string why;
+        std::vector<FixIt> fixes;
+        const std::string mass_file = link.sources.mass().file.str();
+        if (const std::optional<std::string> text = read_text(mass_file, why))
+          fixes = link_mass_fixes(*text, mass_file, link, *at->link_keys, why);
+        if (!fixes.empty() && !allowed(mass_file)) {
+          why = "its keys are written in \"" + mass_file +
+                "\"; name that file on the command line too, or use --fix-includes";
+          fixes.clear();
+        }
+        if (fixes.empty()) {
+          unavailable(where, why);
+        } else {
+          const MassProperties written = written_mass_keys(*at->link_keys);
+          for (MassContribution& c : expected.links[i].mass_contributions) {
+            if (!c.from_link_keys) continue;
+            c.center_of_mass = written.center_of_mass;
+            c.inertia = written.inertia;
+          }
+          units.push_back(Unit{std::move(fixes), where, false});
+        }
       }
-      units.push_back(Unit{std::move(fixes), where, false});
+      for (const RecomputedRigidBody& body : at->rigid_bodies) {
+        const MassContribution& c = link.mass_contributions[body.contribution];
+        std::string why;
+        std::vector<FixIt> fixes;
+        const std::string body_file = c.source.file.str();
+        if (const std::optional<std::string> text = read_text(body_file, why))
+          fixes = rigid_body_mass_fixes(*text, body_file, link, body.contribution, body.as_written, why);
+        if (!fixes.empty() && !allowed(body_file)) {
+          why = "the RigidBody element is written in \"" + body_file +
+                "\"; name that file on the command line too, or use --fix-includes";
+          fixes.clear();
+        }
+        if (fixes.empty()) {
+          unavailable(c.source, why);
+          continue;
+        }
+        // What the loader will make of the written numbers: read through the element's frame.
+        const MassProperties written = written_mass_keys(body.as_written);
+        const Eigen::Affine3d X_LF = rigid_body_frame(link, body.contribution);
+        const Eigen::Matrix3d L = X_LF.linear();
+        MassContribution& e = expected.links[i].mass_contributions[body.contribution];
+        e.center_of_mass = X_LF * written.center_of_mass;
+        e.inertia = L * written.inertia * L.transpose();
+        units.push_back(Unit{std::move(fixes), c.source, false});
+      }
     }
     std::vector<Diagnostic> shown = shapes.diagnostics();
     shown.insert(shown.end(), notes.begin(), notes.end());
@@ -234,6 +311,12 @@ class ModelFixer {
     original_ = &expected;
     reload_meshes_ = true;
     apply_units(file, units);
+  }
+
+  static Eigen::Affine3d rigid_body_frame(const Link& link, std::size_t contribution) {
+    for (std::size_t f = 0; f < link.frames.size(); ++f)
+      if (link.frames[f].rigid_body == static_cast<int>(contribution)) return frame_in_link(link, static_cast<int>(f));
+    return Eigen::Affine3d::Identity();
   }
 
   void apply_units(const std::string& file, const std::vector<Unit>& units) {

@@ -13,9 +13,12 @@ struct FixSettings {
   bool dry_run = false;   ///< print a unified diff instead of writing
   bool upgrade = false;   ///< also apply the format 1.0 -> 2.0 fix-its
   bool includes = false;  ///< also edit SubBody and YAML resource files not named on the command line
-  /// `--fix=geometry`: only the centre of mass and inertia computed from the shapes at the written
-  /// mass, for the links that inertia-implausible, -triangle, -not-positive-definite or -com-outside flag
+  /// `--fix=geometry`: only the centres of mass and inertias computed from the shapes at the written
+  /// masses (link-level keys and RigidBody elements), for the links that inertia-implausible,
+  /// -triangle, -not-positive-definite or -com-outside flag
   bool geometry = false;
+  /// `--all-links`: with `geometry`, every link's mass data, RigidBody elements included
+  bool all_links = false;
 };
 
 struct FixSummary {

@@ -360,11 +360,15 @@ int main(int argc, char** argv) {
       app.add_flag("--fix{safe}", settings.fix_class,
                    "apply the safe fix-its in place (docs/rules.md), after re-loading the result to prove the model "
                    "is unchanged; then report what remains (KIND safe, the default). --fix=geometry instead replaces "
-                   "the centre of mass and "
-                   "inertia of the links an inertia rule flags with those of their shapes at their written mass")
+                   "the centre of mass and inertia of the links an inertia rule flags with those of their shapes at "
+                   "their written mass (RigidBody elements too, each from the shapes below it)")
           ->check(CLI::IsMember({"safe", "geometry"}))
           ->option_text("[=KIND]")
           ->group(fixing);
+  app.add_flag("--all-links", settings.fixing.all_links,
+               "with --fix=geometry: recompute every link's mass data from its shapes, not only the flagged links'")
+      ->needs(fix_option)
+      ->group(fixing);
   app.add_flag("--dry-run", settings.fixing.dry_run, "with --fix: print a unified diff instead of writing")
       ->needs(fix_option)
       ->group(fixing);
@@ -379,6 +383,10 @@ int main(int argc, char** argv) {
   if (auto code = front.parse(argc, argv)) return *code;
   settings.fix = !settings.fix_class.empty();
   settings.fixing.geometry = settings.fix_class == "geometry";
+  if (settings.fixing.all_links && !settings.fixing.geometry) {
+    front.print_error("--all-links is a choice of --fix=geometry: which links to recompute from their shapes");
+    return tools::kExitFatal;
+  }
   if (settings.fixing.geometry && settings.fixing.upgrade) {
     front.print_error("--fix=geometry and --upgrade are separate runs: upgrade first, then fix the geometry");
     return tools::kExitFatal;

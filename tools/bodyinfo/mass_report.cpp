@@ -1,6 +1,7 @@
 #include "mass_report.h"
 
 #include <bodyfmt/inertia.h>
+#include <bodyfmt/readable_number.h>
 
 #include <fmt/format.h>
 
@@ -17,17 +18,22 @@ std::string number(double v) {
   return fmt::format("{}", v);
 }
 
+// For people: `13.5` where the arithmetic left 13.500000000000002 (bodyfmt/readable_number.h).
+std::string readable(double v) { return readable_number(v); }
+
+using NumberText = std::string (*)(double);
+
 template <typename Vector>
-std::string list(const Vector& v) {
+std::string list(const Vector& v, NumberText text = number) {
   std::string out = "[";
-  for (Eigen::Index i = 0; i < v.size(); ++i) out += (i ? ", " : "") + number(v[i]);
+  for (Eigen::Index i = 0; i < v.size(); ++i) out += (i ? ", " : "") + text(v[i]);
   return out + "]";
 }
 
-std::string tensor(const Eigen::Matrix3d& m) {
+std::string tensor(const Eigen::Matrix3d& m, NumberText text = number) {
   std::string out = "[";
   for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) out += (r || c ? ", " : "") + number(m(r, c));
+    for (int c = 0; c < 3; ++c) out += (r || c ? ", " : "") + text(m(r, c));
   return out + "]";
 }
 
@@ -74,10 +80,15 @@ std::string structured(const Model& model, const Derived& derived, double densit
     const std::optional<MassProperties> at_mass =
         c.at_written_mass ? std::optional<MassProperties>(c.at_written_mass->combined) : std::nullopt;
     const std::string fields[][2] = {
-        {"name", json_string(model.links[i].name)},    {"shapes", json_string(shapes_word(c.geometry))},
-        {"solids", std::to_string(c.geometry.solids)}, {"left_out", std::to_string(c.geometry.left_out)},
-        {"volume", number(c.geometry.volume.mass)},    {"written", properties(written)},
-        {"computed", properties(c.at_density)},        {"computed_at_written_mass", properties(at_mass)},
+        {"name", json_string(model.links[i].name)},
+        {"shapes", json_string(shapes_word(c.geometry))},
+        {"solids", std::to_string(c.geometry.solids)},
+        {"solids_in_rigid_bodies", std::to_string(c.geometry.solids_in_rigid_bodies())},
+        {"left_out", std::to_string(c.geometry.left_out)},
+        {"volume", number(c.geometry.volume.mass)},
+        {"written", properties(written)},
+        {"computed", properties(c.at_density)},
+        {"computed_at_written_mass", properties(at_mass)},
     };
     if (json) {
       out += "  {";
@@ -93,29 +104,44 @@ std::string structured(const Model& model, const Derived& derived, double densit
   return out;
 }
 
+// What float arithmetic leaves where a person expects 0 (a tensor turned by 90 degrees has
+// 1e-18 off its diagonal; a centre of mass on an axis, 1e-21 beside it) is shown as 0: below a
+// picometre, or 1e-12 of a tensor's largest entry.
+std::string point(const Eigen::Vector3d& c) {
+  return list(Eigen::Vector3d(c.unaryExpr([](double v) { return std::abs(v) < 1e-12 ? 0.0 : v; })), readable);
+}
+std::string moments_of(const Eigen::Matrix3d& m) {
+  const double scale = m.cwiseAbs().maxCoeff();
+  return tensor(m.unaryExpr([scale](double v) { return std::abs(v) <= 1e-12 * scale ? 0.0 : v; }), readable);
+}
+
 std::string text(const Model& model, const Derived& derived, double density,
                  const std::vector<LinkMassComparison>& links) {
   std::string out = fmt::format("{}: mass properties from the geometry at {} kg/m³ (written | computed)\n", model.name,
-                                number(density));
+                                readable(density));
   for (std::size_t i = 0; i < links.size(); ++i) {
     const LinkMassComparison& c = links[i];
     const MassProperties& w = derived.mass[i];
     out += fmt::format("{}  ({} shapes: {} solid{}", model.links[i].name, shapes_word(c.geometry), c.geometry.solids,
                        c.geometry.solids == 1 ? "" : "s");
+    if (!c.geometry.empty()) out += fmt::format(" of volume {} m³", readable(c.geometry.volume.mass));
+    // Shapes below a RigidBody element weigh what it says: counted once, as written.
+    if (const int inside = c.geometry.solids_in_rigid_bodies(); inside > 0)
+      out += fmt::format(", {} more below RigidBody elements (their mass as written)", inside);
     if (c.geometry.left_out > 0) out += fmt::format(", {} left out", c.geometry.left_out);
-    out += c.geometry.empty() ? ")\n" : fmt::format(", volume {:.6g} m³)\n", c.geometry.volume.mass);
+    out += ")\n";
     const auto row = [&](const char* what, const std::string& written, const std::string& computed) {
       out += fmt::format("  {:<18} {} | {}\n", what, written, computed);
     };
     const std::string none = "-";
-    row("mass", number(w.mass), c.at_density ? number(c.at_density->mass) : none);
-    row("center_of_mass", list(w.center_of_mass), c.at_density ? list(c.at_density->center_of_mass) : none);
-    row("inertia", tensor(w.inertia), c.at_density ? tensor(c.at_density->inertia) : none);
-    row("principal moments", list(moments(w)), c.at_density ? list(moments(*c.at_density)) : none);
+    row("mass", readable(w.mass), c.at_density ? readable(c.at_density->mass) : none);
+    row("center_of_mass", point(w.center_of_mass), c.at_density ? point(c.at_density->center_of_mass) : none);
+    row("inertia", moments_of(w.inertia), c.at_density ? moments_of(c.at_density->inertia) : none);
+    row("principal moments", list(moments(w), readable), c.at_density ? list(moments(*c.at_density), readable) : none);
     if (c.at_written_mass) {
       const MassProperties& m = c.at_written_mass->combined;
       out += fmt::format("  at the written mass {}: center_of_mass {}, inertia {}, principal moments {}\n",
-                         number(m.mass), list(m.center_of_mass), tensor(m.inertia), list(moments(m)));
+                         readable(m.mass), point(m.center_of_mass), moments_of(m.inertia), list(moments(m), readable));
     }
   }
   return out;

@@ -70,6 +70,11 @@ json code_actions_for(const std::string& uri, const std::string& path, const std
   json actions = json::array();
   const bool quickfixes = wanted(query.only, "quickfix");
   const bool upgrade = upgrade_asked(query.only);
+  // The upgrade converts every radian value to degrees, those that a finding calls degrees too,
+  // and that finding then has nothing to judge: while one stands, the user decides first.
+  const auto degree_finding = std::find_if(findings.begin(), findings.end(), [](const Diagnostic& d) {
+    return d.rule_id == "units-range-looks-degree" || d.rule_id == "units-velocity-looks-degree";
+  });
   for (const Diagnostic& d : findings) {
     if (d.fixes.empty() || texts.uri(d.location.file.str()) != uri) continue;
     if (!overlaps(texts.token_range(d.location.file.str(), d.location.line, d.location.column), query.range)) continue;
@@ -103,7 +108,18 @@ json code_actions_for(const std::string& uri, const std::string& path, const std
                            {"edit", std::move(edit)}});
       }
     }
-    if (!upgrade_fixes.empty() && upgrade) {
+    if (!upgrade_fixes.empty() && upgrade && degree_finding != findings.end()) {
+      if (query.disabled_support)
+        actions.push_back(
+            {{"title", "Upgrade to format 2.0"},
+             {"kind", kUpgradeActionKind},
+             {"diagnostics", json::array({diagnostic})},
+             {"disabled",
+              {{"reason", "line " + std::to_string(degree_finding->location.line) + " looks like degrees [" +
+                              degree_finding->rule_id +
+                              "]: the upgrade would convert it as radians; reinterpret it (its quick fix) or "
+                              "suppress the finding first"}}}});
+    } else if (!upgrade_fixes.empty() && upgrade) {
       json edit = workspace_edit(upgrade_fixes, texts);
       if (edit.is_null()) continue;
       actions.push_back({{"title", "Upgrade to format 2.0 (" + std::to_string(upgrade_fixes.size()) +

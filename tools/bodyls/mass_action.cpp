@@ -28,7 +28,9 @@ std::optional<MassFromShapes> mass_from_shapes(const Model& model, const std::st
   const LinkGeometryMass geometry = link_geometry_mass(model, link, shapes);
   const std::optional<GeometryAtWrittenMass> keys = geometry_at_written_mass(link, geometry);
   action.title = fmt::format("Compute the centre of mass and inertia of link \"{}\" from its shapes", link.name);
-  if (geometry.empty()) {
+  // Every part of the link's mass data, as --fix=geometry writes it: the link-level keys from the
+  // shapes below no RigidBody element, each RigidBody element from the shapes below it.
+  if (geometry.empty() && geometry.rigid_bodies.empty()) {
     action.unavailable =
         fmt::format("link \"{}\" has no solid {} geometry", link.name, geometry.from_visual ? "visual" : "collision");
   } else if (geometry.left_out > 0) {
@@ -36,12 +38,27 @@ std::optional<MassFromShapes> mass_from_shapes(const Model& model, const std::st
     action.unavailable = fmt::format("{} of the link's shapes {} no solid (see mass-geometry-not-solid)",
                                      geometry.left_out, geometry.left_out == 1 ? "is" : "are");
   } else if (!keys) {
-    action.unavailable = "the link has no link-level mass key (the density would be a guess)";
-  } else if (link.sources.mass().file != path) {
+    action.unavailable =
+        "neither the link nor a RigidBody element with shapes has a mass key (the density would be a "
+        "guess)";
+  } else if (link.sources.mass().known() && link.sources.mass().file != path) {
     action.unavailable = "its mass keys are written in another file: \"" + link.sources.mass().file.str() + "\"";
   } else {
-    action.title += fmt::format(" (mass {:g} kg kept)", keys->link_keys.mass);
-    action.fixes = link_mass_fixes(text, path, link, keys->link_keys, action.unavailable);
+    action.title += fmt::format(" (mass {:g} kg kept)", keys->combined.mass);
+    std::string why;
+    if (keys->link_keys) {
+      std::vector<FixIt> fixes = link_mass_fixes(text, path, link, *keys->link_keys, why);
+      if (fixes.empty()) action.unavailable = why;
+      action.fixes.insert(action.fixes.end(), fixes.begin(), fixes.end());
+    }
+    for (const RecomputedRigidBody& body : keys->rigid_bodies) {
+      if (!action.unavailable.empty()) break;
+      std::vector<FixIt> fixes = rigid_body_mass_fixes(text, path, link, body.contribution, body.as_written, why);
+      if (fixes.empty()) action.unavailable = why;
+      action.fixes.insert(action.fixes.end(), fixes.begin(), fixes.end());
+    }
+    // One part that cannot be written would leave the others recomputed alone: all or nothing.
+    if (!action.unavailable.empty()) action.fixes.clear();
   }
   return action;
 }

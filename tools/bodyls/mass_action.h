@@ -1,8 +1,9 @@
 #pragma once
 /// The "compute this link's centre of mass and inertia from its shapes" action (issue 47): what
 /// `bodycheck --fix=geometry` writes for a flagged link, offered for the link at the cursor
-/// whatever the rules say. A thin caller of the library's per-link computation
-/// (link_geometry_mass, geometry_at_written_mass, link_mass_fixes).
+/// whatever the rules say: the link-level keys and every RigidBody element with shapes. A thin
+/// caller of the library's per-link computation (link_geometry_mass, geometry_at_written_mass,
+/// link_mass_fixes, rigid_body_mass_fixes).
 
 #include <bodyfmt/diagnostic.h>
 #include <bodyfmt/model.h>

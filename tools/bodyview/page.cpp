@@ -84,10 +84,10 @@ std::string inertia_box(const MassProperties& mass) {
 
 /// The link's mass properties with its shapes' tensor at its written mass (what `bodycheck
 /// --fix=geometry` computes), their inertia box beside the written one's, and the centre of mass
-/// and inertia the fix writes where bodycheck offers it (`fix`). A link whose mass only RigidBody
-/// elements carry gets its shapes at that mass, with no fix-it (it has no link-level keys to
-/// write). null where the link has no solid shape or no mass. A shape that is no solid is left
-/// out and counted.
+/// and inertia the fix writes where bodycheck offers it (`fix`). Each RigidBody element's shapes
+/// are at its own mass (the shapes below it are what it stands for); a link whose mass only
+/// RigidBody elements carry has no link-level fix-it to show. null where the link has no solid shape or no mass. A
+/// shape that is no solid is left out and counted.
 std::string geometry_json(const Model& model, const Link& link, double total_mass, bool offered) {
   CollectingSink ignored;  // a shape that is no solid is counted in left_out
   const LinkGeometryMass geometry = link_geometry_mass(model, link, ignored);
@@ -96,15 +96,16 @@ std::string geometry_json(const Model& model, const Link& link, double total_mas
       at ? std::optional<MassProperties>(at->combined) : geometry_at_mass(geometry, total_mass);
   if (!combined || !(combined->mass > 0)) return "null";
   std::string fix = ",\"fix\":false,\"fix_center_of_mass\":null,\"fix_inertia\":null";
-  if (at) {
-    const MassProperties keys = written_mass_keys(at->link_keys);
+  if (at && at->link_keys) {
+    const MassProperties keys = written_mass_keys(*at->link_keys);
     fix = ",\"fix\":" + std::string(offered ? "true" : "false") +
           ",\"fix_center_of_mass\":" + numbers(keys.center_of_mass) + ",\"fix_inertia\":" + row_major(keys.inertia);
   }
   return "{\"from\":" + std::string(geometry.from_visual ? "\"visual\"" : "\"collision\"") +
-         ",\"solids\":" + std::to_string(geometry.solids) + ",\"left_out\":" + std::to_string(geometry.left_out) +
-         ",\"mass\":" + number(combined->mass) + ",\"com\":" + numbers(combined->center_of_mass) +
-         ",\"inertia\":" + row_major(combined->inertia) + ",\"inertia_box\":" + inertia_box(*combined) + fix + "}";
+         ",\"solids\":" + std::to_string(geometry.solids + geometry.solids_in_rigid_bodies()) +
+         ",\"left_out\":" + std::to_string(geometry.left_out) + ",\"mass\":" + number(combined->mass) +
+         ",\"com\":" + numbers(combined->center_of_mass) + ",\"inertia\":" + row_major(combined->inertia) +
+         ",\"inertia_box\":" + inertia_box(*combined) + fix + "}";
 }
 
 std::string devices_json(const Model& model) {

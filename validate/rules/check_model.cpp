@@ -1,5 +1,6 @@
 #include "rule_context.h"
 
+#include <bodyfmt/readable_number.h>
 #include <bodyfmt/rules.h>
 
 #include <fmt/format.h>
@@ -17,10 +18,7 @@ void RuleContext::report(std::string_view rule_id, const SourceLocation& locatio
   report_rule(sink, rule_id, std::move(at), std::move(message), std::move(fix_hint));
 }
 
-std::string num(double value) {
-  if (value == 0) return "0";  // also -0
-  return fmt::format("{:.6g}", value);
-}
+std::string num(double value) { return readable_number(value); }
 
 std::string vec(const Eigen::Vector3d& v) { return fmt::format("[{}, {}, {}]", num(v.x()), num(v.y()), num(v.z())); }
 

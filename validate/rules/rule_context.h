@@ -31,7 +31,7 @@ struct RuleContext {
   }
 };
 
-/// Shortest round-trip-ish form for messages: 6 significant digits, no trailing zeros.
+/// A number for messages (bodyfmt/readable_number.h): 6 significant digits, no trailing zeros.
 std::string num(double value);
 /// "[a, b, c]".
 std::string vec(const Eigen::Vector3d& v);

@@ -1,7 +1,12 @@
 // Unit rules (issue 4, "Units"): numbers that are probably written in the wrong unit.
-// units-radian-in-2.0 is the loader's (it alone sees the header).
+// units-radian-in-2.0 is the loader's (it alone sees the header), and so are the findings of a
+// value in the other unit that carry a fix-it or stop the format upgrade: units-range-looks-degree,
+// units-velocity-looks-degree and units-rotation-looks-radian (load/unit_checks.cpp: the loader
+// alone sees each file's own unit and the text to edit).
 
 #include "rule_context.h"
+
+#include <bodyfmt/unit_heuristics.h>
 
 #include <fmt/format.h>
 
@@ -13,17 +18,9 @@
 namespace bodyfmt::validate::detail {
 namespace {
 
-// How close (absolute, in the written number) a limit must be to k·π/12 to look like radians.
-// 3.14 is 0.0016 from π and 1.57 is 0.0008 from π/2; integer degrees 1..6 are at least 0.026
-// from any multiple of π/12, so legitimate small degree limits never match.
-constexpr double kRadianMatch = 0.002;
+using units::kRadianMatch;
 
-bool near_pi_multiple(double w) {
-  const double a = std::abs(w);
-  for (int k = 1; k <= 24; ++k)
-    if (std::abs(a - k * kPi / 12) <= kRadianMatch) return true;
-  return false;
-}
+bool near_pi_multiple(double w) { return units::pi_twelfths(w) > 0; }
 
 // body-format-spec §3: in a degree file, a revolute range like [-1.57, 1.57] is ±1.57 degrees.
 // Heuristic (documented in the rule table): the finite limits, as written, are all within
@@ -66,65 +63,6 @@ void check_radian_range(const RuleContext& ctx, const Link& link) {
                          "[{}] degrees)",
                          fmt::join(as_written, ", "), link.name, fmt::join(as_degrees, ", ")),
              fmt::format("write joint_range: [{}] (format 2.0 angles are degrees)", fmt::join(as_degrees, ", ")));
-}
-
-// The opposite mistake (body-format-spec §3): a format 1.0 file with `angle_unit: radian` whose
-// angles were written in degrees, [-90, 90] for a quarter turn each way (14 turns in radians).
-// Degrees are written as round numbers; radians beyond a turn are rare and never round, so the
-// heuristic is: a finite value beyond the threshold below, none beyond 360° (as written), and
-// every value beyond the threshold a multiple of 0.5.
-constexpr double kRangeTurn = 2 * kPi + kRadianMatch;  // one turn each way
-constexpr double kVelocityTurns = 16 * kPi;            // 8 turns a second (480 rpm) at the joint
-constexpr double kMostDegrees = 360 + kRadianMatch;
-constexpr double kMostDegreesPerSecond = 3600 + kRadianMatch;
-
-bool round_degrees(double w) { return std::abs(w * 2 - std::round(w * 2)) < 1e-9; }
-
-/// The finite values of `values` look like degrees: one beyond `threshold`, none beyond `most`,
-/// every one beyond `threshold` a multiple of 0.5.
-bool looks_like_degrees(std::initializer_list<double> values, double threshold, double most) {
-  bool beyond = false;
-  for (double v : values) {
-    if (std::abs(v) >= kUnlimited) continue;
-    if (std::abs(v) > most) return false;
-    if (std::abs(v) <= threshold) continue;
-    if (!round_degrees(v)) return false;
-    beyond = true;
-  }
-  return beyond;
-}
-
-std::string as_radians(double degrees) { return num(std::round(degrees * kPi / 180 * 1e4) / 1e4); }
-
-void check_degree_range(const RuleContext& ctx, const Link& link) {
-  if (ctx.model.angles_in_degrees || link.joint_type != JointType::kRevolute) return;
-  const double lower = link.joint_range_lower, upper = link.joint_range_upper;
-  if (!looks_like_degrees({lower, upper}, kRangeTurn, kMostDegrees)) return;
-  auto radians = [](double v) { return std::abs(v) >= kUnlimited ? limit(v) : as_radians(v); };
-  ctx.report("units-range-looks-degree", source_of(link, LinkSources::kJointRange),
-             fmt::format("joint range [{}, {}] of link \"{}\" is read in radians (angle_unit: radian) but looks like "
-                         "degrees: it allows {} turns each way",
-                         limit(lower), limit(upper), link.name,
-                         num(std::round(std::max(std::abs(lower) < kUnlimited ? std::abs(lower) : 0,
-                                                 std::abs(upper) < kUnlimited ? std::abs(upper) : 0) /
-                                        (2 * kPi) * 10) /
-                             10)),
-             fmt::format("write joint_range: [{}, {}] (radians), or angle_unit: degree if all the file's angles are "
-                         "degrees",
-                         radians(lower), radians(upper)));
-}
-
-void check_degree_velocity(const RuleContext& ctx, const Link& link) {
-  if (ctx.model.angles_in_degrees || link.joint_type != JointType::kRevolute) return;
-  const double lower = link.velocity_lower, upper = link.velocity_upper;
-  if (!looks_like_degrees({lower, upper}, kVelocityTurns, kMostDegreesPerSecond)) return;
-  const double fastest =
-      std::max(std::abs(lower) < kUnlimited ? std::abs(lower) : 0, std::abs(upper) < kUnlimited ? std::abs(upper) : 0);
-  ctx.report("units-velocity-looks-degree", source_of(link, LinkSources::kJointVelocity),
-             fmt::format("joint velocity limit {} of link \"{}\" is read in rad/s (angle_unit: radian) but looks like "
-                         "deg/s: it allows {} turns a second",
-                         num(fastest), link.name, num(std::round(fastest / (2 * kPi) * 10) / 10)),
-             fmt::format("{} deg/s is {} rad/s: write that", num(fastest), as_radians(fastest)));
 }
 
 // A prismatic limit beyond 10 m is far more likely millimetres than metres.
@@ -209,8 +147,6 @@ void check_mesh_scale(const RuleContext& ctx, LinkIndex index) {
 void check_units(const RuleContext& ctx) {
   for (LinkIndex i = 0; i < static_cast<LinkIndex>(ctx.model.links.size()); ++i) {
     check_radian_range(ctx, ctx.model.links[i]);
-    check_degree_range(ctx, ctx.model.links[i]);
-    check_degree_velocity(ctx, ctx.model.links[i]);
     check_prismatic_range(ctx, ctx.model.links[i]);
     check_mesh_scale(ctx, i);
   }

@@ -25,7 +25,14 @@ namespace bodyfmt {
 std::vector<FixIt> link_mass_fixes(std::string_view text, const std::string& file, const Link& link,
                                    const MassProperties& keys, std::string& why);
 
-/// The numbers link_mass_fixes writes for `keys`, as they read back.
+/// The same for the RigidBody element that is `link`'s mass contribution `contribution`: `keys`
+/// in the element's own frame (RecomputedRigidBody::as_written) over its `center_of_mass` and
+/// `inertia`, found in `text` by the element's location. Nothing, with `why`, when the element is
+/// reached through an alias or its numbers are not written in place, or it has no `mass` key.
+std::vector<FixIt> rigid_body_mass_fixes(std::string_view text, const std::string& file, const Link& link,
+                                         std::size_t contribution, const MassProperties& keys, std::string& why);
+
+/// The numbers link_mass_fixes and rigid_body_mass_fixes write for `keys`, as they read back.
 MassProperties written_mass_keys(const MassProperties& keys);
 
 /// The links `--fix=geometry` replaces the centre of mass and inertia of: those that

@@ -49,15 +49,38 @@ MassProperties at_density(const MassProperties& mass, double density);
 /// `mass-geometry-not-solid` at the shape (at the `uri` of a mesh file) and leaves it out.
 std::optional<MassProperties> shape_mass_properties(const Model& model, const Shape& shape, DiagnosticSink& sink);
 
+/// The innermost RigidBody element above `shape` in its link's element tree: its index in
+/// Link::mass_contributions, or -1 when the shape is below none.
+int enclosing_rigid_body(const Link& link, const Shape& shape);
+
+/// The pose of the element frame `frame` (an index into Link::frames) in its link's frame.
+Eigen::Affine3d frame_in_link(const Link& link, int frame);
+
 /// A link's solid geometry at density 1: its collision shapes, or its visual ones when it has
 /// no collision shape (a plain Shape is both; Choreonoid's Visual and Collision elements make
-/// one of each).
-struct LinkGeometryMass {
-  MassProperties volume{0, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Zero()};  ///< density 1
-  int solids = 0;                                                              ///< shapes that contributed
-  int left_out = 0;                                                            ///< shapes that are no solid (reported)
-  bool from_visual = false;                                                    ///< the link has no collision shape
+/// one of each). A RigidBody element's mass data is that of the shapes below it: they count for
+/// it, not for the link-level keys, and never twice (body-format-spec §6.4: shapes carry no mass
+/// in Choreonoid; a RigidBody around them is how a file gives them one).
+struct RigidBodyGeometry {
+  std::size_t contribution = 0;                                                ///< in Link::mass_contributions
+  MassProperties volume{0, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Zero()};  ///< density 1, link frame
+  int solids = 0;
+  int left_out = 0;
   bool empty() const { return solids == 0 || !(volume.mass > 0); }
+};
+struct LinkGeometryMass {
+  /// The shapes below no RigidBody element (what the link-level keys stand for), density 1.
+  MassProperties volume{0, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Zero()};
+  int solids = 0;                               ///< shapes below no RigidBody that contributed
+  int left_out = 0;                             ///< shapes that are no solid (reported), anywhere in the link
+  bool from_visual = false;                     ///< the link has no collision shape
+  std::vector<RigidBodyGeometry> rigid_bodies;  ///< each RigidBody element with shapes below it
+  /// No solid outside the RigidBody elements.
+  bool empty() const { return solids == 0 || !(volume.mass > 0); }
+  /// Shapes below RigidBody elements that contributed.
+  int solids_in_rigid_bodies() const;
+  /// No solid anywhere in the link.
+  bool no_solid() const { return empty() && solids_in_rigid_bodies() == 0; }
 };
 LinkGeometryMass link_geometry_mass(const Model& model, const Link& link, DiagnosticSink& sink);
 
@@ -66,9 +89,10 @@ LinkGeometryMass link_geometry_mass(const Model& model, const Link& link, Diagno
 /// compute_mass_properties() is this over a link's contributions.
 MassProperties combine_mass_contributions(const std::vector<MassContribution>& contributions);
 
-/// A link's mass properties with its link-level mass keys replaced by its geometry at `density`,
-/// combined with its RigidBody elements as Choreonoid combines them. nullopt when the link has
-/// no solid geometry.
+/// A link's mass properties with the shapes outside its RigidBody elements at `density` in place
+/// of its link-level keys (the keys stay when there are no such shapes), combined with its
+/// RigidBody elements as written (each stands for the shapes below it). nullopt when the link has
+/// no solid geometry at all.
 std::optional<MassProperties> link_mass_from_geometry(const Link& link, const LinkGeometryMass& geometry,
                                                       double density);
 
@@ -76,12 +100,23 @@ std::optional<MassProperties> link_mass_from_geometry(const Link& link, const Li
 /// hold (centre of mass and inertia about it) for the link's written mass.
 std::optional<MassProperties> geometry_at_mass(const LinkGeometryMass& geometry, double mass);
 
-/// What the link-level keys would hold for the link's written link-level `mass` with the
-/// geometry's shape (centre of mass and inertia about it), and the link's combination with them
-/// and its RigidBody elements. nullopt when the link has no link-level keys or no solid geometry.
+/// A RigidBody element's centre of mass and inertia recomputed from the shapes below it at its
+/// written mass.
+struct RecomputedRigidBody {
+  std::size_t contribution = 0;  ///< in Link::mass_contributions
+  MassProperties in_link;        ///< link frame, as the contribution holds it
+  MassProperties as_written;     ///< in the element's own frame, as its keys are written
+};
+
+/// Every part of a link's mass data recomputed from the shapes it stands for, each at its written
+/// mass: the link-level keys from the shapes below no RigidBody element (when the link has a
+/// link-level `mass` and such shapes), each RigidBody element from the shapes below it (when it
+/// has some and a positive mass), and the link's combination then. nullopt when nothing can be
+/// recomputed.
 struct GeometryAtWrittenMass {
-  MassProperties link_keys;  ///< the `mass`, `center_of_mass` and `inertia` to write
-  MassProperties combined;   ///< the link's mass properties then
+  std::optional<MassProperties> link_keys;        ///< the `mass`, `center_of_mass` and `inertia` to write
+  std::vector<RecomputedRigidBody> rigid_bodies;  ///< the RigidBody elements recomputed
+  MassProperties combined;                        ///< the link's mass properties then
 };
 std::optional<GeometryAtWrittenMass> geometry_at_written_mass(const Link& link, const LinkGeometryMass& geometry);
 

@@ -314,7 +314,10 @@ struct Appearance {
 /// device, Resource, or a Shape's own transform). Kept so that consumers can rebuild the
 /// hierarchy: Choreonoid's bounding boxes and a glTF node tree depend on it.
 struct SceneFrame {
-  int parent = -1;                                                   ///< index into Link::frames; -1 = the link frame
+  int parent = -1;  ///< index into Link::frames; -1 = the link frame
+  /// The Link::mass_contributions entry of the RigidBody element whose frame this is, or -1:
+  /// the shapes below a RigidBody are the body whose mass data it writes.
+  int rigid_body = -1;
   Eigen::AffineCompact3d X_PF = Eigen::AffineCompact3d::Identity();  ///< in the parent frame; may scale
 };
 

@@ -181,25 +181,68 @@ std::optional<MassProperties> shape_mass_properties(const Model& model, const Sh
   return transform_mass_properties(mesh_mass_properties(local), X_LS);
 }
 
+int enclosing_rigid_body(const Link& link, const Shape& shape) {
+  // Frames list their parents first, so the walk up ends; a bad index ends it too.
+  for (int f = shape.frame; f >= 0 && f < static_cast<int>(link.frames.size());) {
+    const SceneFrame& frame = link.frames[static_cast<std::size_t>(f)];
+    if (frame.rigid_body >= 0) return frame.rigid_body;
+    if (frame.parent >= f) break;
+    f = frame.parent;
+  }
+  return -1;
+}
+
+Eigen::Affine3d frame_in_link(const Link& link, int frame) {
+  Eigen::Affine3d X = Eigen::Affine3d::Identity();
+  for (int f = frame; f >= 0 && f < static_cast<int>(link.frames.size());) {
+    const SceneFrame& node = link.frames[static_cast<std::size_t>(f)];
+    X = Eigen::Affine3d(node.X_PF) * X;
+    if (node.parent >= f) break;
+    f = node.parent;
+  }
+  return X;
+}
+
+int LinkGeometryMass::solids_in_rigid_bodies() const {
+  int n = 0;
+  for (const RigidBodyGeometry& r : rigid_bodies) n += r.solids;
+  return n;
+}
+
 LinkGeometryMass link_geometry_mass(const Model& model, const Link& link, DiagnosticSink& sink) {
   LinkGeometryMass result;
   result.from_visual = std::none_of(link.shapes.begin(), link.shapes.end(), [](const Shape& s) { return s.collision; });
-  std::vector<MassContribution> parts;
+  // Index 0: the shapes below no RigidBody; k + 1: those below mass contribution k.
+  std::vector<std::vector<MassContribution>> parts(link.mass_contributions.size() + 1);
+  std::vector<int> left_out(parts.size(), 0);
   for (const Shape& shape : link.shapes) {
     if (!(result.from_visual ? shape.visual : shape.collision)) continue;
+    const int body = enclosing_rigid_body(link, shape);
+    const std::size_t part =
+        body >= 0 && body < static_cast<int>(link.mass_contributions.size()) ? static_cast<std::size_t>(body) + 1 : 0;
     const std::optional<MassProperties> m = shape_mass_properties(model, shape, sink);
     if (!m) {
       ++result.left_out;
+      ++left_out[part];
       continue;
     }
-    ++result.solids;
     MassContribution c;
     c.mass = m->mass;
     c.center_of_mass = m->center_of_mass;
     c.inertia = m->inertia;
-    parts.push_back(c);
+    parts[part].push_back(c);
   }
-  if (!parts.empty()) result.volume = combine_mass_contributions(parts);
+  result.solids = static_cast<int>(parts[0].size());
+  if (!parts[0].empty()) result.volume = combine_mass_contributions(parts[0]);
+  for (std::size_t k = 1; k < parts.size(); ++k) {
+    if (parts[k].empty() && left_out[k] == 0) continue;
+    RigidBodyGeometry body;
+    body.contribution = k - 1;
+    body.solids = static_cast<int>(parts[k].size());
+    body.left_out = left_out[k];
+    if (!parts[k].empty()) body.volume = combine_mass_contributions(parts[k]);
+    result.rigid_bodies.push_back(body);
+  }
   return result;
 }
 
@@ -232,17 +275,19 @@ MassProperties combine_mass_contributions(const std::vector<MassContribution>& c
 
 std::optional<MassProperties> link_mass_from_geometry(const Link& link, const LinkGeometryMass& geometry,
                                                       double density) {
-  if (geometry.empty()) return std::nullopt;
-  const MassProperties shapes = at_density(geometry.volume, density);
+  if (geometry.no_solid()) return std::nullopt;
   std::vector<MassContribution> contributions;
-  MassContribution from_shapes;
-  from_shapes.mass = shapes.mass;
-  from_shapes.center_of_mass = shapes.center_of_mass;
-  from_shapes.inertia = shapes.inertia;
-  from_shapes.from_link_keys = true;
-  contributions.push_back(from_shapes);
   for (const MassContribution& c : link.mass_contributions)
-    if (!c.from_link_keys) contributions.push_back(c);
+    if (!c.from_link_keys || geometry.empty()) contributions.push_back(c);
+  if (!geometry.empty()) {
+    const MassProperties shapes = at_density(geometry.volume, density);
+    MassContribution from_shapes;
+    from_shapes.mass = shapes.mass;
+    from_shapes.center_of_mass = shapes.center_of_mass;
+    from_shapes.inertia = shapes.inertia;
+    from_shapes.from_link_keys = true;
+    contributions.push_back(from_shapes);
+  }
   return combine_mass_contributions(contributions);
 }
 
@@ -252,16 +297,45 @@ std::optional<MassProperties> geometry_at_mass(const LinkGeometryMass& geometry,
 }
 
 std::optional<GeometryAtWrittenMass> geometry_at_written_mass(const Link& link, const LinkGeometryMass& geometry) {
-  const auto keys = std::find_if(link.mass_contributions.begin(), link.mass_contributions.end(),
-                                 [](const MassContribution& c) { return c.from_link_keys; });
-  if (keys == link.mass_contributions.end()) return std::nullopt;
-  const std::optional<MassProperties> shaped = geometry_at_mass(geometry, keys->mass);
-  if (!shaped) return std::nullopt;
+  GeometryAtWrittenMass result;
   std::vector<MassContribution> contributions = link.mass_contributions;
-  MassContribution& replaced = contributions[static_cast<std::size_t>(keys - link.mass_contributions.begin())];
-  replaced.center_of_mass = shaped->center_of_mass;
-  replaced.inertia = shaped->inertia;
-  return GeometryAtWrittenMass{*shaped, combine_mass_contributions(contributions)};
+  const auto keys = std::find_if(contributions.begin(), contributions.end(),
+                                 [](const MassContribution& c) { return c.from_link_keys; });
+  if (keys != contributions.end()) {
+    if (const std::optional<MassProperties> shaped = geometry_at_mass(geometry, keys->mass)) {
+      keys->center_of_mass = shaped->center_of_mass;
+      keys->inertia = shaped->inertia;
+      result.link_keys = shaped;
+    }
+  }
+  for (const RigidBodyGeometry& body : geometry.rigid_bodies) {
+    MassContribution& c = contributions[body.contribution];
+    // A massless RigidBody has no tensor to scale to; a body's shapes that are no solid leave it.
+    if (body.empty() || !(c.mass > 0) || !std::isfinite(c.mass) || body.left_out > 0) continue;
+    const int frame = [&] {
+      for (std::size_t f = 0; f < link.frames.size(); ++f)
+        if (link.frames[f].rigid_body == static_cast<int>(body.contribution)) return static_cast<int>(f);
+      return -1;
+    }();
+    const Eigen::Affine3d X_LF = frame_in_link(link, frame);
+    const Eigen::Matrix3d L = X_LF.linear();
+    if (frame < 0 || !(std::abs(L.determinant()) > 0)) continue;
+    RecomputedRigidBody recomputed;
+    recomputed.contribution = body.contribution;
+    recomputed.in_link = at_density(body.volume, c.mass / body.volume.mass);
+    // The element's keys are read through its frame (c' = X c, I' = L I Lᵀ): written back through its inverse.
+    const Eigen::Matrix3d L_inv = L.inverse();
+    recomputed.as_written.mass = c.mass;
+    recomputed.as_written.center_of_mass = X_LF.inverse() * recomputed.in_link.center_of_mass;
+    const Eigen::Matrix3d I = L_inv * recomputed.in_link.inertia * L_inv.transpose();
+    recomputed.as_written.inertia = 0.5 * (I + I.transpose());
+    c.center_of_mass = recomputed.in_link.center_of_mass;
+    c.inertia = recomputed.in_link.inertia;
+    result.rigid_bodies.push_back(recomputed);
+  }
+  if (!result.link_keys && result.rigid_bodies.empty()) return std::nullopt;
+  result.combined = combine_mass_contributions(contributions);
+  return result;
 }
 
 }  // namespace bodyfmt

@@ -250,10 +250,10 @@ std::vector<RuleInfo> make_table() {
        "MuJoCo, Drake and gz-math refuse it; the dynamics are unphysical",
        "smallest eigenvalue < -16*DBL_EPSILON*max(1, trace/2) (Drake's); exactly < 0 for a diagonal tensor"},
       {"inertia-triangle", E, "the principal moments violate the triangle inequality (A + B < C)",
-       "no rigid body has such moments; MuJoCo (no tolerance), Drake (16*eps*max(1, tr/2)) and gz-math (10*eps*tr/2) "
-       "refuse the model",
+       "no rigid body has such moments; MuJoCo refuses any violation, Drake one beyond 16*eps*max(1, tr/2), gz-math "
+       "one beyond 10*eps*tr/2; `bodycheck --fix=geometry` computes the tensor from the link's shapes",
        "A + B - C < 0 exactly for a diagonal tensor (MuJoCo); < -4*DBL_EPSILON*trace otherwise (eigen-solver "
-       "rounding); the message says which engines refuse"},
+       "rounding)"},
       {"inertia-nonpositive-mass", E, "a negative mass, or zero mass on a moving link",
        "MuJoCo clamps negative mass to 0 and refuses massless moving bodies; Drake and gz-math refuse negative mass",
        "moving = revolute, prismatic or free joint; zero mass passes when a fixed descendant carries mass (MuJoCo's "
@@ -296,13 +296,20 @@ std::vector<RuleInfo> make_table() {
        "finite limits all within 2pi+0.002 (as written), one non-zero, and either one within 0.002 of k*pi/12 (k = "
        "1..24) or all within pi+0.002 and none a whole number"},
       {"units-range-looks-degree", E, "a revolute range in a radian file (angle_unit: radian) looks like degrees",
-       "[-90, 90] read in radians lets the joint turn 14 times each way",
-       "a finite limit beyond 2pi+0.002, none beyond 360 (as written), and every one beyond 2pi a multiple of 0.5"},
+       "[-90, 90] read in radians lets the joint turn 14 times each way; while it stands, the format upgrade (which "
+       "would convert it as radians and make the mistake silent) is refused",
+       "a finite limit beyond 2pi+0.002, none beyond 360 (as written), and every one beyond 2pi a multiple of 0.5; "
+       "judged per file, in the file's own unit"},
       {"units-velocity-looks-degree", E,
        "a revolute velocity limit in a radian file (angle_unit: radian) looks like deg/s",
-       "max_joint_velocity: 180 read in rad/s lets the joint turn 29 times a second",
+       "max_joint_velocity: 180 read in rad/s lets the joint turn 29 times a second; while it stands, the format "
+       "upgrade is refused",
        "a finite limit beyond 16pi rad/s (8 turns a second), none beyond 3600 (as written), and every one beyond "
-       "16pi a multiple of 0.5"},
+       "16pi a multiple of 0.5; judged per file, in the file's own unit"},
+      {"units-rotation-looks-radian", W, "a rotation angle in a degree file looks like radians",
+       "format 2.0 angles are degrees: rotation: [0, 0, 1, 1.5708] turns by 1.5708 degrees, not a quarter turn",
+       "non-zero, within 2pi+0.002 and within 0.002 of k*pi/12 (k = 1..24), as written: the first test of "
+       "units-range-looks-radian (a single small tilt, 2.35 degrees, is too common for its second)"},
       {"units-prismatic-millimetres", W, "a prismatic range beyond 10 m",
        "prismatic ranges are metres; millimetres make the limit 1000x too wide", "|limit| > 10 m"},
       {"units-mesh-millimetres", W, "a mesh in metres that is far too large for its link",
@@ -449,6 +456,9 @@ std::vector<RuleInfo> make_table() {
        "unsafe: moves the lines one level up, when the key is the last of geometry and the Shape has no appearance "
        "(the material is then read, so the model changes)"},
       {"structure-unknown-parent", "unsafe: the nearest link name, when one is nearest (the link is then attached)"},
+      {"units-range-looks-degree", "unsafe: reinterpret as degrees (the radians they stand for are written)"},
+      {"units-velocity-looks-degree", "unsafe: reinterpret as deg/s (the rad/s it stands for is written)"},
+      {"units-rotation-looks-radian", "unsafe: reinterpret as radians (the degrees it stands for are written)"},
   };
   for (RuleInfo& rule : rules)
     for (const auto& [id, fix] : fixes)

@@ -127,22 +127,12 @@ std::optional<FixIt> insert_before(const yaml::MapEntry& before, const std::stri
 
 MassProperties written_mass_keys(const MassProperties& keys) { return written_form(keys).keys; }
 
-std::vector<FixIt> link_mass_fixes(std::string_view text, const std::string& file, const Link& link,
-                                   const MassProperties& keys, std::string& why) {
-  const SourceLocation mass_at = link.sources.mass();
-  if (!mass_at.known()) {
-    why = fmt::format("link \"{}\" has no link-level mass key to scale its geometry to", link.name);
-    return {};
-  }
-  CollectingSink ignored;  // the file loaded before; its YAML findings are the loader's
-  const std::unique_ptr<yaml::Document> doc = yaml::parse_yaml(text, file, yaml::ParseOptions{}, ignored);
-  Found found;
-  std::set<const yaml::Node*> seen;
-  if (doc) find_mapping(doc->root, "mass", mass_at, seen, found);
-  if (!found.mapping) {
-    why = fmt::format("the mass of link \"{}\" is not written in place in {} (an alias or merge key)", link.name, file);
-    return {};
-  }
+namespace {
+
+/// The fix-its that write `keys` over the `center_of_mass` and `inertia` entries of `mapping`
+/// (inserting a missing one before its `mass` entry); `owner` names it in `why`.
+std::vector<FixIt> mass_key_fixes(std::string_view text, const std::string& file, const yaml::Node& mapping,
+                                  const std::string& owner, const MassProperties& keys, std::string& why) {
   const Written w = written_form(keys);
   const auto n = [&](double v) { return number_text(v, w.digits); };
   const Eigen::Matrix3d& I = w.keys.inertia;
@@ -153,16 +143,17 @@ std::vector<FixIt> link_mass_fixes(std::string_view text, const std::string& fil
   const std::vector<std::string> six = {n(I(0, 0)), n(I(0, 1)), n(I(0, 2)), n(I(1, 1)), n(I(1, 2)), n(I(2, 2))};
   const auto flow = [](const std::vector<std::string>& v) { return "[" + fmt::format("{}", fmt::join(v, ", ")) + "]"; };
 
-  const yaml::MapEntry* mass = found.mapping->find("mass");
-  const yaml::MapEntry* inertia = found.mapping->find("inertia");
-  const yaml::MapEntry* com = found.mapping->find("center_of_mass");
-  if (!com) com = found.mapping->find("centerOfMass");
+  const yaml::MapEntry* mass = mapping.find("mass");
+  const yaml::MapEntry* inertia = mapping.find("inertia");
+  const yaml::MapEntry* com = mapping.find("center_of_mass");
+  if (!com) com = mapping.find("centerOfMass");
   std::vector<FixIt> fixes;
   const auto fail = [&](const std::string& what) {
-    why = fmt::format("the {} of link \"{}\" is not written as plain numbers in place", what, link.name);
+    why = fmt::format("the {} of {} is not written as plain numbers in place", what, owner);
     fixes.clear();
     return fixes;
   };
+  if (!mass) return fail("mass key");
   // Missing keys go in as one insertion (two at one place would overlap).
   std::vector<std::string> inserted;
   if (inertia) {
@@ -183,6 +174,62 @@ std::vector<FixIt> link_mass_fixes(std::string_view text, const std::string& fil
     fixes.push_back(std::move(*f));
   }
   return fixes;
+}
+
+/// The mapping written at `at` (a RigidBody element as the loader located it), not reached
+/// through an alias.
+void find_node(const yaml::NodeRef& ref, const SourceLocation& at, std::set<const yaml::Node*>& seen,
+               const yaml::Node*& found) {
+  if (!ref || found || !seen.insert(ref.node).second) return;
+  if (ref->is_mapping()) {
+    if (ref.alias_site == nullptr && ref->location == at) {
+      found = ref.node;
+      return;
+    }
+    for (const yaml::MapEntry& e : ref->entries())
+      if (!e.merged) find_node(e.value, at, seen, found);
+  } else if (ref->is_sequence()) {
+    for (const yaml::NodeRef& item : ref->items()) find_node(item, at, seen, found);
+  }
+}
+
+}  // namespace
+
+std::vector<FixIt> link_mass_fixes(std::string_view text, const std::string& file, const Link& link,
+                                   const MassProperties& keys, std::string& why) {
+  const SourceLocation mass_at = link.sources.mass();
+  if (!mass_at.known()) {
+    why = fmt::format("link \"{}\" has no link-level mass key to scale its geometry to", link.name);
+    return {};
+  }
+  CollectingSink ignored;  // the file loaded before; its YAML findings are the loader's
+  const std::unique_ptr<yaml::Document> doc = yaml::parse_yaml(text, file, yaml::ParseOptions{}, ignored);
+  Found found;
+  std::set<const yaml::Node*> seen;
+  if (doc) find_mapping(doc->root, "mass", mass_at, seen, found);
+  if (!found.mapping) {
+    why = fmt::format("the mass of link \"{}\" is not written in place in {} (an alias or merge key)", link.name, file);
+    return {};
+  }
+  return mass_key_fixes(text, file, *found.mapping, fmt::format("link \"{}\"", link.name), keys, why);
+}
+
+std::vector<FixIt> rigid_body_mass_fixes(std::string_view text, const std::string& file, const Link& link,
+                                         std::size_t contribution, const MassProperties& keys, std::string& why) {
+  const SourceLocation at =
+      contribution < link.mass_contributions.size() ? link.mass_contributions[contribution].source : SourceLocation{};
+  const std::string owner = fmt::format("the RigidBody element of link \"{}\" at line {}", link.name, at.line);
+  CollectingSink ignored;
+  const std::unique_ptr<yaml::Document> doc =
+      at.known() ? yaml::parse_yaml(text, file, yaml::ParseOptions{}, ignored) : nullptr;
+  const yaml::Node* mapping = nullptr;
+  std::set<const yaml::Node*> seen;
+  if (doc) find_node(doc->root, at, seen, mapping);
+  if (!mapping) {
+    why = fmt::format("{} is not written in place in {} (an alias or merge key)", owner, file);
+    return {};
+  }
+  return mass_key_fixes(text, file, *mapping, owner, keys, why);
 }
 
 std::vector<bool> links_for_geometry_fix(const Model& model, const std::vector<Diagnostic>& findings) {

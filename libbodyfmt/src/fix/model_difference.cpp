@@ -105,6 +105,7 @@ class Structure {
       for (std::size_t i = 0; i < a.frames.size() && !difference; ++i) {
         const std::string w = fmt::format("{} frame {}", what, i);
         equal(w + " parent", a.frames[i].parent, b.frames[i].parent);
+        equal(w + " rigid_body", a.frames[i].rigid_body, b.frames[i].rigid_body);
         numbers(w + " placement", a.frames[i].X_PF.data(), b.frames[i].X_PF.data(), 12);
       }
   }

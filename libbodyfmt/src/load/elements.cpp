@@ -178,7 +178,7 @@ std::optional<ElementFrame> ElementReader::enter(MappingReader& r, const Element
 ElementFrame ElementReader::push_frame(const ElementFrame& frame, const Eigen::Affine3d& X_PF) {
   ElementFrame inner = frame;
   inner.X_LF = frame.X_LF * X_PF;
-  link().frames.push_back(SceneFrame{frame.frame, X_PF});
+  link().frames.push_back(SceneFrame{frame.frame, -1, X_PF});
   inner.frame = static_cast<int>(link().frames.size()) - 1;
   return inner;
 }
@@ -328,6 +328,7 @@ void ElementReader::read_rigid_body(const yaml::NodeRef& node, const ElementFram
   const Eigen::Matrix3d L = inner.X_LF.linear();
   c.center_of_mass = inner.X_LF * com;
   c.inertia = L * I * L.transpose();
+  link().frames[static_cast<std::size_t>(inner.frame)].rigid_body = static_cast<int>(link().mass_contributions.size());
   link().mass_contributions.push_back(c);
   ++rigid_bodies_;
   read_elements(r.take({"elements"}), inner);

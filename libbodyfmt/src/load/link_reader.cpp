@@ -4,6 +4,7 @@
 
 #include "load/mapping_reader.h"
 #include "load/scalar.h"
+#include "load/unit_checks.h"
 #include "load/values.h"
 
 namespace bodyfmt::detail {
@@ -81,21 +82,28 @@ void read_joint(LoadContext& ctx, MappingReader& r, Link& link) {
   }
   if (auto range = r.take({"joint_range", "jointRange"})) {
     link.sources.set(LinkSources::kJointRange, range.use_site());
-    if (auto v = read_range(ctx, range, revolute)) std::tie(link.joint_range_lower, link.joint_range_upper) = *v;
+    if (auto v = read_range(ctx, range, revolute)) {
+      std::tie(link.joint_range_lower, link.joint_range_upper) = *v;
+      check_degree_range(ctx, link, range, v->first, v->second);
+    }
   }
   yaml::NodeRef max_velocity = r.take({"max_joint_velocity", "maxJointVelocity"});
   yaml::NodeRef velocity_range = r.take({"joint_velocity_range", "jointVelocityRange"});
   if (max_velocity) {
     link.sources.set(LinkSources::kJointVelocity, max_velocity.use_site());
-    if (auto v = read_symmetric_limit(ctx, max_velocity, revolute))
+    if (auto v = read_symmetric_limit(ctx, max_velocity, revolute)) {
       std::tie(link.velocity_lower, link.velocity_upper) = *v;
+      check_degree_velocity(ctx, link, max_velocity, v->first, v->second);
+    }
     if (velocity_range)
       ctx.report("load-ignored-key", velocity_range,
                  "joint_velocity_range is ignored by Choreonoid when max_joint_velocity is given");
   } else if (velocity_range) {
     link.sources.set(LinkSources::kJointVelocity, velocity_range.use_site());
-    if (auto v = read_velocity_range(ctx, velocity_range, revolute))
+    if (auto v = read_velocity_range(ctx, velocity_range, revolute)) {
       std::tie(link.velocity_lower, link.velocity_upper) = *v;
+      check_degree_velocity(ctx, link, velocity_range, v->first, v->second);
+    }
   }
   if (auto effort = r.take({"max_joint_effort"})) {
     if (auto v = read_symmetric_limit(ctx, effort, false)) std::tie(link.effort_lower, link.effort_upper) = *v;
@@ -237,6 +245,9 @@ void apply_subbody_overrides(LoadContext& ctx, MappingReader& r, Model& model, L
     ctx.report("load-mass-ignored", after.mass_contributions[contributions].source,
                "RigidBody nodes of a SubBody node are ignored by Choreonoid");
     after.mass_contributions.resize(contributions);
+    // Their shapes stay, as plain shapes: no ignored RigidBody stands for them.
+    for (SceneFrame& f : after.frames)
+      if (f.rigid_body >= static_cast<int>(contributions)) f.rigid_body = -1;
   }
 }
 

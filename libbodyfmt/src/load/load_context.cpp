@@ -97,6 +97,18 @@ std::string number_text(double value) {
   return fmt::format("{}", value);
 }
 
+std::string degrees_text(double radians) {
+  // The loader reads a degree value d as d * kPi / 180.0: the shortest d that gives `radians`
+  // back bit for bit is the model unchanged, and 45 rather than 45.00000000000001.
+  const double degrees = radians * 180.0 / kPi;
+  if (!std::isfinite(degrees) || degrees == 0) return number_text(degrees);
+  for (int digits = 1; digits <= 17; ++digits) {
+    const double shorter = std::strtod(fmt::format("{:.{}g}", degrees, digits).c_str(), nullptr);
+    if (shorter * kPi / 180.0 == radians) return number_text(shorter);  // "-10", never "-1e+01"
+  }
+  return number_text(degrees);
+}
+
 void LoadContext::report(std::string_view rule, const yaml::NodeRef& at, std::string message, std::string hint,
                          std::vector<FixIt> fixes) {
   if (!at) return report(rule, SourceLocation{}, std::move(message), std::move(hint));
@@ -131,7 +143,7 @@ double LoadContext::angle(double value, const yaml::NodeRef& at) {
 
 void LoadContext::record_upgrade(const yaml::NodeRef& at, double radians) {
   if (degrees || own_angle_unit || !at) return;
-  std::optional<FixIt> fix = edit_value(*at, number_text(radians * 180.0 / kPi), FixSafety::kUpgrade);
+  std::optional<FixIt> fix = edit_value(*at, degrees_text(radians), FixSafety::kUpgrade);
   if (!fix) {
     upgrade_blockers.push_back(at->location);
     return;

@@ -21,6 +21,9 @@ std::optional<FixIt> edit_value(const yaml::Node& node, std::string replacement,
 std::optional<FixIt> edit_key(const yaml::MapEntry& entry, std::string replacement, FixSafety safety);
 /// Shortest text that reads back as `value` (fmt's "{}"), for rewritten numbers.
 std::string number_text(double value);
+/// `radians` in degrees for the format upgrade: the shortest text that the loader reads back as
+/// the same radians, bit for bit.
+std::string degrees_text(double radians);
 
 struct LoadContext;
 

@@ -3,6 +3,7 @@
 #include <bodyfmt/model.h>
 
 #include "load/scalar.h"
+#include "load/unit_checks.h"
 
 #include <algorithm>
 #include <cctype>
@@ -143,7 +144,9 @@ std::optional<Eigen::Matrix3d> read_rotation(LoadContext& ctx, const yaml::NodeR
       ctx.report("load-rotation-axis", r, "rotation axis is the zero vector");
       return std::nullopt;
     }
-    return Eigen::AngleAxisd(ctx.angle((*v)[3], r.child(r->items()[3])), axis.normalized()).toRotationMatrix();
+    const yaml::NodeRef angle = r.child(r->items()[3]);
+    check_radian_rotation(ctx, angle, (*v)[3]);
+    return Eigen::AngleAxisd(ctx.angle((*v)[3], angle), axis.normalized()).toRotationMatrix();
   };
   if (!is_sequence_of_sequences(ref)) return one(ref);
   // body-format-spec §4.3: R = R1 * R2 * ... * Rn in list order.

@@ -255,3 +255,98 @@ TEST_CASE("geometry mass: a shell is not a solid and is reported at the shape") 
   CHECK(sink.diagnostics()[1].location.line == 18);  // the third
   CHECK(sink.diagnostics()[1].message.find("not consistently oriented") != std::string::npos);
 }
+
+// The tutorial's SimpleTank (examples/simpletank.body), worked by hand at water's 1000 kg/m³.
+// A RigidBody element's mass data is that of the shapes below it: TURRET_P's drum and gun
+// (3 kg and 1 kg, written) are not weighed again from their cylinders; only the lamp's cone,
+// below no RigidBody, is.
+TEST_CASE("geometry mass: the tutorial tank by hand, each RigidBody's shapes counted once") {
+  CollectingSink sink;
+  const std::optional<Model> model = load_body(std::string(BODYFMT_EXAMPLES_DIR) + "/simpletank.body", {}, sink);
+  REQUIRE(model);
+  const auto link = [&](const char* name) -> const Link& {
+    for (const Link& l : model->links)
+      if (l.name == name) return l;
+    FAIL("no link " << name);
+    return model->links.front();
+  };
+  const auto from_geometry = [&](const Link& l) {
+    const LinkGeometryMass g = link_geometry_mass(*model, l, sink);
+    return std::pair(g, link_mass_from_geometry(l, g, 1000.0));
+  };
+
+  // CHASSIS: a box 0.45 x 0.3 x 0.1 = 0.0135 m³ -> 13.5 kg, Ixx = m (b² + c²) / 12.
+  const auto [hull, chassis] = from_geometry(link("CHASSIS"));
+  REQUIRE(chassis);
+  CHECK(chassis->mass == doctest::Approx(13.5).epsilon(1e-12));
+  CHECK(chassis->inertia(0, 0) == doctest::Approx(13.5 * (0.09 + 0.01) / 12).epsilon(1e-12));
+  CHECK(chassis->inertia(1, 1) == doctest::Approx(13.5 * (0.2025 + 0.01) / 12).epsilon(1e-12));
+  CHECK(chassis->inertia(2, 2) == doctest::Approx(13.5 * (0.2025 + 0.09) / 12).epsilon(1e-12));
+
+  // TURRET_Y: its box is below the 4 kg RigidBody, which stays as written (CoM z = 0.025).
+  const auto [base, turret_y] = from_geometry(link("TURRET_Y"));
+  CHECK(base.solids == 0);
+  CHECK(base.solids_in_rigid_bodies() == 1);
+  REQUIRE(turret_y);
+  CHECK(turret_y->mass == doctest::Approx(4).epsilon(1e-15));
+  CHECK(turret_y->center_of_mass.z() == doctest::Approx(0.025).epsilon(1e-15));
+
+  // TURRET_P: drum 3 kg at 0 + gun 1 kg at x = 0.2 (written) + the cone r 0.025, h 0.04:
+  // V = π r² h / 3 = 2.6180e-5 m³ -> 0.026180 kg. Its centroid is h/4 = 0.01 from the base
+  // towards the apex; the cone's axis (+Y) is turned by Rz(90) onto -X, so the centroid is at
+  // (0.08 - 0.02 + 0.01, 0, 0.1) = (0.07, 0, 0.1) in the link frame.
+  const double cone = 1000 * kPi * 0.025 * 0.025 * 0.04 / 3;
+  const double total = 3 + 1 + cone;
+  const auto [gear, turret_p] = from_geometry(link("TURRET_P"));
+  CHECK(gear.solids == 1);
+  CHECK(gear.solids_in_rigid_bodies() == 2);
+  REQUIRE(turret_p);
+  CHECK(turret_p->mass == doctest::Approx(total).epsilon(1e-12));
+  CHECK(turret_p->center_of_mass.x() == doctest::Approx((1 * 0.2 + cone * 0.07) / total).epsilon(1e-12));
+  CHECK(turret_p->center_of_mass.z() == doctest::Approx(cone * 0.1 / total).epsilon(1e-12));
+  // Counted twice, the cylinders' 1000·π(0.1²·0.1 + 0.02²·0.2) = 3.393 kg would be added.
+  CHECK(turret_p->mass < 4.1);
+
+  // TRACK_L: a trapezoid (0.68 top, 0.44 bottom, 0.16 high) 0.1 wide: 0.00896 m³ -> 8.96 kg,
+  // centroid h (2a + b) / (3 (a + b)) above the bottom at z = -0.1.
+  const auto [outline, track] = from_geometry(link("TRACK_L"));
+  REQUIRE(track);
+  CHECK(track->mass == doctest::Approx(8.96).epsilon(1e-12));
+  CHECK(track->center_of_mass.z() ==
+        doctest::Approx(-0.1 + 0.16 * (2 * 0.68 + 0.44) / (3 * (0.68 + 0.44))).epsilon(1e-12));
+  CHECK(sink.diagnostics().empty());
+}
+
+// Recomputing every part at its written mass: TURRET_Y's RigidBody (4 kg) gets its box's tensor,
+// m (b² + c²) / 12 = 4 (0.04 + 0.01) / 12 = 1/60 about X and Y and 4 (0.04 + 0.04) / 12 about Z
+// (written 0.1: six times too large), and TURRET_P's gun its cylinder's in its own frame, where
+// the axis is Y (the Transform's Rz(90) turns it onto the link's X): axial m r² / 2 = 0.0002,
+// transverse m (3r² + h²) / 12 = (0.0012 + 0.04) / 12.
+TEST_CASE("geometry mass: RigidBody elements recomputed from the shapes below them, in their own frame") {
+  CollectingSink sink;
+  const std::optional<Model> model = load_body(std::string(BODYFMT_EXAMPLES_DIR) + "/simpletank.body", {}, sink);
+  REQUIRE(model);
+  const Link& turret_y = model->links[1];
+  REQUIRE(turret_y.name == "TURRET_Y");
+  const auto y = geometry_at_written_mass(turret_y, link_geometry_mass(*model, turret_y, sink));
+  REQUIRE(y);
+  CHECK_FALSE(y->link_keys);
+  REQUIRE(y->rigid_bodies.size() == 1);
+  const MassProperties& base = y->rigid_bodies[0].as_written;
+  CHECK(base.mass == 4);
+  CHECK(base.center_of_mass.norm() < 1e-15);
+  CHECK((base.inertia - diagonal(1.0 / 60, 1.0 / 60, 4 * 0.08 / 12)).cwiseAbs().maxCoeff() < 1e-15);
+
+  const Link& turret_p = model->links[2];
+  REQUIRE(turret_p.name == "TURRET_P");
+  const auto p = geometry_at_written_mass(turret_p, link_geometry_mass(*model, turret_p, sink));
+  REQUIRE(p);
+  REQUIRE(p->rigid_bodies.size() == 2);
+  const RecomputedRigidBody& gun = p->rigid_bodies[1];
+  const double transverse = (3 * 0.0004 + 0.04) / 12;
+  CHECK((gun.as_written.inertia - diagonal(transverse, 0.0002, transverse)).cwiseAbs().maxCoeff() < 1e-15);
+  CHECK((gun.as_written.center_of_mass).norm() < 1e-15);
+  // In the link frame the axis is X, at the Transform's x = 0.2.
+  CHECK((gun.in_link.inertia - diagonal(0.0002, transverse, transverse)).cwiseAbs().maxCoeff() < 1e-15);
+  CHECK((gun.in_link.center_of_mass - Vector3d(0.2, 0, 0)).norm() < 1e-15);
+}

@@ -187,3 +187,48 @@ TEST_CASE("bodycheck --fix: an edit that would change another use of shared text
   CHECK(!contains(again.output, "fixed ("));
   CHECK(read(dir / "aliased_joint_type.body") == type_after);
 }
+
+// --fix=geometry --all-links: every link's mass data from its shapes, RigidBody elements included, where
+// --fix=geometry changes only the CHASSIS (the one link a rule flags). TURRET_Y's RigidBody, 4 kg
+// around a box 0.2 x 0.2 x 0.1, gets 4 (0.2² + 0.1²) / 12 = 0.0166666667 about X (written 0.1,
+// six times too much) and its centre at the box's (written z = 0.025); a track (1 kg) its
+// trapezoid's centroid h (2a + b) / (3 (a + b)) - 0.1 = -0.0142857143. The fixed model passes
+// the proof (only what was recomputed changed) and then has no inertia finding.
+TEST_CASE("bodycheck --fix=geometry --all-links recomputes every link, RigidBody elements included") {
+  const fs::path dir = fresh_dir("fix_geometry_all");
+  fs::copy_file(fs::path(BODYFMT_EXAMPLES_DIR) / "simpletank.body", dir / "tank.body");
+  fs::permissions(dir / "tank.body", fs::perms::owner_write, fs::perm_options::add);
+  const Run flagged = bodycheck_in(dir, "--fix=geometry --dry-run tank.body");
+  CHECK(flagged.status == 1);
+  CHECK(contains(flagged.output, "+    inertia: [ 0.0666666667, 0,   0,\n"));
+  CHECK_FALSE(contains(flagged.output, "0.0166666667"));
+
+  const Run all = bodycheck_in(dir, "--fix=geometry --all-links tank.body");
+  CHECK(contains(all.output, "tank.body: fixed (21 edits)"));
+  const std::string after = read(dir / "tank.body");
+  CHECK(contains(after,
+                 "        center_of_mass: [0, 0, 0]\n"
+                 "        inertia: [ 0.0166666667, 0,   0,\n"
+                 "                   0,   0.0166666667, 0,\n"
+                 "                   0,   0,   0.0266666667 ]\n"));
+  CHECK(contains(after, "    center_of_mass: [0, 0, -0.0142857143]\n    mass: 1.0\n"));
+  const Run check = bodycheck_in(dir, "tank.body");
+  CHECK(check.status == 0);
+  CHECK_FALSE(contains(check.output, "[inertia-"));
+  const Run again = bodycheck_in(dir, "--fix=geometry --all-links --dry-run tank.body");
+  CHECK(again.status == 0);
+}
+
+// The tutorial's CHASSIS inertia: one sentence that says what is wrong, a hint that names the
+// fix; the engines and their tolerances are the rule's documentation.
+TEST_CASE("bodycheck: the triangle inequality in one sentence, with --fix=geometry as the hint") {
+  const Run run = bodycheck_in(BODYFMT_EXAMPLES_DIR, "simpletank.body");
+  CHECK(contains(run.output,
+                 "error: inertia of link \"CHASSIS\" is impossible for a rigid body: principal moments "
+                 "(0.1, 0.1, 0.5) break the triangle inequality (0.1 + 0.1 < 0.5) [inertia-triangle]\n"));
+  CHECK(contains(run.output, "note: compute it from the link's shapes with bodycheck --fix=geometry"));
+  CHECK_FALSE(contains(run.output, "Drake"));
+  const Run explain = bodycheck_in(".", "--explain inertia-triangle");
+  CHECK(contains(explain.output, "Drake one beyond 16*eps*max(1, tr/2)"));
+  CHECK(contains(explain.output, "gz-math one beyond 10*eps*tr/2"));
+}
