@@ -793,16 +793,16 @@ int run_server(int argc, char** argv) {
     server.handle_batch(bodies);
   }
   int code = server.exited() ? server.exit_code() : 1;  // the end of input: an exit without shutdown
+  // What is queued is the session's last word (the reply to `shutdown`, the findings of the last
+  // check): given a second to be written, never waited for longer. Its write may be the one that
+  // fails (a full disk): the error is looked at after it.
+  if (!client_gone) output.wait_below(1, 1000);
   if (const int error = output.error()) {
     front.print_error(std::string("cannot write to standard output: ") + std::strerror(error));
     code = tools::kExitFatal;
   } else if (client_gone) {
     front.print_error("the client's process " + std::to_string(*server.client_process()) +
                       " has ended; so does this session");
-  } else {
-    // What is queued is the session's last word (the reply to `shutdown`, the findings of the
-    // last check): given a second to be read, never waited for longer.
-    output.wait_below(1, 1000);
   }
   server.end_viewers();
   // A check still running (a large model takes seconds) and a writer blocked on a client that

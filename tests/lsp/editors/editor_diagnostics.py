@@ -270,12 +270,21 @@ def tutorial_failures(texts, findings):
 
 
 def stage_action_failures(editor, stages):
-    """Each stage's diagnostics offer the actions that exist: the legacy key's rename."""
+    """Each stage's diagnostics offer the actions that exist: the legacy key's rename, and for
+    CHASSIS's impossible inertia the one that computes it from the chassis's box."""
     failures = []
     for n, entry in enumerate(stages or []):
+        codes = set()
         for a in entry.get("actions") or []:
+            codes.add(a.get("code"))
             if a.get("code") == "load-legacy-key" and not a.get("titles"):
                 failures.append(f"tutorial stage {n + 1} ({editor}): no code action on the legacy key at line {a['line']}")
+            if a.get("code") == "inertia-triangle" and not any(
+                    'inertia of link "CHASSIS" from its shapes' in t for t in a.get("titles") or []):
+                failures.append(f"tutorial stage {n + 1} ({editor}): no action computing CHASSIS's inertia from its "
+                                f"shapes at line {a['line']}: {a.get('titles')}")
+        if stages and "inertia-triangle" not in codes:
+            failures.append(f"tutorial stage {n + 1} ({editor}): no code actions were asked for on the inertia finding")
     return failures
 
 
