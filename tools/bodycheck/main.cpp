@@ -373,7 +373,8 @@ int main(int argc, char** argv) {
       ->needs(fix_option)
       ->group(fixing);
   app.add_flag("--upgrade", settings.fixing.upgrade,
-               "with --fix: also rewrite format 1.0 files as 2.0 (radian values converted to degrees, spec §3)")
+               "with --fix: also rewrite format 1.0 files as 2.0 (radian values converted to degrees; "
+               "docs/tools/bodycheck.md, \"Fixing\")")
       ->needs(fix_option)
       ->group(fixing);
   app.add_flag("--fix-includes", settings.fixing.includes,

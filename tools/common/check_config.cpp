@@ -1,4 +1,5 @@
-// `.bodycheck.yaml`: the per-tree policy settings of every tool (docs/tools/bodycheck.md, "Configuration").
+// `.bodycheck.yaml`: the per-tree policy settings of every tool (docs/tools/bodycheck.md, the paragraphs before
+// "bodycheck in pre-commit").
 //
 //   disable: [inertia-com-outside, units-*]   # rule ids or family prefixes
 //   enable: [units-degree-looks-radian]       # wins over disable
