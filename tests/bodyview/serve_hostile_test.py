@@ -222,7 +222,30 @@ def main():
         print(f"SIGINT among hostile clients: exit {rc} in {seconds * 1000:.0f} ms")
         if rc != 0 or seconds > 1.0:
             failures.append(f"SIGINT among hostile clients: exit {rc} after {seconds:.2f} s")
-    except (AssertionError, OSError, IndexError, ValueError) as e:
+        # --lifeline names a descriptor to read: one not open, or open for writing only, is
+        # refused with a located error (exit 2), never taken for a lifeline that has ended.
+        with open(work / "written", "w") as written:
+            for fd, keep in ((written.fileno(), (written.fileno(),)), (987, ())):
+                refused = subprocess.run([tool, "--serve", "-q", str(model), "--lifeline", str(fd)], pass_fds=keep,
+                                         capture_output=True, text=True, timeout=30)
+                if refused.returncode != 2 or "--lifeline %d" % fd not in refused.stderr:
+                    failures.append(f"--lifeline {fd} (not readable): exit {refused.returncode}, {refused.stderr!r}")
+        # A readable lifeline: bodyview serves until its writer closes it, then exits 0 at once.
+        read_end, write_end = os.pipe()
+        lived = subprocess.Popen([tool, "--serve", "-q", str(model), "--lifeline", str(read_end)], pass_fds=(read_end,),
+                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        os.close(read_end)
+        if not lived.stdout.readline().startswith("http://127.0.0.1:"):
+            failures.append("--lifeline: no page served")
+        os.close(write_end)
+        try:
+            if lived.wait(timeout=10) != 0:
+                failures.append(f"--lifeline: exit {lived.returncode} when its writer closed it")
+        except subprocess.TimeoutExpired:
+            lived.kill()
+            lived.wait()
+            failures.append("--lifeline: still serving 10 s after its writer closed it")
+    except (AssertionError, OSError, IndexError, ValueError, subprocess.TimeoutExpired) as e:
         failures.append(f"{type(e).__name__}: {e}")
     finally:
         if hostiles:

@@ -45,7 +45,7 @@ int main(int argc, char** argv) {
   if (auto code = front.parse(argc, argv)) return *code;
   // First of all: a model that takes long to load (or never does) must not outlive its starter.
   if (lifeline >= 0 && !bodyview::exit_with_lifeline(lifeline)) {
-    front.print_error("--lifeline " + std::to_string(lifeline) + ": not an open file descriptor");
+    front.print_error("--lifeline " + std::to_string(lifeline) + ": not a file descriptor open for reading");
     return tools::kExitFatal;
   }
   // Without -o the page goes to the current folder, named after the model, as a download

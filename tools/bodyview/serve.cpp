@@ -115,7 +115,10 @@ void close_connection(Connection& c) {
 }  // namespace
 
 bool exit_with_lifeline(int fd) {
-  if (::fcntl(fd, F_GETFD) < 0) return false;
+  // Readable, or its first read() would fail and be taken for the lifeline's end: a mistaken
+  // FD (a write-only one, standard output) would end the server at once without a word.
+  const int flags = ::fcntl(fd, F_GETFL);
+  if (flags < 0 || (flags & O_ACCMODE) == O_WRONLY) return false;
   ::fcntl(fd, F_SETFD, FD_CLOEXEC);  // not for any program this one might start
   // A thread, not the serving loop's poll(): the first load may block (a slow disk, a FIFO)
   // before the loop runs. _exit rather than exit: the loop's state is the main thread's, and a
