@@ -2,6 +2,7 @@
 
 #include <bodyfmt/geometry_fix.h>
 #include <bodyfmt/geometry_mass.h>
+#include <bodyfmt/readable_number.h>
 
 #include <fmt/format.h>
 
@@ -44,7 +45,7 @@ std::optional<MassFromShapes> mass_from_shapes(const Model& model, const std::st
   } else if (link.sources.mass().known() && link.sources.mass().file != path) {
     action.unavailable = "its mass keys are written in another file: \"" + link.sources.mass().file.str() + "\"";
   } else {
-    action.title += fmt::format(" (mass {:g} kg kept)", keys->combined.mass);
+    action.title += " (mass " + readable_number(keys->combined.mass) + " kg kept)";
     std::string why;
     if (keys->link_keys) {
       std::vector<FixIt> fixes = link_mass_fixes(text, path, link, *keys->link_keys, why);
